@@ -1,0 +1,28 @@
+// clothref scenes: the built-in scenes, one line each.
+#include <iostream>
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "clothref/scene.h"
+#include "commands.h"
+
+namespace clothref::cli {
+
+Command addScenesCommand(CLI::App& root) {
+  CLI::App* app = root.add_subcommand("scenes", "List the built-in scenes (the first is the default)");
+  auto json = std::make_shared<bool>(false);
+  app->add_flag("--json", *json, "Print every built-in scene as JSON, one per line");
+  return {app, [json] {
+            for (const Scene& scene : builtinScenes()) {
+              if (*json) {
+                std::cout << sceneToJson(scene).dump() << '\n';
+                continue;
+              }
+              std::cout << fmt::format("{:<16} {}\n", scene.name, scene.description);
+            }
+            return kExitOk;
+          }};
+}
+
+}  // namespace clothref::cli
