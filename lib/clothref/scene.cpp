@@ -351,12 +351,13 @@ Scene loadScene(const std::string& name_or_path) {
   json document;
   try {
     document = json::parse(text.str());
-  } catch (const json::parse_error& error) {
-    // nlohmann's message names the line and column: "parse error at line 3, column 5: ..."
+  } catch (const json::exception& error) {
+    // drop nlohmann's "[json.exception.parse_error.101] " tag; the rest names line and column
+    // (or, for a number too large for a double, the number)
     std::string message = error.what();
-    const auto where = message.find("parse error");
+    const auto tag_end = message.find("] ");
     throw InputError(name_or_path + ": not valid JSON: " +
-                     (where == std::string::npos ? message : message.substr(where)));
+                     (tag_end == std::string::npos ? message : message.substr(tag_end + 2)));
   }
   try {
     return sceneFromJson(document);
