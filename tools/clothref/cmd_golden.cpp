@@ -1,11 +1,109 @@
-// PLACEHOLDER, replaced by the issue that builds `clothref golden`.
+// clothref golden: check the golden data against the code (default), or regenerate it (--update).
+// The check prints the diff report of each mismatch, one line per matching entry with --verbose,
+// and a final count line; it exits 0 when everything matches, 1 on a mismatch, 2 on bad input.
+#include <iostream>
+#include <memory>
+#include <optional>
+
+#include <fmt/format.h>
+
+#include "clothref/error.h"
+#include "clothref/golden.h"
 #include "commands.h"
+#include "output_file.h"
 
 namespace clothref::cli {
 
+namespace {
+
+struct GoldenOptions {
+  std::string golden = "golden";
+  bool update = false;
+  bool verbose = false;
+  std::optional<std::int64_t> ulps;
+  std::string tolerances;
+  bool skip_hashes = false;
+};
+
+int runUpdate(const GoldenOptions& options) {
+  // Each file is written to a temporary beside it and renamed into place.
+  const GoldenUpdateSummary summary = updateGolden(
+      options.golden,
+      [](const std::filesystem::path& path, FunctionRef<void(std::ostream&)> write) {
+        OutputFile output(path.string());
+        write(output.stream());
+        output.commit();
+      });
+  std::cerr << fmt::format(
+      "clothref golden: wrote {} scenes, {} traces and a manifest with {} hash runs to {}\n",
+      summary.scenes, summary.traces, summary.hash_runs, options.golden);
+  for (const std::filesystem::path& removed : summary.removed)
+    std::cerr << fmt::format("  removed stale {}\n", removed.string());
+  return kExitOk;
+}
+
+// Indents every line of a multi-line report under its entry.
+std::string indented(const std::string& text) {
+  std::string out = "    ";
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    out += text[i];
+    if (text[i] == '\n' && i + 1 < text.size()) out += "    ";
+  }
+  if (!out.empty() && out.back() != '\n') out += '\n';
+  return out;
+}
+
+int runCheck(const GoldenOptions& options) {
+  GoldenCheckOptions check;
+  if (!options.tolerances.empty()) check.diff = readToleranceFile(options.tolerances);
+  if (options.ulps) {
+    if (*options.ulps < 0) throw InputError(fmt::format("--ulps: must be >= 0 (got {})", *options.ulps));
+    check.diff.global = Tolerance{};
+    check.diff.global.ulps = *options.ulps;
+  }
+  check.check_hashes = !options.skip_hashes;
+
+  const GoldenCheckSummary summary =
+      checkGolden(options.golden, check, [&options](const GoldenEntryResult& entry) {
+        if (entry.matched && !options.verbose) return;
+        std::cout << fmt::format("{:<8} {:<6} {}: {}\n", entry.matched ? "ok" : "MISMATCH",
+                                 entry.kind, entry.name, entry.summary);
+        if (!entry.report.empty()) std::cout << indented(entry.report);
+        std::cout.flush();
+      });
+  std::cout << fmt::format("clothref golden: {} of {} entries match, {} mismatch ({}{})\n",
+                           summary.checked - summary.mismatched, summary.checked,
+                           summary.mismatched, options.golden,
+                           options.skip_hashes ? ", hash runs skipped" : "");
+  return summary.mismatched ? kExitDiffer : kExitOk;
+}
+
+}  // namespace
+
 Command addGoldenCommand(CLI::App& root) {
-  CLI::App* app = root.add_subcommand("golden", "(not built yet)");
-  return {app, [] { return kExitBadInput; }};
+  CLI::App* app = root.add_subcommand(
+      "golden",
+      "Check the golden data (scenes, traces, per-step hashes) against the code, or regenerate "
+      "it with --update (docs/regression.md)");
+  auto options = std::make_shared<GoldenOptions>();
+  app->add_option("--golden", options->golden, "Golden directory")->capture_default_str();
+  CLI::Option* update =
+      app->add_flag("--update", options->update,
+                    "Regenerate every golden file from the code and delete stale ones");
+  app->add_flag("-v,--verbose", options->verbose, "Also print one line per matching entry")
+      ->excludes(update);
+  app->add_option("--ulps", options->ulps,
+                  "Let trace values differ by up to N units in the last place (default 0: exact)")
+      ->excludes(update);
+  app->add_option("--tolerances", options->tolerances,
+                  "Tolerance file for the traces (docs/trace-format.md); --ulps overrides its "
+                  "default")
+      ->excludes(update);
+  app->add_flag("--skip-hashes", options->skip_hashes,
+                "Do not check the per-step hash runs (they are exact by nature: skip them on a "
+                "toolchain other than the one that made the files)")
+      ->excludes(update);
+  return {app, [options] { return options->update ? runUpdate(*options) : runCheck(*options); }};
 }
 
 }  // namespace clothref::cli
