@@ -91,7 +91,8 @@ struct FieldStats {
   double needed_abs = 0, needed_rel = 0;
   std::uint64_t needed_ulps = 0;
   std::optional<ValueDiff> worst;  // the value furthest beyond (or closest to) its tolerance
-  double worst_score = -1;
+  bool worst_beyond = false;       // whether `worst` is beyond tolerance
+  double worst_score = -1;         // its measure / tolerance (the measure for a zero tolerance)
 
   double meanAbs() const { return compared ? sum_abs / double(compared) : 0; }
   double meanRel() const { return compared ? sum_rel / double(compared) : 0; }
@@ -116,6 +117,7 @@ enum class Verdict {
 struct DiffReport {
   std::string path_a, path_b;
   Verdict verdict = Verdict::Identical;
+  Precision precision = Precision::Float;  // of positions and velocities (double if A, B differ)
   DiffOptions options;
   std::vector<HeaderDiff> header_diffs;
   std::int64_t steps_a = 0, steps_b = 0;  // recorded steps in each trace
