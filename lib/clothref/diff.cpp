@@ -104,7 +104,10 @@ Outcome compareValue(ValueDiff& diff, const Tolerance& tolerance, Precision prec
 // ---------------------------------------------------------------------------------------------
 // Header comparison
 
+const ordered_json kMissing(ordered_json::value_t::discarded);
+
 std::string compact(const ordered_json& value) {
+  if (value.is_discarded()) return "(missing)";
   if (value.is_number_float()) return fmt::format("{}", value.get<double>());
   return value.dump();
 }
@@ -117,13 +120,13 @@ void compareJson(const ordered_json& a, const ordered_json& b, const std::string
       const std::string child = pointer + "/" + item.key();
       const auto other = b.find(item.key());
       if (other == b.end())
-        out.push_back({child, compact(item.value()), "(missing)"});
+        out.push_back({child, item.value(), kMissing});
       else
         compareJson(item.value(), *other, child, out);
     }
     for (const auto& item : b.items())
       if (!a.contains(item.key()))
-        out.push_back({pointer + "/" + item.key(), "(missing)", compact(item.value())});
+        out.push_back({pointer + "/" + item.key(), kMissing, item.value()});
     return;
   }
   if (a.is_array() && b.is_array() && a.size() == b.size()) {
@@ -132,10 +135,10 @@ void compareJson(const ordered_json& a, const ordered_json& b, const std::string
     return;
   }
   if (a.is_array() && b.is_array()) {
-    out.push_back({pointer, fmt::format("{} items", a.size()), fmt::format("{} items", b.size())});
+    out.push_back({pointer, a, b});
     return;
   }
-  if (a != b) out.push_back({pointer, compact(a), compact(b)});
+  if (a != b) out.push_back({pointer, a, b});
 }
 
 bool startsWith(const std::string& text, const std::string& prefix) {
@@ -369,6 +372,12 @@ ordered_json valueToJson(const ValueDiff& d) {
   out["rel"] = jsonNumber(d.rel);
   out["ulps"] = jsonUlps(d.ulps);
   return out;
+}
+
+// Arrays of different lengths (sphere lists, particle lists) are summarised by their length.
+std::string describeHeaderValue(const ordered_json& value) {
+  if (value.is_array()) return fmt::format("{} items", value.size());
+  return compact(value);
 }
 
 std::string fieldLabel(const FieldStats& stats) {
@@ -607,8 +616,8 @@ std::string formatReport(const DiffReport& r) {
                        r.path_b, step_counts, summary);
   }
   for (const HeaderDiff& d : r.header_diffs)
-    out += fmt::format("  {} {}: {} vs {}\n", d.significant ? "header" : "info  ", d.pointer, d.a,
-                       d.b);
+    out += fmt::format("  {} {}: {} vs {}\n", d.significant ? "header" : "info  ", d.pointer,
+                       describeHeaderValue(d.a), describeHeaderValue(d.b));
   if (r.verdict == Verdict::Identical) return out;
 
   out += fmt::format("  steps  {} compared, {} skipped (equal hash and bytes)", r.steps_compared,
@@ -648,9 +657,14 @@ ordered_json reportToJson(const DiffReport& r) {
   out["b"] = r.path_b;
   out["precision"] = std::string(precisionName(r.precision));
   ordered_json headers = ordered_json::array();
-  for (const HeaderDiff& d : r.header_diffs)
-    headers.push_back({{"pointer", d.pointer}, {"a", d.a}, {"b", d.b},
-                       {"significant", d.significant}});
+  for (const HeaderDiff& d : r.header_diffs) {
+    ordered_json entry = {{"pointer", d.pointer}};
+    // a key missing on one side is left out of the entry
+    if (!d.a.is_discarded()) entry["a"] = d.a;
+    if (!d.b.is_discarded()) entry["b"] = d.b;
+    entry["significant"] = d.significant;
+    headers.push_back(std::move(entry));
+  }
   out["header_differences"] = headers;
   out["steps"] = {{"a", r.steps_a},
                   {"b", r.steps_b},

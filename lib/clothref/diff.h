@@ -103,8 +103,8 @@ struct FieldStats {
 // unknown keys) make the verdict Differ; build info, scene name/description, steps and stride
 // (with --common-steps) are informational.
 struct HeaderDiff {
-  std::string pointer;  // JSON pointer, e.g. "/scene/cloth/spring_coef"
-  std::string a, b;     // values as compact JSON, or "(missing)"
+  std::string pointer;         // JSON pointer, e.g. "/scene/cloth/spring_coef"
+  nlohmann::ordered_json a, b;  // the values; a missing key is a discarded value
   bool significant = true;
 };
 
