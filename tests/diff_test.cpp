@@ -213,8 +213,8 @@ TEST_F(DiffTest, ValuesNearZeroAreHandledByTheFloor) {
   combined.global.rel = 1e-3;
   EXPECT_EQ(diff("a.jsonl", "b.jsonl", combined).verdict, Verdict::WithinTolerance);
 
-  const test::CommandResult run = test::runCli("diff --rel 1e-3 --floor 1e-9 " + path("a.jsonl") +
-                                               " " + path("b.jsonl"));
+  const test::CommandResult run =
+      test::runCli("diff --rel 1e-3 --floor 1e-9 " + path("a.jsonl") + " " + path("b.jsonl"));
   EXPECT_EQ(run.exit_code, 0) << run.output;
   const test::CommandResult fail =
       test::runCli("diff --rel 1e-3 " + path("a.jsonl") + " " + path("b.jsonl"));
@@ -278,9 +278,9 @@ TEST_F(DiffTest, WrittenTolerancesMakeTheSameDiffPass) {
   // several perturbations of different sizes and signs, in both bodies and both fields
   std::vector<std::string> edited = lines;
   for (std::size_t line = 2; line < lines.size(); ++line) {
-    for (const Location& where : {Location{line, "cloth", "position", 40, 1},
-                                 Location{line, "cloth", "velocity", 12, 0},
-                                 Location{line, "spheres", "velocity", 0, 1}}) {
+    for (const Location& where :
+         {Location{line, "cloth", "position", 40, 1}, Location{line, "cloth", "velocity", 12, 0},
+          Location{line, "spheres", "velocity", 0, 1}}) {
       const float value = parseFloat(valueText(edited, where));
       const float changed = value * (1 + 1e-4f * float(line)) + 1e-6f;
       edited = withValue(edited, where, fmt::format("{}", changed));
@@ -294,9 +294,7 @@ TEST_F(DiffTest, WrittenTolerancesMakeTheSameDiffPass) {
     const DiffReport first = diff("a.jsonl", "b.jsonl", options);
     ASSERT_EQ(first.verdict, Verdict::Differ) << toleranceModeName(mode);
     EXPECT_EQ(first.values_beyond, 3 * 10);
-    {
-      std::ofstream(path("tolerances.json")) << observedTolerances(first).dump(2);
-    }
+    { std::ofstream(path("tolerances.json")) << observedTolerances(first).dump(2); }
     const DiffOptions written = readToleranceFile(path("tolerances.json"));
     EXPECT_EQ(written.bodies.at("cloth").position->mode, mode);
     const DiffReport second = diff("a.jsonl", "b.jsonl", written);
@@ -305,10 +303,11 @@ TEST_F(DiffTest, WrittenTolerancesMakeTheSameDiffPass) {
   }
   // the same through the CLI
   const std::string pair = path("a.jsonl") + " " + path("b.jsonl");
-  EXPECT_EQ(test::runCli("diff --abs 0 --write-tolerances " + path("cli.json") + " " + pair)
-                .exit_code,
-            1);
-  const test::CommandResult pass = test::runCli("diff --tolerances " + path("cli.json") + " " + pair);
+  EXPECT_EQ(
+      test::runCli("diff --abs 0 --write-tolerances " + path("cli.json") + " " + pair).exit_code,
+      1);
+  const test::CommandResult pass =
+      test::runCli("diff --tolerances " + path("cli.json") + " " + pair);
   EXPECT_EQ(pass.exit_code, 0) << pass.output;
 }
 
@@ -327,9 +326,9 @@ TEST_F(DiffTest, HeaderDifferencesAreReportedFirst) {
   struct Case {
     std::string file, pointer;
   };
-  for (const Case& c : {Case{"scene.jsonl", "/scene/cloth/spring_coef"},
-                        Case{"method.jsonl", "/integrator"}, Case{"dt.jsonl", "/dt"},
-                        Case{"precision.jsonl", "/precision"}}) {
+  for (const Case& c :
+       {Case{"scene.jsonl", "/scene/cloth/spring_coef"}, Case{"method.jsonl", "/integrator"},
+        Case{"dt.jsonl", "/dt"}, Case{"precision.jsonl", "/precision"}}) {
     const DiffReport report = diff("a.jsonl", c.file);
     EXPECT_EQ(report.verdict, Verdict::Differ) << c.file;
     ASSERT_FALSE(report.header_diffs.empty()) << c.file;
@@ -341,8 +340,9 @@ TEST_F(DiffTest, HeaderDifferencesAreReportedFirst) {
     ASSERT_NE(header, std::string::npos) << text;
     EXPECT_LT(header, text.find("  steps")) << text;
   }
-  EXPECT_NE(formatReport(diff("a.jsonl", "scene.jsonl")).find("/scene/cloth/spring_coef: 25000 vs 20000"),
-            std::string::npos);
+  EXPECT_NE(
+      formatReport(diff("a.jsonl", "scene.jsonl")).find("/scene/cloth/spring_coef: 25000 vs 20000"),
+      std::string::npos);
 }
 
 TEST_F(DiffTest, BuildDifferencesAreInformational) {
@@ -414,9 +414,9 @@ TEST_F(DiffTest, MalformedInputExitsTwoWithFileAndLine) {
   EXPECT_EQ(run.output.rfind("clothref: " + path("truncated.jsonl") + ":4: ", 0), 0u) << run.output;
   EXPECT_EQ(test::runCli("diff " + path("a.jsonl") + " " + path("absent.jsonl")).exit_code, 2);
   std::ofstream(path("bad-tolerances.json")) << R"({"bodies": {"cloht": {}}})";
-  const test::CommandResult tolerances = test::runCli(
-      "diff --tolerances " + path("bad-tolerances.json") + " " + path("a.jsonl") + " " +
-      path("a.jsonl"));
+  const test::CommandResult tolerances =
+      test::runCli("diff --tolerances " + path("bad-tolerances.json") + " " + path("a.jsonl") +
+                   " " + path("a.jsonl"));
   EXPECT_EQ(tolerances.exit_code, 2);
   EXPECT_NE(tolerances.output.find("/bodies/cloht: unknown body"), std::string::npos)
       << tolerances.output;

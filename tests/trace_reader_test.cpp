@@ -29,10 +29,9 @@ class TraceReaderTest : public ::testing::Test {
  protected:
   void SetUp() override {
     dir_ = fs::temp_directory_path() /
-           ("clothref-reader-" + std::string(::testing::UnitTest::GetInstance()
-                                                  ->current_test_info()
-                                                  ->name()) +
-            "-" + std::to_string(::getpid()));
+           ("clothref-reader-" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "-" +
+            std::to_string(::getpid()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
@@ -158,9 +157,9 @@ TEST_F(TraceReaderTest, MalformedInputNamesFileAndLine) {
 
   struct Case {
     std::string name;
-    int line;                                       // 1-based line to edit
+    int line;                                      // 1-based line to edit
     std::function<std::string(std::string)> edit;  // new text of that line
-    std::string expected;                           // part of the message after FILE:LINE:
+    std::string expected;                          // part of the message after FILE:LINE:
   };
   auto replaceFirst = [](std::string text, const std::string& from, const std::string& to) {
     const auto at = text.find(from);
@@ -174,7 +173,9 @@ TEST_F(TraceReaderTest, MalformedInputNamesFileAndLine) {
        [&](std::string s) { return replaceFirst(s, "\"velocity\":[[0", "\"velocity\":[[NaN"); },
        "bare NaN"},
       {"bare-infinity", 4,
-       [&](std::string s) { return replaceFirst(s, "\"velocity\":[[0", "\"velocity\":[[-Infinity"); },
+       [&](std::string s) {
+         return replaceFirst(s, "\"velocity\":[[0", "\"velocity\":[[-Infinity");
+       },
        "bare NaN/Infinity"},
       {"missing-key", 5, [&](std::string s) { return replaceFirst(s, "\"t\":", "\"time\":"); },
        "/time: unknown key"},
@@ -185,7 +186,9 @@ TEST_F(TraceReaderTest, MalformedInputNamesFileAndLine) {
        },
        "missing key \"hash\""},
       {"two-components", 3,
-       [&](std::string s) { return replaceFirst(s, "\"velocity\":[[0,0,0]", "\"velocity\":[[0,0]"); },
+       [&](std::string s) {
+         return replaceFirst(s, "\"velocity\":[[0,0,0]", "\"velocity\":[[0,0]");
+       },
        "/bodies/cloth/velocity/0"},
       {"four-components", 3,
        [&](std::string s) {
@@ -218,7 +221,8 @@ TEST_F(TraceReaderTest, MalformedInputNamesFileAndLine) {
        [&](std::string s) { return replaceFirst(s, "\"hash\":\"", "\"hash\":\"zz"); },
        "16 hex digits"},
       {"missing-line", 4, [](std::string) { return std::string(); }, "empty line"},
-      {"wrong-step", 4, [&](std::string s) { return replaceFirst(s, "\"step\":20", "\"step\":25"); },
+      {"wrong-step", 4,
+       [&](std::string s) { return replaceFirst(s, "\"step\":20", "\"step\":25"); },
        "expected step 20"},
   };
   for (const Case& c : cases) {
@@ -258,7 +262,7 @@ TEST_F(TraceReaderTest, KeysAreMatchedByNameNotPosition) {
   // move "bodies" before "step" and swap position and velocity in line 3
   std::string& line = lines[2];
   const auto bodies = line.find(",\"bodies\"");
-  const std::string prefix = line.substr(1, bodies - 1);              // "step":..,"hash":".."
+  const std::string prefix = line.substr(1, bodies - 1);  // "step":..,"hash":".."
   const std::string rest = line.substr(bodies + 1, line.size() - bodies - 2);  // "bodies":{..}
   const auto position = rest.find("\"position\"");
   const auto velocity = rest.find(",\"velocity\"");

@@ -163,10 +163,10 @@ std::vector<HeaderDiff> compareHeaders(const TraceReader& a, const TraceReader& 
     throw InputError(fmt::format("different bodies: {} has {}, {} has {}", a.path(),
                                  describeBodies(ha), b.path(), describeBodies(hb)));
   if (!common_steps && (ha.steps != hb.steps || ha.stride != hb.stride))
-    throw InputError(fmt::format(
-        "different step sets: {} has steps {} stride {}, {} has steps {} stride {} "
-        "(--common-steps compares the steps both have)",
-        a.path(), ha.steps, ha.stride, b.path(), hb.steps, hb.stride));
+    throw InputError(
+        fmt::format("different step sets: {} has steps {} stride {}, {} has steps {} stride {} "
+                    "(--common-steps compares the steps both have)",
+                    a.path(), ha.steps, ha.stride, b.path(), hb.steps, hb.stride));
   std::vector<HeaderDiff> all;
   compareJson(ha.json, hb.json, "", all);
   std::vector<HeaderDiff> significant, informational;
@@ -186,8 +186,8 @@ std::vector<HeaderDiff> compareHeaders(const TraceReader& a, const TraceReader& 
 
 // True when `candidate` should replace `current` as the worst: beyond tolerance beats within,
 // then the higher score; ties keep the earlier value.
-bool worse(bool candidate_beyond, double candidate_score, bool current_beyond,
-           double current_score, bool has_current) {
+bool worse(bool candidate_beyond, double candidate_score, bool current_beyond, double current_score,
+           bool has_current) {
   if (!has_current) return true;
   if (candidate_beyond != current_beyond) return candidate_beyond;
   return candidate_score > current_score;
@@ -257,7 +257,8 @@ double nonNegative(const json& object, const std::string& key, const std::string
                    const std::string& pointer) {
   const json& value = object[key];
   if (!value.is_number() || !(value.get<double>() >= 0) || !std::isfinite(value.get<double>()))
-    toleranceError(source, pointer + "/" + key, "expected a finite number >= 0, got " + value.dump());
+    toleranceError(source, pointer + "/" + key,
+                   "expected a finite number >= 0, got " + value.dump());
   return value.get<double>();
 }
 
@@ -281,14 +282,18 @@ Tolerance toleranceFromJson(const json& value, const std::string& source,
   if (value.contains("mode")) {
     const json& mode = value["mode"];
     const std::string name = mode.is_string() ? mode.get<std::string>() : "";
-    if (name == "ulps") tolerance.mode = ToleranceMode::Ulps;
-    else if (name == "absolute") tolerance.mode = ToleranceMode::Absolute;
-    else if (name == "relative") tolerance.mode = ToleranceMode::Relative;
-    else if (name == "combined") tolerance.mode = ToleranceMode::Combined;
+    if (name == "ulps")
+      tolerance.mode = ToleranceMode::Ulps;
+    else if (name == "absolute")
+      tolerance.mode = ToleranceMode::Absolute;
+    else if (name == "relative")
+      tolerance.mode = ToleranceMode::Relative;
+    else if (name == "combined")
+      tolerance.mode = ToleranceMode::Combined;
     else
-      toleranceError(source, pointer + "/mode",
-                     "expected \"ulps\", \"absolute\", \"relative\" or \"combined\", got " +
-                         mode.dump());
+      toleranceError(
+          source, pointer + "/mode",
+          "expected \"ulps\", \"absolute\", \"relative\" or \"combined\", got " + mode.dump());
   } else if (value.contains("abs") && value.contains("rel")) {
     tolerance.mode = ToleranceMode::Combined;
   } else if (value.contains("abs")) {
@@ -323,9 +328,12 @@ ordered_json jsonUlps(std::uint64_t ulps) {
 
 std::string verdictName(Verdict verdict) {
   switch (verdict) {
-    case Verdict::Identical: return "identical";
-    case Verdict::WithinTolerance: return "within_tolerance";
-    case Verdict::Differ: return "differ";
+    case Verdict::Identical:
+      return "identical";
+    case Verdict::WithinTolerance:
+      return "within_tolerance";
+    case Verdict::Differ:
+      return "differ";
   }
   return "differ";
 }
@@ -336,9 +344,15 @@ std::string describeTolerance(const Tolerance& t) {
     case ToleranceMode::Ulps:
       text = t.ulps == 0 ? "exact" : fmt::format("{} ulp", t.ulps);
       break;
-    case ToleranceMode::Absolute: text = fmt::format("abs {:g}", t.abs); break;
-    case ToleranceMode::Relative: text = fmt::format("rel {:g}", t.rel); break;
-    case ToleranceMode::Combined: text = fmt::format("abs {:g} or rel {:g}", t.abs, t.rel); break;
+    case ToleranceMode::Absolute:
+      text = fmt::format("abs {:g}", t.abs);
+      break;
+    case ToleranceMode::Relative:
+      text = fmt::format("rel {:g}", t.rel);
+      break;
+    case ToleranceMode::Combined:
+      text = fmt::format("abs {:g} or rel {:g}", t.abs, t.rel);
+      break;
   }
   if (t.floor > 0) text += fmt::format(", floor {:g}", t.floor);
   return text;
@@ -353,8 +367,8 @@ std::string where(const ValueDiff& d) {
 std::string describeValue(const ValueDiff& d, Precision precision) {
   const Precision p = d.field == Field::Time ? Precision::Double : precision;
   const std::string ulps = d.ulps == kInfiniteUlps ? "inf" : fmt::format("{}", d.ulps);
-  return fmt::format("{}: {} vs {} (abs {:.3g}, rel {:.3g}, {} ulp)", where(d),
-                     formatValue(d.a, p), formatValue(d.b, p), d.abs, d.rel, ulps);
+  return fmt::format("{}: {} vs {} (abs {:.3g}, rel {:.3g}, {} ulp)", where(d), formatValue(d.a, p),
+                     formatValue(d.b, p), d.abs, d.rel, ulps);
 }
 
 ordered_json valueToJson(const ValueDiff& d) {
@@ -390,19 +404,26 @@ std::string fieldLabel(const FieldStats& stats) {
 
 std::string fieldName(Field field) {
   switch (field) {
-    case Field::Position: return "position";
-    case Field::Velocity: return "velocity";
-    case Field::Time: return "time";
+    case Field::Position:
+      return "position";
+    case Field::Velocity:
+      return "velocity";
+    case Field::Time:
+      return "time";
   }
   return "?";
 }
 
 std::string toleranceModeName(ToleranceMode mode) {
   switch (mode) {
-    case ToleranceMode::Ulps: return "ulps";
-    case ToleranceMode::Absolute: return "absolute";
-    case ToleranceMode::Relative: return "relative";
-    case ToleranceMode::Combined: return "combined";
+    case ToleranceMode::Ulps:
+      return "ulps";
+    case ToleranceMode::Absolute:
+      return "absolute";
+    case ToleranceMode::Relative:
+      return "relative";
+    case ToleranceMode::Combined:
+      return "combined";
   }
   return "?";
 }
@@ -481,8 +502,8 @@ DiffOptions readToleranceFile(const std::string& path) {
   } catch (const json::parse_error& error) {
     std::string message = error.what();
     const auto at = message.find("parse error");
-    throw InputError(path + ": not valid JSON: " +
-                     (at == std::string::npos ? message : message.substr(at)));
+    throw InputError(
+        path + ": not valid JSON: " + (at == std::string::npos ? message : message.substr(at)));
   }
   return toleranceOptionsFromJson(document, path);
 }
@@ -596,14 +617,12 @@ DiffReport diffTraces(const std::string& path_a, const std::string& path_b,
 
 std::string formatReport(const DiffReport& r) {
   std::string out;
-  const std::int64_t significant =
-      std::count_if(r.header_diffs.begin(), r.header_diffs.end(),
-                    [](const HeaderDiff& d) { return d.significant; });
-  const std::string step_counts =
-      r.steps_a == r.steps_b && r.steps_a == r.steps_compared
-          ? fmt::format("{} steps", r.steps_compared)
-          : fmt::format("{} common steps ({} in A, {} in B)", r.steps_compared, r.steps_a,
-                        r.steps_b);
+  const std::int64_t significant = std::count_if(r.header_diffs.begin(), r.header_diffs.end(),
+                                                 [](const HeaderDiff& d) { return d.significant; });
+  const std::string step_counts = r.steps_a == r.steps_b && r.steps_a == r.steps_compared
+                                      ? fmt::format("{} steps", r.steps_compared)
+                                      : fmt::format("{} common steps ({} in A, {} in B)",
+                                                    r.steps_compared, r.steps_a, r.steps_b);
   if (r.verdict == Verdict::Identical) {
     out += fmt::format("identical: {} vs {}: {}, {} values\n", r.path_a, r.path_b, step_counts,
                        r.values_compared);
@@ -627,7 +646,7 @@ std::string formatReport(const DiffReport& r) {
                        r.steps_equal_values_different_hash);
   out += '\n';
   if (r.first_beyond)
-    out += fmt::format("  first  {}; {} values beyond tolerance in that step\n",
+    out += fmt::format("  first  {}; {} beyond tolerance in that step\n",
                        describeValue(*r.first_beyond, r.precision), r.first_step_beyond_count);
   if (r.worst) out += fmt::format("  worst  {}\n", describeValue(*r.worst, r.precision));
   bool table = false;

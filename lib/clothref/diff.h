@@ -33,10 +33,10 @@ enum class ToleranceMode { Ulps, Absolute, Relative, Combined };
 
 struct Tolerance {
   ToleranceMode mode = ToleranceMode::Ulps;
-  double abs = 0;          // same unit as the field
-  double rel = 0;          // fraction of max(|a|, |b|)
-  double floor = 0;        // pairs with both |a|, |b| < floor pass
-  std::int64_t ulps = 0;   // units in the last place
+  double abs = 0;         // same unit as the field
+  double rel = 0;         // fraction of max(|a|, |b|)
+  double floor = 0;       // pairs with both |a|, |b| < floor pass
+  std::int64_t ulps = 0;  // units in the last place
 };
 
 // The compared fields. Time has no body.
@@ -66,14 +66,14 @@ DiffOptions toleranceOptionsFromJson(const nlohmann::json& document, const std::
 struct ValueDiff {
   std::int64_t step = 0;
   double t = 0;
-  std::string body;        // empty for time
+  std::string body;  // empty for time
   Field field = Field::Position;
   std::int64_t particle = -1;  // -1 for time
   int component = -1;          // 0, 1, 2 = x, y, z; -1 for time
   double a = 0, b = 0;
-  double abs = 0;              // |a - b|, +inf for a non-finite mismatch
-  double rel = 0;              // |a - b| / max(|a|, |b|), 0 when both are 0
-  std::uint64_t ulps = 0;      // UINT64_MAX for a non-finite mismatch
+  double abs = 0;          // |a - b|, +inf for a non-finite mismatch
+  double rel = 0;          // |a - b| / max(|a|, |b|), 0 when both are 0
+  std::uint64_t ulps = 0;  // UINT64_MAX for a non-finite mismatch
 };
 
 // Statistics of one field of one body (or of time) over all compared values.
@@ -103,7 +103,7 @@ struct FieldStats {
 // unknown keys) make the verdict Differ; build info, scene name/description, steps and stride
 // (with --common-steps) are informational.
 struct HeaderDiff {
-  std::string pointer;         // JSON pointer, e.g. "/scene/cloth/spring_coef"
+  std::string pointer;          // JSON pointer, e.g. "/scene/cloth/spring_coef"
   nlohmann::ordered_json a, b;  // the values; a missing key is a discarded value
   bool significant = true;
 };
@@ -127,8 +127,8 @@ struct DiffReport {
   std::int64_t values_compared = 0, values_beyond = 0;
   std::optional<ValueDiff> first_beyond;  // first value beyond tolerance (first step, file order)
   std::int64_t first_step_beyond_count = 0;  // values beyond tolerance in that step
-  std::optional<ValueDiff> worst;         // worst value of all fields (see FieldStats::worst)
-  std::vector<FieldStats> fields;         // per body (header order) x position, velocity; time
+  std::optional<ValueDiff> worst;            // worst value of all fields (see FieldStats::worst)
+  std::vector<FieldStats> fields;            // per body (header order) x position, velocity; time
 };
 
 // Compares two trace files. Throws InputError on bad input (exit 2).

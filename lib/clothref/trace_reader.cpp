@@ -93,8 +93,8 @@ class StepLineParser {
  private:
   [[noreturn]] void fail(const Where& where, const std::string& problem) const {
     const std::string pointer = where.pointer();
-    reader_.fail(fmt::format("{}{}{} (column {})", pointer, pointer.empty() ? "" : ": ", problem,
-                             pos_ + 1));
+    reader_.fail(
+        fmt::format("{}{}{} (column {})", pointer, pointer.empty() ? "" : ": ", problem, pos_ + 1));
   }
 
   void once(bool& seen, std::string_view key) const {
@@ -168,15 +168,17 @@ class StepLineParser {
       if (marker == "Infinity") return std::numeric_limits<double>::infinity();
       if (marker == "-Infinity") return -std::numeric_limits<double>::infinity();
       fail(pointer, fmt::format("expected a number or \"NaN\", \"Infinity\", \"-Infinity\", got "
-                                "\"{}\"", marker));
+                                "\"{}\"",
+                                marker));
     }
     const std::size_t start = pos_;
     if (text_[pos_] == '-') ++pos_;
     const char first = peek();
     if (first < '0' || first > '9') {
       if (first == 'N' || first == 'n' || first == 'I' || first == 'i')
-        fail(pointer, "bare NaN/Infinity token (non-finite values are written as the strings "
-                      "\"NaN\", \"Infinity\", \"-Infinity\")");
+        fail(pointer,
+             "bare NaN/Infinity token (non-finite values are written as the strings "
+             "\"NaN\", \"Infinity\", \"-Infinity\")");
       if (first == '\0') fail(pointer, "truncated line: unexpected end");
       fail(pointer, fmt::format("expected a number, got '{}'", first));
     }
@@ -214,8 +216,10 @@ class StepLineParser {
     for (; pos_ < text_.size(); ++pos_) {
       const char c = text_[pos_];
       if (in_string) {
-        if (c == '\\') ++pos_;
-        else if (c == '"') in_string = false;
+        if (c == '\\')
+          ++pos_;
+        else if (c == '"')
+          in_string = false;
       } else if (c == '"') {
         in_string = true;
       } else if (c == '{' || c == '[') {
@@ -334,7 +338,8 @@ std::int64_t headerInteger(const ordered_json& value, const std::string& source,
                            const std::string& pointer, std::int64_t minimum) {
   if (!value.is_number_integer()) headerError(source, pointer + ": expected an integer");
   const auto i = value.get<std::int64_t>();
-  if (i < minimum) headerError(source, fmt::format("{}: must be >= {} (got {})", pointer, minimum, i));
+  if (i < minimum)
+    headerError(source, fmt::format("{}: must be >= {} (got {})", pointer, minimum, i));
   return i;
 }
 
@@ -352,8 +357,9 @@ TraceHeader parseTraceHeader(const ordered_json& json, const std::string& source
   if (header.version != kTraceVersion)
     headerError(source, fmt::format("/version: unsupported version {} (this build reads {})",
                                     header.version, kTraceVersion));
-  static const char* const kKnown[] = {"format", "version", "scene",  "integrator", "precision", "dt",
-                                       "steps",  "stride",  "bodies", "hash",       "build"};
+  static const char* const kKnown[] = {"format",    "version", "scene", "integrator",
+                                       "precision", "dt",      "steps", "stride",
+                                       "bodies",    "hash",    "build"};
   for (const auto& item : json.items())
     if (std::find(std::begin(kKnown), std::end(kKnown), item.key()) == std::end(kKnown))
       headerError(source, "/" + item.key() + ": unknown key");
@@ -382,11 +388,13 @@ TraceHeader parseTraceHeader(const ordered_json& json, const std::string& source
     TraceBody parsed{body["name"].get<std::string>(),
                      headerInteger(body["particles"], source, pointer + "/particles", 0)};
     for (const TraceBody& other : header.bodies)
-      if (other.name == parsed.name) headerError(source, pointer + ": duplicate body " + parsed.name);
+      if (other.name == parsed.name)
+        headerError(source, pointer + ": duplicate body " + parsed.name);
     header.bodies.push_back(std::move(parsed));
   }
   if (!headerKey(json, source, "hash").is_string()) headerError(source, "/hash: expected a string");
-  if (!headerKey(json, source, "build").is_object()) headerError(source, "/build: expected an object");
+  if (!headerKey(json, source, "build").is_object())
+    headerError(source, "/build: expected an object");
   return header;
 }
 

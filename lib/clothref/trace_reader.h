@@ -34,16 +34,16 @@ struct TraceHeader {
   int version = 0;
   Precision precision = Precision::Float;
   std::string integrator;
-  double dt = 0;             // seconds
-  std::int64_t steps = 0;    // steps simulated
-  std::int64_t stride = 1;   // every stride-th step recorded, plus the last
+  double dt = 0;            // seconds
+  std::int64_t steps = 0;   // steps simulated
+  std::int64_t stride = 1;  // every stride-th step recorded, plus the last
   std::vector<TraceBody> bodies;
 };
 
 // The cheap part of a step line: the first three keys, read without touching the arrays.
 struct StepPrefix {
   std::int64_t step = 0;
-  double t = 0;             // seconds
+  double t = 0;  // seconds
   std::uint64_t hash = 0;
 };
 

@@ -37,7 +37,8 @@ DiffOptions buildOptions(const DiffCommandOptions& o) {
   checkNonNegative("--abs", o.abs);
   checkNonNegative("--rel", o.rel);
   checkNonNegative("--floor", o.floor);
-  if (o.ulps && *o.ulps < 0) throw InputError(fmt::format("--ulps: must be >= 0 (got {})", *o.ulps));
+  if (o.ulps && *o.ulps < 0)
+    throw InputError(fmt::format("--ulps: must be >= 0 (got {})", *o.ulps));
   if (o.ulps && (o.abs || o.rel))
     throw InputError("--ulps: cannot be combined with --abs or --rel (pick one mode)");
   DiffOptions options = o.tolerances.empty() ? DiffOptions{} : readToleranceFile(o.tolerances);
