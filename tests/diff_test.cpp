@@ -442,6 +442,19 @@ TEST_F(DiffTest, JsonReportCarriesVerdictWorstAndFields) {
   ASSERT_EQ(report["fields"].size(), 5u);  // cloth, spheres x position, velocity; time
   EXPECT_EQ(report["fields"][1]["beyond_tolerance"], 1);
   EXPECT_EQ(report["fields"][1]["tolerance"]["mode"], "ulps");
+  EXPECT_EQ(report["tolerances"]["default"]["ulps"], 0);
+  // a per-body tolerance from a file shows up in the report
+  std::ofstream(path("tolerances.json"))
+      << R"({"bodies": {"cloth": {"velocity": {"mode": "absolute", "abs": 2}}}})";
+  const test::CommandResult loose = test::runCli("diff --json --tolerances " +
+                                                 path("tolerances.json") + " " + path("a.jsonl") +
+                                                 " " + path("b.jsonl") + " 2>/dev/null");
+  EXPECT_EQ(loose.exit_code, 0) << loose.output;
+  const nlohmann::json within = nlohmann::json::parse(loose.output);
+  EXPECT_EQ(within["verdict"], "within_tolerance");
+  EXPECT_EQ(within["tolerances"]["bodies"]["cloth"]["velocity"]["abs"], 2.0);
+  EXPECT_EQ(within["fields"][1]["tolerance"]["mode"], "absolute");
+  EXPECT_EQ(within["fields"][0]["tolerance"]["mode"], "ulps");
 }
 
 }  // namespace

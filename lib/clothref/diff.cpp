@@ -716,6 +716,16 @@ ordered_json reportToJson(const DiffReport& r) {
     fields.push_back(std::move(f));
   }
   out["fields"] = fields;
+  // the options as given, in the tolerance-file schema
+  ordered_json tolerances = {{"default", toleranceToJson(r.options.global)}};
+  if (r.options.time) tolerances["time"] = toleranceToJson(*r.options.time);
+  ordered_json bodies = ordered_json::object();
+  for (const auto& [name, body] : r.options.bodies) {
+    if (body.position) bodies[name]["position"] = toleranceToJson(*body.position);
+    if (body.velocity) bodies[name]["velocity"] = toleranceToJson(*body.velocity);
+  }
+  tolerances["bodies"] = bodies;
+  out["tolerances"] = tolerances;
   out["common_steps"] = r.options.common_steps;
   return out;
 }
