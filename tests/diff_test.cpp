@@ -405,13 +405,42 @@ TEST_F(DiffTest, EqualHashWithDifferentBytesIsStillCompared) {
 
 TEST_F(DiffTest, MalformedInputExitsTwoWithFileAndLine) {
   const std::vector<std::string> lines = write("a.jsonl", smallCloth(), settings(100, 50));
-  std::vector<std::string> bad = lines;
-  bad[3] = bad[3].substr(0, 300);
-  write("truncated.jsonl", bad);
-  const test::CommandResult run =
-      test::runCli("diff " + path("a.jsonl") + " " + path("truncated.jsonl"));
-  EXPECT_EQ(run.exit_code, 2);
-  EXPECT_EQ(run.output.rfind("clothref: " + path("truncated.jsonl") + ":4: ", 0), 0u) << run.output;
+  // one edit per case, on the 0-based line given; the message must name that line (1-based)
+  struct Case {
+    std::string name;
+    std::size_t line;
+    std::string text;
+  };
+  const Location centre{2, "cloth", "position", 40, 1};
+  const std::vector<Case> cases = {
+      {"truncated", 3, lines[3].substr(0, 300)},
+      {"not-json", 2, "hello"},
+      {"bare-nan", 2, withValue(lines, centre, "NaN")[2]},
+      {"bare-infinity", 3,
+       withValue(lines, Location{3, "spheres", "velocity", 0, 1}, "-Infinity")[3]},
+      {"string-value", 2, withValue(lines, centre, "\"1.5\"")[2]},
+      {"wrong-shape", 2, withValue(lines, centre, "0,0")[2]},
+      {"missing-key", 1,
+       lines[1].substr(0, lines[1].find(",\"t\"")) + lines[1].substr(lines[1].find(",\"hash\""))},
+      {"wrong-version", 0,
+       std::string(lines[0]).replace(lines[0].find("\"version\":1"), 11, "\"version\":9")},
+  };
+  for (const Case& c : cases) {
+    std::vector<std::string> bad = lines;
+    bad[c.line] = c.text;
+    write(c.name + ".jsonl", bad);
+    // the malformed file on either side
+    for (const std::string& args : {path("a.jsonl") + " " + path(c.name + ".jsonl"),
+                                    path(c.name + ".jsonl") + " " + path("a.jsonl")}) {
+      const test::CommandResult run = test::runCli("diff " + args);
+      EXPECT_EQ(run.exit_code, 2) << c.name << ": " << run.output;
+      EXPECT_EQ(run.output.rfind(
+                    fmt::format("clothref: {}:{}: ", path(c.name + ".jsonl"), c.line + 1), 0),
+                0u)
+          << c.name << ": " << run.output;
+      EXPECT_EQ(std::count(run.output.begin(), run.output.end(), '\n'), 1) << run.output;
+    }
+  }
   EXPECT_EQ(test::runCli("diff " + path("a.jsonl") + " " + path("absent.jsonl")).exit_code, 2);
   std::ofstream(path("bad-tolerances.json")) << R"({"bodies": {"cloht": {}}})";
   const test::CommandResult tolerances =
@@ -446,9 +475,9 @@ TEST_F(DiffTest, JsonReportCarriesVerdictWorstAndFields) {
   // a per-body tolerance from a file shows up in the report
   std::ofstream(path("tolerances.json"))
       << R"({"bodies": {"cloth": {"velocity": {"mode": "absolute", "abs": 2}}}})";
-  const test::CommandResult loose = test::runCli("diff --json --tolerances " +
-                                                 path("tolerances.json") + " " + path("a.jsonl") +
-                                                 " " + path("b.jsonl") + " 2>/dev/null");
+  const test::CommandResult loose =
+      test::runCli("diff --json --tolerances " + path("tolerances.json") + " " + path("a.jsonl") +
+                   " " + path("b.jsonl") + " 2>/dev/null");
   EXPECT_EQ(loose.exit_code, 0) << loose.output;
   const nlohmann::json within = nlohmann::json::parse(loose.output);
   EXPECT_EQ(within["verdict"], "within_tolerance");
