@@ -65,6 +65,8 @@ Spheres<T> makeSpheres(const SpheresSpec& spec) {
 
 template <typename T>
 World<T> makeWorld(const Scene& scene, Method method, std::optional<double> dt) {
+  // scenes built in code get the same checks as scene files: a bad index would write out of bounds
+  validateScene(scene);
   World<T> world;
   world.method = method;
   Physics<T>& physics = world.physics;

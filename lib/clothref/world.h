@@ -39,7 +39,7 @@ struct World {
 
 // Builds the initial state of `scene`: the grid (initializeVertex, fixed particles,
 // initializeSpring) or the listed particles and springs, then the spheres (addSphere).
-// `dt` overrides the scene's dt when given.
+// `dt` overrides the scene's dt when given. Throws SceneError for an invalid scene.
 template <typename T>
 World<T> makeWorld(const Scene& scene, Method method, std::optional<double> dt = std::nullopt);
 
