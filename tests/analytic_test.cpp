@@ -3,9 +3,9 @@
 // limits, and conservation laws of the impact.
 #include "clothref/analytic.h"
 
-#include <cmath>
-
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "clothref/error.h"
 
@@ -50,7 +50,8 @@ TEST(Oscillator, SatisfiesTheOdeInEveryRegime) {
       const Displacement before = oscillatorState(o, t - h);
       const Displacement after = oscillatorState(o, t + h);
       const double acceleration = (after.velocity - before.velocity) / (2 * h);
-      const double residual = o.mass * acceleration + o.damping * u.velocity + o.stiffness * u.position;
+      const double residual =
+          o.mass * acceleration + o.damping * u.velocity + o.stiffness * u.position;
       // scale: the spring force at the initial displacement, 20 N
       EXPECT_NEAR(residual, 0, 1e-6 * 20) << "zeta " << zeta << " t " << t;
       EXPECT_NEAR(u.velocity, (after.position - before.position) / (2 * h), 1e-7)

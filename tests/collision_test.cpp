@@ -12,9 +12,9 @@ namespace {
 void expectAllPass(const std::vector<CheckRow>& rows) {
   ASSERT_FALSE(rows.empty());
   for (const CheckRow& row : rows)
-    EXPECT_TRUE(row.pass) << row.check << " [" << precisionName(row.precision)
-                          << "]: expected " << row.expected << ", observed " << row.observed
-                          << ", tolerance " << row.tolerance;
+    EXPECT_TRUE(row.pass) << row.check << " [" << precisionName(row.precision) << "]: expected "
+                          << row.expected << ", observed " << row.observed << ", tolerance "
+                          << row.tolerance;
 }
 
 TEST(ImpactSweep, SphereSphereConservesAndRestores) {
@@ -85,8 +85,8 @@ TEST(CollideStub, SphereClothTreatsFixedParticlesAsImmovable) {
   setMass(cloth.particles, 0, 2.0);
   cloth.particles.velocity.col(0) = Vec4<double>(0, 0.5, 0.2, 0);
   collide(spheres, cloth, e, 0.0);
-  const ImpactVelocities pair = impactVelocities(
-      125, xyz(sphere_before.velocity.col(0)), 2, Eigen::Vector3d(0, 0.5, 0.2), n, e);
+  const ImpactVelocities pair = impactVelocities(125, xyz(sphere_before.velocity.col(0)), 2,
+                                                 Eigen::Vector3d(0, 0.5, 0.2), n, e);
   EXPECT_LT((xyz(spheres.particles.velocity.col(0)) - pair.a).norm(), 1e-14);
   EXPECT_LT((xyz(cloth.particles.velocity.col(0)) - pair.b).norm(), 1e-14);
 }

@@ -1,10 +1,10 @@
 // Properties of the spring and collision stubs over many random states, in float and double.
 // Seeds are fixed and doubles come from the top 53 bits of each draw (std distributions are not
 // portable), so every run sees the same states.
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <random>
-
-#include <gtest/gtest.h>
 
 #include "clothref/cloth.h"
 #include "clothref/spheres.h"
@@ -37,7 +37,8 @@ std::pair<Eigen::Vector3d, double> massWeightedSum(const Particles<T>& p, bool u
   double scale = 0;
   for (int i = 0; i < p.size(); ++i) {
     const Vec4<T>& column = use_acceleration ? p.acceleration.col(i) : p.velocity.col(i);
-    const Eigen::Vector3d term = double(p.mass[i]) * column.template head<3>().template cast<double>();
+    const Eigen::Vector3d term =
+        double(p.mass[i]) * column.template head<3>().template cast<double>();
     sum += term;
     scale += term.norm();
   }
@@ -146,7 +147,8 @@ TYPED_TEST(Property, SphereSphereContactKeepsMomentumAndNeverGainsEnergy) {
     const Vec4<T> b = a + direction * T(uniform(random, 0.5, 0.999) * (ra + rb));
     addSphere(spheres, a, T(ra), T(1000));
     addSphere(spheres, b, T(rb), T(1000));
-    setMass(spheres.particles, 1, T(double(spheres.particles.mass[0]) * uniform(random, 0.01, 100)));
+    setMass(spheres.particles, 1,
+            T(double(spheres.particles.mass[0]) * uniform(random, 0.01, 100)));
     spheres.particles.velocity.col(0) = randomVector<T>(random, 3, T(0));
     spheres.particles.velocity.col(1) = randomVector<T>(random, 3, T(0));
     const auto [momentum_before, scale] = massWeightedSum(spheres.particles, false);

@@ -2,15 +2,15 @@
 // and `clothref verify` reports them with the documented exit codes and JSON shape.
 #include "clothref/verify.h"
 
+#include <gtest/gtest.h>
+
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <memory>
-#include <string>
-
-#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <string>
 
 namespace clothref {
 namespace {
@@ -18,9 +18,9 @@ namespace {
 void expectAllPass(const std::vector<CheckRow>& rows) {
   ASSERT_FALSE(rows.empty());
   for (const CheckRow& row : rows)
-    EXPECT_TRUE(row.pass) << row.check << " [" << row.method << ", "
-                          << precisionName(row.precision) << "]: expected " << row.expected
-                          << ", observed " << row.observed << ", tolerance " << row.tolerance;
+    EXPECT_TRUE(row.pass) << row.check << " [" << row.method << ", " << precisionName(row.precision)
+                          << "]: expected " << row.expected << ", observed " << row.observed
+                          << ", tolerance " << row.tolerance;
 }
 
 TEST(MakeRow, AppliesItsRule) {
@@ -99,7 +99,8 @@ std::pair<int, std::string> runCli(const std::string& arguments) {
   std::string output;
   std::array<char, 4096> buffer{};
   std::size_t n = 0;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe.get())) > 0) output.append(buffer.data(), n);
+  while ((n = fread(buffer.data(), 1, buffer.size(), pipe.get())) > 0)
+    output.append(buffer.data(), n);
   const int status = pclose(pipe.release());
   return {WEXITSTATUS(status), output};
 }

@@ -1,8 +1,8 @@
 #include "clothref/analytic.h"
 
-#include <cmath>
-
 #include <fmt/format.h>
+
+#include <cmath>
 
 #include "clothref/error.h"
 
@@ -75,12 +75,14 @@ Displacement oscillatorState(const DampedOscillator& oscillator, double t) {
 
 SpringProblem springProblem(const Scene& scene) {
   const std::string kind = "spring";
-  if (!scene.cloth || scene.cloth->grid) notFitting(scene, kind, "needs an explicit-particle cloth");
+  if (!scene.cloth || scene.cloth->grid)
+    notFitting(scene, kind, "needs an explicit-particle cloth");
   if (scene.spheres) notFitting(scene, kind, "has spheres");
   const ClothSpec& cloth = *scene.cloth;
   if (cloth.particles.size() != 2 || cloth.springs.size() != 1)
     notFitting(scene, kind, "needs exactly two particles and one spring");
-  if (toEigen(scene.gravity) != Eigen::Vector3d::Zero()) notFitting(scene, kind, "gravity is not 0");
+  if (toEigen(scene.gravity) != Eigen::Vector3d::Zero())
+    notFitting(scene, kind, "gravity is not 0");
 
   // the fixed particle is the anchor: mass 0 in the list or named in `fixed`
   auto is_fixed = [&cloth](int i) {
@@ -126,7 +128,8 @@ PointState springState(const SpringProblem& problem, double t) {
 
 DragFall dragFallProblem(const Scene& scene) {
   const std::string kind = "free-fall";
-  if (!scene.cloth || scene.cloth->grid) notFitting(scene, kind, "needs an explicit-particle cloth");
+  if (!scene.cloth || scene.cloth->grid)
+    notFitting(scene, kind, "needs an explicit-particle cloth");
   if (scene.spheres) notFitting(scene, kind, "has spheres");
   const ClothSpec& cloth = *scene.cloth;
   if (cloth.particles.size() != 1 || !cloth.springs.empty() || !cloth.fixed.empty())
@@ -161,8 +164,8 @@ PointState dragFallState(const DragFall& fall, double t) {
 }
 
 ImpactVelocities impactVelocities(double mass_a, const Eigen::Vector3d& velocity_a, double mass_b,
-                                  const Eigen::Vector3d& velocity_b,
-                                  const Eigen::Vector3d& normal, double restitution) {
+                                  const Eigen::Vector3d& velocity_b, const Eigen::Vector3d& normal,
+                                  double restitution) {
   ImpactVelocities result{velocity_a, velocity_b};
   const double ua = velocity_a.dot(normal);
   const double ub = velocity_b.dot(normal);

@@ -102,7 +102,7 @@ struct ImpactVelocities {
 };
 
 ImpactVelocities impactVelocities(double mass_a, const Eigen::Vector3d& velocity_a, double mass_b,
-                                  const Eigen::Vector3d& velocity_b,
-                                  const Eigen::Vector3d& normal, double restitution);
+                                  const Eigen::Vector3d& velocity_b, const Eigen::Vector3d& normal,
+                                  double restitution);
 
 }  // namespace clothref

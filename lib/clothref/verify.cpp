@@ -1,12 +1,12 @@
 #include "clothref/verify.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
 #include <random>
-
-#include <fmt/format.h>
 
 #include "clothref/analytic.h"
 #include "clothref/world.h"
@@ -15,8 +15,14 @@ namespace clothref {
 
 CheckRow makeRow(std::string check, std::string method, Precision precision, double expected,
                  double observed, double tolerance, CheckRule rule) {
-  CheckRow row{std::move(check), std::move(method), precision, expected, observed, tolerance, rule,
-               false};
+  CheckRow row;
+  row.check = std::move(check);
+  row.method = std::move(method);
+  row.precision = precision;
+  row.expected = expected;
+  row.observed = observed;
+  row.tolerance = tolerance;
+  row.rule = rule;
   // written so that a NaN observation fails
   row.pass = rule == CheckRule::Within ? std::abs(observed - expected) <= tolerance
                                        : observed <= expected + tolerance;
@@ -169,9 +175,16 @@ double truncationBound(const ExactMotion& exact, int order, double dt, int steps
   return 2 * double(steps) * dt * std::pow(dt, order) * largest / factorial(order + 1);
 }
 
-// Worst-case linear accumulation of round-off: each step rounds the position update (<= u|x|)
-// and the velocity update (<= u|v|, which moves x by <= u|v|T by the end); 8 allows for the few
-// roundings per step in each.
+// Round-off of `roundings` roundings of relative size u on quantities of size `scale`, modelled
+// as a random walk, 8 sqrt(roundings) u scale. The worst case (linear, roundings * u * scale)
+// is about sqrt(roundings) times larger and would hide real errors: with it, a 0.1 % stiffness
+// error passes the float rows (docs/verification.md).
+double roundoffEstimate(double roundings, Precision precision, double scale) {
+  return 8 * std::sqrt(roundings) * unitRoundoff(precision) * scale;
+}
+
+// Round-off of a particle trajectory: each step rounds the position update (~u|x|) and the
+// velocity update (~u|v|, which moves x by ~u|v|T by the end).
 double roundoffBound(const ExactMotion& exact, Precision precision, double dt, int steps) {
   const double end_time = double(steps) * dt;
   double scale = 0;
@@ -179,7 +192,7 @@ double roundoffBound(const ExactMotion& exact, Precision precision, double dt, i
     const PointState s = exact.state(double(k) * dt);
     scale = std::max(scale, s.position.norm() + end_time * s.velocity.norm());
   }
-  return 8 * double(steps) * unitRoundoff(precision) * scale;
+  return roundoffEstimate(steps, precision, scale);
 }
 
 constexpr double kHorizon = 1.0;  // seconds, for the closed-form and convergence checks
@@ -196,13 +209,11 @@ std::vector<CheckRow> closedFormChecks() {
       for (Method method : kAllMethods) {
         const Trajectory trajectory =
             simulateParticle(precision, scene, method, scene.dt, steps, exact.particle);
-        const double tolerance =
-            truncationBound(exact, methodOrder(method), trajectory.dt, steps) +
-            roundoffBound(exact, precision, trajectory.dt, steps);
+        const double tolerance = truncationBound(exact, methodOrder(method), trajectory.dt, steps) +
+                                 roundoffBound(exact, precision, trajectory.dt, steps);
         rows.push_back(makeRow(
             fmt::format("{}: max |x - x_exact| (m), dt {:g} s, {:g} s", name, scene.dt, kHorizon),
-            std::string(methodName(method)), precision, 0, maxError(trajectory, exact),
-            tolerance));
+            std::string(methodName(method)), precision, 0, maxError(trajectory, exact), tolerance));
       }
     }
   }
@@ -235,7 +246,8 @@ std::vector<ConvergenceStudy> convergenceStudies() {
       for (int k = 0; k <= kHalvings; ++k) {
         const double dt = ladderStart(method) / double(1 << k);
         const int steps = int(std::lround(kHorizon / dt));
-        const Trajectory run = simulateParticle(precision, scene, method, dt, steps, exact.particle);
+        const Trajectory run =
+            simulateParticle(precision, scene, method, dt, steps, exact.particle);
         study.dts.push_back(run.dt);
         study.errors.push_back(maxError(run, exact));
         bool above_floor = true;
@@ -273,19 +285,19 @@ std::vector<CheckRow> convergenceChecks(const std::vector<ConvergenceStudy>& stu
     const std::string method(methodName(study.method));
     const int fitted = int(std::count(study.fitted.begin(), study.fitted.end(), true));
     if (study.order) {
-      rows.push_back(makeRow(
-          fmt::format("spring: order, least squares over {} dt {:g}..{:g} s, {:g} s", fitted,
-                      study.dts.front(), study.dts.back(), study.end_time),
-          method, study.precision, study.expected_order, *study.order, 0.2));
+      rows.push_back(
+          makeRow(fmt::format("spring: order, least squares over {} dt {:g}..{:g} s, {:g} s",
+                              fitted, study.dts.front(), study.dts.back(), study.end_time),
+                  method, study.precision, study.expected_order, *study.order, 0.2));
     }
     if (study.precision != Precision::Float) continue;
     // the float floor: round-off error at the finest dt against its worst-case bound
     const int steps = int(std::lround(study.end_time / study.dts.back()));
-    rows.push_back(makeRow(
-        fmt::format("spring: float floor |x_float - x_double| (m), dt {:g} s{}", study.dts.back(),
-                    study.order ? "" : " (order: < 3 dt above floor)"),
-        method, study.precision, 0, study.roundoff.back(),
-        roundoffBound(exact, study.precision, study.dts.back(), steps)));
+    rows.push_back(
+        makeRow(fmt::format("spring: float floor |x_float - x_double| (m), dt {:g} s{}",
+                            study.dts.back(), study.order ? "" : " (order: < 3 dt above floor)"),
+                method, study.precision, 0, study.roundoff.back(),
+                roundoffBound(exact, study.precision, study.dts.back(), steps)));
   }
   return rows;
 }
@@ -341,10 +353,9 @@ ImpactMeasure measureImpact(World<T>& world, BodyRef<T> a, BodyRef<T> b) {
     const Eigen::Vector3d relative = va - vb;
     measure.restitution = -(a.velocity() - b.velocity()).dot(n) / relative.dot(n);
     auto tangential = [&n](const Eigen::Vector3d& v) { return v - v.dot(n) * n; };
-    measure.tangential_change =
-        std::max((tangential(a.velocity()) - tangential(va)).norm(),
-                 (tangential(b.velocity()) - tangential(vb)).norm()) /
-        relative.norm();
+    measure.tangential_change = std::max((tangential(a.velocity()) - tangential(va)).norm(),
+                                         (tangential(b.velocity()) - tangential(vb)).norm()) /
+                                relative.norm();
     const double e = double(world.spheres && b.particles == &world.spheres->particles
                                 ? world.physics.restitution_sphere
                                 : world.physics.restitution_cloth);
@@ -419,8 +430,7 @@ ImpactMeasure sphereSphereImpact(double restitution, double mass_ratio) {
 
 template <typename T>
 ImpactMeasure sphereClothImpact(double restitution, double mass_ratio, bool fixed) {
-  World<T> world =
-      makeWorld<T>(sphereClothScene(restitution, mass_ratio, fixed), Method::Explicit);
+  World<T> world = makeWorld<T>(sphereClothScene(restitution, mass_ratio, fixed), Method::Explicit);
   return measureImpact(world, BodyRef<T>{&world.spheres->particles, 0},
                        BodyRef<T>{&world.cloth->particles, 0});
 }
@@ -468,30 +478,31 @@ void impactRows(const std::string& kind, Precision precision, Measure&& measure,
       closed.offer(m.closed_form_error, 0, where);
       if (e == 1) energy_elastic.offer(m.energy_change, 0, where);
       // the signed change: the worst is the largest gain (or smallest loss)
-      else energy_gain.offer(m.energy_change, -1, where);
+      else
+        energy_gain.offer(m.energy_change, -1, where);
     }
-    rows.push_back(makeRow(
-        fmt::format("{}: restitution e {:g} (worst of ratios 1, 10, 100: {})", kind, e,
-                    restitution.label),
-        "explicit", precision, e, restitution.value, restitutionTolerance(precision)));
+    rows.push_back(makeRow(fmt::format("{}: restitution e {:g} (worst of ratios 1, 10, 100: {})",
+                                       kind, e, restitution.label),
+                           "explicit", precision, e, restitution.value,
+                           restitutionTolerance(precision)));
   }
   const double tol = conservationTolerance(precision);
   const std::string sweep = "worst of 15";
-  rows.push_back(makeRow(fmt::format("{}: momentum drift / sum m|v| ({}: {})", kind, sweep,
-                                     momentum.label),
-                         "explicit", precision, 0, momentum.value, tol));
-  rows.push_back(makeRow(fmt::format("{}: tangential |dv_t| / |v_rel| ({}: {})", kind, sweep,
-                                     tangential.label),
-                         "explicit", precision, 0, tangential.value, tol));
-  rows.push_back(makeRow(fmt::format("{}: |v - v_closed_form| / |v_rel| ({}: {})", kind, sweep,
-                                     closed.label),
-                         "explicit", precision, 0, closed.value, restitutionTolerance(precision)));
-  rows.push_back(makeRow(fmt::format("{}: energy change / K at e = 1 (worst of 3: {})", kind,
-                                     energy_elastic.label),
-                         "explicit", precision, 0, energy_elastic.value, tol));
-  rows.push_back(makeRow(fmt::format("{}: energy change / K at e < 1 (largest of 12: {})", kind,
-                                     energy_gain.label),
-                         "explicit", precision, 0, energy_gain.value, tol, CheckRule::AtMost));
+  rows.push_back(
+      makeRow(fmt::format("{}: momentum drift / sum m|v| ({}: {})", kind, sweep, momentum.label),
+              "explicit", precision, 0, momentum.value, tol));
+  rows.push_back(makeRow(
+      fmt::format("{}: tangential |dv_t| / |v_rel| ({}: {})", kind, sweep, tangential.label),
+      "explicit", precision, 0, tangential.value, tol));
+  rows.push_back(
+      makeRow(fmt::format("{}: |v - v_closed_form| / |v_rel| ({}: {})", kind, sweep, closed.label),
+              "explicit", precision, 0, closed.value, restitutionTolerance(precision)));
+  rows.push_back(makeRow(
+      fmt::format("{}: energy change / K at e = 1 (worst of 3: {})", kind, energy_elastic.label),
+      "explicit", precision, 0, energy_elastic.value, tol));
+  rows.push_back(makeRow(
+      fmt::format("{}: energy change / K at e < 1 (largest of 12: {})", kind, energy_gain.label),
+      "explicit", precision, 0, energy_gain.value, tol, CheckRule::AtMost));
 }
 
 }  // namespace
@@ -499,12 +510,13 @@ void impactRows(const std::string& kind, Precision precision, Measure&& measure,
 std::vector<CheckRow> sphereSphereChecks() {
   std::vector<CheckRow> rows;
   for (Precision precision : kPrecisions) {
-    impactRows("sphere-sphere", precision,
-               [precision](double e, double ratio) {
-                 return precision == Precision::Float ? sphereSphereImpact<float>(e, ratio)
-                                                      : sphereSphereImpact<double>(e, ratio);
-               },
-               rows);
+    impactRows(
+        "sphere-sphere", precision,
+        [precision](double e, double ratio) {
+          return precision == Precision::Float ? sphereSphereImpact<float>(e, ratio)
+                                               : sphereSphereImpact<double>(e, ratio);
+        },
+        rows);
   }
   return rows;
 }
@@ -516,8 +528,9 @@ std::vector<CheckRow> sphereClothChecks() {
       return precision == Precision::Float ? sphereClothImpact<float>(e, ratio, fixed)
                                            : sphereClothImpact<double>(e, ratio, fixed);
     };
-    impactRows("sphere-cloth", precision,
-               [&measure](double e, double ratio) { return measure(e, ratio, false); }, rows);
+    impactRows(
+        "sphere-cloth", precision,
+        [&measure](double e, double ratio) { return measure(e, ratio, false); }, rows);
     // a fixed particle is immovable in the impulse: it keeps its (zero) velocity, and the sphere
     // bounces off it as off a wall
     Worst restitution, closed, particle, energy_gain;
@@ -530,19 +543,19 @@ std::vector<CheckRow> sphereClothChecks() {
       energy_gain.offer(m.energy_change, -1, where);
     }
     const std::string kind = "sphere-fixed particle";
-    rows.push_back(makeRow(
-        fmt::format("{}: restitution - e (worst of 5: {})", kind, restitution.label), "explicit",
-        precision, 0, restitution.value, restitutionTolerance(precision)));
-    rows.push_back(makeRow(
-        fmt::format("{}: particle |dv| (m/s) (worst of 5: {})", kind, particle.label), "explicit",
-        precision, 0, particle.value, 0));
+    rows.push_back(
+        makeRow(fmt::format("{}: restitution - e (worst of 5: {})", kind, restitution.label),
+                "explicit", precision, 0, restitution.value, restitutionTolerance(precision)));
+    rows.push_back(
+        makeRow(fmt::format("{}: particle |dv| (m/s) (worst of 5: {})", kind, particle.label),
+                "explicit", precision, 0, particle.value, 0));
     rows.push_back(makeRow(
         fmt::format("{}: |v - v_closed_form| / |v_rel| (worst of 5: {})", kind, closed.label),
         "explicit", precision, 0, closed.value, restitutionTolerance(precision)));
-    rows.push_back(makeRow(
-        fmt::format("{}: energy change / K (largest of 5: {})", kind, energy_gain.label),
-        "explicit", precision, 0, energy_gain.value, conservationTolerance(precision),
-        CheckRule::AtMost));
+    rows.push_back(
+        makeRow(fmt::format("{}: energy change / K (largest of 5: {})", kind, energy_gain.label),
+                "explicit", precision, 0, energy_gain.value, conservationTolerance(precision),
+                CheckRule::AtMost));
   }
   return rows;
 }
@@ -576,10 +589,10 @@ World<T> freeClothWorld(Method method) {
   return world;
 }
 
-// Relative momentum drift over kFreeClothSteps, and its round-off bound: per step and per
-// derivative evaluation each velocity rounds by <= u |v|, and each acceleration sums at most 12
-// spring forces, each rounding by <= u |a|; so |dP| <= 2 steps evals u N (v_max + 12 a_max dt),
-// relative to sum m |v| at the start (unit masses).
+// Relative momentum drift over kFreeClothSteps, and its round-off estimate: per step, per
+// derivative evaluation and per particle the velocity rounds by ~u |v|, and its acceleration
+// (a sum of at most 12 spring forces) by ~12 u |a|, moving v by 12 u |a| dt; relative to
+// sum m |v| at the start (unit masses).
 template <typename T>
 CheckRow freeClothRow(Method method, Precision precision) {
   World<T> world = freeClothWorld<T>(method);
@@ -593,20 +606,19 @@ CheckRow freeClothRow(Method method, Precision precision) {
   for (int k = 0; k < kFreeClothSteps; ++k) {
     step(world);
     const std::array<double, 3> now = momentum(world);
-    drift = std::max(drift, Eigen::Vector3d(now[0] - start[0], now[1] - start[1],
-                                            now[2] - start[2]).norm());
+    drift = std::max(
+        drift, Eigen::Vector3d(now[0] - start[0], now[1] - start[1], now[2] - start[2]).norm());
     v_max = std::max(v_max, double(p.velocity.cwiseAbs().maxCoeff()));
     a_max = std::max(a_max, double(p.acceleration.cwiseAbs().maxCoeff()));
   }
-  const double bound = 2.0 * kFreeClothSteps * evaluationsPerStep(method) *
-                       unitRoundoff(precision) * double(p.size()) *
-                       (v_max + 12 * a_max * double(world.physics.dt)) / scale;
+  const double roundings = double(kFreeClothSteps) * evaluationsPerStep(method) * p.size();
+  const double bound =
+      roundoffEstimate(roundings, precision, v_max + 12 * a_max * double(world.physics.dt)) / scale;
   return makeRow(fmt::format("free 9x9 cloth: momentum drift / sum m|v|, {} steps of {:g} s{}",
                              kFreeClothSteps, double(world.physics.dt),
                              isFinite(world) ? "" : " (NOT FINITE)"),
                  std::string(methodName(method)), precision, 0,
-                 isFinite(world) ? drift / scale : std::numeric_limits<double>::quiet_NaN(),
-                 bound);
+                 isFinite(world) ? drift / scale : std::numeric_limits<double>::quiet_NaN(), bound);
 }
 
 }  // namespace
@@ -647,17 +659,18 @@ nlohmann::ordered_json reportToJson(const VerifyReport& report) {
   }
   ordered_json studies = ordered_json::array();
   for (const ConvergenceStudy& study : report.studies) {
-    studies.push_back({{"scene", "spring"},
-                       {"method", methodName(study.method)},
-                       {"precision", precisionName(study.precision)},
-                       {"expected_order", study.expected_order},
-                       {"end_time", study.end_time},
-                       {"fit", "least squares of log error on log dt over the fitted points"},
-                       {"dts", study.dts},
-                       {"errors", study.errors},
-                       {"roundoff", study.roundoff},
-                       {"fitted", study.fitted},
-                       {"order", study.order ? ordered_json(*study.order) : ordered_json(nullptr)}});
+    studies.push_back(
+        {{"scene", "spring"},
+         {"method", methodName(study.method)},
+         {"precision", precisionName(study.precision)},
+         {"expected_order", study.expected_order},
+         {"end_time", study.end_time},
+         {"fit", "least squares of log error on log dt over the fitted points"},
+         {"dts", study.dts},
+         {"errors", study.errors},
+         {"roundoff", study.roundoff},
+         {"fitted", study.fitted},
+         {"order", study.order ? ordered_json(*study.order) : ordered_json(nullptr)}});
   }
   ordered_json checks = ordered_json::array();
   for (const CheckRow& row : report.checks) {
@@ -680,9 +693,9 @@ nlohmann::ordered_json reportToJson(const VerifyReport& report) {
 std::string reportTable(const VerifyReport& report) {
   std::size_t width = 5;
   for (const CheckRow& row : report.checks) width = std::max(width, row.check.size());
-  std::string table = fmt::format("{:<{}}  {:<10}  {:<6}  {:>12}  {:>12}  {:>10}  {}\n", "check",
-                                  width, "method", "prec", "expected", "observed", "tolerance",
-                                  "pass");
+  std::string table =
+      fmt::format("{:<{}}  {:<10}  {:<6}  {:>12}  {:>12}  {:>10}  {}\n", "check", width, "method",
+                  "prec", "expected", "observed", "tolerance", "pass");
   int failed = 0;
   for (const CheckRow& row : report.checks) {
     const std::string expected = row.rule == CheckRule::AtMost

@@ -7,12 +7,11 @@
 //   AtMost  passes when observed <= expected + tolerance (one-sided, e.g. "no energy gain")
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <span>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "clothref/integrator.h"
 #include "clothref/types.h"
@@ -22,8 +21,8 @@ namespace clothref {
 enum class CheckRule { Within, AtMost };
 
 struct CheckRow {
-  std::string check;    // what is measured, with its case and units
-  std::string method;   // integrator name, or "-" when the check does not depend on one
+  std::string check;   // what is measured, with its case and units
+  std::string method;  // integrator name, or "-" when the check does not depend on one
   Precision precision = Precision::Double;
   double expected = 0;
   double observed = 0;
