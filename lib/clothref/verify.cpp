@@ -706,10 +706,22 @@ std::string reportTable(const VerifyReport& report) {
                          row.tolerance, row.pass ? "yes" : "NO");
     failed += row.pass ? 0 : 1;
   }
-  table += "\norders (spring, least squares of log error on log dt):";
-  for (const ConvergenceStudy& study : report.studies) {
-    table += fmt::format(" {} {} {};", methodName(study.method), precisionName(study.precision),
-                         study.order ? fmt::format("{:.3f}", *study.order) : "null (floor)");
+  // one line per method: the orders side by side, and where the float floor lies
+  table +=
+      "\norders on spring (least squares of log error on log dt, pass |p - expected| <= 0.2);\n"
+      "float floor = largest |x_float - x_double| in the ladder; null = < 3 dt above 10x floor:\n";
+  for (Method method : kAllMethods) {
+    std::string line =
+        fmt::format("  {:<10}  expected {}", methodName(method), methodOrder(method));
+    for (const ConvergenceStudy& study : report.studies) {
+      if (study.method != method) continue;
+      line += fmt::format("  {} {}", precisionName(study.precision),
+                          study.order ? fmt::format("{:.3f}", *study.order) : "null");
+      if (study.precision == Precision::Float)
+        line += fmt::format("  float floor {:.2e} m",
+                            *std::max_element(study.roundoff.begin(), study.roundoff.end()));
+    }
+    table += line + "\n";
   }
   table += fmt::format("\n{} checks, {} failed\n", report.checks.size(), failed);
   return table;
