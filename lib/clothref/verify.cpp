@@ -397,7 +397,6 @@ Scene sphereSphereScene(double restitution, double mass_ratio) {
   spheres.sphere_sphere_collision = true;
   spheres.restitution_sphere = restitution;
   scene.spheres = spheres;
-  validateScene(scene);
   return scene;
 }
 
@@ -417,7 +416,6 @@ Scene sphereClothScene(double restitution, double mass_ratio, bool fixed) {
   spheres.sphere_sphere_collision = false;
   spheres.restitution_cloth = restitution;
   scene.spheres = spheres;
-  validateScene(scene);
   return scene;
 }
 
@@ -580,7 +578,6 @@ World<T> freeClothWorld(Method method) {
   cloth.spring_coef = 25000;
   cloth.damper_coef = 750;
   scene.cloth = cloth;
-  validateScene(scene);
   World<T> world = makeWorld<T>(scene, method);
   std::mt19937_64 random(20240521);
   Mat4X<T>& v = world.cloth->particles.velocity;
