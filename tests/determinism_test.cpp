@@ -58,11 +58,10 @@ std::string firstDifference(const HashRun& run, const std::vector<std::string>& 
 void expectStoredRunReproduced(const std::string& scene, Method method, Precision precision,
                                std::int64_t steps) {
   const HashRun* run = storedRun(scene, method, precision, steps);
-  ASSERT_NE(run, nullptr) << scene << ' ' << methodName(method) << ' '
-                          << precisionName(precision) << ' ' << steps
-                          << " steps: missing from golden/manifest.json";
-  const std::vector<std::string> hashes = precision == Precision::Float ? hashesAlone<float>(*run)
-                                                                        : hashesAlone<double>(*run);
+  ASSERT_NE(run, nullptr) << scene << ' ' << methodName(method) << ' ' << precisionName(precision)
+                          << ' ' << steps << " steps: missing from golden/manifest.json";
+  const std::vector<std::string> hashes =
+      precision == Precision::Float ? hashesAlone<float>(*run) : hashesAlone<double>(*run);
   EXPECT_EQ(firstDifference(*run, hashes), "");
 }
 

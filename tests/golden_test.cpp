@@ -113,8 +113,8 @@ std::string manifestError(const std::string& pointer, const nlohmann::json& valu
   GoldenSet set;
   set.scenes = {"spring"};
   set.traces = {goldenSet().traces.front()};
-  set.hash_runs = {HashRun{"spring", Method::Rk4, Precision::Float, 1e-3, 1,
-                           {"0123456789abcdef", "0123456789abcdef"}}};
+  set.hash_runs = {HashRun{
+      "spring", Method::Rk4, Precision::Float, 1e-3, 1, {"0123456789abcdef", "0123456789abcdef"}}};
   nlohmann::json document = nlohmann::json::parse(manifestText(set));
   document[nlohmann::json::json_pointer(pointer)] = value;
   try {
@@ -167,7 +167,8 @@ int lineOf(const std::string& file_text, const std::string& text) {
 // One test, because each part needs the ~4 s `--update` of the one before: update into a
 // temporary directory, check it passes, then tamper with a copy and check each entry is named.
 TEST(GoldenDirectory, UpdateThenCheckThenTamper) {
-  const fs::path root = fs::temp_directory_path() / fmt::format("clothref-golden-test-{}", ::getpid());
+  const fs::path root =
+      fs::temp_directory_path() / fmt::format("clothref-golden-test-{}", ::getpid());
   const fs::path dir = root / "golden";
   fs::remove_all(root);
   fs::create_directories(dir / "traces");
@@ -230,23 +231,25 @@ TEST(GoldenDirectory, UpdateThenCheckThenTamper) {
   EXPECT_EQ(check.exit_code, 1) << check.output;
   const std::string& out = check.output;
   auto has = [&out](const std::string& text) { return out.find(text) != std::string::npos; };
-  EXPECT_TRUE(has("MISMATCH hashes two-spheres midpoint double dt=0.001 1000 steps: first differs "
-                  "at step 300 of 1000: golden 0000000000000000"))
+  EXPECT_TRUE(
+      has("MISMATCH hashes two-spheres midpoint double dt=0.001 1000 steps: first differs "
+          "at step 300 of 1000: golden 0000000000000000"))
       << out;
   EXPECT_TRUE(has("MISMATCH trace  traces/spring.rk4.jsonl:")) << out;
   EXPECT_TRUE(has("step 1000")) << "the diff report names the tampered step\n" << out;
   EXPECT_TRUE(has("-12.5")) << "the diff report shows the tampered value\n" << out;
-  EXPECT_TRUE(has(fmt::format("MISMATCH scene  scenes/free-fall.json: differs from the built-in "
-                              "scene at line {}: golden '  \"viscous_coef\": 0.25,', now '  "
-                              "\"viscous_coef\": 0.5,'",
-                              lineOf(scene, drag))))
+  EXPECT_TRUE(
+      has(fmt::format("MISMATCH scene  scenes/free-fall.json: differs from the built-in "
+                      "scene at line {}: golden '  \"viscous_coef\": 0.25,', now '  "
+                      "\"viscous_coef\": 0.5,'",
+                      lineOf(scene, drag))))
       << out;
   EXPECT_TRUE(has("MISMATCH file   scenes/extra.json: stray file")) << out;
   EXPECT_TRUE(has("MISMATCH trace  traces/small-cloth.symplectic.jsonl: golden trace file missing"))
       << out;
   // Every entry plus the stray file; only the mismatches are printed without --verbose.
-  EXPECT_TRUE(has(fmt::format("clothref golden: {} of {} entries match, 5 mismatch", entries - 4,
-                              entries + 1)))
+  EXPECT_TRUE(has(
+      fmt::format("clothref golden: {} of {} entries match, 5 mismatch", entries - 4, entries + 1)))
       << out;
   EXPECT_FALSE(has("ok ")) << out;
   fs::remove_all(root);
@@ -258,8 +261,7 @@ TEST(GoldenCli, BadInputExitsTwo) {
   fs::remove_all(root);
   const test::CommandResult missing = test::runCli("golden --golden " + (root / "none").string());
   EXPECT_EQ(missing.exit_code, 2);
-  EXPECT_NE(missing.output.find("golden directory not found"), std::string::npos)
-      << missing.output;
+  EXPECT_NE(missing.output.find("golden directory not found"), std::string::npos) << missing.output;
 
   fs::create_directories(root);
   writeText(root / "manifest.json", "{\"format\": \"clothref-golden\", \"version\": 1,");

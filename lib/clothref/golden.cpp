@@ -1,5 +1,7 @@
 #include "clothref/golden.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <fstream>
 #include <iterator>
@@ -7,7 +9,6 @@
 #include <sstream>
 
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include "clothref/build_info.h"
 #include "clothref/error.h"
@@ -30,9 +31,9 @@ constexpr TracePlan kTracePlans[] = {
     {"course2024", 3000, 500},  // the cloth drapes over the sphere from step 0
     {"spring", 2000, 20},       // ~3 periods (2 pi / 10 s each)
     {"spring-undamped", 2000, 20},
-    {"free-fall", 2000, 20},    // apex at ~0.5 s, back through y = 10 m at ~1 s
-    {"two-spheres", 500, 5},    // contact at ~0.25 s
-    {"small-cloth", 4000, 200}, // the sphere reaches the cloth at ~0.2 s (2000 steps)
+    {"free-fall", 2000, 20},     // apex at ~0.5 s, back through y = 10 m at ~1 s
+    {"two-spheres", 500, 5},     // contact at ~0.25 s
+    {"small-cloth", 4000, 200},  // the sphere reaches the cloth at ~0.2 s (2000 steps)
 };
 
 // Steps of the hash-only runs: every step hashed, so only the hash list is stored.
@@ -42,8 +43,8 @@ struct HashPlan {
   bool double_too;  // also in double (the small scenes)
 };
 constexpr HashPlan kHashPlans[] = {
-    {"course2022", 1000, false}, {"course2024", 1000, false}, {"spring", 1000, true},
-    {"spring-undamped", 1000, true}, {"free-fall", 1000, true}, {"two-spheres", 1000, true},
+    {"course2022", 1000, false},     {"course2024", 1000, false}, {"spring", 1000, true},
+    {"spring-undamped", 1000, true}, {"free-fall", 1000, true},   {"two-spheres", 1000, true},
     {"small-cloth", 3000, true},  // past first contact at ~2000 steps
 };
 constexpr std::int64_t kLongExplicitSteps = 10000;  // course2022 explicit, 1 s simulated
@@ -105,8 +106,8 @@ class ManifestReader {
   explicit ManifestReader(std::string file_name) : file_name_(std::move(file_name)) {}
 
   [[noreturn]] void fail(const std::string& pointer, const std::string& problem) const {
-    throw InputError(fmt::format("{}: {}: {}", file_name_, pointer.empty() ? "/" : pointer,
-                                 problem));
+    throw InputError(
+        fmt::format("{}: {}: {}", file_name_, pointer.empty() ? "/" : pointer, problem));
   }
 
   const nlohmann::json& field(const nlohmann::json& object, const std::string& pointer,
@@ -140,8 +141,7 @@ class ManifestReader {
     return n;
   }
 
-  double positive(const nlohmann::json& object, const std::string& pointer,
-                  const char* key) const {
+  double positive(const nlohmann::json& object, const std::string& pointer, const char* key) const {
     const nlohmann::json& value = field(object, pointer, key);
     if (!value.is_number()) fail(pointer + "/" + key, "expected a number");
     const double x = value.get<double>();
@@ -250,8 +250,8 @@ GoldenEntryResult checkHashRun(const HashRun& run) {
   for (std::size_t s = 0; s < fresh.size(); ++s) {
     const std::string hash = hashToHex(fresh[s]);
     if (hash == run.hashes[s]) continue;
-    result.summary = fmt::format("first differs at step {} of {}: golden {}, now {}", s,
-                                 run.steps, run.hashes[s], hash);
+    result.summary = fmt::format("first differs at step {} of {}: golden {}, now {}", s, run.steps,
+                                 run.hashes[s], hash);
     return result;
   }
   result.matched = true;
@@ -281,8 +281,9 @@ GoldenEntryResult checkSceneFile(const std::filesystem::path& dir, const std::st
     const bool more_a = static_cast<bool>(std::getline(a, line_a));
     const bool more_b = static_cast<bool>(std::getline(b, line_b));
     if (!more_a || !more_b || line_a != line_b) {
-      result.summary = fmt::format("differs from the built-in scene at line {}: golden '{}', now '{}'",
-                                   line, more_a ? line_a : "<end>", more_b ? line_b : "<end>");
+      result.summary =
+          fmt::format("differs from the built-in scene at line {}: golden '{}', now '{}'", line,
+                      more_a ? line_a : "<end>", more_b ? line_b : "<end>");
       break;
     }
   }
@@ -489,8 +490,9 @@ GoldenUpdateSummary updateGolden(const std::filesystem::path& dir, GoldenFileWri
 GoldenCheckSummary checkGolden(const std::filesystem::path& dir, const GoldenCheckOptions& options,
                                FunctionRef<void(const GoldenEntryResult&)> on_entry) {
   if (!std::filesystem::is_directory(dir))
-    throw InputError(dir.string() + ": golden directory not found (generate it with clothref "
-                                    "golden --update)");
+    throw InputError(dir.string() +
+                     ": golden directory not found (generate it with clothref "
+                     "golden --update)");
   const GoldenSet manifest = readManifest(dir / "manifest.json");
   const GoldenSet& defined = goldenSet();
   GoldenCheckSummary summary;
@@ -546,8 +548,8 @@ GoldenCheckSummary checkGolden(const std::filesystem::path& dir, const GoldenChe
   for (const char* sub : {"scenes", "traces"})
     for (const std::string& file : filesIn(dir, sub))
       if (!expected.count(file))
-        report({"file", file, false, "stray file: not produced by the golden set (run --update)",
-                ""});
+        report(
+            {"file", file, false, "stray file: not produced by the golden set (run --update)", ""});
   return summary;
 }
 

@@ -96,8 +96,8 @@ struct GoldenCheckOptions {
 
 // The outcome of one golden entry (a scene file, a trace, a hash run, or a stale file).
 struct GoldenEntryResult {
-  std::string kind;     // "scene", "trace", "hashes" or "file"
-  std::string name;     // e.g. "traces/course2022.rk4.jsonl" or a HashRun::name()
+  std::string kind;  // "scene", "trace", "hashes" or "file"
+  std::string name;  // e.g. "traces/course2022.rk4.jsonl" or a HashRun::name()
   bool matched = false;
   std::string summary;  // one line: what was compared, or the first difference
   std::string report;   // for a trace mismatch, the diff report (several lines); else empty

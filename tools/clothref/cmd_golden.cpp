@@ -27,13 +27,13 @@ struct GoldenOptions {
 
 int runUpdate(const GoldenOptions& options) {
   // Each file is written to a temporary beside it and renamed into place.
-  const GoldenUpdateSummary summary = updateGolden(
-      options.golden,
-      [](const std::filesystem::path& path, FunctionRef<void(std::ostream&)> write) {
-        OutputFile output(path.string());
-        write(output.stream());
-        output.commit();
-      });
+  const GoldenUpdateSummary summary =
+      updateGolden(options.golden,
+                   [](const std::filesystem::path& path, FunctionRef<void(std::ostream&)> write) {
+                     OutputFile output(path.string());
+                     write(output.stream());
+                     output.commit();
+                   });
   std::cerr << fmt::format(
       "clothref golden: wrote {} scenes, {} traces and a manifest with {} hash runs to {}\n",
       summary.scenes, summary.traces, summary.hash_runs, options.golden);
@@ -57,7 +57,8 @@ int runCheck(const GoldenOptions& options) {
   GoldenCheckOptions check;
   if (!options.tolerances.empty()) check.diff = readToleranceFile(options.tolerances);
   if (options.ulps) {
-    if (*options.ulps < 0) throw InputError(fmt::format("--ulps: must be >= 0 (got {})", *options.ulps));
+    if (*options.ulps < 0)
+      throw InputError(fmt::format("--ulps: must be >= 0 (got {})", *options.ulps));
     check.diff.global = Tolerance{};
     check.diff.global.ulps = *options.ulps;
   }
