@@ -447,8 +447,8 @@ GoldenSet readManifest(const std::filesystem::path& file) {
   return manifestFromJson(document, file.string());
 }
 
-GoldenUpdateSummary updateGolden(const std::filesystem::path& dir, GoldenFileWriter write_file) {
-  const GoldenSet& set = goldenSet();
+GoldenUpdateSummary updateGolden(const std::filesystem::path& dir, GoldenFileWriter write_file,
+                                 const GoldenSet& set) {
   GoldenUpdateSummary summary;
   std::filesystem::create_directories(dir / "scenes");
   std::filesystem::create_directories(dir / "traces");
@@ -488,13 +488,13 @@ GoldenUpdateSummary updateGolden(const std::filesystem::path& dir, GoldenFileWri
 }
 
 GoldenCheckSummary checkGolden(const std::filesystem::path& dir, const GoldenCheckOptions& options,
-                               FunctionRef<void(const GoldenEntryResult&)> on_entry) {
+                               FunctionRef<void(const GoldenEntryResult&)> on_entry,
+                               const GoldenSet& defined) {
   if (!std::filesystem::is_directory(dir))
     throw InputError(dir.string() +
                      ": golden directory not found (generate it with clothref "
                      "golden --update)");
   const GoldenSet manifest = readManifest(dir / "manifest.json");
-  const GoldenSet& defined = goldenSet();
   GoldenCheckSummary summary;
   auto report = [&summary, &on_entry](const GoldenEntryResult& result) {
     ++summary.checked;

@@ -85,9 +85,11 @@ struct GoldenUpdateSummary {
   std::vector<std::filesystem::path> removed;  // stale files deleted from scenes/ and traces/
 };
 
-// Regenerates the whole golden set into `dir` (created if missing): scenes, traces, then the
-// manifest last; then deletes the files in scenes/ and traces/ that the set no longer produces.
-GoldenUpdateSummary updateGolden(const std::filesystem::path& dir, GoldenFileWriter write_file);
+// Regenerates the golden set `set` (the CLI: goldenSet(); tests: a small subset) into `dir`
+// (created if missing): scenes, traces, then the manifest last; then deletes the files in scenes/
+// and traces/ that the set does not produce.
+GoldenUpdateSummary updateGolden(const std::filesystem::path& dir, GoldenFileWriter write_file,
+                                 const GoldenSet& set = goldenSet());
 
 struct GoldenCheckOptions {
   DiffOptions diff;          // tolerance for the traces (default exact)
@@ -109,10 +111,11 @@ struct GoldenCheckSummary {
 };
 
 // Re-runs every entry of DIR/manifest.json and compares it with the stored data, compares the
-// scene files with the built-in scenes, and reports entries the code defines but the manifest
-// lacks (or the reverse) and stray files as mismatches. Calls `on_entry` once per entry, in
-// order. Throws InputError when DIR or its manifest is missing or malformed.
+// scene files with the built-in scenes, and reports entries `defined` has but the manifest lacks
+// (or the reverse) and stray files as mismatches. Calls `on_entry` once per entry, in order.
+// Throws InputError when DIR or its manifest is missing or malformed.
 GoldenCheckSummary checkGolden(const std::filesystem::path& dir, const GoldenCheckOptions& options,
-                               FunctionRef<void(const GoldenEntryResult&)> on_entry);
+                               FunctionRef<void(const GoldenEntryResult&)> on_entry,
+                               const GoldenSet& defined = goldenSet());
 
 }  // namespace clothref
