@@ -44,17 +44,7 @@ std::pair<std::size_t, std::size_t> findValue(const std::string& line, const Loc
 
 class DiffTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("clothref-diff-" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "-" +
-            std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  std::string path(const std::string& name) const { return dir_.file(name); }
 
   std::vector<std::string> write(const std::string& name, const Scene& scene,
                                  TraceSettings settings) {
@@ -76,7 +66,7 @@ class DiffTest : public ::testing::Test {
     return diffTraces(path(a), path(b), options);
   }
 
-  fs::path dir_;
+  test::TempDir dir_;
 };
 
 TraceSettings settings(std::int64_t steps, std::int64_t stride,

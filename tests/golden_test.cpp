@@ -177,12 +177,6 @@ GoldenSet smallSet() {
   return set;
 }
 
-// Writes golden files as the CLI does, minus the temporary-and-rename (OutputFile is the CLI's).
-const auto writeFile = [](const fs::path& path, FunctionRef<void(std::ostream&)> write) {
-  std::ofstream out(path, std::ios::binary);
-  write(out);
-};
-
 // Every mismatched entry, as "kind name: summary" (and the diff report when there is one).
 struct CheckRun {
   GoldenCheckSummary summary;
@@ -205,16 +199,14 @@ CheckRun check(const fs::path& dir, const GoldenSet& set) {
 // One test, because each part needs the update of the one before: update into a temporary
 // directory, check it passes, then tamper with a copy and check each entry is named.
 TEST(GoldenDirectory, UpdateThenCheckThenTamper) {
-  const fs::path root =
-      fs::temp_directory_path() / fmt::format("clothref-golden-test-{}", ::getpid());
-  const fs::path dir = root / "golden";
-  fs::remove_all(root);
+  const test::TempDir root;
+  const fs::path dir = root.path() / "golden";
   fs::create_directories(dir / "traces");
   // A stale trace (to be swept) and a file outside the generated subdirectories (to be kept).
   writeText(dir / "traces" / "retired.rk4.jsonl", "{}\n");
   writeText(dir / "NOTES.txt", "kept\n");
   const GoldenSet set = smallSet();
-  const GoldenUpdateSummary update = updateGolden(dir, writeFile, set);
+  const GoldenUpdateSummary update = updateGolden(dir, set);
 
   const int entries = int(set.scenes.size() + set.traces.size() + set.hash_runs.size());
   {
@@ -243,7 +235,7 @@ TEST(GoldenDirectory, UpdateThenCheckThenTamper) {
   }
 
   SCOPED_TRACE("a tampered copy fails, naming each tampered entry");
-  const fs::path copy = root / "tampered";
+  const fs::path copy = root.path() / "tampered";
   fs::copy(dir, copy, fs::copy_options::recursive);
   // 1. one hash of one run
   GoldenSet manifest = readManifest(copy / "manifest.json");
@@ -291,18 +283,14 @@ TEST(GoldenDirectory, UpdateThenCheckThenTamper) {
   // The diff report of the tampered trace names the step and shows the value.
   EXPECT_NE(tampered.reports.find("step 1000"), std::string::npos) << tampered.reports;
   EXPECT_NE(tampered.reports.find("-12.5"), std::string::npos) << tampered.reports;
-  fs::remove_all(root);
 }
 
 // The CLI prints each mismatch and a count line and exits 1. A manifest that lists nothing makes
 // every entry of the golden set a mismatch without simulating anything.
 TEST(GoldenCli, MismatchExitsOneAndPrintsEachEntry) {
-  const fs::path root =
-      fs::temp_directory_path() / fmt::format("clothref-golden-cli-{}", ::getpid());
-  fs::remove_all(root);
-  fs::create_directories(root);
-  writeText(root / "manifest.json", manifestText(GoldenSet{}));
-  const test::CommandResult result = test::runCli("golden --golden " + root.string());
+  const test::TempDir root;
+  writeText(root.path() / "manifest.json", manifestText(GoldenSet{}));
+  const test::CommandResult result = test::runCli("golden --golden " + root.path().string());
   EXPECT_EQ(result.exit_code, 1) << result.output;
   const std::string& out = result.output;
   auto has = [&out](const std::string& text) { return out.find(text) != std::string::npos; };
@@ -321,24 +309,19 @@ TEST(GoldenCli, MismatchExitsOneAndPrintsEachEntry) {
   EXPECT_TRUE(
       has(fmt::format("clothref golden: 0 of {} entries match, {} mismatch", entries, entries)))
       << out;
-  fs::remove_all(root);
 }
 
 TEST(GoldenCli, BadInputExitsTwo) {
-  const fs::path root =
-      fs::temp_directory_path() / fmt::format("clothref-golden-bad-{}", ::getpid());
-  fs::remove_all(root);
-  const test::CommandResult missing = test::runCli("golden --golden " + (root / "none").string());
+  const test::TempDir root;
+  const test::CommandResult missing = test::runCli("golden --golden " + root.file("none"));
   EXPECT_EQ(missing.exit_code, 2);
   EXPECT_NE(missing.output.find("golden directory not found"), std::string::npos) << missing.output;
 
-  fs::create_directories(root);
-  writeText(root / "manifest.json", "{\"format\": \"clothref-golden\", \"version\": 1,");
-  const test::CommandResult malformed = test::runCli("golden --golden " + root.string());
+  writeText(root.path() / "manifest.json", "{\"format\": \"clothref-golden\", \"version\": 1,");
+  const test::CommandResult malformed = test::runCli("golden --golden " + root.path().string());
   EXPECT_EQ(malformed.exit_code, 2);
   EXPECT_NE(malformed.output.find("manifest.json: not valid JSON"), std::string::npos)
       << malformed.output;
-  fs::remove_all(root);
 }
 
 }  // namespace

@@ -102,35 +102,29 @@ TEST(Scene, EachBadValueIsNamedByItsJsonPointer) {
 
 class SceneFiles : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = std::filesystem::temp_directory_path() /
-           ("clothref_scene_test_" + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir_);
-  }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
   std::string write(const std::string& name, const std::string& text) {
-    const auto path = dir_ / name;
+    const std::string path = dir_.file(name);
     std::ofstream(path) << text;
-    return path.string();
+    return path;
   }
-  std::filesystem::path dir_;
+  test::TempDir dir_;
 };
 
 TEST_F(SceneFiles, BadSceneFileIsOneLineExit2AndNoOutput) {
   for (const BadCase& c : kBadCases) {
     if (c.value && std::string(c.value) == "Infinity") continue;  // see OverflowingNumber
     const std::string scene = write("bad.json", mutated(c).dump(2));
-    const std::string out = (dir_ / "out.jsonl").string();
+    const std::string out = dir_.file("out.jsonl");
     const auto result = test::runCli("trace --scene " + scene + " --steps 3 -o " + out);
     EXPECT_EQ(result.exit_code, 2) << c.pointer;
     EXPECT_EQ(result.output, "clothref: " + scene + ": " + c.message + "\n");
     EXPECT_FALSE(std::filesystem::exists(out)) << c.pointer;
-    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir_), {}), 1) << "left a file behind";
+    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir_.path()), {}), 1) << "left a file behind";
   }
 }
 
 TEST_F(SceneFiles, MissingFileAndBrokenJson) {
-  auto result = test::runCli("trace --scene " + (dir_ / "nope.json").string());
+  auto result = test::runCli("trace --scene " + dir_.file("nope.json"));
   EXPECT_EQ(result.exit_code, 2);
   EXPECT_NE(result.output.find("nope.json: no such scene file or built-in scene"), std::string::npos)
       << result.output;

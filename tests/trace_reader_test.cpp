@@ -27,17 +27,7 @@ namespace fs = std::filesystem;
 // A fresh directory per test, removed at the end.
 class TraceReaderTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("clothref-reader-" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "-" +
-            std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  std::string path(const std::string& name) const { return dir_.file(name); }
 
   // Writes a trace of `scene` and returns its lines.
   std::vector<std::string> writeLines(const std::string& name, const Scene& scene,
@@ -67,7 +57,7 @@ class TraceReaderTest : public ::testing::Test {
     return "";
   }
 
-  fs::path dir_;
+  test::TempDir dir_;
 };
 
 TraceSettings settingsFor(const Scene& scene, Precision precision, std::int64_t steps,

@@ -14,6 +14,7 @@
 #include "clothref/error.h"
 #include "clothref/hash.h"
 #include "clothref/world.h"
+#include "clothref/output_file.h"
 
 namespace clothref {
 
@@ -182,13 +183,13 @@ bool readFile(const std::filesystem::path& path, std::string& text) {
   return !in.bad();
 }
 
-// A file in the system temporary directory, deleted when this goes out of scope.
+// A file in the system temporary directory, deleted when this goes out of scope. `name` must be
+// unique within the process (the golden trace's file name is).
 class TemporaryFile {
  public:
-  TemporaryFile() {
-    static int counter = 0;
+  explicit TemporaryFile(const std::string& name) {
     path_ = std::filesystem::temp_directory_path() /
-            fmt::format("clothref-golden-{}-{}.jsonl", ::getpid(), counter++);
+            fmt::format("clothref-golden-{}-{}", ::getpid(), name);
   }
   ~TemporaryFile() {
     std::error_code ignored;
@@ -203,9 +204,7 @@ class TemporaryFile {
 };
 
 bool sameTrace(const GoldenTrace& a, const GoldenTrace& b) {
-  return a.scene == b.scene && a.file == b.file && a.settings.method == b.settings.method &&
-         a.settings.precision == b.settings.precision && a.settings.dt == b.settings.dt &&
-         a.settings.steps == b.settings.steps && a.settings.stride == b.settings.stride;
+  return a.scene == b.scene && a.file == b.file && a.settings == b.settings;
 }
 
 bool containsTrace(const std::vector<GoldenTrace>& traces, const GoldenTrace& trace) {
@@ -228,7 +227,7 @@ GoldenEntryResult checkTrace(const std::filesystem::path& dir, const GoldenTrace
     result.summary = "golden trace file missing (" + settingsText(trace) + ")";
     return result;
   }
-  TemporaryFile fresh;
+  TemporaryFile fresh(std::filesystem::path(trace.file).filename().string());
   {
     std::ofstream out(fresh.path(), std::ios::binary);
     if (!out) throw InputError(fresh.path().string() + ": cannot create a temporary trace");
@@ -453,19 +452,29 @@ GoldenSet readManifest(const std::filesystem::path& file) {
   return manifestFromJson(document, file.string());
 }
 
-GoldenUpdateSummary updateGolden(const std::filesystem::path& dir, GoldenFileWriter write_file,
-                                 const GoldenSet& set) {
+namespace {
+
+// Writes one golden file: a temporary beside it, renamed into place once complete.
+void writeFile(const std::filesystem::path& path, FunctionRef<void(std::ostream&)> write) {
+  OutputFile output(path.string());
+  write(output.stream());
+  output.commit();
+}
+
+}  // namespace
+
+GoldenUpdateSummary updateGolden(const std::filesystem::path& dir, const GoldenSet& set) {
   GoldenUpdateSummary summary;
   std::filesystem::create_directories(dir / "scenes");
   std::filesystem::create_directories(dir / "traces");
 
   for (const std::string& name : set.scenes) {
-    write_file(dir / "scenes" / (name + ".json"),
+    writeFile(dir / "scenes" / (name + ".json"),
                [&name](std::ostream& out) { out << sceneFileText(builtin(name)); });
     ++summary.scenes;
   }
   for (const GoldenTrace& trace : set.traces) {
-    write_file(dir / trace.file, [&trace](std::ostream& out) {
+    writeFile(dir / trace.file, [&trace](std::ostream& out) {
       writeTrace(builtin(trace.scene), trace.settings, out);
     });
     ++summary.traces;
@@ -478,7 +487,7 @@ GoldenUpdateSummary updateGolden(const std::filesystem::path& dir, GoldenFileWri
     ++summary.hash_runs;
   }
   // The manifest last: an interrupted update leaves the old manifest, which the check then flags.
-  write_file(dir / "manifest.json",
+  writeFile(dir / "manifest.json",
              [&manifest](std::ostream& out) { out << manifestText(manifest); });
 
   // Only the two generated subdirectories are swept, so nothing else in DIR is ever deleted.

@@ -73,11 +73,6 @@ std::string manifestText(const GoldenSet& manifest);
 GoldenSet manifestFromJson(const nlohmann::json& document, const std::string& file_name);
 GoldenSet readManifest(const std::filesystem::path& file);
 
-// Writes one file of the golden set: `write` fills the stream, the writer puts the result at
-// `path` (the CLI moves a temporary file into place, so a failure leaves no partial file).
-using GoldenFileWriter =
-    FunctionRef<void(const std::filesystem::path& path, FunctionRef<void(std::ostream&)> write)>;
-
 struct GoldenUpdateSummary {
   int scenes = 0;
   int traces = 0;
@@ -86,9 +81,10 @@ struct GoldenUpdateSummary {
 };
 
 // Regenerates the golden set `set` (the CLI: goldenSet(); tests: a small subset) into `dir`
-// (created if missing): scenes, traces, then the manifest last; then deletes the files in scenes/
-// and traces/ that the set does not produce.
-GoldenUpdateSummary updateGolden(const std::filesystem::path& dir, GoldenFileWriter write_file,
+// (created if missing): scenes, traces, then the manifest last, each through OutputFile so a
+// failure leaves no partial file; then deletes the files in scenes/ and traces/ that the set does
+// not produce.
+GoldenUpdateSummary updateGolden(const std::filesystem::path& dir,
                                  const GoldenSet& set = goldenSet());
 
 struct GoldenCheckOptions {

@@ -27,6 +27,8 @@ struct TraceSettings {
   double dt = 0;              // seconds; the scene's dt unless overridden
   std::int64_t steps = 0;     // steps to take
   std::int64_t stride = 1;    // record every stride-th step; step 0 and the last are always recorded
+
+  bool operator==(const TraceSettings&) const = default;
 };
 
 // What a run ended with, for the human summary on stderr and for tests.

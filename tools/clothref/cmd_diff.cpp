@@ -10,8 +10,8 @@
 
 #include "clothref/diff.h"
 #include "clothref/error.h"
+#include "clothref/output_file.h"
 #include "commands.h"
-#include "output_file.h"
 
 namespace clothref::cli {
 

@@ -9,8 +9,8 @@
 
 #include "clothref/error.h"
 #include "clothref/golden.h"
+#include "clothref/output_file.h"
 #include "commands.h"
-#include "output_file.h"
 
 namespace clothref::cli {
 
@@ -26,14 +26,7 @@ struct GoldenOptions {
 };
 
 int runUpdate(const GoldenOptions& options) {
-  // Each file is written to a temporary beside it and renamed into place.
-  const GoldenUpdateSummary summary =
-      updateGolden(options.golden,
-                   [](const std::filesystem::path& path, FunctionRef<void(std::ostream&)> write) {
-                     OutputFile output(path.string());
-                     write(output.stream());
-                     output.commit();
-                   });
+  const GoldenUpdateSummary summary = updateGolden(options.golden);
   std::cerr << fmt::format(
       "clothref golden: wrote {} scenes, {} traces and a manifest with {} hash runs to {}\n",
       summary.scenes, summary.traces, summary.hash_runs, options.golden);

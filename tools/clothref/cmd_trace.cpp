@@ -9,8 +9,8 @@
 #include "clothref/error.h"
 #include "clothref/hash.h"
 #include "clothref/trace.h"
+#include "clothref/output_file.h"
 #include "commands.h"
-#include "output_file.h"
 
 namespace clothref::cli {
 

@@ -7,7 +7,7 @@
 #include <ostream>
 #include <string>
 
-namespace clothref::cli {
+namespace clothref {
 
 class OutputFile {
  public:
@@ -28,4 +28,4 @@ class OutputFile {
   bool committed_ = false;
 };
 
-}  // namespace clothref::cli
+}  // namespace clothref

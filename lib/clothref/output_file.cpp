@@ -1,4 +1,4 @@
-#include "output_file.h"
+#include "clothref/output_file.h"
 
 #include <iostream>
 #include <system_error>
@@ -7,7 +7,7 @@
 
 #include "clothref/error.h"
 
-namespace clothref::cli {
+namespace clothref {
 
 OutputFile::OutputFile(const std::string& path) : path_(path) {
   if (path_ == "-") return;
@@ -42,4 +42,4 @@ void OutputFile::commit() {
   committed_ = true;
 }
 
-}  // namespace clothref::cli
+}  // namespace clothref
