@@ -49,17 +49,13 @@ class DiffTest : public ::testing::Test {
   std::vector<std::string> write(const std::string& name, const Scene& scene,
                                  TraceSettings settings) {
     if (settings.dt == 0) settings.dt = scene.dt;
-    std::stringstream text;
-    writeTrace(scene, settings, text);
-    std::vector<std::string> lines;
-    for (std::string line; std::getline(text, line);) lines.push_back(line);
+    const std::vector<std::string> lines = test::traceLines(scene, settings);
     write(name, lines);
     return lines;
   }
 
   void write(const std::string& name, const std::vector<std::string>& lines) {
-    std::ofstream out(path(name), std::ios::binary);
-    for (const std::string& line : lines) out << line << '\n';
+    test::writeLines(path(name), lines);
   }
 
   DiffReport diff(const std::string& a, const std::string& b, const DiffOptions& options = {}) {

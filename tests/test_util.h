@@ -6,13 +6,35 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "clothref/trace.h"
+
 namespace clothref::test {
+
+// The lines (without newlines) of a trace of `scene` run with `settings`.
+inline std::vector<std::string> traceLines(const Scene& scene, const TraceSettings& settings) {
+  std::stringstream text;
+  writeTrace(scene, settings, text);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(text, line);) lines.push_back(line);
+  return lines;
+}
+
+// Writes `lines` to `path`, each followed by a newline (the last one only if `final_newline`).
+inline void writeLines(const std::string& path, const std::vector<std::string>& lines,
+                       bool final_newline = true) {
+  std::ofstream out(path, std::ios::binary);
+  for (std::size_t i = 0; i < lines.size(); ++i)
+    out << lines[i] << (i + 1 < lines.size() || final_newline ? "\n" : "");
+}
 
 // A fresh directory named after the running test, removed when this goes out of scope.
 class TempDir {

@@ -32,19 +32,14 @@ class TraceReaderTest : public ::testing::Test {
   // Writes a trace of `scene` and returns its lines.
   std::vector<std::string> writeLines(const std::string& name, const Scene& scene,
                                       const TraceSettings& settings) {
-    std::stringstream text;
-    writeTrace(scene, settings, text);
-    std::vector<std::string> lines;
-    for (std::string line; std::getline(text, line);) lines.push_back(line);
+    const std::vector<std::string> lines = test::traceLines(scene, settings);
     writeLines(name, lines);
     return lines;
   }
 
   void writeLines(const std::string& name, const std::vector<std::string>& lines,
                   bool final_newline = true) {
-    std::ofstream out(path(name), std::ios::binary);
-    for (std::size_t i = 0; i < lines.size(); ++i)
-      out << lines[i] << (i + 1 < lines.size() || final_newline ? "\n" : "");
+    test::writeLines(path(name), lines, final_newline);
   }
 
   // The InputError message of reading `name` to the end, or "" when it reads fine.

@@ -17,11 +17,8 @@ namespace {
 using json = nlohmann::json;
 
 std::vector<json> traceLines(const Scene& scene, const TraceSettings& settings) {
-  std::stringstream out;
-  writeTrace(scene, settings, out);
   std::vector<json> lines;
-  std::string line;
-  while (std::getline(out, line)) lines.push_back(json::parse(line));
+  for (const std::string& line : test::traceLines(scene, settings)) lines.push_back(json::parse(line));
   return lines;
 }
 
