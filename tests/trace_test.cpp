@@ -115,7 +115,8 @@ TEST(Trace, NonFiniteValuesAreQuotedStrings) {
 }
 
 TEST(TraceCli, DefaultRunSummarisesOnStderr) {
-  const auto result = test::runCli("trace --steps 20 --stride 10 -o /dev/null");
+  const test::TempDir dir;
+  const auto result = test::runCli("trace --steps 20 --stride 10 -o " + dir.file("out.jsonl"));
   EXPECT_EQ(result.exit_code, 0);
   EXPECT_NE(result.output.find("clothref trace: course2022 explicit float dt=0.0001: 20 steps"),
             std::string::npos)
@@ -124,10 +125,12 @@ TEST(TraceCli, DefaultRunSummarisesOnStderr) {
 }
 
 TEST(TraceCli, BadFlagsExit2WithOneLine) {
+  const test::TempDir dir;
   for (const char* args : {"--integrator euler", "--precision half", "--steps -1", "--stride 0",
                            "--dt -1", "--dt nan"}) {
-    const auto result = test::runCli(std::string("trace ") + args + " -o /dev/null");
+    const auto result = test::runCli(std::string("trace ") + args + " -o " + dir.file("out.jsonl"));
     EXPECT_EQ(result.exit_code, 2) << args;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("out.jsonl"))) << args;
     EXPECT_EQ(std::count(result.output.begin(), result.output.end(), '\n'), 1) << result.output;
   }
 }

@@ -1,5 +1,7 @@
-// OutputFile: writes to a temporary file beside the target and renames it into place on commit,
-// so a failed command never leaves a half-written output behind. "-" means standard output.
+// OutputFile: for a regular file or a new path, writes to a temporary file beside the target and
+// renames it into place on commit, so a failed command never leaves a half-written output behind.
+// Anything else that exists (a character device such as /dev/null, a FIFO, a socket) is written
+// directly, never replaced. "-" means standard output.
 #pragma once
 
 #include <filesystem>
@@ -23,7 +25,9 @@ class OutputFile {
 
  private:
   std::string path_;
-  std::filesystem::path temporary_;
+  std::filesystem::path final_;      // the regular file the rename replaces
+  std::filesystem::path temporary_;  // final_ + ".tmp<pid>"
+  bool direct_ = false;              // written in place (device, FIFO, socket)
   std::ofstream file_;
   bool committed_ = false;
 };
