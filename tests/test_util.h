@@ -15,7 +15,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "clothref/trace.h"
+#include "clothref/trace/writer.h"
 
 namespace clothref::test {
 

@@ -1,4 +1,4 @@
-// clothref diff A B: compare two traces within tolerances (lib/clothref/diff.h). Prints only what
+// clothref diff A B: compare two traces within tolerances (lib/clothref/diff/diff.h). Prints only what
 // differs (or one line when identical), or one JSON object with --json. Exit 0 when the traces
 // agree within tolerance, 1 when they differ, 2 on bad input.
 #include <cmath>
@@ -8,9 +8,9 @@
 
 #include <fmt/format.h>
 
-#include "clothref/diff.h"
-#include "clothref/error.h"
-#include "clothref/output_file.h"
+#include "clothref/diff/diff.h"
+#include "clothref/io/error.h"
+#include "clothref/io/output_file.h"
 #include "commands.h"
 
 namespace clothref::cli {

@@ -7,9 +7,9 @@
 
 #include <fmt/format.h>
 
-#include "clothref/error.h"
-#include "clothref/golden.h"
-#include "clothref/output_file.h"
+#include "clothref/io/error.h"
+#include "clothref/golden/golden.h"
+#include "clothref/io/output_file.h"
 #include "commands.h"
 
 namespace clothref::cli {

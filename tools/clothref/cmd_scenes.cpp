@@ -4,7 +4,7 @@
 
 #include <fmt/format.h>
 
-#include "clothref/scene.h"
+#include "clothref/scene/scene.h"
 #include "commands.h"
 
 namespace clothref::cli {

@@ -6,10 +6,10 @@
 
 #include <fmt/format.h>
 
-#include "clothref/error.h"
-#include "clothref/hash.h"
-#include "clothref/trace.h"
-#include "clothref/output_file.h"
+#include "clothref/io/error.h"
+#include "clothref/trace/hash.h"
+#include "clothref/trace/writer.h"
+#include "clothref/io/output_file.h"
 #include "commands.h"
 
 namespace clothref::cli {

@@ -2,7 +2,7 @@
 // `clothref SUBCOMMAND --help` for each.
 #include <iostream>
 
-#include "clothref/error.h"
+#include "clothref/io/error.h"
 #include "commands.h"
 
 int main(int argc, char** argv) {

@@ -1,0 +1,763 @@
+#include "clothref/diff/diff.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "clothref/io/error.h"
+#include "clothref/trace/reader.h"
+
+namespace clothref {
+
+namespace {
+
+using ordered_json = nlohmann::ordered_json;
+using json = nlohmann::json;
+
+constexpr std::uint64_t kInfiniteUlps = std::numeric_limits<std::uint64_t>::max();
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+constexpr int kToleranceFileVersion = 1;
+
+// ---------------------------------------------------------------------------------------------
+// Value comparison
+
+// Sign-magnitude bits mapped to an unsigned order in which adjacent floats differ by 1 and
+// -0 == +0 (the mapping GoogleTest's AlmostEquals uses).
+template <typename Bits>
+std::uint64_t biased(Bits bits) {
+  constexpr Bits kSign = Bits(1) << (sizeof(Bits) * 8 - 1);
+  return (bits & kSign) ? std::uint64_t(Bits(~bits + 1)) : std::uint64_t(bits | kSign);
+}
+
+std::uint64_t ulpDistance(double a, double b, Precision precision) {
+  std::uint64_t ua, ub;
+  if (precision == Precision::Float) {
+    ua = biased(std::bit_cast<std::uint32_t>(static_cast<float>(a)));
+    ub = biased(std::bit_cast<std::uint32_t>(static_cast<float>(b)));
+  } else {
+    ua = biased(std::bit_cast<std::uint64_t>(a));
+    ub = biased(std::bit_cast<std::uint64_t>(b));
+  }
+  return ua > ub ? ua - ub : ub - ua;
+}
+
+struct Outcome {
+  bool pass = true;
+  bool floored = false;    // exempted by the floor
+  bool nonfinite = false;  // finite vs non-finite, or different non-finite kinds
+  double score = 0;        // how far beyond the tolerance, for "worst"
+};
+
+// measure / tolerance, or the measure itself for a zero tolerance
+double ratio(double measure, double tolerance) {
+  return tolerance > 0 ? measure / tolerance : measure;
+}
+
+// Fills the differences of `diff` (a and b already set) and decides pass or fail.
+Outcome compareValue(ValueDiff& diff, const Tolerance& tolerance, Precision precision) {
+  const double a = diff.a, b = diff.b;
+  Outcome outcome;
+  if (!std::isfinite(a) || !std::isfinite(b)) {
+    // the same non-finite kind is equal; anything else is an infinite difference
+    const bool same = (std::isnan(a) && std::isnan(b)) || a == b;
+    diff.abs = diff.rel = same ? 0 : kInfinity;
+    diff.ulps = same ? 0 : kInfiniteUlps;
+    outcome.pass = same;
+    outcome.nonfinite = !same;
+    outcome.score = same ? 0 : kInfinity;
+    return outcome;
+  }
+  diff.abs = std::abs(a - b);
+  const double magnitude = std::max(std::abs(a), std::abs(b));
+  diff.rel = magnitude > 0 ? diff.abs / magnitude : 0;
+  diff.ulps = ulpDistance(a, b, precision);
+  if (std::abs(a) < tolerance.floor && std::abs(b) < tolerance.floor) {
+    outcome.floored = true;
+    return outcome;
+  }
+  switch (tolerance.mode) {
+    case ToleranceMode::Absolute:
+      outcome.pass = diff.abs <= tolerance.abs;
+      outcome.score = ratio(diff.abs, tolerance.abs);
+      break;
+    case ToleranceMode::Relative:
+      outcome.pass = diff.rel <= tolerance.rel;
+      outcome.score = ratio(diff.rel, tolerance.rel);
+      break;
+    case ToleranceMode::Combined:
+      outcome.pass = diff.abs <= tolerance.abs || diff.rel <= tolerance.rel;
+      outcome.score = std::min(ratio(diff.abs, tolerance.abs), ratio(diff.rel, tolerance.rel));
+      break;
+    case ToleranceMode::Ulps:
+      outcome.pass = diff.ulps <= std::uint64_t(tolerance.ulps);
+      outcome.score = ratio(double(diff.ulps), double(tolerance.ulps));
+      break;
+  }
+  return outcome;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Header comparison
+
+const ordered_json kMissing(ordered_json::value_t::discarded);
+
+std::string compact(const ordered_json& value) {
+  if (value.is_discarded()) return "(missing)";
+  if (value.is_number_float()) return fmt::format("{}", value.get<double>());
+  return value.dump();
+}
+
+// Walks two JSON values key by key (arrays index by index), recording every leaf that differs.
+void compareJson(const ordered_json& a, const ordered_json& b, const std::string& pointer,
+                 std::vector<HeaderDiff>& out) {
+  if (a.is_object() && b.is_object()) {
+    for (const auto& item : a.items()) {
+      const std::string child = pointer + "/" + item.key();
+      const auto other = b.find(item.key());
+      if (other == b.end())
+        out.push_back({child, item.value(), kMissing});
+      else
+        compareJson(item.value(), *other, child, out);
+    }
+    for (const auto& item : b.items())
+      if (!a.contains(item.key()))
+        out.push_back({pointer + "/" + item.key(), kMissing, item.value()});
+    return;
+  }
+  if (a.is_array() && b.is_array() && a.size() == b.size()) {
+    for (std::size_t i = 0; i < a.size(); ++i)
+      compareJson(a[i], b[i], fmt::format("{}/{}", pointer, i), out);
+    return;
+  }
+  if (a.is_array() && b.is_array()) {
+    out.push_back({pointer, a, b});
+    return;
+  }
+  if (a != b) out.push_back({pointer, a, b});
+}
+
+bool startsWith(const std::string& text, const std::string& prefix) {
+  return text.compare(0, prefix.size(), prefix) == 0 &&
+         (text.size() == prefix.size() || text[prefix.size()] == '/');
+}
+
+std::string describeBodies(const TraceHeader& header) {
+  std::string text;
+  for (const TraceBody& body : header.bodies)
+    text += fmt::format("{}{} ({} particles)", text.empty() ? "" : ", ", body.name, body.particles);
+  return text.empty() ? "no bodies" : text;
+}
+
+// Header differences, significant ones first. Throws for different bodies, or different step
+// sets without --common-steps.
+std::vector<HeaderDiff> compareHeaders(const TraceReader& a, const TraceReader& b,
+                                       bool common_steps) {
+  const TraceHeader& ha = a.header();
+  const TraceHeader& hb = b.header();
+  if (ha.json["bodies"] != hb.json["bodies"])
+    throw InputError(fmt::format("different bodies: {} has {}, {} has {}", a.path(),
+                                 describeBodies(ha), b.path(), describeBodies(hb)));
+  if (!common_steps && (ha.steps != hb.steps || ha.stride != hb.stride))
+    throw InputError(
+        fmt::format("different step sets: {} has steps {} stride {}, {} has steps {} stride {} "
+                    "(--common-steps compares the steps both have)",
+                    a.path(), ha.steps, ha.stride, b.path(), hb.steps, hb.stride));
+  std::vector<HeaderDiff> all;
+  compareJson(ha.json, hb.json, "", all);
+  std::vector<HeaderDiff> significant, informational;
+  for (HeaderDiff& diff : all) {
+    // what was built, what a scene is called and how much was recorded do not change results
+    diff.significant = !(startsWith(diff.pointer, "/build") || diff.pointer == "/scene/name" ||
+                         diff.pointer == "/scene/description" || diff.pointer == "/steps" ||
+                         diff.pointer == "/stride" || diff.pointer == "/hash");
+    (diff.significant ? significant : informational).push_back(std::move(diff));
+  }
+  significant.insert(significant.end(), informational.begin(), informational.end());
+  return significant;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Accumulation
+
+// True when `candidate` should replace `current` as the worst: beyond tolerance beats within,
+// then the higher score; ties keep the earlier value.
+bool worse(bool candidate_beyond, double candidate_score, bool current_beyond, double current_score,
+           bool has_current) {
+  if (!has_current) return true;
+  if (candidate_beyond != current_beyond) return candidate_beyond;
+  return candidate_score > current_score;
+}
+
+struct Accumulator {
+  DiffReport& report;
+  bool worst_beyond = false;
+  double worst_score = -1;
+
+  void add(FieldStats& stats, ValueDiff& diff, Precision precision) {
+    const Outcome outcome = compareValue(diff, stats.tolerance, precision);
+    ++stats.compared;
+    ++report.values_compared;
+    if (outcome.nonfinite) {
+      ++stats.nonfinite_mismatches;
+    } else {
+      stats.max_abs = std::max(stats.max_abs, diff.abs);
+      stats.sum_abs += diff.abs;
+      stats.max_rel = std::max(stats.max_rel, diff.rel);
+      stats.sum_rel += diff.rel;
+      stats.max_ulps = std::max(stats.max_ulps, diff.ulps);
+      if (!outcome.floored) {
+        stats.needed_abs = std::max(stats.needed_abs, diff.abs);
+        stats.needed_rel = std::max(stats.needed_rel, diff.rel);
+        stats.needed_ulps = std::max(stats.needed_ulps, diff.ulps);
+      }
+    }
+    if (!outcome.pass) {
+      ++stats.beyond;
+      ++report.values_beyond;
+      if (!report.first_beyond) report.first_beyond = diff;
+      if (report.first_beyond->step == diff.step) ++report.first_step_beyond_count;
+    }
+    // equal values are never "worst"; that keeps the report of equal traces empty
+    if (diff.abs == 0 && diff.ulps == 0 && !outcome.nonfinite) return;
+    const bool beyond = !outcome.pass;
+    if (worse(beyond, outcome.score, stats.worst_beyond, stats.worst_score,
+              stats.worst.has_value())) {
+      stats.worst = diff;
+      stats.worst_beyond = beyond;
+      stats.worst_score = outcome.score;
+    }
+    if (worse(beyond, outcome.score, worst_beyond, worst_score, report.worst.has_value())) {
+      report.worst = diff;
+      worst_beyond = beyond;
+      worst_score = outcome.score;
+    }
+  }
+};
+
+// Part of a step line after the prefix (the writer puts "bodies" last); empty if not found.
+std::string_view bodiesPart(std::string_view line) {
+  const std::size_t at = line.find("\"bodies\":");
+  return at == std::string_view::npos ? std::string_view() : line.substr(at);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Tolerance files
+
+[[noreturn]] void toleranceError(const std::string& source, const std::string& pointer,
+                                 const std::string& problem) {
+  throw InputError(fmt::format("{}: {}: {}", source, pointer.empty() ? "/" : pointer, problem));
+}
+
+double nonNegative(const json& object, const std::string& key, const std::string& source,
+                   const std::string& pointer) {
+  const json& value = object[key];
+  if (!value.is_number() || !(value.get<double>() >= 0) || !std::isfinite(value.get<double>()))
+    toleranceError(source, pointer + "/" + key,
+                   "expected a finite number >= 0, got " + value.dump());
+  return value.get<double>();
+}
+
+Tolerance toleranceFromJson(const json& value, const std::string& source,
+                            const std::string& pointer) {
+  if (!value.is_object()) toleranceError(source, pointer, "expected an object");
+  for (const auto& item : value.items())
+    if (item.key() != "mode" && item.key() != "abs" && item.key() != "rel" &&
+        item.key() != "floor" && item.key() != "ulps")
+      toleranceError(source, pointer + "/" + item.key(), "unknown key");
+  Tolerance tolerance;
+  if (value.contains("abs")) tolerance.abs = nonNegative(value, "abs", source, pointer);
+  if (value.contains("rel")) tolerance.rel = nonNegative(value, "rel", source, pointer);
+  if (value.contains("floor")) tolerance.floor = nonNegative(value, "floor", source, pointer);
+  if (value.contains("ulps")) {
+    const json& ulps = value["ulps"];
+    if (!ulps.is_number_integer() || ulps.get<std::int64_t>() < 0)
+      toleranceError(source, pointer + "/ulps", "expected an integer >= 0, got " + ulps.dump());
+    tolerance.ulps = ulps.get<std::int64_t>();
+  }
+  if (value.contains("mode")) {
+    const json& mode = value["mode"];
+    const std::string name = mode.is_string() ? mode.get<std::string>() : "";
+    if (name == "ulps")
+      tolerance.mode = ToleranceMode::Ulps;
+    else if (name == "absolute")
+      tolerance.mode = ToleranceMode::Absolute;
+    else if (name == "relative")
+      tolerance.mode = ToleranceMode::Relative;
+    else if (name == "combined")
+      tolerance.mode = ToleranceMode::Combined;
+    else
+      toleranceError(
+          source, pointer + "/mode",
+          "expected \"ulps\", \"absolute\", \"relative\" or \"combined\", got " + mode.dump());
+  } else if (value.contains("abs") && value.contains("rel")) {
+    tolerance.mode = ToleranceMode::Combined;
+  } else if (value.contains("abs")) {
+    tolerance.mode = ToleranceMode::Absolute;
+  } else if (value.contains("rel")) {
+    tolerance.mode = ToleranceMode::Relative;
+  }
+  return tolerance;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Formatting
+
+const char* const kComponentNames[] = {"x", "y", "z"};
+
+std::string formatValue(double value, Precision precision) {
+  if (std::isnan(value)) return "NaN";
+  if (std::isinf(value)) return value > 0 ? "Infinity" : "-Infinity";
+  return precision == Precision::Float ? fmt::format("{}", static_cast<float>(value))
+                                       : fmt::format("{}", value);
+}
+
+ordered_json jsonNumber(double value) {
+  if (std::isnan(value)) return "NaN";
+  if (std::isinf(value)) return value > 0 ? "Infinity" : "-Infinity";
+  return value;
+}
+
+ordered_json jsonUlps(std::uint64_t ulps) {
+  return ulps == kInfiniteUlps ? ordered_json("Infinity") : ordered_json(ulps);
+}
+
+std::string verdictName(Verdict verdict) {
+  switch (verdict) {
+    case Verdict::Identical:
+      return "identical";
+    case Verdict::WithinTolerance:
+      return "within_tolerance";
+    case Verdict::Differ:
+      return "differ";
+  }
+  return "differ";
+}
+
+std::string describeTolerance(const Tolerance& t) {
+  std::string text;
+  switch (t.mode) {
+    case ToleranceMode::Ulps:
+      text = t.ulps == 0 ? "exact" : fmt::format("{} ulp", t.ulps);
+      break;
+    case ToleranceMode::Absolute:
+      text = fmt::format("abs {:g}", t.abs);
+      break;
+    case ToleranceMode::Relative:
+      text = fmt::format("rel {:g}", t.rel);
+      break;
+    case ToleranceMode::Combined:
+      text = fmt::format("abs {:g} or rel {:g}", t.abs, t.rel);
+      break;
+  }
+  if (t.floor > 0) text += fmt::format(", floor {:g}", t.floor);
+  return text;
+}
+
+std::string where(const ValueDiff& d) {
+  if (d.field == Field::Time) return fmt::format("step {}: time", d.step);
+  return fmt::format("step {} (t {}): {} {} particle {} {}", d.step, d.t, d.body,
+                     fieldName(d.field), d.particle, kComponentNames[d.component]);
+}
+
+std::string describeValue(const ValueDiff& d, Precision precision) {
+  const Precision p = d.field == Field::Time ? Precision::Double : precision;
+  const std::string ulps = d.ulps == kInfiniteUlps ? "inf" : fmt::format("{}", d.ulps);
+  return fmt::format("{}: {} vs {} (abs {:.3g}, rel {:.3g}, {} ulp)", where(d), formatValue(d.a, p),
+                     formatValue(d.b, p), d.abs, d.rel, ulps);
+}
+
+ordered_json valueToJson(const ValueDiff& d) {
+  ordered_json out;
+  out["step"] = d.step;
+  out["t"] = d.t;
+  out["body"] = d.field == Field::Time ? ordered_json(nullptr) : ordered_json(d.body);
+  out["field"] = fieldName(d.field);
+  out["particle"] = d.particle < 0 ? ordered_json(nullptr) : ordered_json(d.particle);
+  out["component"] =
+      d.component < 0 ? ordered_json(nullptr) : ordered_json(kComponentNames[d.component]);
+  out["a"] = jsonNumber(d.a);
+  out["b"] = jsonNumber(d.b);
+  out["abs"] = jsonNumber(d.abs);
+  out["rel"] = jsonNumber(d.rel);
+  out["ulps"] = jsonUlps(d.ulps);
+  return out;
+}
+
+// Arrays of different lengths (sphere lists, particle lists) are summarised by their length.
+std::string describeHeaderValue(const ordered_json& value) {
+  if (value.is_array()) return fmt::format("{} items", value.size());
+  return compact(value);
+}
+
+std::string fieldLabel(const FieldStats& stats) {
+  return stats.field == Field::Time ? "time" : stats.body + " " + fieldName(stats.field);
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+
+std::string fieldName(Field field) {
+  switch (field) {
+    case Field::Position:
+      return "position";
+    case Field::Velocity:
+      return "velocity";
+    case Field::Time:
+      return "time";
+  }
+  return "?";
+}
+
+std::string toleranceModeName(ToleranceMode mode) {
+  switch (mode) {
+    case ToleranceMode::Ulps:
+      return "ulps";
+    case ToleranceMode::Absolute:
+      return "absolute";
+    case ToleranceMode::Relative:
+      return "relative";
+    case ToleranceMode::Combined:
+      return "combined";
+  }
+  return "?";
+}
+
+Tolerance toleranceFor(const DiffOptions& options, const std::string& body, Field field) {
+  if (field == Field::Time) return options.time.value_or(options.global);
+  const auto it = options.bodies.find(body);
+  if (it == options.bodies.end()) return options.global;
+  const std::optional<Tolerance>& own =
+      field == Field::Position ? it->second.position : it->second.velocity;
+  return own.value_or(options.global);
+}
+
+ordered_json toleranceToJson(const Tolerance& t) {
+  return {{"mode", toleranceModeName(t.mode)},
+          {"abs", t.abs},
+          {"rel", t.rel},
+          {"floor", t.floor},
+          {"ulps", t.ulps}};
+}
+
+DiffOptions toleranceOptionsFromJson(const json& document, const std::string& source) {
+  if (!document.is_object()) toleranceError(source, "", "expected a JSON object");
+  DiffOptions options;
+  for (const auto& item : document.items()) {
+    const std::string& key = item.key();
+    const json& value = item.value();
+    if (key == "format") {
+      if (value != "clothref-tolerances")
+        toleranceError(source, "/format", "expected \"clothref-tolerances\", got " + value.dump());
+    } else if (key == "version") {
+      if (value != kToleranceFileVersion)
+        toleranceError(source, "/version",
+                       fmt::format("unsupported version {} (this build reads {})", value.dump(),
+                                   kToleranceFileVersion));
+    } else if (key == "comment") {
+      if (!value.is_string()) toleranceError(source, "/comment", "expected a string");
+    } else if (key == "default") {
+      options.global = toleranceFromJson(value, source, "/default");
+    } else if (key == "time") {
+      options.time = toleranceFromJson(value, source, "/time");
+    } else if (key == "bodies") {
+      if (!value.is_object()) toleranceError(source, "/bodies", "expected an object");
+      for (const auto& body : value.items()) {
+        const std::string pointer = "/bodies/" + body.key();
+        // the trace writer's body names; a typo must not silently fall back to the default
+        if (body.key() != "cloth" && body.key() != "spheres")
+          toleranceError(source, pointer, "unknown body (cloth, spheres)");
+        if (!body.value().is_object()) toleranceError(source, pointer, "expected an object");
+        BodyTolerances& tolerances = options.bodies[body.key()];
+        for (const auto& field : body.value().items()) {
+          if (field.key() == "position")
+            tolerances.position = toleranceFromJson(field.value(), source, pointer + "/position");
+          else if (field.key() == "velocity")
+            tolerances.velocity = toleranceFromJson(field.value(), source, pointer + "/velocity");
+          else
+            toleranceError(source, pointer + "/" + field.key(),
+                           "unknown field (position, velocity)");
+        }
+      }
+    } else {
+      toleranceError(source, "/" + key, "unknown key");
+    }
+  }
+  return options;
+}
+
+DiffOptions readToleranceFile(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw InputError(path + ": cannot open the tolerance file");
+  std::stringstream text;
+  text << file.rdbuf();
+  json document;
+  try {
+    document = json::parse(text.str());
+  } catch (const json::parse_error& error) {
+    std::string message = error.what();
+    const auto at = message.find("parse error");
+    throw InputError(
+        path + ": not valid JSON: " + (at == std::string::npos ? message : message.substr(at)));
+  }
+  return toleranceOptionsFromJson(document, path);
+}
+
+DiffReport diffTraces(const std::string& path_a, const std::string& path_b,
+                      const DiffOptions& options) {
+  TraceReader a(path_a), b(path_b);
+  DiffReport report;
+  report.path_a = path_a;
+  report.path_b = path_b;
+  report.options = options;
+  report.header_diffs = compareHeaders(a, b, options.common_steps);
+  const TraceHeader& ha = a.header();
+  report.precision = ha.precision == b.header().precision ? ha.precision : Precision::Double;
+  // hashes can stand in for values only when both traces define them the same way
+  const bool use_hash = ha.json["hash"] == b.header().json["hash"];
+
+  // fields: per body (A's order, B has the same bodies) position and velocity, then time
+  auto addField = [&](const std::string& body, Field field) {
+    FieldStats& stats = report.fields.emplace_back();
+    stats.body = body;
+    stats.field = field;
+    stats.tolerance = toleranceFor(options, body, field);
+  };
+  for (const TraceBody& body : ha.bodies)
+    for (Field field : {Field::Position, Field::Velocity}) addField(body.name, field);
+  addField("", Field::Time);
+  FieldStats& time_stats = report.fields.back();
+  std::vector<std::size_t> b_index;
+  for (const TraceBody& body : ha.bodies)
+    for (std::size_t j = 0; j < b.header().bodies.size(); ++j)
+      if (b.header().bodies[j].name == body.name) b_index.push_back(j);
+
+  Accumulator accumulator{report};
+  TraceStep step_a, step_b;
+  bool more_a = a.next(), more_b = b.next();
+  report.steps_a = more_a, report.steps_b = more_b;
+  auto advance = [&](TraceReader& reader, std::int64_t& count) {
+    const bool more = reader.next();
+    count += more;
+    return more;
+  };
+  while (more_a && more_b) {
+    const StepPrefix& pa = a.prefix();
+    const StepPrefix& pb = b.prefix();
+    if (pa.step != pb.step) {
+      // only reachable with --common-steps: the readers enforce each header's step set
+      if (pa.step < pb.step)
+        more_a = advance(a, report.steps_a);
+      else
+        more_b = advance(b, report.steps_b);
+      continue;
+    }
+    ++report.steps_compared;
+    ValueDiff time{pa.step, pa.t, "", Field::Time, -1, -1, pa.t, pb.t};
+    accumulator.add(time_stats, time, Precision::Double);
+
+    const std::string_view rest_a = bodiesPart(a.line());
+    if (use_hash && pa.hash == pb.hash && !rest_a.empty() && rest_a == bodiesPart(b.line())) {
+      // equal hash and equal bytes: every value is equal, no need to parse
+      ++report.steps_equal_hash;
+      for (std::size_t i = 0; i < ha.bodies.size(); ++i)
+        for (std::size_t f = 0; f < 2; ++f) {
+          report.fields[2 * i + f].compared += 3 * ha.bodies[i].particles;
+          report.values_compared += 3 * ha.bodies[i].particles;
+        }
+    } else {
+      a.parseStep(step_a);
+      b.parseStep(step_b);
+      bool all_equal = true;
+      for (std::size_t i = 0; i < ha.bodies.size(); ++i) {
+        const BodyState& body_a = step_a.bodies[i];
+        const BodyState& body_b = step_b.bodies[b_index[i]];
+        for (std::size_t f = 0; f < 2; ++f) {
+          FieldStats& stats = report.fields[2 * i + f];
+          const std::vector<double>& va = f == 0 ? body_a.position : body_a.velocity;
+          const std::vector<double>& vb = f == 0 ? body_b.position : body_b.velocity;
+          ValueDiff diff{pa.step, pa.t, stats.body, stats.field};
+          for (std::size_t k = 0; k < va.size(); ++k) {
+            diff.particle = std::int64_t(k / 3);
+            diff.component = int(k % 3);
+            diff.a = va[k];
+            diff.b = vb[k];
+            accumulator.add(stats, diff, report.precision);
+            all_equal = all_equal && diff.abs == 0 && diff.ulps == 0;
+          }
+        }
+      }
+      if (all_equal && pa.hash != pb.hash) ++report.steps_equal_values_different_hash;
+    }
+    more_a = advance(a, report.steps_a);
+    more_b = advance(b, report.steps_b);
+  }
+  // read the rest so a malformed tail is still reported
+  while (more_a) more_a = advance(a, report.steps_a);
+  while (more_b) more_b = advance(b, report.steps_b);
+
+  bool any_difference = false;
+  for (const FieldStats& stats : report.fields) any_difference |= stats.anyDifference();
+  const bool significant_header =
+      std::any_of(report.header_diffs.begin(), report.header_diffs.end(),
+                  [](const HeaderDiff& d) { return d.significant; });
+  if (significant_header || report.values_beyond > 0)
+    report.verdict = Verdict::Differ;
+  else if (any_difference)
+    report.verdict = Verdict::WithinTolerance;
+  else
+    report.verdict = Verdict::Identical;
+  return report;
+}
+
+std::string formatReport(const DiffReport& r) {
+  std::string out;
+  const std::int64_t significant = std::count_if(r.header_diffs.begin(), r.header_diffs.end(),
+                                                 [](const HeaderDiff& d) { return d.significant; });
+  const std::string step_counts = r.steps_a == r.steps_b && r.steps_a == r.steps_compared
+                                      ? fmt::format("{} steps", r.steps_compared)
+                                      : fmt::format("{} common steps ({} in A, {} in B)",
+                                                    r.steps_compared, r.steps_a, r.steps_b);
+  if (r.verdict == Verdict::Identical) {
+    out += fmt::format("identical: {} vs {}: {}, {} values\n", r.path_a, r.path_b, step_counts,
+                       r.values_compared);
+  } else {
+    std::string summary;
+    if (significant) summary += fmt::format("{} header differences, ", significant);
+    summary += fmt::format("{} of {} values beyond tolerance", r.values_beyond, r.values_compared);
+    out += fmt::format("{}: {} vs {}: {}; {}\n",
+                       r.verdict == Verdict::Differ ? "DIFFER" : "within tolerance", r.path_a,
+                       r.path_b, step_counts, summary);
+  }
+  for (const HeaderDiff& d : r.header_diffs)
+    out += fmt::format("  {} {}: {} vs {}\n", d.significant ? "header" : "info  ", d.pointer,
+                       describeHeaderValue(d.a), describeHeaderValue(d.b));
+  if (r.verdict == Verdict::Identical) return out;
+
+  out += fmt::format("  steps  {} compared, {} skipped (equal hash and bytes)", r.steps_compared,
+                     r.steps_equal_hash);
+  if (r.steps_equal_values_different_hash)
+    out += fmt::format(", {} with equal values but different hashes (-0 vs +0?)",
+                       r.steps_equal_values_different_hash);
+  out += '\n';
+  if (r.first_beyond)
+    out += fmt::format("  first  {}; {} beyond tolerance in that step\n",
+                       describeValue(*r.first_beyond, r.precision), r.first_step_beyond_count);
+  if (r.worst) out += fmt::format("  worst  {}\n", describeValue(*r.worst, r.precision));
+  bool table = false;
+  for (const FieldStats& s : r.fields) {
+    if (!s.anyDifference()) continue;
+    if (!table) {
+      out += fmt::format("  {:<18} {:<22} {:>21} {:>10} {:>10} {:>10} {:>10} {:>12}\n", "field",
+                         "tolerance", "beyond/compared", "max abs", "mean abs", "max rel",
+                         "mean rel", "max ulp");
+      table = true;
+    }
+    std::string beyond = fmt::format("{}/{}", s.beyond, s.compared);
+    out += fmt::format("  {:<18} {:<22} {:>21} {:>10.3g} {:>10.3g} {:>10.3g} {:>10.3g} {:>12}\n",
+                       fieldLabel(s), describeTolerance(s.tolerance), beyond, s.max_abs,
+                       s.meanAbs(), s.max_rel, s.meanRel(), s.max_ulps);
+    if (s.nonfinite_mismatches)
+      out += fmt::format("  {:<18} {} finite vs non-finite (or NaN vs Infinity) values\n", "",
+                         s.nonfinite_mismatches);
+  }
+  return out;
+}
+
+ordered_json reportToJson(const DiffReport& r) {
+  ordered_json out;
+  out["verdict"] = verdictName(r.verdict);
+  out["a"] = r.path_a;
+  out["b"] = r.path_b;
+  out["precision"] = std::string(precisionName(r.precision));
+  ordered_json headers = ordered_json::array();
+  for (const HeaderDiff& d : r.header_diffs) {
+    ordered_json entry = {{"pointer", d.pointer}};
+    // a key missing on one side is left out of the entry
+    if (!d.a.is_discarded()) entry["a"] = d.a;
+    if (!d.b.is_discarded()) entry["b"] = d.b;
+    entry["significant"] = d.significant;
+    headers.push_back(std::move(entry));
+  }
+  out["header_differences"] = headers;
+  out["steps"] = {{"a", r.steps_a},
+                  {"b", r.steps_b},
+                  {"compared", r.steps_compared},
+                  {"skipped_equal_hash", r.steps_equal_hash},
+                  {"equal_values_different_hash", r.steps_equal_values_different_hash}};
+  out["values"] = {{"compared", r.values_compared}, {"beyond_tolerance", r.values_beyond}};
+  if (r.first_beyond) {
+    out["first_beyond"] = valueToJson(*r.first_beyond);
+    out["first_beyond"]["beyond_in_step"] = r.first_step_beyond_count;
+  } else {
+    out["first_beyond"] = nullptr;
+  }
+  out["worst"] = r.worst ? valueToJson(*r.worst) : ordered_json(nullptr);
+  ordered_json fields = ordered_json::array();
+  for (const FieldStats& s : r.fields) {
+    ordered_json f;
+    f["body"] = s.field == Field::Time ? ordered_json(nullptr) : ordered_json(s.body);
+    f["field"] = fieldName(s.field);
+    f["tolerance"] = toleranceToJson(s.tolerance);
+    f["compared"] = s.compared;
+    f["beyond_tolerance"] = s.beyond;
+    f["nonfinite_mismatches"] = s.nonfinite_mismatches;
+    f["max_abs"] = s.max_abs;
+    f["mean_abs"] = s.meanAbs();
+    f["max_rel"] = s.max_rel;
+    f["mean_rel"] = s.meanRel();
+    f["max_ulps"] = s.max_ulps;
+    f["worst"] = s.worst ? valueToJson(*s.worst) : ordered_json(nullptr);
+    fields.push_back(std::move(f));
+  }
+  out["fields"] = fields;
+  // the options as given, in the tolerance-file schema
+  ordered_json tolerances = {{"default", toleranceToJson(r.options.global)}};
+  if (r.options.time) tolerances["time"] = toleranceToJson(*r.options.time);
+  ordered_json bodies = ordered_json::object();
+  for (const auto& [name, body] : r.options.bodies) {
+    if (body.position) bodies[name]["position"] = toleranceToJson(*body.position);
+    if (body.velocity) bodies[name]["velocity"] = toleranceToJson(*body.velocity);
+  }
+  tolerances["bodies"] = bodies;
+  out["tolerances"] = tolerances;
+  out["common_steps"] = r.options.common_steps;
+  return out;
+}
+
+nlohmann::ordered_json observedTolerances(const DiffReport& r) {
+  ordered_json out;
+  out["format"] = "clothref-tolerances";
+  out["version"] = kToleranceFileVersion;
+  std::string comment = fmt::format(
+      "written by clothref diff --write-tolerances from {} vs {}: per field, abs/rel/ulps are the "
+      "largest differences observed outside the floor; only the ones the mode uses apply",
+      r.path_a, r.path_b);
+  std::int64_t nonfinite = 0;
+  for (const FieldStats& s : r.fields) nonfinite += s.nonfinite_mismatches;
+  if (nonfinite)
+    comment += fmt::format("; {} finite vs non-finite values cannot be tolerated", nonfinite);
+  out["comment"] = comment;
+  out["default"] = toleranceToJson(r.options.global);
+  ordered_json bodies = ordered_json::object();
+  for (const FieldStats& s : r.fields) {
+    Tolerance t = s.tolerance;
+    t.abs = s.needed_abs;
+    t.rel = s.needed_rel;
+    t.ulps = std::int64_t(
+        std::min<std::uint64_t>(s.needed_ulps, std::numeric_limits<std::int64_t>::max()));
+    if (s.field == Field::Time)
+      out["time"] = toleranceToJson(t);
+    else
+      bodies[s.body][fieldName(s.field)] = toleranceToJson(t);
+  }
+  out["bodies"] = bodies;
+  return out;
+}
+
+}  // namespace clothref

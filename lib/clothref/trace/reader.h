@@ -1,0 +1,109 @@
+// Trace reading: parses a clothref trace (JSON Lines, docs/trace-format.md) back into numbers.
+//
+// Inputs: a trace file path. Line 1 is the header (parsed with nlohmann::json, matched by key);
+// each further line is one recorded step, parsed by a small hand-written parser (std::from_chars)
+// because a DOM per 40 kB line is slow. Keys are matched by name in any order; unknown keys,
+// missing keys, bare NaN/Infinity tokens, wrong array shapes and truncated lines are errors.
+// Outputs: TraceHeader; per step the step number, t (seconds, double), the 64-bit state hash and,
+// on request, every body's positions (m) and velocities (m/s) as flat x,y,z arrays (3 per
+// particle) in the header's body order. Float traces are parsed as float (exact bits) and widened.
+// Non-finite values, written as "NaN", "Infinity", "-Infinity", come back as NaN and +-infinity.
+// Every error is an InputError "FILE:LINE: problem".
+#pragma once
+
+#include <cstdint>
+#include <fstream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "clothref/core/types.h"
+
+namespace clothref {
+
+// One body as declared in the header ("bodies": [{"name": "cloth", "particles": 625}, ...]).
+struct TraceBody {
+  std::string name;
+  std::int64_t particles = 0;
+};
+
+struct TraceHeader {
+  nlohmann::ordered_json json;  // the whole header object, as written
+  int version = 0;
+  Precision precision = Precision::Float;
+  std::string integrator;
+  double dt = 0;            // seconds
+  std::int64_t steps = 0;   // steps simulated
+  std::int64_t stride = 1;  // every stride-th step recorded, plus the last
+  std::vector<TraceBody> bodies;
+};
+
+// The cheap part of a step line: the first three keys, read without touching the arrays.
+struct StepPrefix {
+  std::int64_t step = 0;
+  double t = 0;  // seconds
+  std::uint64_t hash = 0;
+};
+
+// One body's state at one step: 3 * particles values each, particle-major (x0, y0, z0, x1, ...).
+struct BodyState {
+  std::vector<double> position;  // metres
+  std::vector<double> velocity;  // metres / second
+};
+
+struct TraceStep {
+  StepPrefix prefix;
+  std::vector<BodyState> bodies;  // in TraceHeader::bodies order
+};
+
+// Reads a trace line by line. Usage:
+//   TraceReader reader(path);                 // reads and validates the header
+//   while (reader.next()) {                   // reads the next step line and its prefix
+//     if (need_values) reader.parseStep(step);
+//   }
+class TraceReader {
+ public:
+  // Opens `path` and parses line 1; throws InputError for a missing file or a bad header.
+  explicit TraceReader(const std::string& path);
+
+  const std::string& path() const { return path_; }
+  const TraceHeader& header() const { return header_; }
+
+  // Reads the next step line and parses its prefix (step, t, hash). Returns false at the end of
+  // the file. Throws InputError if the prefix is malformed or the step does not increase.
+  bool next();
+
+  // The current line (without its newline), its 1-based line number and prefix.
+  std::string_view line() const { return line_; }
+  std::int64_t lineNumber() const { return line_number_; }
+  const StepPrefix& prefix() const { return prefix_; }
+
+  // Parses the whole current line into `step` (reusing its storage); throws InputError.
+  void parseStep(TraceStep& step) const;
+
+  // Throws InputError("FILE:LINE: problem") for the current line.
+  [[noreturn]] void fail(const std::string& problem) const;
+
+ private:
+  std::string path_;
+  std::ifstream file_;
+  std::string line_;
+  std::int64_t line_number_ = 0;
+  TraceHeader header_;
+  StepPrefix prefix_;
+  bool has_step_ = false;
+};
+
+// Parses a header object (already read as JSON); throws InputError("SOURCE:1: problem").
+TraceHeader parseTraceHeader(const nlohmann::ordered_json& json, const std::string& source);
+
+// Reads a whole trace into memory (convenient for small traces and tests).
+struct Trace {
+  TraceHeader header;
+  std::vector<TraceStep> steps;
+};
+Trace readTrace(const std::string& path);
+
+}  // namespace clothref

@@ -1,0 +1,60 @@
+// Trace writing: a run as JSON Lines (docs/trace-format.md). Line 1 is the header (format,
+// version, full scene, integrator, dt, precision, steps, stride, bodies, build); then one line per
+// recorded step with "step", "t", "hash" first (so readers can skip equal steps cheaply) and the
+// positions and velocities of every body as arrays of [x, y, z]. Floats are written shortest
+// round-trip in the run's precision, so a trace parses back to the identical bits.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <ostream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "clothref/core/integrator.h"
+#include "clothref/scene/scene.h"
+#include "clothref/core/types.h"
+#include "clothref/core/world.h"
+
+namespace clothref {
+
+inline constexpr int kTraceVersion = 1;
+
+struct TraceSettings {
+  Method method = Method::Explicit;
+  Precision precision = Precision::Float;
+  double dt = 0;              // seconds; the scene's dt unless overridden
+  std::int64_t steps = 0;     // steps to take
+  std::int64_t stride = 1;    // record every stride-th step; step 0 and the last are always recorded
+
+  bool operator==(const TraceSettings&) const = default;
+};
+
+// What a run ended with, for the human summary on stderr and for tests.
+struct TraceSummary {
+  std::int64_t steps = 0;
+  std::int64_t recorded = 0;               // step lines written
+  double simulated_time = 0;               // seconds
+  double wall_seconds = 0;                 // seconds spent stepping and writing
+  double kinetic_energy = 0;               // joules, final state
+  std::array<double, 3> momentum{};        // kg m / s, final state
+  bool finite = true;                      // final state finite
+  std::int64_t first_nonfinite_step = -1;  // first recorded step with a non-finite value, or -1
+  std::uint64_t final_hash = 0;
+};
+
+// The header object of a trace.
+nlohmann::ordered_json traceHeader(const Scene& scene, const TraceSettings& settings);
+
+// Appends one step line (with its newline) for the current state of `world`.
+template <typename T>
+void appendStepLine(std::string& out, const World<T>& world);
+
+// Runs `scene` with `settings` and writes the whole trace to `out`.
+TraceSummary writeTrace(const Scene& scene, const TraceSettings& settings, std::ostream& out);
+
+// Whether step `step` of a run of `steps` steps with `stride` is recorded.
+bool isRecorded(std::int64_t step, std::int64_t steps, std::int64_t stride);
+
+}  // namespace clothref

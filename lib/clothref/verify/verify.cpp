@@ -1,0 +1,727 @@
+#include "clothref/verify/verify.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <random>
+
+#include "clothref/verify/analytic.h"
+#include "clothref/core/world.h"
+
+namespace clothref {
+
+CheckRow makeRow(std::string check, std::string method, Precision precision, double expected,
+                 double observed, double tolerance, CheckRule rule) {
+  CheckRow row;
+  row.check = std::move(check);
+  row.method = std::move(method);
+  row.precision = precision;
+  row.expected = expected;
+  row.observed = observed;
+  row.tolerance = tolerance;
+  row.rule = rule;
+  // written so that a NaN observation fails
+  row.pass = rule == CheckRule::Within ? std::abs(observed - expected) <= tolerance
+                                       : observed <= expected + tolerance;
+  return row;
+}
+
+double fitOrder(std::span<const double> dts, std::span<const double> errors) {
+  const std::size_t n = dts.size();
+  double mean_x = 0;
+  double mean_y = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    mean_x += std::log(dts[i]);
+    mean_y += std::log(errors[i]);
+  }
+  mean_x /= double(n);
+  mean_y /= double(n);
+  double sxy = 0;
+  double sxx = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double dx = std::log(dts[i]) - mean_x;
+    sxy += dx * (std::log(errors[i]) - mean_y);
+    sxx += dx * dx;
+  }
+  return sxy / sxx;
+}
+
+bool VerifyReport::passed() const {
+  return std::all_of(checks.begin(), checks.end(), [](const CheckRow& row) { return row.pass; });
+}
+
+namespace {
+
+constexpr Precision kPrecisions[] = {Precision::Double, Precision::Float};
+
+// Unit round-off u of a precision: 2^-24 for float, 2^-53 for double.
+double unitRoundoff(Precision precision) {
+  return precision == Precision::Float ? std::numeric_limits<float>::epsilon() / 2
+                                       : std::numeric_limits<double>::epsilon() / 2;
+}
+
+// The order each method is built to have (the course's implicit is one predictor-corrector
+// pass: first order; symplectic Euler is first order).
+int methodOrder(Method method) {
+  switch (method) {
+    case Method::Midpoint:
+      return 2;
+    case Method::Rk4:
+      return 4;
+    case Method::Explicit:
+    case Method::Implicit:
+    case Method::Symplectic:
+      return 1;
+  }
+  return 1;
+}
+
+template <typename Column>
+Eigen::Vector3d xyz(const Column& column) {
+  return Eigen::Vector3d(double(column[0]), double(column[1]), double(column[2]));
+}
+
+// Position and velocity of one cloth particle at steps 0..n.
+struct Trajectory {
+  double dt = 0;  // the step the world actually took, in its precision
+  std::vector<Eigen::Vector3d> position;
+  std::vector<Eigen::Vector3d> velocity;
+};
+
+template <typename T>
+Trajectory simulateParticle(const Scene& scene, Method method, double dt, int steps, int particle) {
+  World<T> world = makeWorld<T>(scene, method, dt);
+  Trajectory trajectory;
+  trajectory.dt = double(world.physics.dt);
+  const Particles<T>& p = world.cloth->particles;
+  for (int k = 0;; ++k) {
+    trajectory.position.push_back(xyz(p.position.col(particle)));
+    trajectory.velocity.push_back(xyz(p.velocity.col(particle)));
+    if (k == steps) break;
+    step(world);
+  }
+  return trajectory;
+}
+
+Trajectory simulateParticle(Precision precision, const Scene& scene, Method method, double dt,
+                            int steps, int particle) {
+  return precision == Precision::Float
+             ? simulateParticle<float>(scene, method, dt, steps, particle)
+             : simulateParticle<double>(scene, method, dt, steps, particle);
+}
+
+// The exact motion of the one moving particle of a spring or free-fall scene.
+//   state(t)         closed form
+//   derivative(t, k) |x^(k)(t)| (k >= 2), by the ODE's recursion applied to the exact state
+struct ExactMotion {
+  int particle = 0;
+  std::function<PointState(double)> state;
+  std::function<double(double, int)> derivative;
+};
+
+ExactMotion exactMotion(const Scene& scene) {
+  ExactMotion motion;
+  if (scene.cloth && !scene.cloth->springs.empty()) {
+    const SpringProblem problem = springProblem(scene);
+    motion.particle = problem.particle;
+    motion.state = [problem](double t) { return springState(problem, t); };
+    motion.derivative = [problem](double t, int k) {
+      // m u'' = -c u' - k u, differentiated: u^(j) = -(c u^(j-1) + k u^(j-2)) / m
+      const DampedOscillator& o = problem.oscillator;
+      const Displacement u = oscillatorState(o, t);
+      double older = u.position;
+      double old = u.velocity;
+      for (int j = 2; j <= k; ++j) {
+        const double next = -(o.damping * old + o.stiffness * older) / o.mass;
+        older = old;
+        old = next;
+      }
+      return std::abs(old);
+    };
+    return motion;
+  }
+  const DragFall fall = dragFallProblem(scene);
+  motion.state = [fall](double t) { return dragFallState(fall, t); };
+  motion.derivative = [fall](double t, int k) {
+    // x'' = g - v c / m, then x^(j) = -(c / m) x^(j-1)
+    Eigen::Vector3d d = fall.gravity - dragFallState(fall, t).velocity * fall.drag / fall.mass;
+    for (int j = 3; j <= k; ++j) d *= -fall.drag / fall.mass;
+    return d.norm();
+  };
+  return motion;
+}
+
+// max over steps of |x_k - x_exact(k dt)|.
+double maxError(const Trajectory& trajectory, const ExactMotion& exact) {
+  double error = 0;
+  for (std::size_t k = 0; k < trajectory.position.size(); ++k) {
+    const PointState truth = exact.state(double(k) * trajectory.dt);
+    error = std::max(error, (trajectory.position[k] - truth.position).norm());
+  }
+  return error;
+}
+
+double factorial(int n) { return n <= 1 ? 1.0 : n * factorial(n - 1); }
+
+// Leading global error of an order-p method over [0, T]: T h^p max|x^(p+1)| / (p+1)!, doubled
+// for the next-order terms and the growth or decay of the error inside the horizon.
+double truncationBound(const ExactMotion& exact, int order, double dt, int steps) {
+  double largest = 0;
+  for (int k = 0; k <= steps; ++k)
+    largest = std::max(largest, exact.derivative(double(k) * dt, order + 1));
+  return 2 * double(steps) * dt * std::pow(dt, order) * largest / factorial(order + 1);
+}
+
+// Round-off of `roundings` roundings of relative size u on quantities of size `scale`, modelled
+// as a random walk, 8 sqrt(roundings) u scale. The worst case (linear, roundings * u * scale)
+// is about sqrt(roundings) times larger and would hide real errors: with it, a 0.1 % stiffness
+// error passes the float rows (docs/verification.md).
+double roundoffEstimate(double roundings, Precision precision, double scale) {
+  return 8 * std::sqrt(roundings) * unitRoundoff(precision) * scale;
+}
+
+// Round-off of a particle trajectory: each step rounds the position update (~u|x|) and the
+// velocity update (~u|v|, which moves x by ~u|v|T by the end).
+double roundoffBound(const ExactMotion& exact, Precision precision, double dt, int steps) {
+  const double end_time = double(steps) * dt;
+  double scale = 0;
+  for (int k = 0; k <= steps; ++k) {
+    const PointState s = exact.state(double(k) * dt);
+    scale = std::max(scale, s.position.norm() + end_time * s.velocity.norm());
+  }
+  return roundoffEstimate(steps, precision, scale);
+}
+
+constexpr double kHorizon = 1.0;  // seconds, for the closed-form and convergence checks
+
+}  // namespace
+
+std::vector<CheckRow> closedFormChecks() {
+  std::vector<CheckRow> rows;
+  for (const char* name : {"spring", "spring-undamped", "free-fall"}) {
+    const Scene& scene = *findBuiltinScene(name);
+    const ExactMotion exact = exactMotion(scene);
+    const int steps = int(std::lround(kHorizon / scene.dt));
+    for (Precision precision : kPrecisions) {
+      for (Method method : kAllMethods) {
+        const Trajectory trajectory =
+            simulateParticle(precision, scene, method, scene.dt, steps, exact.particle);
+        const double tolerance = truncationBound(exact, methodOrder(method), trajectory.dt, steps) +
+                                 roundoffBound(exact, precision, trajectory.dt, steps);
+        rows.push_back(makeRow(
+            fmt::format("{}: max |x - x_exact| (m), dt {:g} s, {:g} s", name, scene.dt, kHorizon),
+            std::string(methodName(method)), precision, 0, maxError(trajectory, exact), tolerance));
+      }
+    }
+  }
+  return rows;
+}
+
+namespace {
+
+// Coarsest dt of a method's ladder on `spring` (omega = 10 rad/s): omega dt = 0.1, inside every
+// method's asymptotic range (explicit Euler is only stable below dt = 2 zeta / omega = 0.02 s);
+// RK4 starts at omega dt = 0.4 so its finest error stays far above double round-off.
+double ladderStart(Method method) { return method == Method::Rk4 ? 4e-2 : 1e-2; }
+
+constexpr int kHalvings = 5;
+constexpr double kFloorFactor = 10;  // a float point is fitted when error >= 10 x round-off
+
+}  // namespace
+
+std::vector<ConvergenceStudy> convergenceStudies() {
+  const Scene& scene = *findBuiltinScene("spring");
+  const ExactMotion exact = exactMotion(scene);
+  std::vector<ConvergenceStudy> studies;
+  for (Precision precision : kPrecisions) {
+    for (Method method : kAllMethods) {
+      ConvergenceStudy study;
+      study.method = method;
+      study.precision = precision;
+      study.expected_order = methodOrder(method);
+      study.end_time = kHorizon;
+      for (int k = 0; k <= kHalvings; ++k) {
+        const double dt = ladderStart(method) / double(1 << k);
+        const int steps = int(std::lround(kHorizon / dt));
+        const Trajectory run =
+            simulateParticle(precision, scene, method, dt, steps, exact.particle);
+        study.dts.push_back(run.dt);
+        study.errors.push_back(maxError(run, exact));
+        bool above_floor = true;
+        if (precision == Precision::Float) {
+          // the same run in double at the float run's exact dt isolates the round-off
+          const Trajectory reference =
+              simulateParticle(Precision::Double, scene, method, run.dt, steps, exact.particle);
+          double roundoff = 0;
+          for (std::size_t i = 0; i < run.position.size(); ++i)
+            roundoff = std::max(roundoff, (run.position[i] - reference.position[i]).norm());
+          study.roundoff.push_back(roundoff);
+          above_floor = study.errors.back() >= kFloorFactor * roundoff;
+        }
+        study.fitted.push_back(above_floor);
+      }
+      std::vector<double> dts;
+      std::vector<double> errors;
+      for (std::size_t i = 0; i < study.dts.size(); ++i) {
+        if (!study.fitted[i]) continue;
+        dts.push_back(study.dts[i]);
+        errors.push_back(study.errors[i]);
+      }
+      if (dts.size() >= 3) study.order = fitOrder(dts, errors);
+      studies.push_back(std::move(study));
+    }
+  }
+  return studies;
+}
+
+std::vector<CheckRow> convergenceChecks(const std::vector<ConvergenceStudy>& studies) {
+  std::vector<CheckRow> rows;
+  const Scene& scene = *findBuiltinScene("spring");
+  const ExactMotion exact = exactMotion(scene);
+  for (const ConvergenceStudy& study : studies) {
+    const std::string method(methodName(study.method));
+    const int fitted = int(std::count(study.fitted.begin(), study.fitted.end(), true));
+    if (study.order) {
+      rows.push_back(
+          makeRow(fmt::format("spring: order, least squares over {} dt {:g}..{:g} s, {:g} s",
+                              fitted, study.dts.front(), study.dts.back(), study.end_time),
+                  method, study.precision, study.expected_order, *study.order, 0.2));
+    }
+    if (study.precision != Precision::Float) continue;
+    // the float floor: round-off error at the finest dt against its worst-case bound
+    const int steps = int(std::lround(study.end_time / study.dts.back()));
+    rows.push_back(
+        makeRow(fmt::format("spring: float floor |x_float - x_double| (m), dt {:g} s{}",
+                            study.dts.back(), study.order ? "" : " (order: < 3 dt above floor)"),
+                method, study.precision, 0, study.roundoff.back(),
+                roundoffBound(exact, study.precision, study.dts.back(), steps)));
+  }
+  return rows;
+}
+
+namespace {
+
+// One body of an impact: particle `index` of `particles`.
+template <typename T>
+struct BodyRef {
+  Particles<T>* particles;
+  int index;
+
+  Eigen::Vector3d position() const { return xyz(particles->position.col(index)); }
+  Eigen::Vector3d velocity() const { return xyz(particles->velocity.col(index)); }
+  double mass() const { return double(particles->mass[index]); }
+};
+
+// What one impact did. Speeds and drifts are relative (see measureImpact).
+struct ImpactMeasure {
+  bool contact = false;
+  double restitution = std::numeric_limits<double>::quiet_NaN();
+  double tangential_change = std::numeric_limits<double>::quiet_NaN();
+  double closed_form_error = std::numeric_limits<double>::quiet_NaN();
+  double momentum_drift = std::numeric_limits<double>::quiet_NaN();
+  double energy_change = std::numeric_limits<double>::quiet_NaN();
+  double velocity_b_change = std::numeric_limits<double>::quiet_NaN();  // |v_b' - v_b| (m/s)
+};
+
+constexpr int kMaxApproachSteps = 2000;
+constexpr int kStepsAfterContact = 200;
+
+// Steps `world` until the step whose contact changes a velocity (a is body i of the stub, b body
+// j: the normal runs from b to a), and measures that step:
+//   restitution        -((v_a' - v_b') . n) / ((v_a - v_b) . n)
+//   tangential_change  max over a, b of |v_t' - v_t| / |v_a - v_b|
+//   closed_form_error  max over a, b of |v' - v_closed_form| / |v_a - v_b| (impactVelocities)
+// then runs kStepsAfterContact more steps (later contacts included) and measures
+//   momentum_drift     |P_end - P_start| / sum m |v| at the start
+//   energy_change      (K_end - K_start) / K_start
+template <typename T>
+ImpactMeasure measureImpact(World<T>& world, BodyRef<T> a, BodyRef<T> b) {
+  ImpactMeasure measure;
+  const std::array<double, 3> p_start = momentum(world);
+  const double k_start = kineticEnergy(world);
+  const double momentum_scale = a.mass() * a.velocity().norm() + b.mass() * b.velocity().norm();
+  for (int k = 0; k < kMaxApproachSteps && !measure.contact; ++k) {
+    const Eigen::Vector3d xa = a.position(), xb = b.position();
+    const Eigen::Vector3d va = a.velocity(), vb = b.velocity();
+    step(world);
+    if (a.velocity() == va && b.velocity() == vb) continue;
+    measure.contact = true;
+    const Eigen::Vector3d n = (xa - xb).normalized();
+    const Eigen::Vector3d relative = va - vb;
+    measure.restitution = -(a.velocity() - b.velocity()).dot(n) / relative.dot(n);
+    auto tangential = [&n](const Eigen::Vector3d& v) { return v - v.dot(n) * n; };
+    measure.tangential_change = std::max((tangential(a.velocity()) - tangential(va)).norm(),
+                                         (tangential(b.velocity()) - tangential(vb)).norm()) /
+                                relative.norm();
+    const double e = double(world.spheres && b.particles == &world.spheres->particles
+                                ? world.physics.restitution_sphere
+                                : world.physics.restitution_cloth);
+    const ImpactVelocities closed = impactVelocities(a.mass(), va, b.mass(), vb, n, e);
+    measure.closed_form_error =
+        std::max((a.velocity() - closed.a).norm(), (b.velocity() - closed.b).norm()) /
+        relative.norm();
+    measure.velocity_b_change = (b.velocity() - vb).norm();
+  }
+  for (int k = 0; k < kStepsAfterContact; ++k) step(world);
+  const std::array<double, 3> p_end = momentum(world);
+  measure.momentum_drift =
+      Eigen::Vector3d(p_end[0] - p_start[0], p_end[1] - p_start[1], p_end[2] - p_start[2]).norm() /
+      momentum_scale;
+  measure.energy_change = (kineticEnergy(world) - k_start) / k_start;
+  return measure;
+}
+
+constexpr double kRestitutions[] = {0, 0.25, 0.5, 0.8, 1};
+constexpr double kMassRatios[] = {1, 10, 100};
+
+Scene impactBaseScene(const std::string& name) {
+  Scene scene;
+  scene.name = name;
+  scene.dt = 1e-3;
+  scene.gravity = {0, 0, 0};
+  scene.viscous_coef = 0;
+  return scene;
+}
+
+// Sphere 0 (125 kg) overtakes sphere 1 (125 * ratio kg) off-centre: the contact normal is
+// oblique to both velocities, so each has a tangential part.
+Scene sphereSphereScene(double restitution, double mass_ratio) {
+  Scene scene = impactBaseScene("impact-sphere-sphere");
+  SpheresSpec spheres;
+  spheres.items = {SphereSpec{{-0.9, 0.3, 0.1}, 0.5, {2, 0, 0.25}, 125.0},
+                   SphereSpec{{0.4, 0, 0}, 0.5, {-1, 0.5, 0}, 125.0 * mass_ratio}};
+  spheres.external_force = false;
+  spheres.sphere_sphere_collision = true;
+  spheres.restitution_sphere = restitution;
+  scene.spheres = spheres;
+  return scene;
+}
+
+// A sphere (mass_ratio kg) and one cloth particle (1 kg, or fixed when `fixed`) meeting
+// obliquely.
+Scene sphereClothScene(double restitution, double mass_ratio, bool fixed) {
+  Scene scene = impactBaseScene("impact-sphere-cloth");
+  ClothSpec cloth;
+  cloth.particles = {fixed ? ParticleSpec{{0.3, -0.9, 0.1}, {0, 0, 0}, 0}
+                           : ParticleSpec{{0.3, -0.9, 0.1}, {0.4, 1.5, 0}, 1}};
+  cloth.spring_coef = 0;
+  cloth.damper_coef = 0;
+  scene.cloth = cloth;
+  SpheresSpec spheres;
+  spheres.items = {SphereSpec{{0, 0, 0}, 0.5, {0.2, -1, 0.3}, mass_ratio}};
+  spheres.external_force = false;
+  spheres.sphere_sphere_collision = false;
+  spheres.restitution_cloth = restitution;
+  scene.spheres = spheres;
+  return scene;
+}
+
+template <typename T>
+ImpactMeasure sphereSphereImpact(double restitution, double mass_ratio) {
+  World<T> world = makeWorld<T>(sphereSphereScene(restitution, mass_ratio), Method::Explicit);
+  return measureImpact(world, BodyRef<T>{&world.spheres->particles, 0},
+                       BodyRef<T>{&world.spheres->particles, 1});
+}
+
+template <typename T>
+ImpactMeasure sphereClothImpact(double restitution, double mass_ratio, bool fixed) {
+  World<T> world = makeWorld<T>(sphereClothScene(restitution, mass_ratio, fixed), Method::Explicit);
+  return measureImpact(world, BodyRef<T>{&world.spheres->particles, 0},
+                       BodyRef<T>{&world.cloth->particles, 0});
+}
+
+// Conservation tolerances: a few roundings of size u per impulse, relative. Float 1e-6 and
+// double 1e-12 as the brief sets them; restitution 1e-5 in float, 1e-12 in double.
+double conservationTolerance(Precision precision) {
+  return precision == Precision::Float ? 1e-6 : 1e-12;
+}
+double restitutionTolerance(Precision precision) {
+  return precision == Precision::Float ? 1e-5 : 1e-12;
+}
+
+// Worst case of a sweep: the measured value farthest from its target, with its label.
+struct Worst {
+  double value = 0;
+  double distance = -1;
+  std::string label;
+
+  void offer(double candidate, double target, const std::string& where) {
+    const double d = std::isnan(candidate) ? std::numeric_limits<double>::infinity()
+                                           : std::abs(candidate - target);
+    if (d > distance) {
+      distance = d;
+      value = candidate;
+      label = where;
+    }
+  }
+};
+
+// Rows shared by both impact kinds: per e the worst restitution over the mass ratios, then the
+// worst momentum drift, tangential change, closed-form error and energy change over the sweep.
+template <typename Measure>
+void impactRows(const std::string& kind, Precision precision, Measure&& measure,
+                std::vector<CheckRow>& rows) {
+  Worst momentum, tangential, closed, energy_elastic, energy_gain;
+  for (double e : kRestitutions) {
+    Worst restitution;
+    for (double ratio : kMassRatios) {
+      const ImpactMeasure m = measure(e, ratio);
+      const std::string where = fmt::format("e {:g}, ratio {:g}", e, ratio);
+      restitution.offer(m.restitution, e, fmt::format("ratio {:g}", ratio));
+      momentum.offer(m.momentum_drift, 0, where);
+      tangential.offer(m.tangential_change, 0, where);
+      closed.offer(m.closed_form_error, 0, where);
+      if (e == 1) energy_elastic.offer(m.energy_change, 0, where);
+      // the signed change: the worst is the largest gain (or smallest loss)
+      else
+        energy_gain.offer(m.energy_change, -1, where);
+    }
+    rows.push_back(makeRow(fmt::format("{}: restitution e {:g} (worst of ratios 1, 10, 100: {})",
+                                       kind, e, restitution.label),
+                           "explicit", precision, e, restitution.value,
+                           restitutionTolerance(precision)));
+  }
+  const double tol = conservationTolerance(precision);
+  const std::string sweep = "worst of 15";
+  rows.push_back(
+      makeRow(fmt::format("{}: momentum drift / sum m|v| ({}: {})", kind, sweep, momentum.label),
+              "explicit", precision, 0, momentum.value, tol));
+  rows.push_back(makeRow(
+      fmt::format("{}: tangential |dv_t| / |v_rel| ({}: {})", kind, sweep, tangential.label),
+      "explicit", precision, 0, tangential.value, tol));
+  rows.push_back(
+      makeRow(fmt::format("{}: |v - v_closed_form| / |v_rel| ({}: {})", kind, sweep, closed.label),
+              "explicit", precision, 0, closed.value, restitutionTolerance(precision)));
+  rows.push_back(makeRow(
+      fmt::format("{}: energy change / K at e = 1 (worst of 3: {})", kind, energy_elastic.label),
+      "explicit", precision, 0, energy_elastic.value, tol));
+  rows.push_back(makeRow(
+      fmt::format("{}: energy change / K at e < 1 (largest of 12: {})", kind, energy_gain.label),
+      "explicit", precision, 0, energy_gain.value, tol, CheckRule::AtMost));
+}
+
+}  // namespace
+
+std::vector<CheckRow> sphereSphereChecks() {
+  std::vector<CheckRow> rows;
+  for (Precision precision : kPrecisions) {
+    impactRows(
+        "sphere-sphere", precision,
+        [precision](double e, double ratio) {
+          return precision == Precision::Float ? sphereSphereImpact<float>(e, ratio)
+                                               : sphereSphereImpact<double>(e, ratio);
+        },
+        rows);
+  }
+  return rows;
+}
+
+std::vector<CheckRow> sphereClothChecks() {
+  std::vector<CheckRow> rows;
+  for (Precision precision : kPrecisions) {
+    auto measure = [precision](double e, double ratio, bool fixed) {
+      return precision == Precision::Float ? sphereClothImpact<float>(e, ratio, fixed)
+                                           : sphereClothImpact<double>(e, ratio, fixed);
+    };
+    impactRows(
+        "sphere-cloth", precision,
+        [&measure](double e, double ratio) { return measure(e, ratio, false); }, rows);
+    // a fixed particle is immovable in the impulse: it keeps its (zero) velocity, and the sphere
+    // bounces off it as off a wall
+    Worst restitution, closed, particle, energy_gain;
+    for (double e : kRestitutions) {
+      const ImpactMeasure m = measure(e, 125, true);
+      const std::string where = fmt::format("e {:g}", e);
+      restitution.offer(m.restitution - e, 0, where);
+      closed.offer(m.closed_form_error, 0, where);
+      particle.offer(m.velocity_b_change, 0, where);
+      energy_gain.offer(m.energy_change, -1, where);
+    }
+    const std::string kind = "sphere-fixed particle";
+    rows.push_back(
+        makeRow(fmt::format("{}: restitution - e (worst of 5: {})", kind, restitution.label),
+                "explicit", precision, 0, restitution.value, restitutionTolerance(precision)));
+    rows.push_back(
+        makeRow(fmt::format("{}: particle |dv| (m/s) (worst of 5: {})", kind, particle.label),
+                "explicit", precision, 0, particle.value, 0));
+    rows.push_back(makeRow(
+        fmt::format("{}: |v - v_closed_form| / |v_rel| (worst of 5: {})", kind, closed.label),
+        "explicit", precision, 0, closed.value, restitutionTolerance(precision)));
+    rows.push_back(
+        makeRow(fmt::format("{}: energy change / K (largest of 5: {})", kind, energy_gain.label),
+                "explicit", precision, 0, energy_gain.value, conservationTolerance(precision),
+                CheckRule::AtMost));
+  }
+  return rows;
+}
+
+namespace {
+
+constexpr int kFreeClothSteps = 500;
+
+// A uniform double in [lo, hi) from the top 53 bits of one draw: portable, unlike
+// std::uniform_real_distribution.
+double uniform(std::mt19937_64& random, double lo, double hi) {
+  return lo + (hi - lo) * double(random() >> 11) * 0x1.0p-53;
+}
+
+// Free 9 x 9 course cloth, no fixed particles, gravity or drag; velocities uniform in [-1, 1].
+template <typename T>
+World<T> freeClothWorld(Method method) {
+  Scene scene = impactBaseScene("free-cloth");
+  scene.dt = 1e-4;
+  ClothSpec cloth;
+  cloth.grid = GridSpec{9, 1, 0, 1};
+  cloth.spring_coef = 25000;
+  cloth.damper_coef = 750;
+  scene.cloth = cloth;
+  World<T> world = makeWorld<T>(scene, method);
+  std::mt19937_64 random(20240521);
+  Mat4X<T>& v = world.cloth->particles.velocity;
+  for (int i = 0; i < v.cols(); ++i)
+    for (int k = 0; k < 3; ++k) v(k, i) = T(uniform(random, -1, 1));
+  return world;
+}
+
+// Relative momentum drift over kFreeClothSteps, and its round-off estimate: per step, per
+// derivative evaluation and per particle the velocity rounds by ~u |v|, and its acceleration
+// (a sum of at most 12 spring forces) by ~12 u |a|, moving v by 12 u |a| dt; relative to
+// sum m |v| at the start (unit masses).
+template <typename T>
+CheckRow freeClothRow(Method method, Precision precision) {
+  World<T> world = freeClothWorld<T>(method);
+  const Particles<T>& p = world.cloth->particles;
+  const std::array<double, 3> start = momentum(world);
+  double scale = 0;
+  for (int i = 0; i < p.size(); ++i) scale += double(p.mass[i]) * xyz(p.velocity.col(i)).norm();
+  double drift = 0;
+  double v_max = 0;
+  double a_max = 0;
+  for (int k = 0; k < kFreeClothSteps; ++k) {
+    step(world);
+    const std::array<double, 3> now = momentum(world);
+    drift = std::max(
+        drift, Eigen::Vector3d(now[0] - start[0], now[1] - start[1], now[2] - start[2]).norm());
+    v_max = std::max(v_max, double(p.velocity.cwiseAbs().maxCoeff()));
+    a_max = std::max(a_max, double(p.acceleration.cwiseAbs().maxCoeff()));
+  }
+  const double roundings = double(kFreeClothSteps) * evaluationsPerStep(method) * p.size();
+  const double bound =
+      roundoffEstimate(roundings, precision, v_max + 12 * a_max * double(world.physics.dt)) / scale;
+  return makeRow(fmt::format("free 9x9 cloth: momentum drift / sum m|v|, {} steps of {:g} s{}",
+                             kFreeClothSteps, double(world.physics.dt),
+                             isFinite(world) ? "" : " (NOT FINITE)"),
+                 std::string(methodName(method)), precision, 0,
+                 isFinite(world) ? drift / scale : std::numeric_limits<double>::quiet_NaN(), bound);
+}
+
+}  // namespace
+
+std::vector<CheckRow> freeClothMomentumChecks() {
+  std::vector<CheckRow> rows;
+  for (Precision precision : kPrecisions)
+    for (Method method : kAllMethods)
+      rows.push_back(precision == Precision::Float ? freeClothRow<float>(method, precision)
+                                                   : freeClothRow<double>(method, precision));
+  return rows;
+}
+
+VerifyReport runVerification() {
+  VerifyReport report;
+  report.studies = convergenceStudies();
+  auto append = [&report](std::vector<CheckRow> rows) {
+    report.checks.insert(report.checks.end(), rows.begin(), rows.end());
+  };
+  append(closedFormChecks());
+  append(convergenceChecks(report.studies));
+  append(sphereSphereChecks());
+  append(sphereClothChecks());
+  append(freeClothMomentumChecks());
+  return report;
+}
+
+nlohmann::ordered_json reportToJson(const VerifyReport& report) {
+  using ordered_json = nlohmann::ordered_json;
+  ordered_json orders = ordered_json::object();
+  ordered_json floors = ordered_json::object();
+  for (const ConvergenceStudy& study : report.studies) {
+    const std::string method(methodName(study.method));
+    const std::string precision(precisionName(study.precision));
+    orders[method][precision] = study.order ? ordered_json(*study.order) : ordered_json(nullptr);
+    if (study.precision == Precision::Float)
+      floors[method] = *std::max_element(study.roundoff.begin(), study.roundoff.end());
+  }
+  ordered_json studies = ordered_json::array();
+  for (const ConvergenceStudy& study : report.studies) {
+    studies.push_back(
+        {{"scene", "spring"},
+         {"method", methodName(study.method)},
+         {"precision", precisionName(study.precision)},
+         {"expected_order", study.expected_order},
+         {"end_time", study.end_time},
+         {"fit", "least squares of log error on log dt over the fitted points"},
+         {"dts", study.dts},
+         {"errors", study.errors},
+         {"roundoff", study.roundoff},
+         {"fitted", study.fitted},
+         {"order", study.order ? ordered_json(*study.order) : ordered_json(nullptr)}});
+  }
+  ordered_json checks = ordered_json::array();
+  for (const CheckRow& row : report.checks) {
+    checks.push_back({{"check", row.check},
+                      {"method", row.method},
+                      {"precision", precisionName(row.precision)},
+                      {"expected", row.expected},
+                      {"observed", row.observed},
+                      {"tolerance", row.tolerance},
+                      {"rule", row.rule == CheckRule::Within ? "within" : "at_most"},
+                      {"pass", row.pass}});
+  }
+  return {{"orders", orders},
+          {"float_floor", floors},
+          {"studies", studies},
+          {"checks", checks},
+          {"passed", report.passed()}};
+}
+
+std::string reportTable(const VerifyReport& report) {
+  std::size_t width = 5;
+  for (const CheckRow& row : report.checks) width = std::max(width, row.check.size());
+  std::string table =
+      fmt::format("{:<{}}  {:<10}  {:<6}  {:>12}  {:>12}  {:>10}  {}\n", "check", width, "method",
+                  "prec", "expected", "observed", "tolerance", "pass");
+  int failed = 0;
+  for (const CheckRow& row : report.checks) {
+    const std::string expected = row.rule == CheckRule::AtMost
+                                     ? fmt::format("<= {:.6g}", row.expected)
+                                     : fmt::format("{:.6g}", row.expected);
+    table += fmt::format("{:<{}}  {:<10}  {:<6}  {:>12}  {:>12.4e}  {:>10.3e}  {}\n", row.check,
+                         width, row.method, precisionName(row.precision), expected, row.observed,
+                         row.tolerance, row.pass ? "yes" : "NO");
+    failed += row.pass ? 0 : 1;
+  }
+  // one line per method: the orders side by side, and where the float floor lies
+  table +=
+      "\norders on spring (least squares of log error on log dt, pass |p - expected| <= 0.2);\n"
+      "float floor = largest |x_float - x_double| in the ladder; null = < 3 dt above 10x floor:\n";
+  for (Method method : kAllMethods) {
+    std::string line =
+        fmt::format("  {:<10}  expected {}", methodName(method), methodOrder(method));
+    for (const ConvergenceStudy& study : report.studies) {
+      if (study.method != method) continue;
+      line += fmt::format("  {} {}", precisionName(study.precision),
+                          study.order ? fmt::format("{:.3f}", *study.order) : "null");
+      if (study.precision == Precision::Float)
+        line += fmt::format("  float floor {:.2e} m",
+                            *std::max_element(study.roundoff.begin(), study.roundoff.end()));
+    }
+    table += line + "\n";
+  }
+  table += fmt::format("\n{} checks, {} failed\n", report.checks.size(), failed);
+  return table;
+}
+
+}  // namespace clothref

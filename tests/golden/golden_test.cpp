@@ -1,0 +1,328 @@
+// golden.cpp: the golden set definition, the manifest reader, an update of a small golden set
+// into a temporary directory (stale files swept, others kept), the check passing on what update
+// wrote, a tampered copy failing with exactly the tampered entries named, and the CLI's exit codes.
+// (The full set is checked by the ctest `golden`.)
+#include "clothref/golden/golden.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "clothref/io/error.h"
+#include "clothref/trace/hash.h"
+#include "test_util.h"
+
+namespace clothref {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string readText(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+void writeText(const fs::path& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+}
+
+bool hasRun(const GoldenSet& set, const std::string& scene, Method method, Precision precision,
+            std::int64_t steps) {
+  return std::any_of(set.hash_runs.begin(), set.hash_runs.end(), [&](const HashRun& run) {
+    return run.scene == scene && run.method == method && run.precision == precision &&
+           run.steps == steps;
+  });
+}
+
+TEST(GoldenSet, CoversEverySceneAndIntegrator) {
+  const GoldenSet& set = goldenSet();
+  ASSERT_EQ(set.scenes.size(), builtinScenes().size());
+  for (const Scene& scene : builtinScenes()) {
+    for (Method method : kAllMethods) {
+      const std::string file = fmt::format("traces/{}.{}.jsonl", scene.name, methodName(method));
+      const auto trace = std::find_if(set.traces.begin(), set.traces.end(),
+                                      [&](const GoldenTrace& t) { return t.file == file; });
+      ASSERT_NE(trace, set.traces.end()) << file;
+      EXPECT_EQ(trace->scene, scene.name);
+      EXPECT_EQ(trace->settings.method, method);
+      EXPECT_EQ(trace->settings.precision, Precision::Float);
+      EXPECT_EQ(trace->settings.dt, scene.dt);
+      const bool small = scene.name.rfind("course", 0) != 0;
+      if (small) {
+        EXPECT_TRUE(hasRun(set, scene.name, method, Precision::Float, 1000) ||
+                    hasRun(set, scene.name, method, Precision::Float, 3000))
+            << scene.name;
+        EXPECT_TRUE(hasRun(set, scene.name, method, Precision::Double, 1000) ||
+                    hasRun(set, scene.name, method, Precision::Double, 3000))
+            << scene.name;
+      }
+    }
+  }
+  for (Method method : kAllMethods)
+    EXPECT_TRUE(hasRun(set, "course2022", method, Precision::Float, 1000)) << methodName(method);
+  EXPECT_TRUE(hasRun(set, "course2022", Method::Explicit, Precision::Float, 10000));
+  // The spheres reach the course2022 cloth at ~0.32 s: the stored trace must go past it.
+  for (const GoldenTrace& trace : set.traces) {
+    if (trace.scene == "course2022") {
+      EXPECT_GT(double(trace.settings.steps) * trace.settings.dt, 0.32);
+    }
+  }
+}
+
+TEST(GoldenSet, HashesStartAtTheInitialState) {
+  const Scene& scene = *findBuiltinScene("two-spheres");
+  const std::vector<std::uint64_t> hashes =
+      computeHashes(scene, Method::Rk4, Precision::Double, scene.dt, 3);
+  ASSERT_EQ(hashes.size(), 4u);
+  World<double> world = makeWorld<double>(scene, Method::Rk4);
+  EXPECT_EQ(hashes[0], stateHash(world));
+  for (int s = 1; s <= 3; ++s) {
+    step(world);
+    EXPECT_EQ(hashes[s], stateHash(world)) << "step " << s;
+  }
+}
+
+TEST(Manifest, TextRoundTrips) {
+  GoldenSet set = goldenSet();
+  for (HashRun& run : set.hash_runs)
+    run.hashes.assign(static_cast<std::size_t>(run.steps) + 1, "0123456789abcdef");
+  set.hash_runs.front().hashes.back() = "fedcba9876543210";
+  const GoldenSet back = manifestFromJson(nlohmann::json::parse(manifestText(set)), "m.json");
+  EXPECT_EQ(back.scenes, set.scenes);
+  ASSERT_EQ(back.traces.size(), set.traces.size());
+  for (std::size_t i = 0; i < set.traces.size(); ++i) {
+    EXPECT_EQ(back.traces[i].file, set.traces[i].file);
+    EXPECT_EQ(back.traces[i].settings.dt, set.traces[i].settings.dt);
+    EXPECT_EQ(back.traces[i].settings.stride, set.traces[i].settings.stride);
+  }
+  ASSERT_EQ(back.hash_runs.size(), set.hash_runs.size());
+  for (std::size_t i = 0; i < set.hash_runs.size(); ++i) {
+    EXPECT_TRUE(back.hash_runs[i].sameRun(set.hash_runs[i]));
+    EXPECT_EQ(back.hash_runs[i].hashes, set.hash_runs[i].hashes);
+  }
+}
+
+// The InputError message for a manifest with one field changed.
+std::string manifestError(const std::string& pointer, const nlohmann::json& value) {
+  GoldenSet set;
+  set.scenes = {"spring"};
+  set.traces = {goldenSet().traces.front()};
+  set.hash_runs = {HashRun{
+      "spring", Method::Rk4, Precision::Float, 1e-3, 1, {"0123456789abcdef", "0123456789abcdef"}}};
+  nlohmann::json document = nlohmann::json::parse(manifestText(set));
+  document[nlohmann::json::json_pointer(pointer)] = value;
+  try {
+    manifestFromJson(document, "golden/manifest.json");
+  } catch (const InputError& error) {
+    return error.what();
+  }
+  return "(accepted)";
+}
+
+TEST(Manifest, BadFieldsAreNamed) {
+  EXPECT_EQ(manifestError("/traces/0/steps", "10"),
+            "golden/manifest.json: /traces/0/steps: expected an integer");
+  EXPECT_EQ(manifestError("/traces/0/integrator", "euler"),
+            "golden/manifest.json: /traces/0/integrator: unknown method 'euler'");
+  EXPECT_EQ(manifestError("/traces/0/file", "../../etc/passwd"),
+            "golden/manifest.json: /traces/0/file: must be a file under traces/ (got "
+            "'../../etc/passwd')");
+  EXPECT_EQ(manifestError("/hash_runs/0/hashes/1", "xyz"),
+            "golden/manifest.json: /hash_runs/0/hashes/1: expected 16 lowercase hex digits");
+  EXPECT_EQ(manifestError("/hash_runs/0/steps", 5),
+            "golden/manifest.json: /hash_runs/0/hashes: expected 6 hashes (steps + 1), got 2");
+  EXPECT_EQ(manifestError("/version", 7),
+            "golden/manifest.json: /version: unsupported version 7 (this build reads 1)");
+  EXPECT_EQ(manifestError("/hash_runs/0/precision", "half"),
+            "golden/manifest.json: /hash_runs/0/precision: must be float or double, got 'half'");
+}
+
+// Replaces the first velocity value of the trace line for `step` with `value`.
+void tamperTrace(const fs::path& file, int step, const std::string& value) {
+  std::istringstream in(readText(file));
+  std::string out, line;
+  const std::string prefix = fmt::format("{{\"step\":{},", step);
+  while (std::getline(in, line)) {
+    if (line.rfind(prefix, 0) == 0) {
+      const std::size_t start = line.find("\"velocity\":[[") + 13;
+      line.replace(start, line.find(',', start) - start, value);
+    }
+    out += line + '\n';
+  }
+  writeText(file, out);
+}
+
+// The line (1-based) of the first occurrence of `text` in `file_text`.
+int lineOf(const std::string& file_text, const std::string& text) {
+  const std::size_t at = file_text.find(text);
+  return 1 + int(std::count(file_text.begin(), file_text.begin() + std::ptrdiff_t(at), '\n'));
+}
+
+// A small golden set, cheap even in an unoptimised build: every scene file, the traces of the
+// spring and two-spheres scenes, and their hash runs.
+GoldenSet smallSet() {
+  GoldenSet set;
+  set.scenes = goldenSet().scenes;
+  for (const GoldenTrace& trace : goldenSet().traces)
+    if (trace.scene == "spring" || trace.scene == "two-spheres") set.traces.push_back(trace);
+  for (const HashRun& run : goldenSet().hash_runs)
+    if (run.scene == "spring" || run.scene == "two-spheres") set.hash_runs.push_back(run);
+  return set;
+}
+
+// Every mismatched entry, as "kind name: summary" (and the diff report when there is one).
+struct CheckRun {
+  GoldenCheckSummary summary;
+  std::vector<std::string> mismatches;
+  std::string reports;
+};
+CheckRun check(const fs::path& dir, const GoldenSet& set) {
+  CheckRun run;
+  run.summary = checkGolden(
+      dir, GoldenCheckOptions{},
+      [&run](const GoldenEntryResult& entry) {
+        if (entry.matched) return;
+        run.mismatches.push_back(entry.kind + " " + entry.name + ": " + entry.summary);
+        run.reports += entry.report;
+      },
+      set);
+  return run;
+}
+
+// One test, because each part needs the update of the one before: update into a temporary
+// directory, check it passes, then tamper with a copy and check each entry is named.
+TEST(GoldenDirectory, UpdateThenCheckThenTamper) {
+  const test::TempDir root;
+  const fs::path dir = root.path() / "golden";
+  fs::create_directories(dir / "traces");
+  // A stale trace (to be swept) and a file outside the generated subdirectories (to be kept).
+  writeText(dir / "traces" / "retired.rk4.jsonl", "{}\n");
+  writeText(dir / "NOTES.txt", "kept\n");
+  const GoldenSet set = smallSet();
+  const GoldenUpdateSummary update = updateGolden(dir, set);
+
+  const int entries = int(set.scenes.size() + set.traces.size() + set.hash_runs.size());
+  {
+    SCOPED_TRACE("update writes every file and sweeps stale ones");
+    EXPECT_EQ(update.traces, int(set.traces.size()));
+    EXPECT_EQ(update.hash_runs, int(set.hash_runs.size()));
+    for (const std::string& scene : set.scenes)
+      EXPECT_EQ(readText(dir / "scenes" / (scene + ".json")),
+                sceneFileText(*findBuiltinScene(scene)));
+    for (const GoldenTrace& trace : set.traces) EXPECT_TRUE(fs::is_regular_file(dir / trace.file));
+    EXPECT_FALSE(fs::exists(dir / "traces" / "retired.rk4.jsonl"));
+    EXPECT_EQ(update.removed, std::vector<fs::path>{dir / "traces" / "retired.rk4.jsonl"});
+    EXPECT_EQ(readText(dir / "NOTES.txt"), "kept\n");
+    const GoldenSet manifest = readManifest(dir / "manifest.json");
+    EXPECT_EQ(manifest.traces.size(), set.traces.size());
+    ASSERT_EQ(manifest.hash_runs.size(), set.hash_runs.size());
+    for (const HashRun& run : manifest.hash_runs)
+      EXPECT_EQ(run.hashes.size(), static_cast<std::size_t>(run.steps) + 1);
+  }
+  {
+    SCOPED_TRACE("the check passes on what update wrote");
+    const CheckRun clean = check(dir, set);
+    EXPECT_EQ(clean.mismatches, std::vector<std::string>{});
+    EXPECT_EQ(clean.summary.checked, entries);
+    EXPECT_EQ(clean.summary.mismatched, 0);
+  }
+
+  SCOPED_TRACE("a tampered copy fails, naming each tampered entry");
+  const fs::path copy = root.path() / "tampered";
+  fs::copy(dir, copy, fs::copy_options::recursive);
+  // 1. one hash of one run
+  GoldenSet manifest = readManifest(copy / "manifest.json");
+  for (HashRun& run : manifest.hash_runs)
+    if (run.scene == "two-spheres" && run.method == Method::Midpoint &&
+        run.precision == Precision::Double)
+      run.hashes[300] = "0000000000000000";
+  writeText(copy / "manifest.json", manifestText(manifest));
+  // 2. one velocity value of one trace, 3. a scene parameter, 4. a stray file, 5. a missing trace
+  tamperTrace(copy / "traces" / "spring.rk4.jsonl", 1000, "-12.5");
+  const std::string scene = readText(copy / "scenes" / "free-fall.json");
+  const std::string drag = "\"viscous_coef\": 0.5";
+  writeText(copy / "scenes" / "free-fall.json",
+            std::string(scene).replace(scene.find(drag), drag.size(), "\"viscous_coef\": 0.25"));
+  writeText(copy / "scenes" / "extra.json", "{}\n");
+  fs::remove(copy / "traces" / "two-spheres.symplectic.jsonl");
+  // 6. a truncated trace: that entry's mismatch, not an abort of the whole check
+  const std::string explicit_trace = readText(copy / "traces" / "spring.explicit.jsonl");
+  writeText(copy / "traces" / "spring.explicit.jsonl",
+            explicit_trace.substr(0, explicit_trace.size() / 2));
+
+  CheckRun tampered = check(copy, set);
+  const std::string truncated =
+      "trace traces/spring.explicit.jsonl: spring explicit float dt=0.001 2000 steps stride 20: "
+      "cannot compare: " +
+      (copy / "traces" / "spring.explicit.jsonl").string() + ":";
+  EXPECT_EQ(std::erase_if(tampered.mismatches,
+                          [&](const std::string& line) { return line.rfind(truncated, 0) == 0; }),
+            1u);
+  const std::vector<std::string> expected = {
+      fmt::format("scene scenes/free-fall.json: differs from the built-in scene at line {}: "
+                  "golden '  \"viscous_coef\": 0.25,', now '  \"viscous_coef\": 0.5,'",
+                  lineOf(scene, drag)),
+      "trace traces/spring.rk4.jsonl: spring rk4 float dt=0.001 2000 steps stride 20",
+      "trace traces/two-spheres.symplectic.jsonl: golden trace file missing (two-spheres "
+      "symplectic float dt=0.001 500 steps stride 5)",
+      "hashes two-spheres midpoint double dt=0.001 1000 steps: first differs at step 300 of 1000: "
+      "golden 0000000000000000, now " +
+          hashToHex(computeHashes(*findBuiltinScene("two-spheres"), Method::Midpoint,
+                                  Precision::Double, 1e-3, 300)[300]),
+      "file scenes/extra.json: stray file: not produced by the golden set (run --update)"};
+  EXPECT_EQ(tampered.mismatches, expected);
+  EXPECT_EQ(tampered.summary.checked, entries + 1);
+  EXPECT_EQ(tampered.summary.mismatched, 6);
+  // The diff report of the tampered trace names the step and shows the value.
+  EXPECT_NE(tampered.reports.find("step 1000"), std::string::npos) << tampered.reports;
+  EXPECT_NE(tampered.reports.find("-12.5"), std::string::npos) << tampered.reports;
+}
+
+// The CLI prints each mismatch and a count line and exits 1. A manifest that lists nothing makes
+// every entry of the golden set a mismatch without simulating anything.
+TEST(GoldenCli, MismatchExitsOneAndPrintsEachEntry) {
+  const test::TempDir root;
+  writeText(root.path() / "manifest.json", manifestText(GoldenSet{}));
+  const test::CommandResult result = test::runCli("golden --golden " + root.path().string());
+  EXPECT_EQ(result.exit_code, 1) << result.output;
+  const std::string& out = result.output;
+  auto has = [&out](const std::string& text) { return out.find(text) != std::string::npos; };
+  EXPECT_TRUE(has("MISMATCH scene  scenes/course2022.json: golden scene file missing")) << out;
+  EXPECT_TRUE(
+      has("MISMATCH trace  traces/course2022.rk4.jsonl (course2022 rk4 float dt=0.0001 "
+          "5000 steps stride 500): in the golden set this code defines but not in the "
+          "manifest (run --update)"))
+      << out;
+  EXPECT_TRUE(
+      has("MISMATCH hashes course2022 explicit float dt=0.0001 10000 steps: in the golden "
+          "set this code defines but not in the manifest"))
+      << out;
+  const GoldenSet& set = goldenSet();
+  const int entries = int(set.scenes.size() + set.traces.size() + set.hash_runs.size());
+  EXPECT_TRUE(
+      has(fmt::format("clothref golden: 0 of {} entries match, {} mismatch", entries, entries)))
+      << out;
+}
+
+TEST(GoldenCli, BadInputExitsTwo) {
+  const test::TempDir root;
+  const test::CommandResult missing = test::runCli("golden --golden " + root.file("none"));
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.output.find("golden directory not found"), std::string::npos) << missing.output;
+
+  writeText(root.path() / "manifest.json", "{\"format\": \"clothref-golden\", \"version\": 1,");
+  const test::CommandResult malformed = test::runCli("golden --golden " + root.path().string());
+  EXPECT_EQ(malformed.exit_code, 2);
+  EXPECT_NE(malformed.output.find("manifest.json: not valid JSON"), std::string::npos)
+      << malformed.output;
+}
+
+}  // namespace
+}  // namespace clothref

@@ -1,0 +1,269 @@
+// trace_reader: a trace written by writeTrace parses back to the exact bits the world held, the
+// non-finite strings come back as NaN / infinity, and every malformed case is rejected with its
+// file and line number.
+#include "clothref/trace/reader.h"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "clothref/io/error.h"
+#include "clothref/trace/hash.h"
+#include "clothref/trace/writer.h"
+#include "test_util.h"
+
+namespace clothref {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A fresh directory per test, removed at the end.
+class TraceReaderTest : public ::testing::Test {
+ protected:
+  std::string path(const std::string& name) const { return dir_.file(name); }
+
+  // Writes a trace of `scene` and returns its lines.
+  std::vector<std::string> writeLines(const std::string& name, const Scene& scene,
+                                      const TraceSettings& settings) {
+    const std::vector<std::string> lines = test::traceLines(scene, settings);
+    writeLines(name, lines);
+    return lines;
+  }
+
+  void writeLines(const std::string& name, const std::vector<std::string>& lines,
+                  bool final_newline = true) {
+    test::writeLines(path(name), lines, final_newline);
+  }
+
+  // The InputError message of reading `name` to the end, or "" when it reads fine.
+  std::string readError(const std::string& name) {
+    try {
+      readTrace(path(name));
+    } catch (const InputError& error) {
+      return error.what();
+    }
+    return "";
+  }
+
+  test::TempDir dir_;
+};
+
+TraceSettings settingsFor(const Scene& scene, Precision precision, std::int64_t steps,
+                          std::int64_t stride) {
+  TraceSettings settings;
+  settings.precision = precision;
+  settings.dt = scene.dt;
+  settings.steps = steps;
+  settings.stride = stride;
+  return settings;
+}
+
+// Every recorded value equals, bit for bit, the state of a world stepped alongside.
+template <typename T>
+void expectSameBits(const Trace& trace, const Scene& scene, std::int64_t steps,
+                    std::int64_t stride) {
+  World<T> world = makeWorld<T>(scene, Method::Explicit);
+  std::size_t line = 0;
+  for (std::int64_t s = 0; s <= steps; ++s) {
+    if (isRecorded(s, steps, stride)) {
+      ASSERT_LT(line, trace.steps.size());
+      const TraceStep& recorded = trace.steps[line++];
+      EXPECT_EQ(recorded.prefix.step, s);
+      EXPECT_EQ(recorded.prefix.hash, stateHash(world));
+      ASSERT_EQ(recorded.bodies.size(), 2u);
+      const Particles<T>* parts[] = {&world.cloth->particles, &world.spheres->particles};
+      for (std::size_t b = 0; b < 2; ++b)
+        for (Eigen::Index i = 0; i < parts[b]->position.cols(); ++i)
+          for (int k = 0; k < 3; ++k) {
+            const T position = T(recorded.bodies[b].position[std::size_t(3 * i + k)]);
+            const T velocity = T(recorded.bodies[b].velocity[std::size_t(3 * i + k)]);
+            // widening to double and back is exact, so the bits must match
+            ASSERT_EQ(test::bits(position), test::bits(parts[b]->position(k, i)));
+            ASSERT_EQ(test::bits(velocity), test::bits(parts[b]->velocity(k, i)));
+          }
+    }
+    if (s < steps) step(world);
+  }
+  EXPECT_EQ(line, trace.steps.size());
+}
+
+TEST_F(TraceReaderTest, FloatTraceParsesBackToTheExactBits) {
+  const Scene& scene = *findBuiltinScene("small-cloth");
+  writeLines("a.jsonl", scene, settingsFor(scene, Precision::Float, 300, 25));
+  const Trace trace = readTrace(path("a.jsonl"));
+  EXPECT_EQ(trace.header.precision, Precision::Float);
+  EXPECT_EQ(trace.header.steps, 300);
+  EXPECT_EQ(trace.header.stride, 25);
+  ASSERT_EQ(trace.header.bodies.size(), 2u);
+  EXPECT_EQ(trace.header.bodies[0].name, "cloth");
+  EXPECT_EQ(trace.header.bodies[0].particles, 81);
+  EXPECT_EQ(trace.steps.size(), 13u);
+  expectSameBits<float>(trace, scene, 300, 25);
+}
+
+TEST_F(TraceReaderTest, DoubleTraceParsesBackToTheExactBits) {
+  const Scene& scene = *findBuiltinScene("small-cloth");
+  writeLines("a.jsonl", scene, settingsFor(scene, Precision::Double, 120, 50));
+  const Trace trace = readTrace(path("a.jsonl"));
+  EXPECT_EQ(trace.header.precision, Precision::Double);
+  expectSameBits<double>(trace, scene, 120, 50);
+}
+
+TEST_F(TraceReaderTest, NonFiniteStringsReadAsNanAndInfinity) {
+  const Scene& scene = *findBuiltinScene("spring");
+  std::vector<std::string> lines =
+      writeLines("a.jsonl", scene, settingsFor(scene, Precision::Float, 10, 10));
+  // step 10: particle 1 position and velocity become non-finite
+  const std::string last = lines[2];
+  const auto position = last.find("\"position\":[[0,0,0],[") + 21;
+  lines[2] = last.substr(0, position) + "\"NaN\",\"Infinity\",\"-Infinity\"" +
+             last.substr(last.find(']', position));
+  writeLines("b.jsonl", lines);
+  const Trace trace = readTrace(path("b.jsonl"));
+  const std::vector<double>& p = trace.steps[1].bodies[0].position;
+  EXPECT_TRUE(std::isnan(p[3]));
+  EXPECT_EQ(p[4], std::numeric_limits<double>::infinity());
+  EXPECT_EQ(p[5], -std::numeric_limits<double>::infinity());
+}
+
+TEST_F(TraceReaderTest, MalformedInputNamesFileAndLine) {
+  const Scene& scene = *findBuiltinScene("small-cloth");
+  const std::vector<std::string> lines =
+      writeLines("good.jsonl", scene, settingsFor(scene, Precision::Float, 40, 10));
+  ASSERT_EQ(readError("good.jsonl"), "");
+  ASSERT_EQ(lines.size(), 6u);  // header + steps 0, 10, 20, 30, 40
+
+  struct Case {
+    std::string name;
+    int line;                                      // 1-based line to edit
+    std::function<std::string(std::string)> edit;  // new text of that line
+    std::string expected;                          // part of the message after FILE:LINE:
+  };
+  auto replaceFirst = [](std::string text, const std::string& from, const std::string& to) {
+    const auto at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    return text.replace(at, from.size(), to);
+  };
+  const std::vector<Case> cases = {
+      {"truncated", 4, [](std::string s) { return s.substr(0, s.size() / 2); }, "truncated line"},
+      {"not-json", 3, [](std::string) { return std::string("not json"); }, "expected '{'"},
+      {"bare-nan", 4,
+       [&](std::string s) { return replaceFirst(s, "\"velocity\":[[0", "\"velocity\":[[NaN"); },
+       "bare NaN"},
+      {"bare-infinity", 4,
+       [&](std::string s) {
+         return replaceFirst(s, "\"velocity\":[[0", "\"velocity\":[[-Infinity");
+       },
+       "bare NaN/Infinity"},
+      {"missing-key", 5, [&](std::string s) { return replaceFirst(s, "\"t\":", "\"time\":"); },
+       "/time: unknown key"},
+      {"missing-hash", 5,
+       [&](std::string s) {
+         const auto at = s.find(",\"hash\"");
+         return s.erase(at, s.find(",\"bodies\"") - at);
+       },
+       "missing key \"hash\""},
+      {"two-components", 3,
+       [&](std::string s) {
+         return replaceFirst(s, "\"velocity\":[[0,0,0]", "\"velocity\":[[0,0]");
+       },
+       "/bodies/cloth/velocity/0"},
+      {"four-components", 3,
+       [&](std::string s) {
+         return replaceFirst(s, "\"velocity\":[[0,0,0]", "\"velocity\":[[0,0,0,0]");
+       },
+       "expected 3 components"},
+      {"missing-particle", 6,
+       [&](std::string s) { return replaceFirst(s, "\"velocity\":[[0,0,0],", "\"velocity\":["); },
+       "80 particles, the header declares 81"},
+      {"missing-body", 2,
+       [&](std::string s) {
+         const auto at = s.find(",\"spheres\"");
+         return s.erase(at, s.size() - 2 - at);
+       },
+       "missing body \"spheres\""},
+      {"wrong-format", 1,
+       [&](std::string s) { return replaceFirst(s, "clothref-trace", "other-trace"); },
+       "not a clothref trace"},
+      {"unsupported-version", 1,
+       [&](std::string s) { return replaceFirst(s, "\"version\":1", "\"version\":7"); },
+       "unsupported version 7"},
+      {"header-not-json", 1, [](std::string s) { return s.substr(0, 50); }, "not valid JSON"},
+      {"header-missing-dt", 1,
+       [&](std::string s) { return replaceFirst(s, "\"dt\":0.0001,\"steps\"", "\"steps\""); },
+       "missing key \"dt\""},
+      {"bad-number", 4,
+       [&](std::string s) { return replaceFirst(s, "\"velocity\":[[0", "\"velocity\":[[0.0.1"); },
+       "malformed"},
+      {"bad-hash", 3,
+       [&](std::string s) { return replaceFirst(s, "\"hash\":\"", "\"hash\":\"zz"); },
+       "16 hex digits"},
+      {"missing-line", 4, [](std::string) { return std::string(); }, "empty line"},
+      {"wrong-step", 4,
+       [&](std::string s) { return replaceFirst(s, "\"step\":20", "\"step\":25"); },
+       "expected step 20"},
+  };
+  for (const Case& c : cases) {
+    std::vector<std::string> edited = lines;
+    edited[std::size_t(c.line - 1)] = c.edit(edited[std::size_t(c.line - 1)]);
+    writeLines(c.name + ".jsonl", edited);
+    const std::string message = readError(c.name + ".jsonl");
+    const std::string where = path(c.name + ".jsonl") + ":" + std::to_string(c.line) + ": ";
+    EXPECT_EQ(message.rfind(where, 0), 0u) << c.name << ": " << message;
+    EXPECT_NE(message.find(c.expected), std::string::npos) << c.name << ": " << message;
+  }
+}
+
+TEST_F(TraceReaderTest, CutFilesAndMissingFilesAreErrors) {
+  const Scene& scene = *findBuiltinScene("spring");
+  std::vector<std::string> lines =
+      writeLines("good.jsonl", scene, settingsFor(scene, Precision::Float, 30, 10));
+  // a last line without its newline was cut short
+  writeLines("no-newline.jsonl", lines, false);
+  EXPECT_NE(readError("no-newline.jsonl").find("no-newline.jsonl:5: truncated"), std::string::npos)
+      << readError("no-newline.jsonl");
+  // a file cut at a line boundary ends before the header's last step
+  lines.pop_back();
+  writeLines("short.jsonl", lines);
+  EXPECT_NE(readError("short.jsonl").find("trace ends after step 20, the header says 30 steps"),
+            std::string::npos)
+      << readError("short.jsonl");
+  writeLines("empty.jsonl", {}, false);
+  EXPECT_NE(readError("empty.jsonl").find("empty.jsonl:1: empty file"), std::string::npos);
+  EXPECT_NE(readError("absent.jsonl").find("absent.jsonl: cannot open"), std::string::npos);
+}
+
+TEST_F(TraceReaderTest, KeysAreMatchedByNameNotPosition) {
+  const Scene& scene = *findBuiltinScene("spring");
+  std::vector<std::string> lines =
+      writeLines("a.jsonl", scene, settingsFor(scene, Precision::Float, 10, 10));
+  // move "bodies" before "step" and swap position and velocity in line 3
+  std::string& line = lines[2];
+  const auto bodies = line.find(",\"bodies\"");
+  const std::string prefix = line.substr(1, bodies - 1);  // "step":..,"hash":".."
+  const std::string rest = line.substr(bodies + 1, line.size() - bodies - 2);  // "bodies":{..}
+  const auto position = rest.find("\"position\"");
+  const auto velocity = rest.find(",\"velocity\"");
+  const std::string body =
+      fmt::format("{{{},{}}}}}", rest.substr(velocity + 1, rest.size() - 2 - velocity - 1),
+                  rest.substr(position, velocity - position));
+  line = fmt::format("{{{}{},{}}}", rest.substr(0, position - 1), body, prefix);
+  writeLines("b.jsonl", lines);
+  const Trace a = readTrace(path("a.jsonl"));
+  const Trace b = readTrace(path("b.jsonl"));
+  ASSERT_EQ(b.steps.size(), 2u);
+  EXPECT_EQ(b.steps[1].prefix.step, 10);
+  EXPECT_EQ(b.steps[1].prefix.hash, a.steps[1].prefix.hash);
+  EXPECT_EQ(b.steps[1].bodies[0].position, a.steps[1].bodies[0].position);
+  EXPECT_EQ(b.steps[1].bodies[0].velocity, a.steps[1].bodies[0].velocity);
+}
+
+}  // namespace
+}  // namespace clothref

@@ -1,0 +1,142 @@
+// The analytic checks (verify.h) pass for the library's stubs, their machinery decides correctly,
+// and `clothref verify` reports them with the documented exit codes and JSON shape.
+#include "clothref/verify/verify.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace clothref {
+namespace {
+
+void expectAllPass(const std::vector<CheckRow>& rows) {
+  ASSERT_FALSE(rows.empty());
+  for (const CheckRow& row : rows)
+    EXPECT_TRUE(row.pass) << row.check << " [" << row.method << ", " << precisionName(row.precision)
+                          << "]: expected " << row.expected << ", observed " << row.observed
+                          << ", tolerance " << row.tolerance;
+}
+
+TEST(MakeRow, AppliesItsRule) {
+  EXPECT_TRUE(makeRow("c", "-", Precision::Double, 1, 1.15, 0.2).pass);
+  EXPECT_FALSE(makeRow("c", "-", Precision::Double, 1, 1.25, 0.2).pass);
+  EXPECT_FALSE(makeRow("c", "-", Precision::Double, 1, 0.75, 0.2).pass);
+  // one-sided: anything below passes, above by more than the tolerance fails
+  EXPECT_TRUE(makeRow("c", "-", Precision::Double, 0, -5, 1e-6, CheckRule::AtMost).pass);
+  EXPECT_FALSE(makeRow("c", "-", Precision::Double, 0, 2e-6, 1e-6, CheckRule::AtMost).pass);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(makeRow("c", "-", Precision::Double, 0, nan, 1).pass);
+  EXPECT_FALSE(makeRow("c", "-", Precision::Double, 0, nan, 1, CheckRule::AtMost).pass);
+}
+
+TEST(FitOrder, RecoversThePowerOfAnExactPowerLaw) {
+  const std::array<double, 6> dts = {0.1, 0.05, 0.025, 0.0125, 0.00625, 0.003125};
+  for (double p : {1.0, 2.0, 4.0}) {
+    std::array<double, 6> errors{};
+    for (std::size_t i = 0; i < dts.size(); ++i) errors[i] = 3.7 * std::pow(dts[i], p);
+    EXPECT_NEAR(fitOrder(dts, errors), p, 1e-12);
+  }
+  // least squares, not the end points: a kink in the middle moves the slope
+  const std::array<double, 3> kinked_dts = {1, 0.5, 0.25};
+  const std::array<double, 3> kinked = {1, 0.25, 0.125};
+  EXPECT_NEAR(fitOrder(kinked_dts, kinked), 1.5, 1e-12);
+}
+
+TEST(ClosedForm, EveryMethodSceneAndPrecisionIsWithinItsBound) {
+  const std::vector<CheckRow> rows = closedFormChecks();
+  // 3 scenes x 2 precisions x 5 methods
+  EXPECT_EQ(rows.size(), 30u);
+  expectAllPass(rows);
+  // the bounds are not vacuous: every error is a measurable fraction of its bound in double
+  for (const CheckRow& row : rows) {
+    if (row.precision == Precision::Double) {
+      EXPECT_GT(row.observed, 1e-4 * row.tolerance) << row.check;
+    }
+  }
+}
+
+TEST(Convergence, DoubleOrdersMatchTheMethods) {
+  const std::vector<ConvergenceStudy> studies = convergenceStudies();
+  ASSERT_EQ(studies.size(), 10u);
+  for (const ConvergenceStudy& study : studies) {
+    SCOPED_TRACE(std::string(methodName(study.method)) + " " +
+                 std::string(precisionName(study.precision)));
+    EXPECT_GE(study.dts.size(), 6u);  // at least five halvings
+    for (std::size_t i = 1; i < study.dts.size(); ++i)
+      EXPECT_NEAR(study.dts[i - 1] / study.dts[i], 2, 1e-6);
+    if (study.precision == Precision::Double) {
+      ASSERT_TRUE(study.order.has_value());
+      EXPECT_NEAR(*study.order, study.expected_order, 0.2);
+      continue;
+    }
+    // float: every fitted point lies above 10x its round-off; the first-order methods and
+    // midpoint have enough of them
+    for (std::size_t i = 0; i < study.dts.size(); ++i) {
+      if (study.fitted[i]) {
+        EXPECT_GE(study.errors[i], 10 * study.roundoff[i]);
+      }
+    }
+    if (study.method != Method::Rk4) {
+      ASSERT_TRUE(study.order.has_value());
+      EXPECT_NEAR(*study.order, study.expected_order, 0.2);
+    }
+  }
+  expectAllPass(convergenceChecks(studies));
+}
+
+TEST(FreeCloth, EveryMethodKeepsMomentum) { expectAllPass(freeClothMomentumChecks()); }
+
+// Runs the CLI and returns its exit code and standard output.
+std::pair<int, std::string> runCli(const std::string& arguments) {
+  const std::string command = std::string(CLOTHREF_BIN) + " " + arguments;
+  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(command.c_str(), "r"), pclose);
+  std::string output;
+  std::array<char, 4096> buffer{};
+  std::size_t n = 0;
+  while ((n = fread(buffer.data(), 1, buffer.size(), pipe.get())) > 0)
+    output.append(buffer.data(), n);
+  const int status = pclose(pipe.release());
+  return {WEXITSTATUS(status), output};
+}
+
+TEST(VerifyCommand, JsonHasOrdersAndChecksAndExitsZero) {
+  const auto [code, output] = runCli("verify --json");
+  EXPECT_EQ(code, 0);
+  const nlohmann::json report = nlohmann::json::parse(output);
+  for (const char* method : {"explicit", "implicit", "midpoint", "rk4", "symplectic"}) {
+    ASSERT_TRUE(report["orders"].contains(method)) << method;
+    EXPECT_TRUE(report["orders"][method]["double"].is_number()) << method;
+    const nlohmann::json& single = report["orders"][method]["float"];
+    EXPECT_TRUE(single.is_number() || single.is_null()) << method;
+    EXPECT_TRUE(report["float_floor"][method].is_number()) << method;
+  }
+  EXPECT_NEAR(report["orders"]["rk4"]["double"].get<double>(), 4, 0.2);
+  ASSERT_TRUE(report["checks"].is_array());
+  EXPECT_GT(report["checks"].size(), 50u);
+  for (const nlohmann::json& row : report["checks"]) {
+    for (const char* key :
+         {"check", "method", "precision", "expected", "observed", "tolerance", "pass"})
+      EXPECT_TRUE(row.contains(key)) << key;
+    EXPECT_TRUE(row["pass"].get<bool>()) << row.dump();
+  }
+  EXPECT_TRUE(report["passed"].get<bool>());
+}
+
+TEST(VerifyCommand, TablePrintsTheColumnsAndASummary) {
+  const auto [code, output] = runCli("verify");
+  EXPECT_EQ(code, 0);
+  EXPECT_EQ(output.rfind("check", 0), 0u);
+  for (const char* column : {"method", "prec", "expected", "observed", "tolerance", "pass"})
+    EXPECT_NE(output.find(column), std::string::npos) << column;
+  EXPECT_NE(output.find(" checks, 0 failed"), std::string::npos);
+  EXPECT_EQ(output.find(" NO\n"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace clothref
