@@ -118,6 +118,45 @@ TEST(World, CourseBodiesAndMasses) {
   EXPECT_EQ(world.physics.correction, 0.15f);
 }
 
+// The 2024 frame loop: at the first step of every frame (and only then) the pinned corners are
+// re-pinned and sphere 0 gets the held velocity; in between, the sphere moves freely.
+TEST(World, FrameLoopActsAtTheStartOfEachFrameOnly) {
+  Scene scene = *findBuiltinScene("course2024");
+  scene.spheres->items[0].center = {0, -5, 0};  // clear of the cloth: only the loop moves it
+  scene.frame_loop->steps_per_frame = 5;
+  scene.frame_loop->sphere_velocity = {0.5, 0, -0.25};
+  World<double> world = makeWorld<double>(scene, Method::Explicit);
+  ASSERT_EQ(world.frame_loop.pinned, (std::vector<int>{0, 24, 600, 624}));
+  const Vec4<double> held(0.5, 0, -0.25, 0);
+  const Vec4<double> knocked(0, 2, 0, 0);
+  for (int i = 0; i < 23; ++i) {
+    // a corner and the sphere knocked between frames are reset when the next frame starts
+    if (i == 7) {
+      setMass(world.cloth->particles, 24, 1.0);
+      world.cloth->particles.velocity.col(24) = Vec4<double>(0, 1, 0, 0);
+      world.spheres->particles.velocity.col(0) = knocked;
+    }
+    const bool frame_start = world.step % 5 == 0;
+    const Vec4<double> sphere_x = world.spheres->particles.position.col(0);
+    const Vec4<double> sphere_v = world.spheres->particles.velocity.col(0);
+    step(world);
+    // explicit Euler moves the sphere by the velocity it had when the step began
+    const Vec4<double> moved_with = frame_start ? held : sphere_v;
+    EXPECT_EQ(world.spheres->particles.position.col(0), sphere_x + moved_with * 1e-4) << "step " << i;
+    if (i >= 7 && i < 10) EXPECT_EQ(sphere_v, knocked) << "step " << i;
+    if (frame_start) EXPECT_EQ(world.cloth->particles.mass[24], 0.0) << "step " << i;
+  }
+  EXPECT_EQ(world.cloth->particles.velocity.col(24), Vec4<double>::Zero());
+  // without the frame loop the same knock stays
+  scene.frame_loop.reset();
+  World<double> free_world = makeWorld<double>(scene, Method::Explicit);
+  setMass(free_world.cloth->particles, 24, 1.0);
+  free_world.spheres->particles.velocity.col(0) = knocked;
+  for (int i = 0; i < 10; ++i) step(free_world);
+  EXPECT_EQ(free_world.cloth->particles.mass[24], 1.0);
+  EXPECT_EQ(free_world.spheres->particles.velocity.col(0), knocked);
+}
+
 TEST(World, AStepAllocatesNothing) {
 #if CLOTHREF_COUNT_MALLOC
   for (Method method : kAllMethods) {

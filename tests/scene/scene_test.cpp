@@ -41,6 +41,25 @@ TEST(Scene, DefaultIsCourse2022WithTheCourseValues) {
   EXPECT_EQ(s2024.cloth->grid->y, 1);
   EXPECT_FALSE(s2024.spheres->external_force);
   EXPECT_FALSE(s2024.spheres->sphere_sphere_collision);
+  // the 2024 main loop at 60 Hz: simulationPerFrame 10 x speedMultiplier 240 / 60
+  ASSERT_TRUE(s2024.frame_loop.has_value());
+  EXPECT_EQ(s2024.frame_loop->steps_per_frame, 40);
+  EXPECT_EQ(s2024.frame_loop->sphere_velocity, (Vector3{0, 0, 0}));
+  EXPECT_FALSE(scene.frame_loop.has_value()) << "the 2022 loop has no per-frame work";
+  EXPECT_FALSE(sceneToJson(scene).contains("frame_loop"));
+}
+
+TEST(Scene, FrameLoopCanBeTurnedOffAndChanged) {
+  json document = json::parse(sceneToJson(*findBuiltinScene("course2024")).dump());
+  document["frame_loop"]["steps_per_frame"] = 16;  // a 150 Hz monitor
+  document["frame_loop"]["sphere_velocity"] = json::array({5, 0, 0});
+  const Scene held = sceneFromJson(document);
+  EXPECT_EQ(held.frame_loop->steps_per_frame, 16);
+  EXPECT_EQ(held.frame_loop->sphere_velocity, (Vector3{5, 0, 0}));
+  document["frame_loop"] = nullptr;
+  EXPECT_FALSE(sceneFromJson(document).frame_loop.has_value());
+  document.erase("frame_loop");
+  EXPECT_FALSE(sceneFromJson(document).frame_loop.has_value());
 }
 
 // Each bad scene: a mutation of a valid document and the one-line message it must produce.
@@ -75,6 +94,10 @@ const BadCase kBadCases[] = {
     {"course2022", "/gravity", "[0, -9.8]", "/gravity: expected an array of 3 numbers [x, y, z]"},
     {"course2022", "/spheres/external_force", "1", "/spheres/external_force: expected true or false, got integer"},
     {"course2022", "/cloth/spring_coef", nullptr, "/cloth/spring_coef: missing"},
+    {"course2024", "/frame_loop/steps_per_frame", "0", "/frame_loop/steps_per_frame: must be >= 1 (got 0)"},
+    {"course2024", "/frame_loop/sphere_velocity", "[1, 2]",
+     "/frame_loop/sphere_velocity: expected an array of 3 numbers [x, y, z]"},
+    {"course2024", "/frame_loop/refresh", "60", "/frame_loop/refresh: unknown key"},
 };
 
 json mutated(const BadCase& c) {

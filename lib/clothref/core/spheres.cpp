@@ -32,8 +32,11 @@ void resolveContact(Particles<T>& a, int i, Particles<T>& b, int j, T contact_di
   const Vec4<T> relative_velocity = a.velocity.col(i) - b.velocity.col(j);
   const T approach = relative_velocity.dot(normal);
   if (approach < T(0)) {
-    const Vec4<T> impulse = -(T(1) + restitution) * normal * approach /
-                            (b.inverse_mass[j] + a.inverse_mass[i]);
+    // the course's order: the normal velocity n * (v_rel . n) first, then scaled by -(1 + e);
+    // -(1 + e) * n * s would round differently whenever e != 0
+    const Vec4<T> normal_velocity = normal * approach;
+    const Vec4<T> impulse =
+        (-(T(1) + restitution) * normal_velocity) / (b.inverse_mass[j] + a.inverse_mass[i]);
     a.velocity.col(i) += impulse * a.inverse_mass[i];
     b.velocity.col(j) -= impulse * b.inverse_mass[j];
   }

@@ -83,6 +83,11 @@ World<T> makeWorld(const Scene& scene, Method method, std::optional<double> dt) 
     physics.restitution_sphere = T(spec.restitution_sphere);
     physics.correction = T(spec.correction);
   }
+  if (scene.frame_loop) {
+    world.frame_loop.steps_per_frame = scene.frame_loop->steps_per_frame;
+    world.frame_loop.sphere_velocity = direction<T>(scene.frame_loop->sphere_velocity);
+    if (scene.cloth) world.frame_loop.pinned = scene.cloth->fixed;
+  }
   return world;
 }
 
@@ -107,8 +112,28 @@ void simulateOneStep(World<T>& world) {
     collide(*world.spheres, physics.restitution_sphere, physics.correction);
 }
 
+namespace {
+
+// The 2024 main loop's work before a frame's steps: pinned corners get mass 0 and zero velocity
+// and acceleration, then spheres.setVelocity(0, vel).
+template <typename T>
+void beginFrame(World<T>& world) {
+  if (world.cloth)
+    for (int i : world.frame_loop.pinned) {
+      setMass(world.cloth->particles, i, T(0));
+      world.cloth->particles.velocity.col(i).setZero();
+      world.cloth->particles.acceleration.col(i).setZero();
+    }
+  if (world.spheres && world.spheres->size() > 0)
+    world.spheres->particles.velocity.col(0) = world.frame_loop.sphere_velocity;
+}
+
+}  // namespace
+
 template <typename T>
 void step(World<T>& world) {
+  if (world.frame_loop.steps_per_frame > 0 && world.step % world.frame_loop.steps_per_frame == 0)
+    beginFrame(world);
   std::array<Particles<T>*, 2> storage{};
   simulateOneStep(world);
   integrate(world.method, bodies(world, storage), world.physics.dt,

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <vector>
 
 #include "clothref/core/cloth.h"
 #include "clothref/core/integrator.h"
@@ -27,11 +28,23 @@ struct Physics {
   T correction = T(0);
 };
 
+// The 2024 course program's per-frame work, done before the first step of every frame.
+//   steps_per_frame  0 = none (the 2022 loop)
+//   sphere_velocity  4-vector, w = 0, metres / second, given to sphere 0 (setVelocity(0, vel))
+//   pinned           cloth particle indices given mass 0 and zero velocity and acceleration
+template <typename T>
+struct FrameLoop {
+  int steps_per_frame = 0;
+  Vec4<T> sphere_velocity = Vec4<T>::Zero();
+  std::vector<int> pinned;
+};
+
 template <typename T>
 struct World {
   std::optional<Cloth<T>> cloth;
   std::optional<Spheres<T>> spheres;
   Physics<T> physics;
+  FrameLoop<T> frame_loop;
   Method method = Method::Explicit;
   std::int64_t step = 0;           // steps taken
   IntegratorScratch<T> scratch;    // integrator backups, reused every step
@@ -52,8 +65,8 @@ Bodies<T> bodies(World<T>& world, std::array<Particles<T>*, 2>& storage);
 template <typename T>
 void simulateOneStep(World<T>& world);
 
-// One step of the main loop: simulateOneStep, then the integrator. Allocates nothing once the
-// first step has sized the integrator scratch.
+// One step of the main loop: the frame's work when a frame begins (frame_loop), simulateOneStep,
+// then the integrator. Allocates nothing once the first step has sized the integrator scratch.
 template <typename T>
 void step(World<T>& world);
 

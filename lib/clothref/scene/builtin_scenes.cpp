@@ -47,11 +47,13 @@ Scene course2024() {
   scene.name = "course2024";
   scene.description =
       "Course 2024 default: 25x25 cloth at y = 1 draped over one sphere r = 1 at the origin; the "
-      "sphere gets no external force and there is no sphere-sphere collision";
+      "sphere gets no external force and there is no sphere-sphere collision; every 40 steps (one "
+      "frame on a 60 Hz monitor) the corners are re-pinned and the sphere's velocity is set to 0";
   scene.cloth = courseCloth(1, 20000);
   scene.spheres->items = {SphereSpec{{0, 0, 0}, 1, {0, 0, 0}, std::nullopt}};
   scene.spheres->external_force = false;
   scene.spheres->sphere_sphere_collision = false;
+  scene.frame_loop = FrameLoopSpec{40, {0, 0, 0}};
   return scene;
 }
 

@@ -194,6 +194,15 @@ SpheresSpec readSpheres(const json& value, const std::string& pointer) {
   return spheres;
 }
 
+FrameLoopSpec readFrameLoop(const json& value, const std::string& pointer) {
+  ObjectReader r(value, pointer);
+  FrameLoopSpec frame_loop;
+  frame_loop.steps_per_frame = r.integer("steps_per_frame");
+  frame_loop.sphere_velocity = r.vector3("sphere_velocity");
+  r.finish();
+  return frame_loop;
+}
+
 ordered_json vector3ToJson(const Vector3& v) { return ordered_json::array({v[0], v[1], v[2]}); }
 
 // Re-reads a JSON text that failed to parse, to say where: the JSON pointer of the value being
@@ -327,6 +336,12 @@ void validateScene(const Scene& scene) {
     require(spheres.correction >= 0 && spheres.correction <= 1, "/spheres/correction",
             "must be in [0, 1]" + got(spheres.correction));
   }
+  if (scene.frame_loop) {
+    require(scene.frame_loop->steps_per_frame >= 1, "/frame_loop/steps_per_frame",
+            fmt::format("must be >= 1 (got {})", scene.frame_loop->steps_per_frame));
+    require(scene.spheres.has_value(), "/frame_loop",
+            "the frame loop holds sphere 0's velocity: the scene needs spheres");
+  }
 }
 
 Scene sceneFromJson(const json& document) {
@@ -340,8 +355,10 @@ Scene sceneFromJson(const json& document) {
   scene.viscous_coef = r.number("viscous_coef");
   r.optional("cloth");
   r.optional("spheres");
+  r.optional("frame_loop");
   if (r.has("cloth")) scene.cloth = readCloth(r.get("cloth"), "/cloth");
   if (r.has("spheres")) scene.spheres = readSpheres(r.get("spheres"), "/spheres");
+  if (r.has("frame_loop")) scene.frame_loop = readFrameLoop(r.get("frame_loop"), "/frame_loop");
   r.finish();
   validateScene(scene);
   return scene;
@@ -397,6 +414,10 @@ ordered_json sceneToJson(const Scene& scene) {
     s["correction"] = spheres.correction;
     j["spheres"] = std::move(s);
   }
+  // written only when present, so scenes without it keep their files and trace headers
+  if (scene.frame_loop)
+    j["frame_loop"] = {{"steps_per_frame", scene.frame_loop->steps_per_frame},
+                       {"sphere_velocity", vector3ToJson(scene.frame_loop->sphere_velocity)}};
   return j;
 }
 

@@ -78,6 +78,18 @@ struct SpheresSpec {
   bool operator==(const SpheresSpec&) const = default;
 };
 
+// The 2024 course program's per-frame work (docs/course.md): before each frame's steps it re-pins
+// the fixed cloth particles (mass 0, velocity and acceleration zero) and sets sphere 0's velocity
+// to the held value (spheres.setVelocity(0, vel)). A scene without it steps as the 2022 loop does.
+struct FrameLoopSpec {
+  // the course's simulationPerFrame (10 at dt 1e-4) x speedMultiplier (240 / refresh rate):
+  // 40 on a 60 Hz monitor, 16 at 150 Hz, 10 at 240 Hz
+  int steps_per_frame = 40;
+  Vector3 sphere_velocity{};  // metres / second; arrow keys hold +-5 in x or z, space resets to 0
+
+  bool operator==(const FrameLoopSpec&) const = default;
+};
+
 struct Scene {
   std::string name;
   std::string description;
@@ -86,6 +98,7 @@ struct Scene {
   double viscous_coef = 3.4e-4;      // kg / s, linear drag on every free particle
   std::optional<ClothSpec> cloth;
   std::optional<SpheresSpec> spheres;
+  std::optional<FrameLoopSpec> frame_loop;  // absent: no per-frame work (the 2022 loop)
 
   bool operator==(const Scene&) const = default;
 };
