@@ -15,7 +15,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "clothref/trace/writer.h"
+#include "clothref/record/record.h"
 
 namespace clothref::test {
 

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "clothref/scene/make_world.h"
 #include "clothref/core/world.h"
 #include "test_util.h"
 

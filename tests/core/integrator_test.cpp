@@ -1,3 +1,4 @@
+#include "clothref/scene/make_world.h"
 #include "clothref/core/integrator.h"
 
 #include <cmath>

@@ -1,3 +1,4 @@
+#include "clothref/scene/make_world.h"
 #include "clothref/core/world.h"
 
 #include <cmath>
@@ -5,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "clothref/trace/hash.h"
+#include "clothref/record/world_views.h"
 
 // Count heap allocations in this test binary by interposing malloc (glibc's __libc_malloc does the
 // work). Eigen's dynamic matrices allocate with malloc, std containers through operator new, which

@@ -15,7 +15,7 @@
 #include <gtest/gtest.h>
 
 #include "clothref/io/error.h"
-#include "clothref/trace/writer.h"
+#include "clothref/record/record.h"
 #include "test_util.h"
 
 namespace clothref {

@@ -9,8 +9,9 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "clothref/scene/make_world.h"
 #include "clothref/golden/golden.h"
-#include "clothref/trace/hash.h"
+#include "clothref/record/world_views.h"
 #include "clothref/core/world.h"
 
 namespace clothref {

@@ -2,6 +2,7 @@
 // into a temporary directory (stale files swept, others kept), the check passing on what update
 // wrote, a tampered copy failing with exactly the tampered entries named, and the CLI's exit codes.
 // (The full set is checked by the ctest `golden`.)
+#include "clothref/scene/make_world.h"
 #include "clothref/golden/golden.h"
 
 #include <unistd.h>
@@ -14,7 +15,7 @@
 #include <gtest/gtest.h>
 
 #include "clothref/io/error.h"
-#include "clothref/trace/hash.h"
+#include "clothref/record/world_views.h"
 #include "test_util.h"
 
 namespace clothref {

@@ -1,6 +1,7 @@
 // trace_reader: a trace written by writeTrace parses back to the exact bits the world held, the
 // non-finite strings come back as NaN / infinity, and every malformed case is rejected with its
 // file and line number.
+#include "clothref/scene/make_world.h"
 #include "clothref/trace/reader.h"
 
 #include <unistd.h>
@@ -15,8 +16,9 @@
 #include <gtest/gtest.h>
 
 #include "clothref/io/error.h"
-#include "clothref/trace/hash.h"
-#include "clothref/trace/writer.h"
+#include "clothref/record/world_views.h"
+#include "clothref/record/record.h"
+#include "clothref/trace/format.h"
 #include "test_util.h"
 
 namespace clothref {

@@ -8,7 +8,7 @@
 
 #include "clothref/io/error.h"
 #include "clothref/trace/hash.h"
-#include "clothref/trace/writer.h"
+#include "clothref/record/record.h"
 #include "clothref/io/output_file.h"
 #include "commands.h"
 

@@ -10,7 +10,6 @@
 
 #include "clothref/core/cloth.h"
 #include "clothref/core/integrator.h"
-#include "clothref/scene/scene.h"
 #include "clothref/core/spheres.h"
 
 namespace clothref {
@@ -49,12 +48,6 @@ struct World {
   std::int64_t step = 0;           // steps taken
   IntegratorScratch<T> scratch;    // integrator backups, reused every step
 };
-
-// Builds the initial state of `scene`: the grid (initializeVertex, fixed particles,
-// initializeSpring) or the listed particles and springs, then the spheres (addSphere).
-// `dt` overrides the scene's dt when given. Throws SceneError for an invalid scene.
-template <typename T>
-World<T> makeWorld(const Scene& scene, Method method, std::optional<double> dt = std::nullopt);
 
 // The bodies in the course's order (cloth, then spheres); `storage` holds the pointers.
 template <typename T>

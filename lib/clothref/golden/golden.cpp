@@ -1,3 +1,4 @@
+#include "clothref/scene/make_world.h"
 #include "clothref/golden/golden.h"
 
 #include <unistd.h>
@@ -12,7 +13,7 @@
 
 #include "clothref/trace/build_info.h"
 #include "clothref/io/error.h"
-#include "clothref/trace/hash.h"
+#include "clothref/record/world_views.h"
 #include "clothref/core/world.h"
 #include "clothref/io/output_file.h"
 

@@ -21,7 +21,7 @@
 #include "clothref/core/function_ref.h"
 #include "clothref/core/integrator.h"
 #include "clothref/scene/scene.h"
-#include "clothref/trace/writer.h"
+#include "clothref/record/record.h"
 #include "clothref/core/types.h"
 
 namespace clothref {

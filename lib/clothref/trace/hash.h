@@ -5,14 +5,16 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <string>
 
-#include "clothref/core/world.h"
+#include "clothref/trace/body_view.h"
 
 namespace clothref {
 
+// Inputs: the bodies in trace order. Output: the 64-bit hash.
 template <typename T>
-std::uint64_t stateHash(const World<T>& world);
+std::uint64_t stateHash(std::span<const BodyView<T>> bodies);
 
 // 16 lowercase hex digits.
 std::string hashToHex(std::uint64_t hash);

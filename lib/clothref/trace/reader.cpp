@@ -8,7 +8,7 @@
 #include <fmt/format.h>
 
 #include "clothref/io/error.h"
-#include "clothref/trace/writer.h"
+#include "clothref/trace/format.h"
 
 namespace clothref {
 

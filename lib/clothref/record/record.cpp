@@ -1,4 +1,4 @@
-#include "clothref/trace/writer.h"
+#include "clothref/record/record.h"
 
 #include <chrono>
 #include <cmath>
@@ -6,18 +6,16 @@
 
 #include <fmt/format.h>
 
+#include "clothref/record/world_views.h"
+#include "clothref/scene/make_world.h"
 #include "clothref/trace/build_info.h"
-#include "clothref/trace/hash.h"
+#include "clothref/trace/format.h"
 
 namespace clothref {
 
-bool isRecorded(std::int64_t step, std::int64_t steps, std::int64_t stride) {
-  return step % stride == 0 || step == steps;
-}
-
 nlohmann::ordered_json traceHeader(const Scene& scene, const TraceSettings& settings) {
   nlohmann::ordered_json header;
-  header["format"] = "clothref-trace";
+  header["format"] = kTraceFormat;
   header["version"] = kTraceVersion;
   header["scene"] = sceneToJson(scene);
   header["integrator"] = methodName(settings.method);
@@ -30,7 +28,7 @@ nlohmann::ordered_json traceHeader(const Scene& scene, const TraceSettings& sett
   if (scene.spheres)
     bodies.push_back({{"name", "spheres"}, {"particles", scene.spheres->items.size()}});
   header["bodies"] = bodies;
-  header["hash"] = "xxh3-64 of little-endian x,y,z of positions then velocities, per body";
+  header["hash"] = kTraceHashDescription;
   header["build"] = {{"clothref", build_info::kVersion},
                      {"compiler", build_info::kCompiler},
                      {"build_type", build_info::kBuildType},
@@ -41,43 +39,6 @@ nlohmann::ordered_json traceHeader(const Scene& scene, const TraceSettings& sett
 }
 
 namespace {
-
-// Shortest round-trip text in the value's own precision; non-finite values as quoted strings.
-template <typename T>
-void appendNumber(std::string& out, T value) {
-  if (std::isfinite(value)) {
-    fmt::format_to(std::back_inserter(out), "{}", value);
-  } else if (std::isnan(value)) {
-    out += "\"NaN\"";
-  } else {
-    out += value > 0 ? "\"Infinity\"" : "\"-Infinity\"";
-  }
-}
-
-template <typename T>
-void appendColumns(std::string& out, const Mat4X<T>& m) {
-  out += '[';
-  for (Eigen::Index i = 0; i < m.cols(); ++i) {
-    if (i) out += ',';
-    out += '[';
-    appendNumber(out, m(0, i));
-    out += ',';
-    appendNumber(out, m(1, i));
-    out += ',';
-    appendNumber(out, m(2, i));
-    out += ']';
-  }
-  out += ']';
-}
-
-template <typename T>
-void appendBody(std::string& out, const char* name, const Particles<T>& p) {
-  fmt::format_to(std::back_inserter(out), "\"{}\":{{\"position\":", name);
-  appendColumns(out, p.position);
-  out += ",\"velocity\":";
-  appendColumns(out, p.velocity);
-  out += '}';
-}
 
 template <typename T>
 TraceSummary run(const Scene& scene, const TraceSettings& settings, std::ostream& out) {
@@ -110,29 +71,9 @@ TraceSummary run(const Scene& scene, const TraceSettings& settings, std::ostream
 
 }  // namespace
 
-template <typename T>
-void appendStepLine(std::string& out, const World<T>& world) {
-  const double t = double(world.step) * double(world.physics.dt);
-  fmt::format_to(std::back_inserter(out), "{{\"step\":{},\"t\":{},\"hash\":\"{}\",\"bodies\":{{",
-                 world.step, t, hashToHex(stateHash(world)));
-  bool first = true;
-  if (world.cloth) {
-    appendBody(out, "cloth", world.cloth->particles);
-    first = false;
-  }
-  if (world.spheres) {
-    if (!first) out += ',';
-    appendBody(out, "spheres", world.spheres->particles);
-  }
-  out += "}}\n";
-}
-
 TraceSummary writeTrace(const Scene& scene, const TraceSettings& settings, std::ostream& out) {
   return settings.precision == Precision::Float ? run<float>(scene, settings, out)
                                                 : run<double>(scene, settings, out);
 }
-
-template void appendStepLine(std::string&, const World<float>&);
-template void appendStepLine(std::string&, const World<double>&);
 
 }  // namespace clothref

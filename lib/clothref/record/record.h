@@ -1,8 +1,6 @@
-// Trace writing: a run as JSON Lines (docs/trace-format.md). Line 1 is the header (format,
-// version, full scene, integrator, dt, precision, steps, stride, bodies, build); then one line per
-// recorded step with "step", "t", "hash" first (so readers can skip equal steps cheaply) and the
-// positions and velocities of every body as arrays of [x, y, z]. Floats are written shortest
-// round-trip in the run's precision, so a trace parses back to the identical bits.
+// Recording a run: simulates a scene and writes it as a trace (docs/trace-format.md). Line 1 is the
+// header (format, version, full scene, integrator, dt, precision, steps, stride, bodies, build);
+// then one step line per recorded step (trace/step_line.h).
 #pragma once
 
 #include <array>
@@ -13,13 +11,10 @@
 #include <nlohmann/json.hpp>
 
 #include "clothref/core/integrator.h"
-#include "clothref/scene/scene.h"
 #include "clothref/core/types.h"
-#include "clothref/core/world.h"
+#include "clothref/scene/scene.h"
 
 namespace clothref {
-
-inline constexpr int kTraceVersion = 1;
 
 struct TraceSettings {
   Method method = Method::Explicit;
@@ -47,14 +42,7 @@ struct TraceSummary {
 // The header object of a trace.
 nlohmann::ordered_json traceHeader(const Scene& scene, const TraceSettings& settings);
 
-// Appends one step line (with its newline) for the current state of `world`.
-template <typename T>
-void appendStepLine(std::string& out, const World<T>& world);
-
 // Runs `scene` with `settings` and writes the whole trace to `out`.
 TraceSummary writeTrace(const Scene& scene, const TraceSettings& settings, std::ostream& out);
-
-// Whether step `step` of a run of `steps` steps with `stride` is recorded.
-bool isRecorded(std::int64_t step, std::int64_t steps, std::int64_t stride);
 
 }  // namespace clothref

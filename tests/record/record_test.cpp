@@ -1,4 +1,6 @@
-#include "clothref/trace/writer.h"
+#include "clothref/scene/make_world.h"
+#include "clothref/record/record.h"
+#include "clothref/trace/format.h"
 
 #include <sstream>
 #include <vector>
@@ -8,7 +10,7 @@
 
 #include <gtest/gtest.h>
 
-#include "clothref/trace/hash.h"
+#include "clothref/record/world_views.h"
 #include "test_util.h"
 
 namespace clothref {
