@@ -1,6 +1,7 @@
 // clothref trace: simulate a scene and write its trace (JSON Lines) to stdout or a file, then a
 // short summary on stderr.
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <optional>
 
@@ -27,16 +28,10 @@ struct TraceOptions {
 };
 
 int runTrace(const TraceOptions& options) {
+  // the option validators accept only names and ranges these conversions cannot refuse
   TraceSettings settings;
-  if (!parseMethod(options.integrator, settings.method))
-    throw InputError("--integrator: unknown method '" + options.integrator +
-                     "' (explicit, implicit, midpoint, rk4, symplectic)");
-  if (!parsePrecision(options.precision, settings.precision))
-    throw InputError("--precision: must be float or double, got '" + options.precision + "'");
-  if (options.steps < 0) throw InputError(fmt::format("--steps: must be >= 0 (got {})", options.steps));
-  if (options.stride < 1) throw InputError(fmt::format("--stride: must be >= 1 (got {})", options.stride));
-  if (options.dt && !(*options.dt > 0 && std::isfinite(*options.dt)))
-    throw InputError(fmt::format("--dt: must be a finite number > 0 (got {})", *options.dt));
+  settings.method = *parseMethod(options.integrator);
+  settings.precision = *parseEnum(kPrecisionNames, options.precision);
   const Scene scene = loadScene(options.scene);
   settings.dt = options.dt.value_or(scene.dt);
   settings.steps = options.steps;
@@ -68,15 +63,20 @@ Command addTraceCommand(CLI::App& root) {
   auto options = std::make_shared<TraceOptions>();
   app->add_option("--scene", options->scene, "Built-in scene name or scene JSON file")
       ->capture_default_str();
-  app->add_option("--integrator", options->integrator,
-                  "explicit | implicit | midpoint | rk4 | symplectic")
+  app->add_option("--integrator", options->integrator, "Integration method (docs/methods.md)")
+      ->check(oneOf(kMethodNames))
       ->capture_default_str();
-  app->add_option("--dt", options->dt, "Time step in seconds (default: the scene's)");
-  app->add_option("--steps", options->steps, "Steps to simulate")->capture_default_str();
+  app->add_option("--dt", options->dt, "Time step in seconds (default: the scene's)")
+      ->check(finitePositive());
+  app->add_option("--steps", options->steps, "Steps to simulate")
+      ->check(atLeast(0))
+      ->capture_default_str();
   app->add_option("--stride", options->stride,
                   "Record every N-th step (step 0 and the last are always recorded)")
+      ->check(atLeast(1))
       ->capture_default_str();
   app->add_option("--precision", options->precision, "float (the course's) | double")
+      ->check(oneOf(kPrecisionNames))
       ->capture_default_str();
   app->add_option("-o,--output", options->output, "Output file, '-' for stdout")
       ->capture_default_str();

@@ -3,9 +3,13 @@
 #pragma once
 
 #include <functional>
+#include <limits>
+#include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
+
+#include "clothref/base/enum_table.h"
 
 namespace clothref::cli {
 
@@ -18,6 +22,41 @@ struct Command {
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitDiffer = 1;    // diff: traces differ; golden: a file does not match
 inline constexpr int kExitBadInput = 2;  // bad flag, file or content
+
+// Accepts exactly the names of an enum table (the one table per enum, base/enum_table.h); the
+// option's string then parses with parseEnum.
+// An integer option's lower bound: "--steps: must be >= 0 (got -1)".
+inline CLI::Validator atLeast(long long minimum) {
+  return CLI::Validator(
+      [minimum](std::string& text) -> std::string {
+        long long value = 0;
+        if (!CLI::detail::lexical_cast(text, value)) return "expected an integer, got '" + text + "'";
+        if (value < minimum)
+          return "must be >= " + std::to_string(minimum) + " (got " + text + ")";
+        return "";
+      },
+      ">= " + std::to_string(minimum));
+}
+
+// A finite number > 0: "--dt: must be a finite number > 0 (got nan)".
+inline CLI::Validator finitePositive() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        double value = 0;
+        if (!CLI::detail::lexical_cast(text, value)) return "expected a number, got '" + text + "'";
+        if (!(value > 0 && value <= std::numeric_limits<double>::max()))
+          return "must be a finite number > 0 (got " + text + ")";
+        return "";
+      },
+      "> 0");
+}
+
+template <typename E, std::size_t N>
+CLI::IsMember oneOf(const EnumTable<E, N>& table) {
+  std::vector<std::string> names;
+  for (const EnumName<E>& entry : table) names.emplace_back(entry.name);
+  return CLI::IsMember(names);
+}
 
 Command addTraceCommand(CLI::App& root);
 Command addDiffCommand(CLI::App& root);

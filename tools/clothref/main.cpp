@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "clothref/io/error.h"
+#include "clothref/trace/build_info.h"
 #include "commands.h"
 
 int main(int argc, char** argv) {
@@ -10,14 +11,38 @@ int main(int argc, char** argv) {
   CLI::App root{"clothref: deterministic reference, traces and checks for the cloth-and-spheres "
                 "particle-system assignment"};
   root.require_subcommand(1);
+  root.set_version_flag("--version", std::string(clothref::build_info::kVersion) + " (" +
+                                         clothref::build_info::kCompiler + ", " +
+                                         clothref::build_info::kBuildType + ")");
   const std::vector<Command> commands = {
       addTraceCommand(root), addDiffCommand(root), addGoldenCommand(root),
       addVerifyCommand(root), addScenesCommand(root)};
+  // name an unknown command instead of CLI11's "A subcommand is required"
+  if (argc > 1 && argv[1][0] != '-') {
+    std::string names;
+    bool known = false;
+    for (const Command& command : commands) {
+      known = known || command.app->get_name() == argv[1];
+      names += (names.empty() ? "" : ", ") + command.app->get_name();
+    }
+    if (!known) {
+      std::cerr << "clothref: unknown command '" << argv[1] << "' (commands: " << names << ")\n";
+      return kExitBadInput;
+    }
+  }
   try {
     root.parse(argc, argv);
+  } catch (const CLI::CallForHelp& help) {
+    return root.exit(help);
+  } catch (const CLI::CallForAllHelp& help) {
+    return root.exit(help);
+  } catch (const CLI::CallForVersion& version) {
+    std::cout << "clothref " << version.what() << '\n';
+    return kExitOk;
   } catch (const CLI::ParseError& error) {
-    const int code = root.exit(error);
-    return code == 0 ? kExitOk : kExitBadInput;
+    // one line, like every other bad input
+    std::cerr << "clothref: " << error.what() << '\n';
+    return kExitBadInput;
   }
   try {
     for (const Command& command : commands)

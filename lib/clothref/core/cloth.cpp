@@ -2,18 +2,6 @@
 
 namespace clothref {
 
-std::string_view springTypeName(SpringType type) {
-  switch (type) {
-    case SpringType::Structural:
-      return "structural";
-    case SpringType::Shear:
-      return "shear";
-    case SpringType::Bend:
-      return "bend";
-  }
-  return "?";
-}
-
 template <typename T>
 Particles<T> initializeVertex(int particles_per_edge, T half_extent, T y, T particle_mass) {
   const int n = particles_per_edge;

@@ -9,13 +9,18 @@
 #include <string_view>
 #include <vector>
 
+#include "clothref/base/enum_table.h"
 #include "clothref/core/particles.h"
 
 namespace clothref {
 
 enum class SpringType { Structural, Shear, Bend };
 
-std::string_view springTypeName(SpringType type);
+inline constexpr EnumTable<SpringType, 3> kSpringTypeNames{{
+    {SpringType::Structural, "structural"},
+    {SpringType::Shear, "shear"},
+    {SpringType::Bend, "bend"},
+}};
 
 // One spring between particles `start` < `end` (indices into the cloth's particles).
 //   rest_length  metres

@@ -4,46 +4,6 @@
 
 namespace clothref {
 
-std::string_view methodName(Method method) {
-  switch (method) {
-    case Method::Explicit:
-      return "explicit";
-    case Method::Implicit:
-      return "implicit";
-    case Method::Midpoint:
-      return "midpoint";
-    case Method::Rk4:
-      return "rk4";
-    case Method::Symplectic:
-      return "symplectic";
-  }
-  return "?";
-}
-
-bool parseMethod(std::string_view name, Method& method) {
-  for (Method candidate : kAllMethods) {
-    if (methodName(candidate) == name) {
-      method = candidate;
-      return true;
-    }
-  }
-  return false;
-}
-
-int evaluationsPerStep(Method method) {
-  switch (method) {
-    case Method::Explicit:
-    case Method::Symplectic:
-      return 1;
-    case Method::Implicit:
-    case Method::Midpoint:
-      return 2;
-    case Method::Rk4:
-      return 4;
-  }
-  return 0;
-}
-
 namespace {
 
 // Copies x and v of every body into its scratch (no allocation once sized).

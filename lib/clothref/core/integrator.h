@@ -11,24 +11,11 @@
 #include <string_view>
 #include <vector>
 
-#include "clothref/core/function_ref.h"
+#include "clothref/base/function_ref.h"
+#include "clothref/core/method.h"
 #include "clothref/core/particles.h"
 
 namespace clothref {
-
-enum class Method { Explicit, Implicit, Midpoint, Rk4, Symplectic };
-
-inline constexpr Method kAllMethods[] = {Method::Explicit, Method::Implicit, Method::Midpoint,
-                                         Method::Rk4, Method::Symplectic};
-
-// "explicit", "implicit", "midpoint", "rk4", "symplectic".
-std::string_view methodName(Method method);
-
-// Parses a method name; returns false for an unknown one.
-bool parseMethod(std::string_view name, Method& method);
-
-// Derivative evaluations per step, counting the one the step makes before integrate().
-int evaluationsPerStep(Method method);
 
 // The bodies an integrator acts on.
 template <typename T>

@@ -6,8 +6,6 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <cstdint>
-#include <string_view>
 
 namespace clothref {
 
@@ -22,13 +20,5 @@ using Mat4X = Eigen::Matrix<T, 4, Eigen::Dynamic>;
 // Column vector of N scalars (masses, radii).
 template <typename T>
 using VecX = Eigen::Matrix<T, Eigen::Dynamic, 1>;
-
-// Floating-point precision of a run. Float is the course's precision.
-enum class Precision { Float, Double };
-
-std::string_view precisionName(Precision precision);
-
-// Parses "float" / "double"; returns false for anything else.
-bool parsePrecision(std::string_view name, Precision& precision);
 
 }  // namespace clothref

@@ -25,7 +25,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "clothref/core/types.h"
+#include "clothref/base/precision.h"
 
 namespace clothref {
 

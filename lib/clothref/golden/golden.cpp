@@ -155,17 +155,16 @@ class ManifestReader {
 
   Method method(const nlohmann::json& object, const std::string& pointer) const {
     const std::string name = string(object, pointer, "integrator");
-    Method method;
-    if (!parseMethod(name, method)) fail(pointer + "/integrator", "unknown method '" + name + "'");
-    return method;
+    const auto method = parseMethod(name);
+    if (!method) fail(pointer + "/integrator", "unknown method '" + name + "'");
+    return *method;
   }
 
   Precision precision(const nlohmann::json& object, const std::string& pointer) const {
     const std::string name = string(object, pointer, "precision");
-    Precision precision;
-    if (!parsePrecision(name, precision))
-      fail(pointer + "/precision", "must be float or double, got '" + name + "'");
-    return precision;
+    const auto precision = parseEnum(kPrecisionNames, name);
+    if (!precision) fail(pointer + "/precision", "must be float or double, got '" + name + "'");
+    return *precision;
   }
 
  private:

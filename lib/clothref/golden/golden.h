@@ -18,11 +18,11 @@
 #include <nlohmann/json.hpp>
 
 #include "clothref/diff/diff.h"
-#include "clothref/core/function_ref.h"
+#include "clothref/base/function_ref.h"
 #include "clothref/core/integrator.h"
 #include "clothref/scene/scene.h"
 #include "clothref/record/record.h"
-#include "clothref/core/types.h"
+#include "clothref/base/precision.h"
 
 namespace clothref {
 

@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "clothref/core/integrator.h"
-#include "clothref/core/types.h"
+#include "clothref/base/precision.h"
 #include "clothref/scene/scene.h"
 
 namespace clothref {

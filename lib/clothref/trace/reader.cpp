@@ -369,8 +369,12 @@ TraceHeader parseTraceHeader(const ordered_json& json, const std::string& source
   if (!integrator.is_string()) headerError(source, "/integrator: expected a string");
   header.integrator = integrator.get<std::string>();
   const ordered_json& precision = headerKey(json, source, "precision");
-  if (!precision.is_string() || !parsePrecision(precision.get<std::string>(), header.precision))
+  const auto parsed = precision.is_string()
+                          ? parseEnum(kPrecisionNames, precision.get<std::string>())
+                          : std::nullopt;
+  if (!parsed)
     headerError(source, "/precision: expected \"float\" or \"double\", got " + precision.dump());
+  header.precision = *parsed;
   const ordered_json& dt = headerKey(json, source, "dt");
   if (!dt.is_number() || !(dt.get<double>() > 0))
     headerError(source, "/dt: expected a number > 0, got " + dt.dump());

@@ -19,7 +19,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "clothref/core/types.h"
+#include "clothref/base/precision.h"
 
 namespace clothref {
 

@@ -64,21 +64,6 @@ double unitRoundoff(Precision precision) {
                                        : std::numeric_limits<double>::epsilon() / 2;
 }
 
-// The order each method is built to have (the course's implicit is one predictor-corrector
-// pass: first order; symplectic Euler is first order).
-int methodOrder(Method method) {
-  switch (method) {
-    case Method::Midpoint:
-      return 2;
-    case Method::Rk4:
-      return 4;
-    case Method::Explicit:
-    case Method::Implicit:
-    case Method::Symplectic:
-      return 1;
-  }
-  return 1;
-}
 
 template <typename Column>
 Eigen::Vector3d xyz(const Column& column) {
@@ -210,7 +195,7 @@ std::vector<CheckRow> closedFormChecks() {
       for (Method method : kAllMethods) {
         const Trajectory trajectory =
             simulateParticle(precision, scene, method, scene.dt, steps, exact.particle);
-        const double tolerance = truncationBound(exact, methodOrder(method), trajectory.dt, steps) +
+        const double tolerance = truncationBound(exact, methodInfo(method).order, trajectory.dt, steps) +
                                  roundoffBound(exact, precision, trajectory.dt, steps);
         rows.push_back(makeRow(
             fmt::format("{}: max |x - x_exact| (m), dt {:g} s, {:g} s", name, scene.dt, kHorizon),
@@ -242,7 +227,7 @@ std::vector<ConvergenceStudy> convergenceStudies() {
       ConvergenceStudy study;
       study.method = method;
       study.precision = precision;
-      study.expected_order = methodOrder(method);
+      study.expected_order = methodInfo(method).order;
       study.end_time = kHorizon;
       for (int k = 0; k <= kHalvings; ++k) {
         const double dt = ladderStart(method) / double(1 << k);
@@ -609,7 +594,7 @@ CheckRow freeClothRow(Method method, Precision precision) {
     v_max = std::max(v_max, double(p.velocity.cwiseAbs().maxCoeff()));
     a_max = std::max(a_max, double(p.acceleration.cwiseAbs().maxCoeff()));
   }
-  const double roundings = double(kFreeClothSteps) * evaluationsPerStep(method) * p.size();
+  const double roundings = double(kFreeClothSteps) * methodInfo(method).evaluations * p.size();
   const double bound =
       roundoffEstimate(roundings, precision, v_max + 12 * a_max * double(world.physics.dt)) / scale;
   return makeRow(fmt::format("free 9x9 cloth: momentum drift / sum m|v|, {} steps of {:g} s{}",
@@ -710,7 +695,7 @@ std::string reportTable(const VerifyReport& report) {
       "float floor = largest |x_float - x_double| in the ladder; null = < 3 dt above 10x floor:\n";
   for (Method method : kAllMethods) {
     std::string line =
-        fmt::format("  {:<10}  expected {}", methodName(method), methodOrder(method));
+        fmt::format("  {:<10}  expected {}", methodName(method), methodInfo(method).order);
     for (const ConvergenceStudy& study : report.studies) {
       if (study.method != method) continue;
       line += fmt::format("  {} {}", precisionName(study.precision),

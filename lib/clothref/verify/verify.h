@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "clothref/core/integrator.h"
-#include "clothref/core/types.h"
+#include "clothref/base/precision.h"
 
 namespace clothref {
 

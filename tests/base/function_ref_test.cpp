@@ -1,4 +1,4 @@
-#include "clothref/core/function_ref.h"
+#include "clothref/base/function_ref.h"
 
 #include <gtest/gtest.h>
 
