@@ -108,6 +108,25 @@ TEST_F(DiffTest, TraceAgainstItselfIsIdentical) {
   EXPECT_EQ(run.exit_code, 0) << run.output;
 }
 
+// Streams (a pipe, memory) diff exactly as files do, and the names given appear in the report.
+TEST_F(DiffTest, StreamsDiffLikeFiles) {
+  const std::vector<std::string> lines = write("a.jsonl", smallCloth(), settings(200, 20));
+  std::vector<std::string> changed = lines;
+  changed[3] = withValue(lines, {3, "cloth", "position", 40, 1}, "0.125")[3];
+  write("b.jsonl", changed);
+  std::string text_a, text_b;
+  for (const std::string& line : lines) text_a += line + "\n";
+  for (const std::string& line : changed) text_b += line + "\n";
+  std::istringstream a(text_a), b(text_b);
+  const DiffReport streamed = diffTraces(a, "reference", b, "(pipe)", {});
+  const DiffReport files = diff("a.jsonl", "b.jsonl");
+  EXPECT_EQ(streamed.verdict, Verdict::Differ);
+  EXPECT_EQ(streamed.values_beyond, files.values_beyond);
+  EXPECT_EQ(streamed.first_beyond->step, files.first_beyond->step);
+  EXPECT_EQ(streamed.path_a, "reference");
+  EXPECT_NE(formatReport(streamed).find("reference vs (pipe)"), std::string::npos);
+}
+
 TEST_F(DiffTest, OnePerturbedValueIsFoundAtItsStepBodyParticleComponent) {
   const std::vector<std::string> lines = write("a.jsonl", smallCloth(), settings(200, 20));
   const Location where{6, "cloth", "velocity", 40, 1};  // step 100, centre particle, y

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "clothref/io/error.h"
+#include "clothref/io/json_input.h"
 #include "clothref/trace/reader.h"
 
 namespace clothref {
@@ -492,28 +493,35 @@ DiffOptions toleranceOptionsFromJson(const json& document, const std::string& so
 }
 
 DiffOptions readToleranceFile(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw InputError(path + ": cannot open the tolerance file");
-  std::stringstream text;
-  text << file.rdbuf();
-  json document;
-  try {
-    document = json::parse(text.str());
-  } catch (const json::parse_error& error) {
-    std::string message = error.what();
-    const auto at = message.find("parse error");
-    throw InputError(
-        path + ": not valid JSON: " + (at == std::string::npos ? message : message.substr(at)));
-  }
-  return toleranceOptionsFromJson(document, path);
+  return toleranceOptionsFromJson(readJsonFile(path, "tolerance file"), path);
 }
+
+namespace {
+
+DiffReport diffReaders(TraceReader& a, TraceReader& b, const DiffOptions& options);
+
+}  // namespace
 
 DiffReport diffTraces(const std::string& path_a, const std::string& path_b,
                       const DiffOptions& options) {
-  TraceReader a(path_a), b(path_b);
+  TraceReader a(path_a);
+  TraceReader b(path_b);
+  return diffReaders(a, b, options);
+}
+
+DiffReport diffTraces(std::istream& a, const std::string& name_a, std::istream& b,
+                      const std::string& name_b, const DiffOptions& options) {
+  TraceReader reader_a(a, name_a);
+  TraceReader reader_b(b, name_b);
+  return diffReaders(reader_a, reader_b, options);
+}
+
+namespace {
+
+DiffReport diffReaders(TraceReader& a, TraceReader& b, const DiffOptions& options) {
   DiffReport report;
-  report.path_a = path_a;
-  report.path_b = path_b;
+  report.path_a = a.path();
+  report.path_b = b.path();
   report.options = options;
   report.header_diffs = compareHeaders(a, b, options.common_steps);
   const TraceHeader& ha = a.header();
@@ -614,6 +622,8 @@ DiffReport diffTraces(const std::string& path_a, const std::string& path_b,
     report.verdict = Verdict::Identical;
   return report;
 }
+
+}  // namespace
 
 std::string formatReport(const DiffReport& r) {
   std::string out;

@@ -135,6 +135,11 @@ struct DiffReport {
 DiffReport diffTraces(const std::string& path_a, const std::string& path_b,
                       const DiffOptions& options);
 
+// Compares two traces read from streams (a pipe, a string); `name_a` and `name_b` name them in the
+// report and in messages.
+DiffReport diffTraces(std::istream& a, const std::string& name_a, std::istream& b,
+                      const std::string& name_b, const DiffOptions& options);
+
 // Human-readable report, only what differs; one line when the traces are identical.
 std::string formatReport(const DiffReport& report);
 

@@ -13,6 +13,8 @@
 
 #include "clothref/trace/build_info.h"
 #include "clothref/io/error.h"
+#include "clothref/io/files.h"
+#include "clothref/io/json_input.h"
 #include "clothref/record/world_views.h"
 #include "clothref/core/world.h"
 #include "clothref/io/output_file.h"
@@ -177,34 +179,6 @@ bool isHexHash(const std::string& text) {
          });
 }
 
-// Reads a whole file; false when it cannot be opened.
-bool readFile(const std::filesystem::path& path, std::string& text) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return false;
-  text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  return !in.bad();
-}
-
-// A file in the system temporary directory, deleted when this goes out of scope. `name` must be
-// unique within the process (the golden trace's file name is).
-class TemporaryFile {
- public:
-  explicit TemporaryFile(const std::string& name) {
-    path_ = std::filesystem::temp_directory_path() /
-            fmt::format("clothref-golden-{}-{}", ::getpid(), name);
-  }
-  ~TemporaryFile() {
-    std::error_code ignored;
-    std::filesystem::remove(path_, ignored);
-  }
-  TemporaryFile(const TemporaryFile&) = delete;
-  TemporaryFile& operator=(const TemporaryFile&) = delete;
-  const std::filesystem::path& path() const { return path_; }
-
- private:
-  std::filesystem::path path_;
-};
-
 bool sameTrace(const GoldenTrace& a, const GoldenTrace& b) {
   return a.scene == b.scene && a.file == b.file && a.settings == b.settings;
 }
@@ -229,19 +203,17 @@ GoldenEntryResult checkTrace(const std::filesystem::path& dir, const GoldenTrace
     result.summary = "golden trace file missing (" + settingsText(trace) + ")";
     return result;
   }
-  TemporaryFile fresh(std::filesystem::path(trace.file).filename().string());
-  {
-    std::ofstream out(fresh.path(), std::ios::binary);
-    if (!out) throw InputError(fresh.path().string() + ": cannot create a temporary trace");
-    writeTrace(builtin(trace.scene), trace.settings, out);
-    out.close();
-    if (!out) throw InputError(fresh.path().string() + ": write failed");
-  }
+  // the fresh trace is compared in memory: nothing is written
+  std::stringstream fresh;
+  writeTrace(builtin(trace.scene), trace.settings, fresh);
   result.summary = settingsText(trace);
   // A golden trace the reader rejects (truncated, edited) is this entry's mismatch, not bad
   // input to the whole check: the other entries are still worth checking.
   try {
-    const DiffReport report = diffTraces(golden_file.string(), fresh.path().string(), options);
+    std::ifstream golden(golden_file, std::ios::binary);
+    if (!golden) throw InputError(golden_file.string() + ": cannot open the trace file");
+    const DiffReport report =
+        diffTraces(golden, golden_file.string(), fresh, "(this build)", options);
     result.matched = report.verdict != Verdict::Differ;
     if (!result.matched) result.report = formatReport(report);
   } catch (const InputError& error) {
@@ -269,11 +241,11 @@ GoldenEntryResult checkHashRun(const HashRun& run) {
 GoldenEntryResult checkSceneFile(const std::filesystem::path& dir, const std::string& name) {
   const std::string file = "scenes/" + name + ".json";
   GoldenEntryResult result{"scene", file, false, "", ""};
-  std::string stored;
-  if (!readFile(dir / file, stored)) {
+  if (!std::filesystem::is_regular_file(dir / file)) {
     result.summary = "golden scene file missing";
     return result;
   }
+  const std::string stored = readFile(dir / file, "golden scene file");
   const std::string expected = sceneFileText(builtin(name));
   if (stored == expected) {
     result.matched = true;
@@ -447,11 +419,7 @@ GoldenSet manifestFromJson(const nlohmann::json& document, const std::string& fi
 }
 
 GoldenSet readManifest(const std::filesystem::path& file) {
-  std::string text;
-  if (!readFile(file, text)) throw InputError(file.string() + ": cannot read the golden manifest");
-  const nlohmann::json document = nlohmann::json::parse(text, nullptr, false);
-  if (document.is_discarded()) throw InputError(file.string() + ": not valid JSON");
-  return manifestFromJson(document, file.string());
+  return manifestFromJson(readJsonFile(file.string(), "golden manifest"), file.string());
 }
 
 namespace {

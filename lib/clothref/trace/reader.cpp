@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "clothref/io/error.h"
+#include "clothref/io/json_input.h"
 #include "clothref/trace/format.h"
 
 namespace clothref {
@@ -402,22 +403,22 @@ TraceHeader parseTraceHeader(const ordered_json& json, const std::string& source
   return header;
 }
 
-TraceReader::TraceReader(const std::string& path) : path_(path) {
-  file_.open(path, std::ios::binary);
-  if (!file_) throw InputError(path + ": cannot open the trace file");
+TraceReader::TraceReader(const std::string& path)
+    : path_(path), owned_(std::make_unique<std::ifstream>(path, std::ios::binary)), in_(owned_.get()) {
+  if (!*owned_) throw InputError(path + ": cannot open the trace file");
+  readHeader();
+}
+
+TraceReader::TraceReader(std::istream& in, const std::string& source) : path_(source), in_(&in) {
+  readHeader();
+}
+
+void TraceReader::readHeader() {
   line_number_ = 1;
-  if (!std::getline(file_, line_) || line_.empty())
-    throw InputError(path + ":1: empty file, expected a trace header");
-  ordered_json json;
-  try {
-    json = ordered_json::parse(line_);
-  } catch (const nlohmann::json::parse_error& error) {
-    std::string message = error.what();
-    const auto where = message.find("parse error");
-    throw InputError(path + ":1: header is not valid JSON: " +
-                     (where == std::string::npos ? message : message.substr(where)));
-  }
-  header_ = parseTraceHeader(json, path);
+  if (!std::getline(*in_, line_) || line_.empty())
+    throw InputError(path_ + ":1: empty file, expected a trace header");
+  const ordered_json json = parseOrderedJson(line_, path_ + ":1: header");
+  header_ = parseTraceHeader(json, path_);
 }
 
 void TraceReader::fail(const std::string& problem) const {
@@ -425,8 +426,8 @@ void TraceReader::fail(const std::string& problem) const {
 }
 
 bool TraceReader::next() {
-  if (!std::getline(file_, line_)) {
-    if (file_.bad()) fail("read error");
+  if (!std::getline(*in_, line_)) {
+    if (in_->bad()) fail("read error");
     // a complete trace ends with the last step (always recorded)
     const std::int64_t last = has_step_ ? prefix_.step : -1;
     if (last != header_.steps)
@@ -434,7 +435,7 @@ bool TraceReader::next() {
                        header_.steps));
     return false;
   }
-  const bool ended_with_newline = !file_.eof();
+  const bool ended_with_newline = !in_->eof();
   ++line_number_;
   if (line_.empty()) fail("empty line");
   const std::int64_t previous = has_step_ ? prefix_.step : -1;

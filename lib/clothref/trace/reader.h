@@ -13,6 +13,8 @@
 
 #include <cstdint>
 #include <fstream>
+#include <istream>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -67,7 +69,11 @@ class TraceReader {
  public:
   // Opens `path` and parses line 1; throws InputError for a missing file or a bad header.
   explicit TraceReader(const std::string& path);
+  // Reads from `in` (a pipe, a string, a file already open), which must outlive the reader;
+  // `source` names it in messages.
+  TraceReader(std::istream& in, const std::string& source);
 
+  // The file name or source messages use.
   const std::string& path() const { return path_; }
   const TraceHeader& header() const { return header_; }
 
@@ -87,8 +93,11 @@ class TraceReader {
   [[noreturn]] void fail(const std::string& problem) const;
 
  private:
+  void readHeader();
+
   std::string path_;
-  std::ifstream file_;
+  std::unique_ptr<std::ifstream> owned_;  // set when the reader opened the file itself
+  std::istream* in_ = nullptr;
   std::string line_;
   std::int64_t line_number_ = 0;
   TraceHeader header_;

@@ -1,0 +1,42 @@
+#include "clothref/io/files.h"
+
+#include <stdlib.h>
+
+#include <fstream>
+#include <system_error>
+#include <vector>
+
+#include "clothref/io/error.h"
+
+namespace clothref {
+
+std::string readFile(const std::filesystem::path& path, const std::string& what,
+                     std::size_t max_bytes) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path.string() + ": cannot read the " + what);
+  std::string text;
+  char buffer[1 << 16];
+  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
+    text.append(buffer, static_cast<std::size_t>(in.gcount()));
+    if (text.size() > max_bytes)
+      throw InputError(path.string() + ": larger than " + std::to_string(max_bytes) + " bytes");
+  }
+  if (in.bad()) throw InputError(path.string() + ": cannot read the " + what);
+  return text;
+}
+
+ScratchDir::ScratchDir(const std::string& prefix) {
+  std::string pattern = (std::filesystem::temp_directory_path() / (prefix + "-XXXXXX")).string();
+  std::vector<char> name(pattern.begin(), pattern.end());
+  name.push_back('\0');
+  if (!::mkdtemp(name.data()))
+    throw InputError(pattern + ": cannot create a temporary directory");
+  path_ = name.data();
+}
+
+ScratchDir::~ScratchDir() {
+  std::error_code ignored;
+  std::filesystem::remove_all(path_, ignored);
+}
+
+}  // namespace clothref
