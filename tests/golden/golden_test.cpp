@@ -322,7 +322,7 @@ TEST(GoldenCli, BadInputExitsTwo) {
   writeText(root.path() / "manifest.json", "{\"format\": \"clothref-golden\", \"version\": 1,");
   const test::CommandResult malformed = test::runCli("golden --golden " + root.path().string());
   EXPECT_EQ(malformed.exit_code, 2);
-  EXPECT_NE(malformed.output.find("manifest.json: not valid JSON"), std::string::npos)
+  EXPECT_NE(malformed.output.find("manifest.json: /version: not valid JSON (line 1, column 44)"), std::string::npos)
       << malformed.output;
 }
 
