@@ -47,7 +47,7 @@ TEST(InitializeSpring, RestLengthsAtN25) {
                                                                  : 1.0f / 3;
     ASSERT_NEAR(spring.rest_length, expected, 1e-6f);
   }
-  // the course's float bits (course-api.md §A.13): |p0-p1|, |p0-p26|, |p0-p2|
+  // the course's float bits (docs/course.md §5): |p0-p1|, |p0-p26|, |p0-p2|
   EXPECT_EQ(test::bits(cloth.springs.front().rest_length), 0x3e2aaaa8u);
   EXPECT_EQ(test::bits(cloth.springs[1200].rest_length), 0x3e715bebu);
   EXPECT_EQ(test::bits(cloth.springs.back().rest_length), 0x3eaaaaacu);
@@ -75,7 +75,7 @@ TEST(InitializeSpring, SixPassesInTheCourseOrder) {
 
 TEST(InitializeVertex, CourseGridBits) {
   const Particles<float> p = initializeVertex<float>(25, 2.0f, 0.0f, 1.0f);
-  // 4.0f / 24 = 0x3e2aaaab; x_j = -2 + j * step, two roundings, no FMA (course-api.md §A.13)
+  // 4.0f / 24 = 0x3e2aaaab; x_j = -2 + j * step, two roundings, no FMA (docs/course.md §5)
   const float step = 4.0f / 24;
   EXPECT_EQ(test::bits(step), 0x3e2aaaabu);
   for (int j = 0; j < 25; ++j) {

@@ -1,7 +1,7 @@
 // Bit-for-bit fidelity to the course's code shape. The course stores particles in
 // Eigen::Matrix4Xf and hands out Eigen::Ref<Eigen::Vector4f> columns; its norm() and dot() are
 // Eigen's 4-wide reductions over those. The oracle below writes the instructor's spring force and
-// sphere-cloth contact (course-api.md §A.16) in that idiom; the library must give the same bits.
+// sphere-cloth contact (docs/course.md §4, §5) in that idiom; the library must give the same bits.
 #include <random>
 
 #include <gtest/gtest.h>
@@ -13,7 +13,7 @@
 namespace clothref {
 namespace {
 
-// The course's Particles accessors, as they are declared (course-api.md §A.5).
+// The course's Particles accessors, as they are declared (docs/course.md §2).
 struct CourseParticles {
   Eigen::Matrix4Xf& x;
   Eigen::Matrix4Xf& v;

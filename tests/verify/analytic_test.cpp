@@ -177,7 +177,7 @@ TEST(ImpactVelocities, ConservesMomentumAndRestoresNormalSpeedByE) {
       auto tangential = [&c](const Eigen::Vector3d& v) { return v - v.dot(c.normal) * c.normal; };
       EXPECT_LT((tangential(out.a) - tangential(c.va)).norm(), 1e-12);
       EXPECT_LT((tangential(out.b) - tangential(c.vb)).norm(), 1e-12);
-      // energy falls by (1 - e^2) mu (v_rel . n)^2 / 2 (anchors.md E.2)
+      // energy falls by (1 - e^2) mu (v_rel . n)^2 / 2 (reduced mass μ; docs/verification.md)
       auto energy = [&c](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
         return 0.5 * c.ma * a.squaredNorm() + 0.5 * c.mb * b.squaredNorm();
       };

@@ -18,7 +18,7 @@ struct Command {
   std::function<int()> run;
 };
 
-// Exit codes shared by every command (product.md).
+// Exit codes shared by every command (README.md: 0 ok, 1 differ, 2 bad input).
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitDiffer = 1;    // diff: traces differ; golden: a file does not match
 inline constexpr int kExitBadInput = 2;  // bad flag, file or content

@@ -1,4 +1,4 @@
-// The built-in scenes. The two course scenes reproduce course-api.md §2; the small ones model only
+// The built-in scenes. The two course scenes reproduce docs/course.md §2-3; the small ones model only
 // what they test. `clothref golden --update` writes each to golden/scenes/NAME.json.
 #include "clothref/scene/scene.h"
 

@@ -4,7 +4,7 @@
 //                      under-, critically and over-damped regimes; fits the `spring` scenes
 //   linear-drag fall   x'' = g - x' c / m per component (the course's drag); fits `free-fall`
 //   impact             post-impact velocities of two bodies meeting along a unit normal with
-//                      restitution e; the textbook mass-weighted formula (course-api.md §3.2),
+//                      restitution e; the textbook mass-weighted formula (docs/course.md §1),
 //                      with mass 0 meaning immovable (a fixed cloth particle, §3.3)
 //
 // Everything here is double: the closed forms are the reference a float or double run is

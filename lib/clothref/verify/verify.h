@@ -1,4 +1,4 @@
-// Analytic checks: the simulation (the seven stubs, run through World::step) measured against
+// Analytic checks: the simulation (the eight stubs, run through World::step) measured against
 // closed forms (analytic.h) and conservation laws, in float and double. `clothref verify` runs
 // them all; docs/verification.md states every bound and why.
 //
