@@ -307,8 +307,8 @@ const GoldenSet& goldenSet() {
 
 std::vector<std::uint64_t> computeHashes(const Scene& scene, Method method, Precision precision,
                                          double dt, std::int64_t steps) {
-  return precision == Precision::Float ? hashesOf<float>(scene, method, dt, steps)
-                                       : hashesOf<double>(scene, method, dt, steps);
+  return withPrecision(precision,
+                       [&]<typename T>() { return hashesOf<T>(scene, method, dt, steps); });
 }
 
 std::string sceneFileText(const Scene& scene) { return sceneToJson(scene).dump(2) + "\n"; }

@@ -72,8 +72,8 @@ TraceSummary run(const Scene& scene, const TraceSettings& settings, std::ostream
 }  // namespace
 
 TraceSummary writeTrace(const Scene& scene, const TraceSettings& settings, std::ostream& out) {
-  return settings.precision == Precision::Float ? run<float>(scene, settings, out)
-                                                : run<double>(scene, settings, out);
+  return withPrecision(settings.precision,
+                       [&]<typename T>() { return run<T>(scene, settings, out); });
 }
 
 }  // namespace clothref

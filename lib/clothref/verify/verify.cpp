@@ -497,8 +497,8 @@ std::vector<CheckRow> sphereSphereChecks() {
     impactRows(
         "sphere-sphere", precision,
         [precision](double e, double ratio) {
-          return precision == Precision::Float ? sphereSphereImpact<float>(e, ratio)
-                                               : sphereSphereImpact<double>(e, ratio);
+          return withPrecision(precision,
+                               [&]<typename T>() { return sphereSphereImpact<T>(e, ratio); });
         },
         rows);
   }
@@ -509,8 +509,8 @@ std::vector<CheckRow> sphereClothChecks() {
   std::vector<CheckRow> rows;
   for (Precision precision : kPrecisions) {
     auto measure = [precision](double e, double ratio, bool fixed) {
-      return precision == Precision::Float ? sphereClothImpact<float>(e, ratio, fixed)
-                                           : sphereClothImpact<double>(e, ratio, fixed);
+      return withPrecision(precision,
+                           [&]<typename T>() { return sphereClothImpact<T>(e, ratio, fixed); });
     };
     impactRows(
         "sphere-cloth", precision,
@@ -610,8 +610,8 @@ std::vector<CheckRow> freeClothMomentumChecks() {
   std::vector<CheckRow> rows;
   for (Precision precision : kPrecisions)
     for (Method method : kAllMethods)
-      rows.push_back(precision == Precision::Float ? freeClothRow<float>(method, precision)
-                                                   : freeClothRow<double>(method, precision));
+      rows.push_back(withPrecision(
+          precision, [&]<typename T>() { return freeClothRow<T>(method, precision); }));
   return rows;
 }
 
