@@ -89,6 +89,7 @@ struct BenchOptions {
   std::string simd;  // default: CLOTHREF_SIMD or the best path
   int threads = 1;
   int repetitions = 10;
+  double seconds = 1;  // simulated seconds per method and for the contact samples
   bool json = false;
 };
 
@@ -120,12 +121,13 @@ inline constexpr int kGridSizes[] = {25, 50, 100, 200};
 
 // Per-step times of `method`: the scene's run split into `repetitions` blocks of equal steps, each
 // block one sample (so the samples cover the whole run: falling, contact, rest).
-Spread stepMicroseconds(const Scene& scene, Method method, bool use_fast, fast::SimdPath path,
-                        int threads, int repetitions, double& allocations_per_step) {
+Spread stepMicroseconds(const Scene& scene, double duration, Method method, bool use_fast,
+                        fast::SimdPath path, int threads, int repetitions,
+                        double& allocations_per_step) {
   World<float> world = makeWorld<float>(scene, method);
   setExecution(world, use_fast, path, threads);
   const std::int64_t total =
-      std::max<std::int64_t>(std::llround(1.0 / world.physics.dt), repetitions);
+      std::max<std::int64_t>(std::llround(duration / world.physics.dt), repetitions);
   const std::int64_t block = total / repetitions;
   step(world);  // sizes the scratch buffers
   std::vector<double> samples;
@@ -146,10 +148,10 @@ Spread stepMicroseconds(const Scene& scene, Method method, bool use_fast, fast::
 }
 
 // Worlds sampled every 0.05 s through the scene's first second, explicit Euler.
-std::vector<World<float>> runSnapshots(const Scene& scene) {
+std::vector<World<float>> runSnapshots(const Scene& scene, double duration) {
   std::vector<World<float>> snapshots;
   World<float> world = makeWorld<float>(scene, Method::Explicit);
-  const std::int64_t total = std::llround(1.0 / world.physics.dt);
+  const std::int64_t total = std::llround(duration / world.physics.dt);
   const std::int64_t every = std::max<std::int64_t>(total / 20, 1);
   for (std::int64_t k = 0; k <= total; ++k) {
     if (k % every == 0) snapshots.push_back(world);
@@ -262,16 +264,16 @@ Spread gridSpringNanoseconds(const Scene& course, int n, bool use_fast, fast::Si
   return spread(samples);
 }
 
-Figures measure(const Scene& scene, bool use_fast, fast::SimdPath path, int threads,
-                int repetitions) {
+Figures measure(const Scene& scene, double duration, bool use_fast, fast::SimdPath path,
+                int threads, int repetitions) {
   Figures figures;
   for (Method method : kAllMethods) {
     double allocations = 0;
     figures.step_us[std::string(methodName(method))] =
-        stepMicroseconds(scene, method, use_fast, path, threads, repetitions, allocations);
+        stepMicroseconds(scene, duration, method, use_fast, path, threads, repetitions, allocations);
     figures.allocations_per_step[std::string(methodName(method))] = allocations;
   }
-  const std::vector<World<float>> snapshots = runSnapshots(scene);
+  const std::vector<World<float>> snapshots = runSnapshots(scene, duration);
   figures.spring_ns = springNanoseconds(snapshots, use_fast, path, threads, repetitions);
   figures.collide_ns_per_pair = collideNanoseconds(snapshots, use_fast, repetitions);
   for (int n : kGridSizes)
@@ -313,6 +315,8 @@ nlohmann::ordered_json figuresJson(const Figures& f, bool with_allocations) {
 int runBench(const BenchOptions& options) {
   if (options.repetitions < 1)
     throw InputError(fmt::format("--repetitions: must be >= 1 (got {})", options.repetitions));
+  if (!(options.seconds > 0 && options.seconds <= 1000))
+    throw InputError(fmt::format("--seconds: must be in (0, 1000] (got {})", options.seconds));
   if (options.threads < 1)
     throw InputError(fmt::format("--threads: must be >= 1 (got {})", options.threads));
   fast::SimdPath path = fast::defaultSimdPath();
@@ -323,8 +327,8 @@ int runBench(const BenchOptions& options) {
       throw InputError("--simd: this CPU cannot run the " + options.simd + " path");
   }
   const Scene scene = loadScene(options.scene);
-  const Figures fast_figures = measure(scene, true, path, options.threads, options.repetitions);
-  const Figures oracle = measure(scene, false, path, 1, options.repetitions);
+  const Figures fast_figures = measure(scene, options.seconds, true, path, options.threads, options.repetitions);
+  const Figures oracle = measure(scene, options.seconds, false, path, 1, options.repetitions);
   // the thread sweep: a 200 x 200 cloth at one thread and at --threads (at least 2)
   const int sweep_threads = std::max(options.threads, 2);
   const Spread one_thread = gridSpringNanoseconds(scene, 200, true, path, 1, options.repetitions);
@@ -394,6 +398,9 @@ Command addBenchCommand(CLI::App& root) {
       ->capture_default_str();
   app->add_option("--repetitions", options->repetitions,
                   "Samples per figure (the 1 s run is split into this many blocks)")
+      ->capture_default_str();
+  app->add_option("--seconds", options->seconds,
+                  "Simulated seconds per method, and sampled for the contact figure")
       ->capture_default_str();
   app->add_flag("--json", options->json, "Print the medians as one JSON object");
   return {app, [options] { return runBench(*options); }};
