@@ -1,11 +1,11 @@
 // `clothref bench`: the --json schema (the keys, medians as numbers, zero allocations per
 // step, the SIMD path it ran) on a short run, and one-line errors with exit 2 for bad input. The
 // figures themselves are measured, never asserted.
-#include <cstdlib>
-#include <string>
-
 #include <gtest/gtest.h>
+
+#include <cstdlib>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "clothref/fast/simd_path.h"
 #include "test_util.h"

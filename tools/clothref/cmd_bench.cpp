@@ -19,8 +19,8 @@
 #include <vector>
 
 #include "clothref/core/world.h"
-#include "clothref/scene/make_world.h"
 #include "clothref/io/error.h"
+#include "clothref/scene/make_world.h"
 #include "commands.h"
 
 // allocations_per_step counts calls to malloc and its relatives during the timed steps. The
@@ -269,8 +269,8 @@ Figures measure(const Scene& scene, double duration, bool use_fast, fast::SimdPa
   Figures figures;
   for (Method method : kAllMethods) {
     double allocations = 0;
-    figures.step_us[std::string(methodName(method))] =
-        stepMicroseconds(scene, duration, method, use_fast, path, threads, repetitions, allocations);
+    figures.step_us[std::string(methodName(method))] = stepMicroseconds(
+        scene, duration, method, use_fast, path, threads, repetitions, allocations);
     figures.allocations_per_step[std::string(methodName(method))] = allocations;
   }
   const std::vector<World<float>> snapshots = runSnapshots(scene, duration);
@@ -327,7 +327,8 @@ int runBench(const BenchOptions& options) {
       throw InputError("--simd: this CPU cannot run the " + options.simd + " path");
   }
   const Scene scene = loadScene(options.scene);
-  const Figures fast_figures = measure(scene, options.seconds, true, path, options.threads, options.repetitions);
+  const Figures fast_figures =
+      measure(scene, options.seconds, true, path, options.threads, options.repetitions);
   const Figures oracle = measure(scene, options.seconds, false, path, 1, options.repetitions);
   // the thread sweep: a 200 x 200 cloth at one thread and at --threads (at least 2)
   const int sweep_threads = std::max(options.threads, 2);

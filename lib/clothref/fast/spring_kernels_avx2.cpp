@@ -1,5 +1,5 @@
-// The grid spring sweep on AVX2 (8 floats or 4 doubles per instruction; compiled with -mavx2, no
-// FMA).
+// The grid spring sweep on AVX2 (8 floats or 4 doubles per instruction; compiled with -mavx2;
+// -ffp-contract=off keeps FMA out).
 #include <immintrin.h>
 
 #include "clothref/fast/spring_kernels.h"

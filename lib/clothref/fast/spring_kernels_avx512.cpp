@@ -1,5 +1,5 @@
 // The grid spring sweep on AVX-512F (16 floats or 8 doubles per instruction; compiled with
-// -mavx512f, never contracted into FMA). Lane selection uses the k mask registers.
+// -mavx512f; -ffp-contract=off keeps FMA out). Lane selection uses the k mask registers.
 #include <immintrin.h>
 
 #include "clothref/fast/spring_kernels.h"
