@@ -94,13 +94,13 @@ TEST(StepAllocation, CountingWorks) {
 
 TEST(StepAllocation, NoneInAThousandStepsOfEveryMethod) {
   if (!CLOTHREF_COUNT_ALLOCATIONS) GTEST_SKIP() << "sanitizer build: malloc is not ours";
-  for (const char* name : {"course2022", "course2024", "small-cloth", "two-spheres", "spring"})
+  for (const Scene& scene : builtinScenes())
     for (Method method : kAllMethods) {
-      World<float> single = makeWorld<float>(*findBuiltinScene(name), method);
-      EXPECT_EQ(allocationsOverSteps(single, 1000), 0) << name << ' ' << methodName(method);
-      World<double> precise = makeWorld<double>(*findBuiltinScene(name), method);
+      World<float> single = makeWorld<float>(scene, method);
+      EXPECT_EQ(allocationsOverSteps(single, 1000), 0) << scene.name << ' ' << methodName(method);
+      World<double> precise = makeWorld<double>(scene, method);
       EXPECT_EQ(allocationsOverSteps(precise, 1000), 0)
-          << name << ' ' << methodName(method) << " double";
+          << scene.name << ' ' << methodName(method) << " double";
     }
 }
 
