@@ -63,5 +63,6 @@ Command addDiffCommand(CLI::App& root);
 Command addGoldenCommand(CLI::App& root);
 Command addVerifyCommand(CLI::App& root);
 Command addScenesCommand(CLI::App& root);
+Command addBenchCommand(CLI::App& root);
 
 }  // namespace clothref::cli

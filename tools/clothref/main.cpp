@@ -1,7 +1,9 @@
 // clothref: the reference for the course's particle-system assignment. One subcommand per task;
 // `clothref SUBCOMMAND --help` for each.
 #include <iostream>
+#include <stdexcept>
 
+#include "clothref/fast/simd_path.h"
 #include "clothref/io/error.h"
 #include "clothref/trace/build_info.h"
 #include "commands.h"
@@ -11,12 +13,20 @@ int main(int argc, char** argv) {
   CLI::App root{"clothref: deterministic reference, traces and checks for the cloth-and-spheres "
                 "particle-system assignment"};
   root.require_subcommand(1);
+  clothref::fast::SimdPath simd;
+  try {
+    simd = clothref::fast::defaultSimdPath();  // a bad CLOTHREF_SIMD fails here, before any work
+  } catch (const std::invalid_argument& error) {
+    std::cerr << "clothref: " << error.what() << '\n';
+    return kExitBadInput;
+  }
   root.set_version_flag("--version", std::string(clothref::build_info::kVersion) + " (" +
                                          clothref::build_info::kCompiler + ", " +
-                                         clothref::build_info::kBuildType + ")");
+                                         clothref::build_info::kBuildType + ", simd " +
+                                         std::string(clothref::fast::simdPathName(simd)) + ")");
   const std::vector<Command> commands = {
       addTraceCommand(root), addDiffCommand(root), addGoldenCommand(root),
-      addVerifyCommand(root), addScenesCommand(root)};
+      addVerifyCommand(root), addScenesCommand(root), addBenchCommand(root)};
   // name an unknown command instead of CLI11's "A subcommand is required"
   if (argc > 1 && argv[1][0] != '-') {
     std::string names;

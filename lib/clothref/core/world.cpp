@@ -1,8 +1,37 @@
 #include "clothref/core/world.h"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace clothref {
+
+template <typename T>
+void setExecution(World<T>& world, bool use_fast, fast::SimdPath simd, int threads) {
+  Execution<T>& execution = world.execution;
+  execution.use_fast = use_fast;
+  execution.simd = simd;
+  execution.threads = std::max(threads, 1);
+  execution.grid = false;
+  execution.pool.reset();
+  execution.prepared = true;
+  if (!use_fast || !world.cloth) return;
+  const Cloth<T>& cloth = *world.cloth;
+  std::vector<std::uint32_t> start, end;
+  std::vector<T> rest;
+  for (const Spring<T>& spring : cloth.springs) {
+    start.push_back(spring.start);
+    end.push_back(spring.end);
+    rest.push_back(spring.rest_length);
+  }
+  const int count = cloth.particles.size();
+  const bool big = count >= kThreadedGridEdge * kThreadedGridEdge;
+  const int sweep_threads = big ? execution.threads : 1;
+  execution.grid =
+      fast::matchCourseGrid<T>(count, start, end, rest, sweep_threads, execution.springs);
+  if (execution.grid && sweep_threads > 1)
+    execution.pool = std::make_shared<fast::ThreadPool>(sweep_threads);
+}
 
 template <typename T>
 Bodies<T> bodies(World<T>& world, std::array<Particles<T>*, 2>& storage) {
@@ -15,12 +44,40 @@ Bodies<T> bodies(World<T>& world, std::array<Particles<T>*, 2>& storage) {
 template <typename T>
 void simulateOneStep(World<T>& world) {
   const Physics<T>& physics = world.physics;
-  if (world.cloth) computeExternalForce(world.cloth->particles, physics.gravity, physics.viscous_coef);
+  Execution<T>& execution = world.execution;
+  if (!execution.prepared)
+    setExecution(world, execution.use_fast, execution.simd, execution.threads);
+  // a course grid cloth gets its external and spring forces from one fast evaluation
+  const bool grid_cloth = world.cloth && execution.use_fast && execution.grid;
+  if (world.cloth && !grid_cloth)
+    computeExternalForce(world.cloth->particles, physics.gravity, physics.viscous_coef);
   if (world.spheres && physics.sphere_external_force)
     computeExternalForce(world.spheres->particles, physics.gravity, physics.viscous_coef);
-  if (world.cloth && !world.cloth->springs.empty()) computeSpringForce(*world.cloth);
-  if (world.spheres && world.cloth)
-    collide(*world.spheres, *world.cloth, physics.restitution_cloth, physics.correction);
+  if (grid_cloth) {
+    Cloth<T>& cloth = *world.cloth;
+    Particles<T>& p = cloth.particles;
+    fast::evaluateGridCloth(execution.springs, p.position.data(), p.velocity.data(),
+                            p.acceleration.data(), p.mass.data(), p.inverse_mass.data(),
+                            physics.gravity.data(), physics.viscous_coef, cloth.spring_coef,
+                            cloth.damper_coef, execution.simd, execution.pool.get());
+  } else if (world.cloth && !world.cloth->springs.empty()) {
+    computeSpringForce(*world.cloth);
+  }
+  if (world.spheres && world.cloth) {
+    if (execution.use_fast) {
+      Particles<T>& s = world.spheres->particles;
+      Particles<T>& c = world.cloth->particles;
+      const fast::ContactBodies<T> contact{s.position.data(),     s.velocity.data(),
+                                           s.inverse_mass.data(), world.spheres->radius.data(),
+                                           s.size(),              c.position.data(),
+                                           c.velocity.data(),     c.inverse_mass.data(),
+                                           c.size()};
+      fast::collideSpheresWithCloth(contact, physics.restitution_cloth, physics.correction,
+                                    execution.simd);
+    } else {
+      collide(*world.spheres, *world.cloth, physics.restitution_cloth, physics.correction);
+    }
+  }
   if (world.spheres && physics.sphere_sphere_collision)
     collide(*world.spheres, physics.restitution_sphere, physics.correction);
 }
@@ -98,6 +155,7 @@ bool isFinite(const World<T>& world) {
 }
 
 #define CLOTHREF_INSTANTIATE(T)                                                      \
+  template void setExecution(World<T>&, bool, fast::SimdPath, int);                  \
   template Bodies<T> bodies(World<T>&, std::array<Particles<T>*, 2>&);               \
   template void simulateOneStep(World<T>&);                                          \
   template void step(World<T>&);                                                     \

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
 #include <vector>
@@ -11,6 +12,8 @@
 #include "clothref/core/cloth.h"
 #include "clothref/core/integrator.h"
 #include "clothref/core/spheres.h"
+#include "clothref/fast/grid_springs.h"
+#include "clothref/fast/sphere_cloth_contacts.h"
 
 namespace clothref {
 
@@ -38,6 +41,23 @@ struct FrameLoop {
   std::vector<int> pinned;
 };
 
+// How a world's step runs: the fast kernels (clothref/fast) or the course-form loops alone. The
+// results are the same bits either way; only the speed differs.
+template <typename T>
+struct Execution {
+  bool use_fast = true;              // false: the course-form loops only (the oracle)
+  fast::SimdPath simd = fast::defaultSimdPath();
+  int threads = 1;                   // spring sweep threads; only grids of N >= 100 use more
+  bool grid = false;                 // the cloth's springs are the course grid's stencils
+  fast::GridSpringWorkspace<T> springs;
+  std::shared_ptr<fast::ThreadPool> pool;  // when threads > 1 and the grid is big enough
+  bool prepared = false;             // grid detection and buffers done (setExecution)
+};
+
+// Cloths with fewer particles per edge keep one thread: below this, waking a thread costs more
+// than the sweep it would share.
+inline constexpr int kThreadedGridEdge = 100;
+
 template <typename T>
 struct World {
   std::optional<Cloth<T>> cloth;
@@ -47,7 +67,15 @@ struct World {
   Method method = Method::Explicit;
   std::int64_t step = 0;           // steps taken
   IntegratorScratch<T> scratch;    // integrator backups, reused every step
+  Execution<T> execution;          // fast kernels on, default SIMD path, one thread
 };
+
+// Sets how `world` steps: the fast kernels (`use_fast`) or the course-form loops alone, the
+// kernels' SIMD path (one this CPU supports) and the spring sweep's threads (>= 1; only grids of
+// kThreadedGridEdge or more particles per edge use more than one). Never changes the results.
+// The first step calls it with the defaults (fast, defaultSimdPath(), one thread) if nobody has.
+template <typename T>
+void setExecution(World<T>& world, bool use_fast, fast::SimdPath simd, int threads);
 
 // The bodies in the course's order (cloth, then spheres); `storage` holds the pointers.
 template <typename T>
