@@ -24,6 +24,10 @@ foreach(installed bin/clothref include/clothref/record/record.h include/clothref
     message(FATAL_ERROR "package test: ${installed} was not installed")
   endif()
 endforeach()
+run(${prefix}/bin/clothref --version)
+if(NOT run_output MATCHES "^clothref [0-9]+\\.[0-9]+\\.[0-9]+ \\(git [^,]+, ")
+  message(FATAL_ERROR "package test: unexpected --version output: ${run_output}")
+endif()
 run(${prefix}/bin/clothref trace --scene spring --steps 50 --stride 10 -o ${WORK}/cli.jsonl)
 
 # find_package
