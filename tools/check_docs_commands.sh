@@ -4,8 +4,9 @@
 # repository root; each must exit 0, unless it ends with "# exits N" (then it must exit N).
 #
 # Usage: tools/check_docs_commands.sh [--cli BIN] FILE...
-#   --cli BIN  run only the lines that start with build/bin/clothref, in a scratch directory where
-#              build/bin/clothref is BIN (the ctest docs_commands: fast, writes only there)
+#   --cli BIN  run only the lines that start with build/bin/clothref (after "tools/setup.sh && "),
+#              in a scratch directory where build/bin/clothref is BIN (the ctest docs_commands:
+#              fast, writes only there)
 set -euo pipefail
 
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -41,6 +42,8 @@ for file in "${files[@]}"; do
     esac
     [ $in_block -eq 1 ] || continue
     [[ "$line" =~ ^[[:space:]]*(#|$) ]] && continue
+    # CLI mode: the set-up is the build that made BIN, so "tools/setup.sh && X" runs X
+    [ -n "$cli" ] && line=${line#tools/setup.sh && }
     if [ -n "$cli" ] && [[ "$line" != build/bin/clothref* ]]; then continue; fi
     expected=0
     if [[ "$line" =~ \#\ exits\ ([0-9]+)[[:space:]]*$ ]]; then expected=${BASH_REMATCH[1]}; fi
