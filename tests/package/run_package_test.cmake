@@ -52,6 +52,10 @@ endif()
 # pkg-config
 find_program(PKG_CONFIG pkg-config REQUIRED)
 file(GLOB pc_file ${prefix}/lib*/pkgconfig/clothref.pc ${prefix}/lib/*/pkgconfig/clothref.pc)
+if(NOT pc_file)
+  message(FATAL_ERROR "package test: clothref.pc was not installed")
+endif()
+list(GET pc_file 0 pc_file)
 get_filename_component(pc_dir "${pc_file}" DIRECTORY)
 set(ENV{PKG_CONFIG_PATH} "${pc_dir}")
 run(${PKG_CONFIG} --cflags --libs clothref)
@@ -63,9 +67,12 @@ if(NOT run_output STREQUAL cli_trace)
   message(FATAL_ERROR "package test: the pkg-config consumer's trace differs from the CLI's")
 endif()
 
-# add_subdirectory
-run(${CMAKE_COMMAND} -S ${SOURCE_DIR}/tests/package/subproject -B ${WORK}/subproject -G ${GENERATOR}
-    -DCMAKE_CXX_COMPILER=${CXX} -DCLOTHREF_SOURCE_DIR=${SOURCE_DIR})
+# add_subdirectory and FetchContent from the local path (configure only: the checks are there)
+foreach(fetch OFF ON)
+  run(${CMAKE_COMMAND} -S ${SOURCE_DIR}/tests/package/subproject -B ${WORK}/subproject-${fetch}
+      -G ${GENERATOR} -DCMAKE_CXX_COMPILER=${CXX} -DCLOTHREF_SOURCE_DIR=${SOURCE_DIR}
+      -DUSE_FETCHCONTENT=${fetch})
+endforeach()
 
 file(REMOVE_RECURSE ${WORK})
-message(STATUS "package test: install, find_package, pkg-config and add_subdirectory all work")
+message(STATUS "package test: install, find_package, pkg-config, add_subdirectory and FetchContent all work")
