@@ -3,7 +3,7 @@
 # the `release` preset (CMakePresets.json: Ninja, Release, build/) and builds.
 # Usage: tools/setup.sh [extra cmake arguments]
 # Environment: BUILD_DIR (default build), CXX (compiler, default the system's), CMAKE_BUILD_TYPE
-# (default the preset's Release). Works on Debian 12, Ubuntu 22.04 and Ubuntu 24.04.
+# (default the preset's Release). Debian 12 (tested here); Ubuntu 22.04 and 24.04 (the CI matrix).
 set -euo pipefail
 
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
