@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
-# Installs the Debian packages clothref needs (only those missing), then configures and builds
-# into build/ (Release). Usage: tools/setup.sh [extra cmake arguments]
-# Environment: BUILD_DIR (default build), CXX (compiler, default the system's).
+# Installs the Debian/Ubuntu packages clothref needs (only those missing), then configures with
+# the `release` preset (CMakePresets.json: Ninja, Release, build/) and builds.
+# Usage: tools/setup.sh [extra cmake arguments]
+# Environment: BUILD_DIR (default build), CXX (compiler, default the system's), CMAKE_BUILD_TYPE
+# (default the preset's Release). Debian 12 (tested here); Ubuntu 22.04 and 24.04 (the CI matrix).
 set -euo pipefail
 
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -23,5 +25,7 @@ if [ ${#missing[@]} -gt 0 ]; then
     "${missing[@]}" >/dev/null
 fi
 
-cmake -S "$root" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE="${CMAKE_BUILD_TYPE:-Release}" "$@" >/dev/null
+# the same preset as `cmake --preset release`, so either may configure build/ first
+cd "$root"
+cmake --preset release -B "$build_dir" -DCMAKE_BUILD_TYPE="${CMAKE_BUILD_TYPE:-Release}" "$@" >/dev/null
 cmake --build "$build_dir" -j "$(nproc)"

@@ -326,5 +326,27 @@ TEST(GoldenCli, BadInputExitsTwo) {
       << malformed.output;
 }
 
+// The golden directory defaults to the source tree's (recorded at configure time), so a run from
+// any working directory checks the real data; --update never makes a new set without --create.
+TEST(GoldenCli, DefaultDirectoryIsTheSourceTreesAndUpdateNeverCreatesASetUnasked) {
+  const test::CommandResult help = test::runCli("golden --help");
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_NE(help.output.find(std::string(CLOTHREF_SOURCE_DIR) + "/golden"), std::string::npos)
+      << help.output;
+
+  const test::TempDir root;
+  const test::CommandResult update = test::runCli("golden --update --dir " + root.file("new"));
+  EXPECT_EQ(update.exit_code, 2) << update.output;
+  EXPECT_NE(update.output.find("--update --create"), std::string::npos) << update.output;
+  EXPECT_FALSE(std::filesystem::exists(root.file("new")));
+  const test::CommandResult alias = test::runCli("golden --update --golden " + root.file("new"));
+  EXPECT_EQ(alias.exit_code, 2) << alias.output;
+  EXPECT_FALSE(std::filesystem::exists(root.file("new")));
+
+  const test::CommandResult create_alone = test::runCli("golden --create --dir " + root.file("new"));
+  EXPECT_EQ(create_alone.exit_code, 2) << create_alone.output;
+  EXPECT_FALSE(std::filesystem::exists(root.file("new")));
+}
+
 }  // namespace
 }  // namespace clothref

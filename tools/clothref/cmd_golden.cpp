@@ -1,4 +1,7 @@
 // clothref golden: check the golden data against the code (default), or regenerate it (--update).
+// The directory is --dir, else the source tree's golden/ recorded when the build was configured, so
+// running from another directory checks the real data. --update rewrites an existing golden set
+// only; a new one needs --create, so a typo never yields a fresh set that checks against itself.
 // The check prints the diff report of each mismatch, one line per matching entry with --verbose,
 // and a final count line; it exits 0 when everything matches, 1 on a mismatch, 2 on bad input.
 #include <iostream>
@@ -10,6 +13,7 @@
 #include "clothref/io/error.h"
 #include "clothref/golden/golden.h"
 #include "clothref/io/output_file.h"
+#include "clothref/io/progress.h"
 #include "commands.h"
 
 namespace clothref::cli {
@@ -17,15 +21,28 @@ namespace clothref::cli {
 namespace {
 
 struct GoldenOptions {
-  std::string golden = "golden";
+  std::string golden = CLOTHREF_GOLDEN_DIR;  // tools/CMakeLists.txt: <source>/golden
   bool update = false;
+  bool create = false;
+  bool quiet = false;
   bool verbose = false;
   std::optional<std::int64_t> ulps;
   std::string tolerances;
   bool skip_hashes = false;
 };
 
+// A golden set is a directory with a manifest; anything else is refused before any work.
+void requireGoldenSet(const GoldenOptions& options) {
+  const std::filesystem::path manifest = std::filesystem::path(options.golden) / "manifest.json";
+  if (std::filesystem::is_regular_file(manifest)) return;
+  throw InputError(fmt::format(
+      "{}: golden directory not found (no manifest.json); give it with --dir, or make a new "
+      "golden set there with --update --create",
+      options.golden));
+}
+
 int runUpdate(const GoldenOptions& options) {
+  if (!options.create) requireGoldenSet(options);
   const GoldenUpdateSummary summary = updateGolden(options.golden);
   std::cerr << fmt::format(
       "clothref golden: wrote {} scenes, {} traces and a manifest with {} hash runs to {}\n",
@@ -56,15 +73,25 @@ int runCheck(const GoldenOptions& options) {
     check.diff.global.ulps = *options.ulps;
   }
   check.check_hashes = !options.skip_hashes;
+  requireGoldenSet(options);
 
+  const GoldenSet& defined = goldenSet();
+  Progress progress("clothref golden",
+                    static_cast<std::int64_t>(defined.scenes.size() + defined.traces.size() +
+                                              defined.hash_runs.size()),
+                    "entries", progressStyleForStderr(options.quiet), std::cerr);
+  std::int64_t entries = 0;
   const GoldenCheckSummary summary =
-      checkGolden(options.golden, check, [&options](const GoldenEntryResult& entry) {
+      checkGolden(options.golden, check, [&](const GoldenEntryResult& entry) {
+        progress.update(++entries);
         if (entry.matched && !options.verbose) return;
+        progress.finish();  // a report line must not land inside the terminal's progress line
         std::cout << fmt::format("{:<8} {:<6} {}: {}\n", entry.matched ? "ok" : "MISMATCH",
                                  entry.kind, entry.name, entry.summary);
         if (!entry.report.empty()) std::cout << indented(entry.report);
         std::cout.flush();
       });
+  progress.finish();
   std::cout << fmt::format("clothref golden: {} of {} entries match, {} mismatch ({}{})\n",
                            summary.checked - summary.mismatched, summary.checked,
                            summary.mismatched, options.golden,
@@ -80,10 +107,17 @@ Command addGoldenCommand(CLI::App& root) {
       "Check the golden data (scenes, traces, per-step hashes) against the code, or regenerate "
       "it with --update (docs/regression.md)");
   auto options = std::make_shared<GoldenOptions>();
-  app->add_option("--golden", options->golden, "Golden directory")->capture_default_str();
+  app->add_option("--dir,--golden", options->golden,
+                  "Golden directory (default: the source tree's, recorded at configure time)")
+      ->capture_default_str();
   CLI::Option* update =
       app->add_flag("--update", options->update,
-                    "Regenerate every golden file from the code and delete stale ones");
+                    "Regenerate every golden file of an existing golden set from the code and "
+                    "delete stale ones");
+  app->add_flag("--create", options->create,
+                "With --update: make a new golden set in a directory that has none")
+      ->needs(update);
+  app->add_flag("-q,--quiet", options->quiet, "No progress on stderr");
   app->add_flag("-v,--verbose", options->verbose, "Also print one line per matching entry")
       ->excludes(update);
   app->add_option("--ulps", options->ulps,

@@ -4,10 +4,12 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <streambuf>
 
 #include <fmt/format.h>
 
 #include "clothref/io/error.h"
+#include "clothref/io/progress.h"
 #include "clothref/trace/hash.h"
 #include "clothref/record/record.h"
 #include "clothref/io/output_file.h"
@@ -25,6 +27,37 @@ struct TraceOptions {
   std::int64_t stride = 100;
   std::string precision = "float";
   std::string output = "-";
+  bool quiet = false;
+};
+
+// Passes the trace through to `target` and reports progress from its lines: line 1 is the
+// header, line k > 1 is step (k - 2) * stride, so writeTrace needs no callback.
+class ProgressStreambuf : public std::streambuf {
+ public:
+  ProgressStreambuf(std::streambuf* target, std::int64_t stride, Progress& progress)
+      : target_(target), stride_(stride), progress_(progress) {}
+
+ protected:
+  int_type overflow(int_type c) override {
+    if (traits_type::eq_int_type(c, traits_type::eof())) return traits_type::not_eof(c);
+    if (traits_type::to_char_type(c) == '\n') countLine();
+    return target_->sputc(traits_type::to_char_type(c));
+  }
+  std::streamsize xsputn(const char* text, std::streamsize count) override {
+    for (std::streamsize i = 0; i < count; ++i)
+      if (text[i] == '\n') countLine();
+    return target_->sputn(text, count);
+  }
+  int sync() override { return target_->pubsync(); }
+
+ private:
+  void countLine() {
+    if (++lines_ >= 2) progress_.update((lines_ - 2) * stride_);
+  }
+  std::streambuf* target_;
+  std::int64_t stride_;
+  Progress& progress_;
+  std::int64_t lines_ = 0;
 };
 
 int runTrace(const TraceOptions& options) {
@@ -38,7 +71,16 @@ int runTrace(const TraceOptions& options) {
   settings.stride = options.stride;
 
   OutputFile output(options.output);
-  const TraceSummary summary = writeTrace(scene, settings, output.stream());
+  TraceSummary summary;
+  {
+    Progress progress("clothref trace", settings.steps, "steps",
+                      progressStyleForStderr(options.quiet), std::cerr);
+    ProgressStreambuf counting(output.stream().rdbuf(), settings.stride, progress);
+    std::ostream traced(&counting);
+    summary = writeTrace(scene, settings, traced);
+    traced.flush();
+    if (!traced) output.stream().setstate(std::ios::badbit);  // commit() then reports it
+  }
   output.commit();
 
   std::cerr << fmt::format(
@@ -80,6 +122,9 @@ Command addTraceCommand(CLI::App& root) {
       ->capture_default_str();
   app->add_option("-o,--output", options->output, "Output file, '-' for stdout")
       ->capture_default_str();
+  app->add_flag("-q,--quiet", options->quiet,
+                "No progress on stderr (shown for runs over a second: one updating line on a "
+                "terminal, a line per 10 % otherwise)");
   return {app, [options] { return runTrace(*options); }};
 }
 
