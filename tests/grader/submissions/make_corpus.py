@@ -425,6 +425,9 @@ def write_variants_submission(edition):
     cloth = keep_gl_tail(ref["cloth.cpp"], VARIANT_SPRINGS)
     integrator = replace_body(ref["integrator.cpp"], "ExplicitEuler::integrate", VARIANT_EXPLICIT)
     integrator = replace_body(integrator, "ImplicitEuler::integrate", VARIANT_IMPLICIT)
+    label = "// Grader corpus submission `accepted-variants`: {} in the accepted variant form.\n"
+    cloth = label.format("initializeSpring") + strip_header(cloth)
+    integrator = label.format("ExplicitEuler and ImplicitEuler") + strip_header(integrator)
     directory = HERE / edition / "accepted-variants"
     (directory / "src").mkdir(parents=True, exist_ok=True)
     (directory / "src" / "cloth.cpp").write_text(cloth)
@@ -502,6 +505,9 @@ IMPULSE_BLOCK_CLOTH = """\
         clothParticles.velocity(j) -= impulse * clothParticles.inverseMass(j);
       }
 """
+APPROACH_COMMENT = "      // Only approaching pairs get an impulse; a fixed particle (inverse mass 0) does not move.\n"
+BACKUP_COMMENT = "  // A pointer-vector copy would alias the live state: back up the Particles themselves.\n"
+CORRECTION_COMMENT = "      // Push them apart to prevent penetration (ignores mass, as the course's hint does).\n"
 PREDICT_FULL = """\
   for (const auto &p : particles) {
     p->position() += p->velocity() * deltaTime;
@@ -606,7 +612,7 @@ MUTANTS = [
      ["crashed", "dangling-auto-expression"],
      "auto holds an Eigen expression over two Ref temporaries (undefined behaviour; segfaults with g++ 12 -O1 and -O2)"),
     # Spheres::collide(Cloth*)
-    ("cloth-no-approach-check", BOTH, C, [("      if (approach < 0) {\n", "      {\n")],
+    ("cloth-no-approach-check", BOTH, C, [(APPROACH_COMMENT, ""), ("      if (approach < 0) {\n", "      {\n")],
      ["no-approach-check"], "impulse applied even when the pair already separates"),
     ("cloth-restitution-full-velocity", ONLY22, C,
      [("Eigen::Vector4f normalVelocity = normal * approach;", "Eigen::Vector4f normalVelocity = relativeVelocity;")],
@@ -615,12 +621,13 @@ MUTANTS = [
      [("_particles.position(i)", "_particles.position(0)", 2), ("_particles.velocity(i)", "_particles.velocity(0)", 2),
       ("_radius[i]", "_radius[0]"), ("_particles.inverseMass(i)", "_particles.inverseMass(0)", 2)],
      ["first-sphere-only"], "every contact computed with sphere 0 (position(0), _radius[0])"),
-    ("cloth-fixed-particle-massless", BOTH, C, [(IMPULSE_BLOCK_CLOTH, FIXED_MASSLESS)],
+    ("cloth-fixed-particle-massless", BOTH, C, [(APPROACH_COMMENT, ""), (IMPULSE_BLOCK_CLOTH, FIXED_MASSLESS)],
      ["fixed-particle-massless"], "the spec's mass formula: a fixed particle (mass 0) acts massless"),
     ("cloth-correction-one-body", ONLY22, C, [("      _particles.position(i) += correction;\n", "")],
      ["correction-one-body"], "position correction applied to the cloth particle only"),
     ("cloth-no-correction", ONLY22, C,
-     [("      _particles.position(i) += correction;\n      clothParticles.position(j) -= correction;\n", "")],
+     [(CORRECTION_COMMENT, ""),
+      ("      _particles.position(i) += correction;\n      clothParticles.position(j) -= correction;\n", "")],
      ["no-position-correction"], "no position correction"),
     ("cloth-impulse-not-split", ONLY22, C,
      [(IMPULSE_CLOTH, "        Eigen::Vector4f impulse = -(1 + coefRestitution) * normalVelocity;")],
@@ -663,7 +670,7 @@ MUTANTS = [
      ["position-uses-acceleration"], "x += v dt + a dt^2 / 2"),
     # ImplicitEuler::integrate
     ("implicit-pointer-backup", BOTH, I,
-     [(BACKUP, "  auto backup = particles;\n"), ("backup[i].", "backup[i]->", 2)],
+     [(BACKUP_COMMENT, ""), (BACKUP, "  auto backup = particles;\n"), ("backup[i].", "backup[i]->", 2)],
      ["backup-alias"], "auto backup = particles; copies the pointers, not the state"),
     ("implicit-no-reevaluation", ONLY22, I, [("  simulateOneStep();\n", "")],
      ["no-reevaluation"], "simulateOneStep() not called at the predicted state"),
@@ -710,6 +717,7 @@ def write_mutants(full):
             file = STUB_HEAD[stub][0]
             mutated = edit(ref[file], stub, edits)
             assert mutated != ref[file]
+            mutated = f"// Grader corpus mutant `{name}` ({stub}): {description}.\n" + strip_header(mutated)
             directory = HERE / edition / name
             directory.mkdir(parents=True, exist_ok=True)
             extra = {}

@@ -1,8 +1,4 @@
-// clothref's reference solution for the 2022 edition, written in course form (see cloth.cpp here).
-// Contact order of operations, which sets the last bits: n = x_sphere - x_cloth, p = r - |n|, skip
-// if p < 0, normalize n; if approaching, u = n * (v_rel . n) first, then J = (-(1 + e) * u) /
-// (invM_cloth + invM_sphere); then always c = (p * n) * 0.15f, added to the sphere, taken from the
-// other body.
+// Grader corpus mutant `cloth-first-sphere-only` (Spheres::collide(Cloth*)): every contact computed with sphere 0 (position(0), _radius[0]).
 #include "sphere.h"
 
 #include <Eigen/Dense>

@@ -1,8 +1,4 @@
-// clothref's reference solution for the 2022 edition, written in course form (see cloth.cpp here).
-// Contact order of operations, which sets the last bits: n = x_sphere - x_cloth, p = r - |n|, skip
-// if p < 0, normalize n; if approaching, u = n * (v_rel . n) first, then J = (-(1 + e) * u) /
-// (invM_cloth + invM_sphere); then always c = (p * n) * 0.15f, added to the sphere, taken from the
-// other body.
+// Grader corpus mutant `cloth-fixed-particle-massless` (Spheres::collide(Cloth*)): the spec's mass formula: a fixed particle (mass 0) acts massless.
 #include "sphere.h"
 
 #include <Eigen/Dense>
@@ -131,7 +127,6 @@ void Spheres::collide(Cloth* cloth) {
       normal.normalize();
       Eigen::Vector4f relativeVelocity = _particles.velocity(i) - clothParticles.velocity(j);
       float approach = relativeVelocity.dot(normal);
-      // Only approaching pairs get an impulse; a fixed particle (inverse mass 0) does not move.
       if (approach < 0) {
         // The restitution formula from the spec, with the masses.
         float massSphere = _particles.mass(i);

@@ -1,8 +1,4 @@
-// clothref's reference solution for the 2022 edition, written in course form (see cloth.cpp here).
-// Contact order of operations, which sets the last bits: n = x_sphere - x_cloth, p = r - |n|, skip
-// if p < 0, normalize n; if approaching, u = n * (v_rel . n) first, then J = (-(1 + e) * u) /
-// (invM_cloth + invM_sphere); then always c = (p * n) * 0.15f, added to the sphere, taken from the
-// other body.
+// Grader corpus mutant `cloth-no-correction` (Spheres::collide(Cloth*)): no position correction.
 #include "sphere.h"
 
 #include <Eigen/Dense>
@@ -139,7 +135,6 @@ void Spheres::collide(Cloth* cloth) {
         _particles.velocity(i) += impulse * _particles.inverseMass(i);
         clothParticles.velocity(j) -= impulse * clothParticles.inverseMass(j);
       }
-      // Push them apart to prevent penetration (ignores mass, as the course's hint does).
       Eigen::Vector4f correction = (penetration * normal) * 0.15f;
     }
   }

@@ -1,8 +1,4 @@
-// clothref's reference solution for the 2024 edition, written in course form (see cloth.cpp here).
-// Contact order of operations, which sets the last bits: n = x_sphere - x_cloth, p = r - |n|, skip
-// if p < 0, normalize n; if approaching, u = n * (v_rel . n) first, then J = (-(1 + e) * u) /
-// (invM_cloth + invM_sphere); then always c = (p * n) * 0.15f, added to the sphere, taken from the
-// particle.
+// Grader corpus mutant `cloth-no-approach-check` (Spheres::collide(Cloth*)): impulse applied even when the pair already separates.
 #include "sphere.h"
 
 #include <Eigen/Dense>
@@ -133,7 +129,6 @@ void Spheres::collide(Cloth* cloth) {
       normal.normalize();
       Eigen::Vector4f relativeVelocity = _particles.velocity(i) - clothParticles.velocity(j);
       float approach = relativeVelocity.dot(normal);
-      // Only approaching pairs get an impulse; a fixed particle (inverse mass 0) does not move.
       {
         Eigen::Vector4f normalVelocity = normal * approach;
         Eigen::Vector4f impulse = (-(1 + coefRestitution) * normalVelocity) /
