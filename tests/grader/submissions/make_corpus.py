@@ -820,6 +820,15 @@ Everything here is written by `make_corpus.py` from the course-form reference in
 mutant edit must still match exactly, or the script stops). `check_corpus.py` compiles every
 case's files against the stand-in headers with `g++ -std=c++20 -fsyntax-only`.
 
+Some mistakes show only under a particular probe: `spring-hard-coded-25` only at another N;
+`midpoint-deltatime-mutated` gives the right first step (it halves the global `deltaTime` and
+scales back) and is caught by "deltaTime unchanged afterwards"; `cloth-touching-skipped` needs an
+approaching particle at penetration exactly 0 with no other contact moving the sphere first;
+`midpoint-ref-backup` assumes two bodies, as the course's main passes; `force-dangling-auto` is
+undefined behaviour (it segfaults with g++ 12 at -O1 and -O2). `accepted-variants` and
+`student-zip` give other trajectories and other float rounding than the reference (summation
+order, scalar impulse), so they score 100 % only with tolerances on a sensible scale.
+
 ## Cases
 """
 
