@@ -836,12 +836,13 @@ order, scalar impulse), so they score 100 % only with tolerances on a sensible s
 def write_readme():
     lines = [README_HEAD]
     for edition in ("2022", "2024"):
-        lines.append(f"\n### {edition}\n\n| case | kind | stubs losing points | what |\n|---|---|---|---|\n")
+        lines.append(f"\n### {edition}\n\n| case | kind | stubs losing points | diagnoses | what |\n|---|---|---|---|---|\n")
         for expected_path in sorted((HERE / edition).glob("*/expected.json")):
             expected = json.loads(expected_path.read_text())
             losing = ", ".join(f"`{s}`" for s in expected["stubs_losing_points"]) or "none"
+            diagnoses = ", ".join(f"`{d}`" for d in expected["diagnoses"]) or "-"
             lines.append(f"| `{expected_path.parent.name}` | {expected['kind']} | {losing} | "
-                         f"{expected['description']} |\n")
+                         f"{diagnoses} | {expected['description']} |\n")
     (HERE / "README.md").write_text("".join(lines))
 
 
