@@ -1,0 +1,3 @@
+// first draft, does not compile
+#include "cloth.h"
+void Cloth::computeSpringForce() { oops }
