@@ -47,8 +47,6 @@ int runStability(const StabilityOptions& options) {
                        "'");
     precisions = {precision};
   }
-  // every scene must have modes before any long run starts
-  for (const Scene& scene : scenes) sceneModes(scene);
   const auto progress = [&options](const std::string& line) {
     if (!options.quiet) std::cerr << line << '\n';
   };

@@ -166,8 +166,10 @@ double stepSpectralRadius(const MethodChoice& method, const Mode& mode, double h
     // v1 = v0 + h (-kappa x0 - delta v0), x1 = x0 + h v1
     const double a = 1 - h * h * mode.kappa, b = h * (1 - h * mode.delta);
     const double c = -h * mode.kappa, d = 1 - h * mode.delta;
-    const double trace = a + d, det = a * d - b * c;
-    const Complex root = std::sqrt(Complex(trace * trace - 4 * det, 0));
+    // (a - d)^2 + 4 b c rather than trace^2 - 4 det: no cancellation when a drag-only mode
+    // (kappa = 0) has the eigenvalues 1 and 1 - h delta
+    const double trace = a + d;
+    const Complex root = std::sqrt(Complex((a - d) * (a - d) + 4 * b * c, 0));
     return std::max(std::abs((trace + root) / 2.0), std::abs((trace - root) / 2.0));
   }
   double radius = 0;
