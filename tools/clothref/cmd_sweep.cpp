@@ -66,7 +66,10 @@ int runSweep(const SweepOptions& options) {
   const auto settings_for = [&options](const Scene& scene) {
     SweepSettings settings = defaultSweepSettings(scene);
     settings.repeats = options.repeats;
-    if (!options.substeps.empty()) settings.substeps = options.substeps;
+    if (!options.substeps.empty()) {
+      settings.substeps = options.substeps;
+      settings.backward_euler_substeps.clear();
+    }
     return settings;
   };
   const auto progress = [&options](const std::string& line) {

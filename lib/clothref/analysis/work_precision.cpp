@@ -148,6 +148,7 @@ SweepSettings defaultSweepSettings(const Scene& scene) {
     settings.horizon = 1;
     settings.sample_interval = 0.01;
     settings.substeps = {1, 2, 4, 10, 20, 25, 32, 40, 50, 64, 80, 100, 160, 250};
+    settings.backward_euler_substeps = {1, 2, 4, 10, 20, 40, 100};
     settings.reference_substeps = 1000;
   }
   return settings;
@@ -230,11 +231,16 @@ SweepResult sweep(const std::vector<Scene>& scenes, const std::vector<MethodChoi
     if (progress) progress(fmt::format("sweep: {}: computing the reference", scene.name));
     const SweepReference reference = sweepReference(scene, settings);
     result.references.push_back(reference.description);
-    const std::size_t total = methods.size() * precisions.size() * settings.substeps.size();
-    std::size_t done = 0;
+    const auto ladder = [&settings](const MethodChoice& method) -> const std::vector<int>& {
+      return method.backward_euler && !settings.backward_euler_substeps.empty()
+                 ? settings.backward_euler_substeps
+                 : settings.substeps;
+    };
+    std::size_t total = 0, done = 0;
+    for (const MethodChoice& method : methods) total += precisions.size() * ladder(method).size();
     for (const MethodChoice& method : methods) {
       for (Precision precision : precisions) {
-        for (int substeps : settings.substeps) {
+        for (int substeps : ladder(method)) {
           const SweepPoint point =
               sweepPoint(scene, method, precision, substeps, settings, reference);
           result.points.push_back(point);

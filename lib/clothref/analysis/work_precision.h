@@ -33,12 +33,14 @@ struct SweepSettings {
   double horizon = 1;               // T, s
   double sample_interval = 0.1;     // s
   std::vector<int> substeps;        // dt = sample_interval / substeps[k], coarse to fine
+  std::vector<int> backward_euler_substeps;  // the same for backward Euler (empty: substeps)
   int repeats = 5;
   int reference_substeps = 1000;    // non-spring scenes: the reference's dt divides the interval
 };
 
 // The settings the sweep uses for a scene: spring scenes T = 1 s, interval 0.1 s,
-// dt = 0.1 .. ~1e-5 s; other scenes T = 1 s, interval 0.01 s, dt = 1e-2 .. 4e-5 s.
+// dt = 0.1 .. ~1e-5 s; other scenes T = 1 s, interval 0.01 s, dt = 1e-2 .. 4e-5 s, backward
+// Euler (stable everywhere, and the dearest step) 1e-2 .. 1e-4 s.
 SweepSettings defaultSweepSettings(const Scene& scene);
 
 struct SweepPoint {

@@ -20,17 +20,28 @@ import os
 import sys
 import tempfile
 
-import matplotlib
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+from clothref.energy import EnergyModel
+from clothref.trace import TraceError, iter_steps
 
-from clothref.energy import EnergyModel  # noqa: E402
-from clothref.trace import TraceError, iter_steps  # noqa: E402
 
-# SVG output without a date and with fixed ids, so a re-run writes the same file
-plt.rcParams["svg.hashsalt"] = "clothref"
+class _LazyPyplot:
+    """matplotlib.pyplot, imported on first use: bad input is reported before the slow import."""
+
+    def __getattr__(self, name):
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as pyplot
+
+        # SVG output without a date and with fixed ids, so a re-run writes the same file
+        pyplot.rcParams["svg.hashsalt"] = "clothref"
+        globals()["plt"] = pyplot
+        return getattr(pyplot, name)
+
+
+plt = _LazyPyplot()
 METHOD_COLOURS = {"explicit": "#d62728", "implicit": "#ff7f0e", "midpoint": "#2ca02c",
                   "rk4": "#1f77b4", "symplectic": "#9467bd", "backward-euler": "#8c564b"}
 TRACE_COLOURS = ["#1f4e9c", "#d1495b"]
@@ -49,6 +60,9 @@ def save(figure, prefix, suffix, formats):
             raise InputProblem(f"{path}: directory {directory} does not exist")
         handle, temporary = tempfile.mkstemp(prefix=".plot-", suffix="." + fmt, dir=directory)
         os.close(handle)
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(temporary, 0o666 & ~umask)  # mkstemp's 0600 is not what a chart needs
         try:
             metadata = {"Date": None} if fmt == "svg" else {"Software": "clothref"}
             figure.savefig(temporary, format=fmt, dpi=110, metadata=metadata)
@@ -135,7 +149,8 @@ def equal_axes(axis, points):
     axis.set_xlim(middle[0] - half, middle[0] + half)
     axis.set_ylim(middle[2] - half, middle[2] + half)
     axis.set_zlim(middle[1] - half, middle[1] + half)
-    axis.set_box_aspect((1, 1, 1))
+    # zoomed out a little so the vertical axis label is not clipped
+    axis.set_box_aspect((1, 1, 1), zoom=0.82)
 
 
 def plot_traces(args):
@@ -171,7 +186,8 @@ def plot_traces(args):
         axis.view_init(elev=22, azim=-60)
         axis.set_xlabel("x (m)")
         axis.set_ylabel("z (m)")
-        axis.set_zlabel("y (m, up)")
+        axis.set_zlabel("y (m), up")
+        axis.tick_params(labelsize=7)
         axis.set_title(titles[0] if len(set(titles)) == 1 else "\n".join(titles), fontsize=10)
     if len(runs) > 1:
         figure.legend(loc="upper right", fontsize=9)

@@ -24,10 +24,13 @@ class TraceError(Exception):
 _NONFINITE = {"NaN": math.nan, "Infinity": math.inf, "-Infinity": -math.inf}
 
 
-def _number_array(rows, where):
+def _number_array(rows, where, dtype):
+    # a float trace holds the shortest text that reads back as the same float: read it as a
+    # double, round to float32 (which recovers that float), then widen exactly
     try:
         return np.array([[_NONFINITE.get(v, v) if isinstance(v, str) else v for v in row]
-                         for row in rows], dtype=np.float64).reshape(-1, 3)
+                         for row in rows], dtype=np.float64).astype(dtype).astype(
+                             np.float64).reshape(-1, 3)
     except (TypeError, ValueError) as error:
         raise TraceError(f"{where}: expected [[x, y, z], ...] numbers ({error})") from None
 
@@ -59,6 +62,7 @@ def iter_steps(path):
                              f"{header.get('version')} (this reader reads 1)")
         yield header
         counts = {b["name"]: int(b["particles"]) for b in header.get("bodies", [])}
+        dtype = np.float32 if header.get("precision") == "float" else np.float64
         for number, line in enumerate(handle, start=2):
             if not line.strip():
                 continue
@@ -69,8 +73,8 @@ def iter_steps(path):
                 for name, count in counts.items():
                     body = item["bodies"][name]
                     where = f"{path}:{number}: /bodies/{name}"
-                    position = _number_array(body["position"], where + "/position")
-                    velocity = _number_array(body["velocity"], where + "/velocity")
+                    position = _number_array(body["position"], where + "/position", dtype)
+                    velocity = _number_array(body["velocity"], where + "/velocity", dtype)
                     if len(position) != count or len(velocity) != count:
                         raise TraceError(f"{where}: {len(position)} particles, the header "
                                          f"declares {count}")
