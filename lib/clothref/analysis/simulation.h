@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "clothref/core/world.h"
+#include "clothref/scene/make_world.h"
 #include "clothref/scene/scene.h"
 #include "clothref/solver/backward_euler.h"
 
