@@ -305,18 +305,21 @@ def plot_sweep(args):
 
 
 def plot_stability(args):
+    from matplotlib.patches import Patch
+
     data = read_json(args.input, "results")
     results = data["results"]
     scenes = list(dict.fromkeys(r["scene"] for r in results))
-    figure, axes = plt.subplots(1, len(scenes), figsize=(5.2 * len(scenes), 4.6), squeeze=False)
+    figure, axes = plt.subplots(1, len(scenes), figsize=(5.6 * len(scenes), 4.8), squeeze=False)
+    series = [("theory (amplification on the linear modes)", None, "#888888"),
+              ("measured, float", "float", "#1f77b4"), ("measured, double", "double", "#ff7f0e")]
+    width = 0.26
     for axis, scene in zip(axes[0], scenes):
         rows = [r for r in results if r["scene"] == scene]
         methods = list(dict.fromkeys(r["method"] for r in rows))
-        series = [("theory", None, "#888888"), ("measured, float", "float", "#1f77b4"),
-                  ("measured, double", "double", "#ff7f0e")]
-        width = 0.26
-        values = [v for r in rows for v in (r["dt_max_measured"], r["dt_max_theory"]) if v]
-        floor = min(values) / 3 if values else 1e-6
+        values = [v for r in rows for v in (r["dt_max_measured"], r["dt_max_theory"],
+                                             r["search_low"]) if v]
+        floor = min(values) / 2
         for s, (label, precision, colour) in enumerate(series):
             for m, method in enumerate(methods):
                 match = [r for r in rows if r["method"] == method and
@@ -325,28 +328,35 @@ def plot_stability(args):
                     continue
                 r = match[0]
                 value = r["dt_max_theory"] if precision is None else r["dt_max_measured"]
+                note = r["theory_note"] if precision is None else r["measured_note"]
                 x = m + (s - 1) * width
                 if value is not None:
-                    axis.bar(x, value - floor, bottom=floor, width=width, color=colour,
-                             label=label if m == 0 else None)
+                    axis.bar(x, value - floor, bottom=floor, width=width, color=colour)
+                elif precision is not None and note.startswith("stable at every dt"):
+                    # stable up to the end of the search: a hatched bar to that end
+                    axis.bar(x, r["search_high"] - floor, bottom=floor, width=width,
+                             color="white", edgecolor=colour, hatch="///")
+                    axis.text(x, r["search_high"], "\u2265", ha="center", va="bottom",
+                              fontsize=9, color=colour)
                 else:
-                    note = r["theory_note"] if precision is None else r["measured_note"]
-                    text = "none" if ("every dt >" in note or "unstable" in note) else "inf"
-                    if "stable at every dt tried" in note:
-                        text = f">={r['search_high']:g}"
-                    axis.text(x, floor * 1.15, text, rotation=90, ha="center", va="bottom",
-                              fontsize=7, color=colour)
+                    text = "no limit" if "never exceeds" in note else "none"
+                    axis.text(x, floor * 1.08, text, rotation=90, ha="center", va="bottom",
+                              fontsize=8, color=colour, fontweight="bold")
         axis.set_yscale("log")
         axis.set_xticks(range(len(methods)))
-        axis.set_xticklabels(methods, rotation=30, ha="right", fontsize=9)
+        axis.set_xticklabels(methods, rotation=25, ha="right", fontsize=9)
+        axis.set_xlim(-0.6, len(methods) - 0.4)
         axis.set_ylabel("largest stable dt (s)")
         axis.set_title(scene, fontsize=10)
         axis.grid(True, axis="y", which="both", alpha=0.3)
-        axis.legend(fontsize=8, loc="upper left")
-    figure.text(0.01, 0.01, "none: unstable at every dt (theory) or at the smallest dt tried; "
-                "inf: no limit; >=X: stable up to the search's end. Criteria: docs/methods.md",
-                fontsize=7)
-    figure.tight_layout(rect=(0, 0.04, 1, 1))
+    handles = [Patch(color=colour, label=label) for label, _, colour in series]
+    handles.append(Patch(facecolor="white", edgecolor="black", hatch="///",
+                         label="stable at every dt tried (up to the search's end)"))
+    figure.legend(handles=handles, loc="upper center", ncol=4, fontsize=8)
+    figure.text(0.01, 0.01, "none: unstable at every dt (theory) or already at the smallest dt "
+                "tried (measured); no limit: the spectral radius never exceeds 1. Criteria and "
+                "search ranges: docs/methods.md", fontsize=7)
+    figure.tight_layout(rect=(0, 0.04, 1, 0.92))
     return save(figure, args.output, "", args.formats)
 
 
