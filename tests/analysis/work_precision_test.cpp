@@ -91,6 +91,9 @@ TEST(WorkPrecision, CountsAndTimingStatisticsAreConsistent) {
     EXPECT_EQ(p.runs, 5);
     EXPECT_LE(p.seconds_min, p.seconds_median);
     EXPECT_LE(p.seconds_median, p.seconds_max);
+    EXPECT_LE(p.cpu_seconds_min, p.cpu_seconds_median);
+    EXPECT_LE(p.cpu_seconds_median, p.cpu_seconds_max);
+    EXPECT_GT(p.cpu_seconds_min, 0.0);
     // the RMS over time of the max error is at most its maximum over time, which is at least
     // the final error's size order; both are positive
     EXPECT_GT(*p.error_final, 0.0);

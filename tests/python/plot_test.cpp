@@ -11,6 +11,8 @@
 
 #include <fmt/format.h>
 
+#include "clothref/core/world.h"
+#include "clothref/scene/make_world.h"
 #include "test_util.h"
 
 namespace clothref {

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <cmath>
 #include <fstream>
 #include <thread>
@@ -69,9 +70,16 @@ int samples(const SweepSettings& settings) {
   return static_cast<int>(std::llround(settings.horizon / settings.sample_interval));
 }
 
+double threadCpuSeconds() {
+  timespec now{};
+  ::clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+  return double(now.tv_sec) + 1e-9 * double(now.tv_nsec);
+}
+
 struct RunOutcome {
   bool stable = true;
   double seconds = 0;    // wall
+  double cpu_seconds = 0;
   double simulated = 0;  // s
   double error_final = 0;
   double error_rms = 0;
@@ -86,6 +94,7 @@ RunOutcome runOnce(const Scene& scene, const MethodChoice& method, double dt, in
   RunOutcome outcome;
   double sum_squares = 0;
   const auto start = std::chrono::steady_clock::now();
+  const double cpu_start = threadCpuSeconds();
   std::int64_t steps = 0;
   for (int m = 1; m <= count && outcome.stable; ++m) {
     for (int s = 0; s < substeps; ++s) {
@@ -104,6 +113,7 @@ RunOutcome runOnce(const Scene& scene, const MethodChoice& method, double dt, in
     }
   }
   outcome.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  outcome.cpu_seconds = threadCpuSeconds() - cpu_start;
   outcome.simulated = double(steps) * dt;
   outcome.error_rms = std::sqrt(sum_squares / count);
   if (method.backward_euler && simulation.solver.stats.solves > 0)
@@ -200,6 +210,7 @@ SweepPoint sweepPoint(const Scene& scene, const MethodChoice& method, Precision 
   };
   const RunOutcome first = run(&reference);
   std::vector<double> times = {first.seconds / first.simulated};
+  std::vector<double> cpu_times = {first.cpu_seconds / first.simulated};
   point.stable = first.stable;
   point.cg_iterations = first.cg_iterations;
   if (first.stable) {
@@ -208,6 +219,7 @@ SweepPoint sweepPoint(const Scene& scene, const MethodChoice& method, Precision 
     for (int r = 1; r < settings.repeats; ++r) {
       const RunOutcome again = run(nullptr);
       times.push_back(again.seconds / again.simulated);
+      cpu_times.push_back(again.cpu_seconds / again.simulated);
     }
   }
   // on the spring scenes a run can grow without leaving the bounds within the horizon: judge it
@@ -218,6 +230,9 @@ SweepPoint sweepPoint(const Scene& scene, const MethodChoice& method, Precision 
   point.seconds_median = median(times);
   point.seconds_min = *std::min_element(times.begin(), times.end());
   point.seconds_max = *std::max_element(times.begin(), times.end());
+  point.cpu_seconds_median = median(cpu_times);
+  point.cpu_seconds_min = *std::min_element(cpu_times.begin(), cpu_times.end());
+  point.cpu_seconds_max = *std::max_element(cpu_times.begin(), cpu_times.end());
   return point;
 }
 
@@ -262,13 +277,15 @@ SweepResult sweep(const std::vector<Scene>& scenes, const std::vector<MethodChoi
 std::string sweepToCsv(const SweepResult& result) {
   std::string out =
       "scene,method,precision,dt,steps,evaluations,stable,error_final,error_rms,"
-      "seconds_median,seconds_min,seconds_max,runs,cg_iterations\n";
+      "seconds_median,seconds_min,seconds_max,cpu_seconds_median,cpu_seconds_min,"
+      "cpu_seconds_max,runs,cg_iterations\n";
   for (const SweepPoint& p : result.points) {
-    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", p.scene, p.method,
+    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", p.scene, p.method,
                        precisionName(p.precision), p.dt, p.steps, p.evaluations,
                        p.stable ? "true" : "false", optionalCsv(p.error_final),
                        optionalCsv(p.error_rms), p.seconds_median, p.seconds_min, p.seconds_max,
-                       p.runs, optionalCsv(p.cg_iterations));
+                       p.cpu_seconds_median, p.cpu_seconds_min, p.cpu_seconds_max, p.runs,
+                       optionalCsv(p.cg_iterations));
   }
   return out;
 }
@@ -284,7 +301,8 @@ nlohmann::ordered_json sweepToJson(const SweepResult& result) {
   root["norms"] = {
       {"error_final", "max over particles of |x - x_ref| at the horizon (m)"},
       {"error_rms", "RMS over the sample times of the max over particles of |x - x_ref| (m)"},
-      {"seconds", "wall seconds per simulated second; median, min, max over the runs"}};
+      {"seconds", "wall seconds per simulated second; median, min, max over the runs"},
+      {"cpu_seconds", "the thread's CPU seconds per simulated second; median, min, max"}};
   root["references"] = result.references;
   nlohmann::ordered_json points = nlohmann::ordered_json::array();
   for (const SweepPoint& p : result.points) {
@@ -301,6 +319,9 @@ nlohmann::ordered_json sweepToJson(const SweepResult& result) {
     item["seconds_median"] = p.seconds_median;
     item["seconds_min"] = p.seconds_min;
     item["seconds_max"] = p.seconds_max;
+    item["cpu_seconds_median"] = p.cpu_seconds_median;
+    item["cpu_seconds_min"] = p.cpu_seconds_min;
+    item["cpu_seconds_max"] = p.cpu_seconds_max;
     item["runs"] = p.runs;
     item["cg_iterations"] = optionalJson(p.cg_iterations);
     points.push_back(item);

@@ -8,8 +8,10 @@
 //   error_rms    sqrt(mean over t_m of (max over particles of |x_i(t_m) - x_ref_i(t_m)|)^2) (m)
 //   reference    the closed form (verify/analytic.h) for the spring scenes; for any other scene
 //                a double RK4 run at dt = sample_interval / reference_substeps.
-// Timing. Each point runs `repeats` times; the first run also measures the error. Time is wall
-// time (steady_clock) per simulated second: median, min and max over the runs.
+// Timing. Each point runs `repeats` times; the first run also measures the error. Time per
+// simulated second, median, min and max over the runs, both as wall time (steady_clock) and as
+// the thread's CPU time (CLOCK_THREAD_CPUTIME_ID), which time slices lost to other processes
+// on a shared machine do not inflate.
 // Stability. A run that turns non-finite or exceeds 100 m or 100 m/s stops there: the point is
 // unstable, timed once over the part simulated, and its errors are null. On the spring scenes a
 // point is also unstable when clothref stability's criterion fires at its dt (the amplitude can
@@ -56,6 +58,9 @@ struct SweepPoint {
   double seconds_median = 0;             // wall seconds per simulated second
   double seconds_min = 0;
   double seconds_max = 0;
+  double cpu_seconds_median = 0;         // the thread's CPU seconds per simulated second
+  double cpu_seconds_min = 0;
+  double cpu_seconds_max = 0;
   int runs = 0;
   std::optional<double> cg_iterations;   // backward Euler: mean CG iterations per step
 };

@@ -229,17 +229,13 @@ def read_json(path, expected_key):
     return data
 
 
-def slope_lines(axis, xs, ys, orders=(1, 2, 4)):
-    """Reference lines error ~ work^-p through the geometric middle of the data."""
-    xs, ys = np.asarray(xs), np.asarray(ys)
-    if len(xs) < 2:
-        return
-    x0, x1 = xs.min(), xs.max()
-    xm, ym = math.sqrt(x0 * x1), math.exp(np.mean(np.log(ys)))
-    grid = np.array([x0, x1])
+def slope_fan(axis, x_left, y_top, orders=(1, 2, 4)):
+    """Reference slopes: from (x_left, y_top), one decade of work, error ~ work^-p."""
     for p, style in zip(orders, [":", "-.", "--"]):
-        axis.plot(grid, ym * (grid / xm) ** (-p), color="grey", linestyle=style, linewidth=0.9,
-                  label=f"order {p}")
+        xs = np.array([x_left, x_left * 10])
+        ys = y_top * (xs / x_left) ** (-p)
+        axis.plot(xs, ys, color="black", linestyle=style, linewidth=1.0, label=f"order {p}")
+        axis.text(xs[1] * 1.1, ys[1], f"{p}", fontsize=8, va="center")
 
 
 def plot_sweep(args):
@@ -252,54 +248,58 @@ def plot_sweep(args):
         precisions = list(dict.fromkeys(p["precision"] for p in points))
         figure, axes = plt.subplots(len(precisions), 2, figsize=(12, 4.8 * len(precisions)),
                                     squeeze=False)
+        finite_all = [p[key] for p in points if p[key] is not None and p[key] > 0]
+        if not finite_all:
+            raise InputProblem(f"{args.input}: scene {scene} has no finite error to plot")
+        top = max(finite_all) * 10
+        bottom = min(finite_all) / 3
         for row, precision in enumerate(precisions):
             subset = [p for p in points if p["precision"] == precision]
-            stable = [p for p in subset if p["stable"] and p[key] is not None and p[key] > 0]
-            if not stable:
-                continue
-            top = max(p[key] for p in stable) * 30
+            timing = ("cpu_seconds_median", "CPU time per simulated second (s), median of runs")
+            if any("cpu_seconds_median" not in p for p in subset):
+                timing = ("seconds_median", "wall time per simulated second (s), median of runs")
             for col, (work, label) in enumerate([
-                    ("seconds_median", "wall time per simulated second (s), median"),
-                    ("evaluations", "derivative evaluations to the horizon")]):
+                    timing, ("evaluations", "derivative evaluations to the horizon")]):
                 axis = axes[row][col]
                 for method in dict.fromkeys(p["method"] for p in subset):
-                    mine = [p for p in stable if p["method"] == method]
-                    mine.sort(key=lambda p: p[work])
+                    mine = [p for p in subset if p["method"] == method]
                     colour = METHOD_COLOURS.get(method, "black")
-                    if mine:
-                        axis.plot([p[work] for p in mine], [p[key] for p in mine], marker="o",
+                    good = sorted([p for p in mine if p["stable"] and p[key] is not None],
+                                  key=lambda p: p[work])
+                    if good:
+                        axis.plot([p[work] for p in good], [p[key] for p in good], marker="o",
                                   markersize=3.5, color=colour, label=method)
-                        if work == "seconds_median":
-                            lo = [p[work] - p["seconds_min"] for p in mine]
-                            hi = [p["seconds_max"] - p[work] for p in mine]
-                            axis.errorbar([p[work] for p in mine], [p[key] for p in mine],
-                                          xerr=[lo, hi], fmt="none", ecolor=colour, alpha=0.5)
-                    bad = [p for p in subset if p["method"] == method and not p["stable"]]
+                    # unstable points are kept: at their error if the run stayed finite,
+                    # otherwise on the line at the top
+                    bad = [p for p in mine if not p["stable"]]
                     if bad:
-                        axis.scatter([p[work] for p in bad], [top] * len(bad), marker="x",
-                                     color=colour, s=30)
-                slope_lines(axis, [p[work] for p in stable], [p[key] for p in stable])
+                        axis.scatter([p[work] for p in bad],
+                                     [p[key] if p[key] is not None else top for p in bad],
+                                     marker="x", color=colour, s=36, linewidths=1.5, zorder=3)
+                xs = [p[work] for p in subset if p[work] and p[work] > 0]
+                slope_fan(axis, min(xs) * 1.5, top / 20)
                 axis.axhline(top, color="black", linewidth=0.5)
-                axis.text(0.01, 0.985, "x = unstable (blew up)", transform=axis.transAxes,
-                          fontsize=8, va="top")
+                axis.text(0.99, 0.985, "x: unstable (on the top line: blew up)",
+                          transform=axis.transAxes, fontsize=8, va="top", ha="right")
                 if precision == "float":
                     floor = 2.0 ** -24
                     axis.axhline(floor, color="black", linestyle=(0, (1, 3)), linewidth=0.8)
-                    axis.text(0.99, floor * 1.3, "float epsilon x 1 m", ha="right",
+                    axis.text(0.99, floor * 1.4, "float epsilon x 1 m", ha="right",
                               transform=axis.get_yaxis_transform(), fontsize=8)
                 axis.set_xscale("log")
                 axis.set_yscale("log")
+                axis.set_ylim(bottom, top * 3)
                 axis.set_xlabel(label)
                 axis.set_ylabel(f"position error, {args.norm} (m)")
                 axis.set_title(f"{scene}, {precision}", fontsize=10)
                 axis.grid(True, which="major", alpha=0.3)
-            axes[row][0].legend(fontsize=8, ncol=2, loc="lower left")
+            axes[row][1].legend(fontsize=8, ncol=2, loc="lower left")
         caption = (f"{data.get('machine', '?')}; {data.get('compiler', '?')} "
-                   f"({data.get('build_type', '?')}). Error norm: {data['norms'][key]}. "
-                   "Timings on a shared 2-core machine are noisy (bars: min..max of the runs); "
-                   "evaluation counts are not.")
-        figure.text(0.01, 0.005, caption, fontsize=7, wrap=True)
-        figure.tight_layout(rect=(0, 0.03, 1, 1))
+                   f"({data.get('build_type', '?')}). Error: {data['norms'][key]}. "
+                   "Times: the thread's CPU time (wall time, min and max are in the data); on a "
+                   "shared 2-core machine they are noisy, evaluation counts are not.")
+        figure.text(0.01, 0.005, caption, fontsize=7)
+        figure.tight_layout(rect=(0, 0.02, 1, 1))
         written += save(figure, args.output, f"-{scene}", args.formats)
     return written
 
