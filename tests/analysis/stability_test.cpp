@@ -78,18 +78,18 @@ TEST_P(SpringStability, MeasuredAgreesWithTheoryWithinOnePercent) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Methods, SpringStability,
-    ::testing::Combine(::testing::Values("spring", "spring-undamped"),
-                       ::testing::Values("explicit", "implicit", "midpoint", "rk4", "symplectic",
-                                         "backward-euler")),
-    [](const auto& info) {
-      std::string name =
-          std::string(std::get<0>(info.param)) + "_" + std::get<1>(info.param);
-      for (char& c : name)
-        if (c == '-') c = '_';
-      return name;
-    });
+INSTANTIATE_TEST_SUITE_P(Methods, SpringStability,
+                         ::testing::Combine(::testing::Values("spring", "spring-undamped"),
+                                            ::testing::Values("explicit", "implicit", "midpoint",
+                                                              "rk4", "symplectic",
+                                                              "backward-euler")),
+                         [](const auto& info) {
+                           std::string name =
+                               std::string(std::get<0>(info.param)) + "_" + std::get<1>(info.param);
+                           for (char& c : name)
+                             if (c == '-') c = '_';
+                           return name;
+                         });
 
 TEST(StabilityMeasured, TheCriterionFiresOnlyAboveTheLimit) {
   const Scene& scene = *findBuiltinScene("spring-undamped");
@@ -132,15 +132,15 @@ TEST(StabilityJson, NullWhereThereIsNoLimit) {
 }
 
 TEST(StabilityCli, PrintsTheDocumentedJson) {
-  const test::CommandResult result =
-      test::runCli("stability --scene spring-undamped --method rk4 --method explicit "
-                   "--precision double --json --quiet");
+  const test::CommandResult result = test::runCli(
+      "stability --scene spring-undamped --method rk4 --method explicit "
+      "--precision double --json --quiet");
   ASSERT_EQ(result.exit_code, 0) << result.output;
   const auto json = nlohmann::json::parse(result.output);
   ASSERT_EQ(json["results"].size(), 2u);
   for (const auto& item : json["results"])
-    for (const char* key : {"scene", "method", "precision", "dt_max_measured", "dt_max_theory",
-                            "criterion"})
+    for (const char* key :
+         {"scene", "method", "precision", "dt_max_measured", "dt_max_theory", "criterion"})
       EXPECT_TRUE(item.contains(key)) << key;
   EXPECT_EQ(json["results"][0]["method"], "rk4");
   EXPECT_NEAR(json["results"][0]["dt_max_theory"].get<double>(), 0.2 * std::sqrt(2.0), 1e-6);

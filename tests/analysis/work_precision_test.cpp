@@ -61,8 +61,8 @@ TEST(WorkPrecision, UnstablePointsAreFlaggedAndKept) {
   EXPECT_FALSE(p.stable);
   EXPECT_GT(*p.error_final, 0.2);
   // and dt = 0.01 s is stable
-  EXPECT_TRUE(sweepPoint(scene, method("explicit"), Precision::Float, 10, settings, reference)
-                  .stable);
+  EXPECT_TRUE(
+      sweepPoint(scene, method("explicit"), Precision::Float, 10, settings, reference).stable);
 
   // course2022 at 5 ms blows up: the run stops, errors are null, it is timed once
   const Scene& course = *findBuiltinScene("course2022");
@@ -70,8 +70,8 @@ TEST(WorkPrecision, UnstablePointsAreFlaggedAndKept) {
   course_settings.horizon = 0.1;
   course_settings.reference_substeps = 50;  // 2e-4 s, inside RK4's limit
   const SweepReference course_reference = sweepReference(course, course_settings);
-  const SweepPoint blown =
-      sweepPoint(course, method("explicit"), Precision::Float, 2, course_settings, course_reference);
+  const SweepPoint blown = sweepPoint(course, method("explicit"), Precision::Float, 2,
+                                      course_settings, course_reference);
   EXPECT_FALSE(blown.stable);
   EXPECT_FALSE(blown.error_final.has_value());
   EXPECT_FALSE(blown.error_rms.has_value());
@@ -106,7 +106,8 @@ TEST(WorkPrecision, FloatErrorsStopAtTheFloatFloor) {
   const Scene& scene = *findBuiltinScene("spring");
   const SweepSettings settings = springSettings({10240});
   const SweepReference reference = sweepReference(scene, settings);
-  const SweepPoint f = sweepPoint(scene, method("rk4"), Precision::Float, 10240, settings, reference);
+  const SweepPoint f =
+      sweepPoint(scene, method("rk4"), Precision::Float, 10240, settings, reference);
   const SweepPoint d =
       sweepPoint(scene, method("rk4"), Precision::Double, 10240, settings, reference);
   // RK4 at 1e-5 s is far below float's resolution: float sees round-off, double does not
@@ -119,7 +120,8 @@ TEST(SweepCli, WritesCsvAndJson) {
   const std::string csv = dir.file("sweep.csv"), json = dir.file("sweep.json");
   const test::CommandResult result = test::runCli(
       "sweep --scene spring --method rk4 --method backward-euler --precision double "
-      "--repeats 2 --substeps 10 --substeps 20 --quiet --csv " + csv + " --json " + json);
+      "--repeats 2 --substeps 10 --substeps 20 --quiet --csv " +
+      csv + " --json " + json);
   ASSERT_EQ(result.exit_code, 0) << result.output;
   std::ifstream csv_in(csv);
   std::vector<std::string> lines;
@@ -139,11 +141,10 @@ TEST(SweepCli, WritesCsvAndJson) {
 TEST(SweepCli, BadInputLeavesNoOutput) {
   test::TempDir dir;
   const std::string csv = dir.file("sweep.csv");
-  for (const std::string args :
-       {"sweep --scene spring --method leapfrog --csv " + csv,
-        "sweep --scene spring --repeats 0 --csv " + csv,
-        "sweep --scene spring --substeps 0 --csv " + csv,
-        "sweep --scene spring --csv " + dir.file("missing/dir/out.csv")}) {
+  for (const std::string args : {"sweep --scene spring --method leapfrog --csv " + csv,
+                                 "sweep --scene spring --repeats 0 --csv " + csv,
+                                 "sweep --scene spring --substeps 0 --csv " + csv,
+                                 "sweep --scene spring --csv " + dir.file("missing/dir/out.csv")}) {
     const test::CommandResult result = test::runCli(args + " --quiet");
     EXPECT_EQ(result.exit_code, 2) << args << ": " << result.output;
     EXPECT_EQ(std::count(result.output.begin(), result.output.end(), '\n'), 1) << result.output;

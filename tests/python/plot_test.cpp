@@ -2,14 +2,13 @@
 // (steps, particles, 3) arrays, and `clothref plot` writes non-trivial PNG and SVG files for a
 // trace, two overlaid traces, a sweep and a stability table, on small data. Bad input: one line,
 // exit 2, no file. Skipped, with a message, when python3 or matplotlib is missing.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-
-#include <fmt/format.h>
 
 #include "clothref/core/world.h"
 #include "clothref/scene/make_world.h"
@@ -63,12 +62,13 @@ class PythonTest : public ::testing::Test {
 
 TEST_F(PythonTest, TraceReaderGivesBackTheLibrarysNumbers) {
   const std::string trace = smallTrace("a.jsonl", Method::Explicit);
-  const std::string script =
-      "import sys; sys.path.insert(0, '" CLOTHREF_PYTHON_DIR "');"
-      "from clothref.trace import read_trace;"
-      "t = read_trace(sys.argv[1]);"
-      "c = t.bodies['cloth']['position'];"
-      "print(c.shape, t.bodies['spheres']['velocity'].shape, list(t.step), repr(float(c[3, 40, 1])))";
+  const std::string script = "import sys; sys.path.insert(0, '" CLOTHREF_PYTHON_DIR
+                             "');"
+                             "from clothref.trace import read_trace;"
+                             "t = read_trace(sys.argv[1]);"
+                             "c = t.bodies['cloth']['position'];"
+                             "print(c.shape, t.bodies['spheres']['velocity'].shape, list(t.step), "
+                             "repr(float(c[3, 40, 1])))";
   const std::string command = std::string(CLOTHREF_PYTHON) + " -B -c \"" + script + "\" " + trace;
   FILE* pipe = ::popen(command.c_str(), "r");
   ASSERT_NE(pipe, nullptr);
@@ -96,9 +96,8 @@ TEST_F(PythonTest, PlotsATraceAndTwoOverlaidTraces) {
   expectImage(dir.file("one-cloth.png"), "PNG", 20000);
   expectImage(dir.file("one-energy.png"), "PNG", 20000);
   expectImage(dir.file("one-cloth.svg"), "<?xml", 20000);
-  const test::CommandResult two = test::runCli("plot " + a + " " + b +
-                                               " --labels ref student --formats png -o " +
-                                               dir.file("two"));
+  const test::CommandResult two = test::runCli(
+      "plot " + a + " " + b + " --labels ref student --formats png -o " + dir.file("two"));
   ASSERT_EQ(two.exit_code, 0) << two.output;
   expectImage(dir.file("two-cloth.png"), "PNG", 20000);
   EXPECT_FALSE(fs::exists(dir.file("two-cloth.svg")));
@@ -108,7 +107,8 @@ TEST_F(PythonTest, PlotsASweepAndAStabilityTable) {
   const std::string sweep = dir.file("sweep.json");
   ASSERT_EQ(test::runCli("sweep --scene spring --method explicit --method rk4 --repeats 1 "
                          "--substeps 1 --substeps 10 --substeps 40 --substeps 160 --quiet "
-                         "--json " + sweep)
+                         "--json " +
+                         sweep)
                 .exit_code,
             0);
   const test::CommandResult charts =
@@ -117,8 +117,8 @@ TEST_F(PythonTest, PlotsASweepAndAStabilityTable) {
   expectImage(dir.file("wp-spring.png"), "PNG", 30000);
 
   const std::string stability = dir.file("stability.json");
-  const test::CommandResult table = test::runCli(
-      "stability --scene spring-undamped --precision double --json --quiet");
+  const test::CommandResult table =
+      test::runCli("stability --scene spring-undamped --precision double --json --quiet");
   ASSERT_EQ(table.exit_code, 0) << table.output;
   std::ofstream(stability) << table.output;
   const test::CommandResult chart =
@@ -142,8 +142,7 @@ TEST_F(PythonTest, BadInputIsOneLineExitTwoAndNoFile) {
         << args << ": " << result.output;
   }
   for (const auto& entry : fs::directory_iterator(dir.path()))
-    EXPECT_EQ(entry.path().filename().string().rfind("out", 0), std::string::npos)
-        << entry.path();
+    EXPECT_EQ(entry.path().filename().string().rfind("out", 0), std::string::npos) << entry.path();
 }
 
 }  // namespace

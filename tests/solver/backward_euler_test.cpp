@@ -47,7 +47,8 @@ TEST(BackwardEuler, OneStepOnALinearSpringIsTheImplicitSolve) {
   const double kappa = problem.oscillator.stiffness / problem.oscillator.mass;
   const double delta = problem.oscillator.damping / problem.oscillator.mass;
   for (double h : {1e-3, 0.05, 0.5}) {
-    Simulation<double> sim = makeSimulation<double>(spring, MethodChoice{Method::Explicit, true}, h);
+    Simulation<double> sim =
+        makeSimulation<double>(spring, MethodChoice{Method::Explicit, true}, h);
     const double x_eq = problem.rest_length;
     double x = 1.2, v = 0;
     for (int s = 0; s < 5; ++s) {
@@ -62,8 +63,8 @@ TEST(BackwardEuler, OneStepOnALinearSpringIsTheImplicitSolve) {
 
 template <typename T>
 void expectAgreesWithEigen(double tolerance) {
-  Simulation<T> sim = makeSimulation<T>(scene("course2022"), MethodChoice{Method::Explicit, true},
-                                        2e-3);
+  Simulation<T> sim =
+      makeSimulation<T>(scene("course2022"), MethodChoice{Method::Explicit, true}, 2e-3);
   for (int s = 0; s < 3; ++s) sim.advance();  // a sagging, moving cloth
   const BackwardEulerSolver<T>& solver = sim.solver;
   Eigen::ConjugateGradient<Eigen::SparseMatrix<T, Eigen::RowMajor>, Eigen::Lower | Eigen::Upper,
@@ -126,13 +127,13 @@ TEST(BackwardEuler, StaysStableOnCourse2022AtTenTimesTheExplicitLimit) {
   const StabilityCriterion criterion = stabilityCriterion(course);
   // the largest limit of the explicit-type methods (RK4's, about 3.7e-4 s) times 10, rounded up
   const double dt = 4e-3;
-  EXPECT_TRUE(runIsStable(course, MethodChoice{Method::Explicit, true}, Precision::Float, dt,
-                          criterion));
-  EXPECT_TRUE(runIsStable(course, MethodChoice{Method::Explicit, true}, Precision::Double, dt,
-                          criterion));
+  EXPECT_TRUE(
+      runIsStable(course, MethodChoice{Method::Explicit, true}, Precision::Float, dt, criterion));
+  EXPECT_TRUE(
+      runIsStable(course, MethodChoice{Method::Explicit, true}, Precision::Double, dt, criterion));
   // the criterion can fail: the explicit methods blow up there
-  EXPECT_FALSE(runIsStable(course, MethodChoice{Method::Rk4, false}, Precision::Float, dt,
-                           criterion));
+  EXPECT_FALSE(
+      runIsStable(course, MethodChoice{Method::Rk4, false}, Precision::Float, dt, criterion));
 }
 
 template <typename T>

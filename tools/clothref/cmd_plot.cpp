@@ -4,6 +4,7 @@
 //   clothref plot A.jsonl [B.jsonl] -o PREFIX      cloth + spheres at --times, and energies
 //   clothref plot --sweep SWEEP.json -o PREFIX     work-precision charts (clothref sweep)
 //   clothref plot --stability STAB.json -o PREFIX  stability limits (clothref stability --json)
+#include <fmt/format.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -12,8 +13,6 @@
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "clothref/io/error.h"
 #include "commands.h"
@@ -73,8 +72,8 @@ int runPython(const std::vector<std::string>& args) {
 }
 
 int runPlot(const PlotOptions& options) {
-  const int modes = int(!options.traces.empty()) + int(!options.sweep.empty()) +
-                    int(!options.stability.empty());
+  const int modes =
+      int(!options.traces.empty()) + int(!options.sweep.empty()) + int(!options.stability.empty());
   if (modes != 1)
     throw InputError("plot: give one or two traces, or --sweep FILE, or --stability FILE");
   if (options.output.empty()) throw InputError("-o: an output prefix is required");

@@ -1,10 +1,10 @@
 // clothref stability: the largest stable dt per method and scene, measured by bisection and
 // predicted from the amplification of one step on the scene's linear modes
 // (lib/clothref/analysis/stability.h, docs/methods.md). Progress on stderr.
+#include <fmt/format.h>
+
 #include <iostream>
 #include <memory>
-
-#include <fmt/format.h>
 
 #include "clothref/analysis/stability.h"
 #include "clothref/io/error.h"

@@ -1,10 +1,10 @@
 // clothref sweep: work-precision data (error against a reference, wall time per simulated second,
 // derivative evaluations, stable or not) for every method, precision and dt on the chosen scenes;
 // CSV and JSON (lib/clothref/analysis/work_precision.h, docs/methods.md). Progress on stderr.
+#include <fmt/format.h>
+
 #include <iostream>
 #include <memory>
-
-#include <fmt/format.h>
 
 #include "clothref/analysis/work_precision.h"
 #include "clothref/io/error.h"
@@ -28,9 +28,8 @@ struct SweepOptions {
 
 int runSweep(const SweepOptions& options) {
   std::vector<Scene> scenes;
-  const std::vector<std::string> names = options.scenes.empty()
-                                             ? std::vector<std::string>{"spring", "course2022"}
-                                             : options.scenes;
+  const std::vector<std::string> names =
+      options.scenes.empty() ? std::vector<std::string>{"spring", "course2022"} : options.scenes;
   for (const std::string& name : names) scenes.push_back(loadScene(name));
   std::vector<MethodChoice> methods;
   if (options.methods.empty()) methods = analysisMethods();

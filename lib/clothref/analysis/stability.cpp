@@ -1,12 +1,12 @@
 #include "clothref/analysis/stability.h"
 
+#include <fmt/format.h>
+
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
-
-#include <fmt/format.h>
 
 #include "clothref/io/error.h"
 #include "clothref/verify/analytic.h"
@@ -93,8 +93,8 @@ bool clothRunIsStable(const Scene& scene, const MethodChoice& method, double dt,
   for (std::int64_t s = 0; s < steps; ++s) {
     simulation.advance();
     const World<T>& world = simulation.world;
-    if (world.cloth && !finiteAndBounded(world.cloth->particles, criterion.speed_bound,
-                                         criterion.position_bound))
+    if (world.cloth &&
+        !finiteAndBounded(world.cloth->particles, criterion.speed_bound, criterion.position_bound))
       return false;
     if (world.spheres && !finiteAndBounded(world.spheres->particles, criterion.speed_bound,
                                            criterion.position_bound))
@@ -307,10 +307,10 @@ MeasuredLimit measureLimit(const Scene& scene, const MethodChoice& method, Preci
   return result;
 }
 
-std::vector<StabilityResult> stabilityStudy(const std::vector<Scene>& scenes,
-                                            const std::vector<MethodChoice>& methods,
-                                            const std::vector<Precision>& precisions,
-                                            const std::function<void(const std::string&)>& progress) {
+std::vector<StabilityResult> stabilityStudy(
+    const std::vector<Scene>& scenes, const std::vector<MethodChoice>& methods,
+    const std::vector<Precision>& precisions,
+    const std::function<void(const std::string&)>& progress) {
   std::vector<StabilityResult> results;
   for (const Scene& scene : scenes) {
     const std::vector<Mode> modes = sceneModes(scene);
@@ -339,9 +339,9 @@ std::vector<StabilityResult> stabilityStudy(const std::vector<Scene>& scenes,
                                result.method, precisionName(precision),
                                result.measured.kind == MeasuredKind::Limit
                                    ? fmt::format("{:.6g} s", result.measured.dt)
-                                   : result.measured.kind == MeasuredKind::UnstableAtLow
-                                         ? std::string("unstable at the range's low end")
-                                         : std::string("stable at the range's high end"),
+                               : result.measured.kind == MeasuredKind::UnstableAtLow
+                                   ? std::string("unstable at the range's low end")
+                                   : std::string("stable at the range's high end"),
                                result.measured.runs, result.seconds));
       }
     }

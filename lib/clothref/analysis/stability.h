@@ -22,11 +22,10 @@
 
 #include <complex>
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "clothref/analysis/simulation.h"
 #include "clothref/core/types.h"
@@ -45,9 +44,9 @@ double stepSpectralRadius(const MethodChoice& method, const Mode& mode, double h
 
 // Why a theoretical limit is what it is.
 enum class TheoryKind {
-  Limit,           // a finite limit
-  NeverStable,     // the radius exceeds 1 at every h > 0 (e.g. explicit Euler, undamped)
-  AlwaysStable,    // never exceeds 1 (backward Euler)
+  Limit,         // a finite limit
+  NeverStable,   // the radius exceeds 1 at every h > 0 (e.g. explicit Euler, undamped)
+  AlwaysStable,  // never exceeds 1 (backward Euler)
 };
 
 struct TheoryLimit {
@@ -65,13 +64,13 @@ std::vector<Mode> sceneModes(const Scene& scene);
 // The criterion a measured run is judged by, stated in words in `text`.
 struct StabilityCriterion {
   enum class Kind { Oscillator, Cloth } kind = Kind::Cloth;
-  int steps = 0;              // Oscillator: steps per run
-  double growth = 0;          // Oscillator: allowed growth of the amplitude (relative)
-  double initial_scale = 1;   // Oscillator: factor on the initial displacement and velocity
-  double amplitude_bound = 0; // Oscillator: largest amplitude allowed, in initial amplitudes
-  double horizon = 0;         // Cloth: simulated seconds per run
-  double speed_bound = 0;     // Cloth: m/s
-  double position_bound = 0;  // Cloth: m
+  int steps = 0;               // Oscillator: steps per run
+  double growth = 0;           // Oscillator: allowed growth of the amplitude (relative)
+  double initial_scale = 1;    // Oscillator: factor on the initial displacement and velocity
+  double amplitude_bound = 0;  // Oscillator: largest amplitude allowed, in initial amplitudes
+  double horizon = 0;          // Cloth: simulated seconds per run
+  double speed_bound = 0;      // Cloth: m/s
+  double position_bound = 0;   // Cloth: m
   std::string text;
 };
 
@@ -83,9 +82,9 @@ bool runIsStable(const Scene& scene, const MethodChoice& method, Precision preci
                  const StabilityCriterion& criterion);
 
 struct SearchRange {
-  double low = 0;          // s
-  double high = 0;         // s
-  double resolution = 0;   // relative
+  double low = 0;         // s
+  double high = 0;        // s
+  double resolution = 0;  // relative
 };
 
 // The range searched on a scene: [1e-2, 1] s at 1e-3 for the spring scenes, [3e-5, 2e-2] s at
@@ -93,9 +92,9 @@ struct SearchRange {
 SearchRange searchRange(const Scene& scene);
 
 enum class MeasuredKind {
-  Limit,            // the bisection's result
-  UnstableAtLow,    // unstable already at range.low
-  StableAtHigh,     // stable at range.high: the limit is above the range
+  Limit,          // the bisection's result
+  UnstableAtLow,  // unstable already at range.low
+  StableAtHigh,   // stable at range.high: the limit is above the range
 };
 
 struct MeasuredLimit {
@@ -120,10 +119,10 @@ struct StabilityResult {
 };
 
 // Every (scene, method, precision) asked for. `progress` (may be empty) gets one line per result.
-std::vector<StabilityResult> stabilityStudy(const std::vector<Scene>& scenes,
-                                            const std::vector<MethodChoice>& methods,
-                                            const std::vector<Precision>& precisions,
-                                            const std::function<void(const std::string&)>& progress);
+std::vector<StabilityResult> stabilityStudy(
+    const std::vector<Scene>& scenes, const std::vector<MethodChoice>& methods,
+    const std::vector<Precision>& precisions,
+    const std::function<void(const std::string&)>& progress);
 
 // {"results": [{"scene", "method", "precision", "dt_max_measured", "dt_max_theory",
 //   "criterion", "ratio", "measured_note", "theory_note", "omega_max", "resolution",

@@ -1,16 +1,15 @@
 #include "clothref/analysis/work_precision.h"
 
-#include "clothref/analysis/stability.h"
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <chrono>
-#include <ctime>
 #include <cmath>
+#include <ctime>
 #include <fstream>
 #include <thread>
 
-#include <fmt/format.h>
-
+#include "clothref/analysis/stability.h"
 #include "clothref/io/error.h"
 #include "clothref/trace/build_info.h"
 #include "clothref/verify/analytic.h"
@@ -78,7 +77,7 @@ double threadCpuSeconds() {
 
 struct RunOutcome {
   bool stable = true;
-  double seconds = 0;    // wall
+  double seconds = 0;  // wall
   double cpu_seconds = 0;
   double simulated = 0;  // s
   double error_final = 0;
@@ -261,12 +260,12 @@ SweepResult sweep(const std::vector<Scene>& scenes, const std::vector<MethodChoi
           result.points.push_back(point);
           ++done;
           if (progress)
-            progress(fmt::format(
-                "sweep: {} [{}/{}] {} {} dt={:g}: {}, {:.3g} s per simulated s", scene.name, done,
-                total, point.method, precisionName(precision), point.dt,
-                point.stable ? fmt::format("error {:.3e} m", *point.error_final)
-                             : std::string("unstable"),
-                point.seconds_median));
+            progress(fmt::format("sweep: {} [{}/{}] {} {} dt={:g}: {}, {:.3g} s per simulated s",
+                                 scene.name, done, total, point.method, precisionName(precision),
+                                 point.dt,
+                                 point.stable ? fmt::format("error {:.3e} m", *point.error_final)
+                                              : std::string("unstable"),
+                                 point.seconds_median));
         }
       }
     }
@@ -294,8 +293,8 @@ nlohmann::ordered_json sweepToJson(const SweepResult& result) {
   nlohmann::ordered_json root;
   root["format"] = "clothref-sweep";
   root["version"] = 1;
-  root["machine"] = fmt::format("{} ({} hardware threads)", machineName(),
-                                std::thread::hardware_concurrency());
+  root["machine"] =
+      fmt::format("{} ({} hardware threads)", machineName(), std::thread::hardware_concurrency());
   root["compiler"] = build_info::kCompiler;
   root["build_type"] = build_info::kBuildType;
   root["norms"] = {

@@ -19,11 +19,10 @@
 #pragma once
 
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "clothref/analysis/simulation.h"
 #include "clothref/core/types.h"
@@ -32,12 +31,12 @@
 namespace clothref {
 
 struct SweepSettings {
-  double horizon = 1;               // T, s
-  double sample_interval = 0.1;     // s
-  std::vector<int> substeps;        // dt = sample_interval / substeps[k], coarse to fine
+  double horizon = 1;                        // T, s
+  double sample_interval = 0.1;              // s
+  std::vector<int> substeps;                 // dt = sample_interval / substeps[k], coarse to fine
   std::vector<int> backward_euler_substeps;  // the same for backward Euler (empty: substeps)
   int repeats = 5;
-  int reference_substeps = 1000;    // non-spring scenes: the reference's dt divides the interval
+  int reference_substeps = 1000;  // non-spring scenes: the reference's dt divides the interval
 };
 
 // The settings the sweep uses for a scene: spring scenes T = 1 s, interval 0.1 s,
@@ -49,20 +48,20 @@ struct SweepPoint {
   std::string scene;
   std::string method;
   Precision precision = Precision::Double;
-  double dt = 0;                         // s
-  std::int64_t steps = 0;                // steps to the horizon
-  std::int64_t evaluations = 0;          // derivative evaluations to the horizon
+  double dt = 0;                 // s
+  std::int64_t steps = 0;        // steps to the horizon
+  std::int64_t evaluations = 0;  // derivative evaluations to the horizon
   bool stable = true;
-  std::optional<double> error_final;     // m
-  std::optional<double> error_rms;       // m
-  double seconds_median = 0;             // wall seconds per simulated second
+  std::optional<double> error_final;  // m
+  std::optional<double> error_rms;    // m
+  double seconds_median = 0;          // wall seconds per simulated second
   double seconds_min = 0;
   double seconds_max = 0;
-  double cpu_seconds_median = 0;         // the thread's CPU seconds per simulated second
+  double cpu_seconds_median = 0;  // the thread's CPU seconds per simulated second
   double cpu_seconds_min = 0;
   double cpu_seconds_max = 0;
   int runs = 0;
-  std::optional<double> cg_iterations;   // backward Euler: mean CG iterations per step
+  std::optional<double> cg_iterations;  // backward Euler: mean CG iterations per step
 };
 
 // Positions of every particle (cloth, then spheres) at the sample times: samples x 3N.

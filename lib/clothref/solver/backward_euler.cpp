@@ -95,8 +95,8 @@ void prepareBackwardEuler(const Cloth<T>& cloth, BackwardEulerSolver<T>& solver)
 }
 
 template <typename T>
-int solveConjugateGradient(const Eigen::SparseMatrix<T, Eigen::RowMajor>& matrix,
-                           const VecX<T>& b, VecX<T>& x, BackwardEulerSolver<T>& solver) {
+int solveConjugateGradient(const Eigen::SparseMatrix<T, Eigen::RowMajor>& matrix, const VecX<T>& b,
+                           VecX<T>& x, BackwardEulerSolver<T>& solver) {
   VecX<T>& r = solver.residual;
   VecX<T>& p = solver.direction;
   VecX<T>& z = solver.z;
@@ -215,11 +215,11 @@ void stepBackwardEuler(World<T>& world, BackwardEulerSolver<T>& solver) {
   ++world.step;
 }
 
-#define CLOTHREF_INSTANTIATE(T)                                                               \
-  template double cgTolerance<T>(const CgSettings&);                                          \
-  template void prepareBackwardEuler(const Cloth<T>&, BackwardEulerSolver<T>&);               \
-  template void stepBackwardEuler(World<T>&, BackwardEulerSolver<T>&);                        \
-  template int solveConjugateGradient(const Eigen::SparseMatrix<T, Eigen::RowMajor>&,         \
+#define CLOTHREF_INSTANTIATE(T)                                                       \
+  template double cgTolerance<T>(const CgSettings&);                                  \
+  template void prepareBackwardEuler(const Cloth<T>&, BackwardEulerSolver<T>&);       \
+  template void stepBackwardEuler(World<T>&, BackwardEulerSolver<T>&);                \
+  template int solveConjugateGradient(const Eigen::SparseMatrix<T, Eigen::RowMajor>&, \
                                       const VecX<T>&, VecX<T>&, BackwardEulerSolver<T>&);
 CLOTHREF_INSTANTIATE(float)
 CLOTHREF_INSTANTIATE(double)

@@ -39,9 +39,9 @@ struct CgSettings {
 // What the solves have done so far.
 struct CgStats {
   std::int64_t solves = 0;
-  std::int64_t iterations = 0;      // summed over solves
-  int max_iterations_seen = 0;      // the most one solve needed
-  std::int64_t capped = 0;          // solves that stopped at max_iterations
+  std::int64_t iterations = 0;  // summed over solves
+  int max_iterations_seen = 0;  // the most one solve needed
+  std::int64_t capped = 0;      // solves that stopped at max_iterations
   double last_relative_residual = 0;
 
   double meanIterations() const { return solves ? double(iterations) / double(solves) : 0.0; }
@@ -59,7 +59,7 @@ struct BackwardEulerSolver {
   std::vector<int> diagonal_slots;  // per particle, 3 entries (x, y, z)
   std::vector<int> filtered_slots;  // entries in a fixed particle's row or column (set to 0)
   std::vector<int> fixed_diagonal_slots;  // the diagonal of fixed particles (set to 1)
-  int particles = -1;               // the cloth size the pattern was built for
+  int particles = -1;                     // the cloth size the pattern was built for
   std::size_t springs = 0;
 
   // CG work vectors, 3N
@@ -77,8 +77,8 @@ void stepBackwardEuler(World<T>& world, BackwardEulerSolver<T>& solver);
 // Solves A x = b with the Jacobi-preconditioned CG above, starting from x = 0. `solver` supplies
 // the work vectors (sized to b). Returns the iterations; updates solver.stats.
 template <typename T>
-int solveConjugateGradient(const Eigen::SparseMatrix<T, Eigen::RowMajor>& matrix,
-                           const VecX<T>& b, VecX<T>& x, BackwardEulerSolver<T>& solver);
+int solveConjugateGradient(const Eigen::SparseMatrix<T, Eigen::RowMajor>& matrix, const VecX<T>& b,
+                           VecX<T>& x, BackwardEulerSolver<T>& solver);
 
 // The tolerance actually used for precision T.
 template <typename T>
