@@ -87,6 +87,38 @@ TEST_F(PythonTest, TraceReaderGivesBackTheLibrarysNumbers) {
       << output << " vs " << fmt::format("{}", y);
 }
 
+TEST_F(PythonTest, EnergiesOfAKnownState) {
+  // the spring scene at rest 0.2 m past its rest length: 1/2 k u^2 = 1/2 100 0.04 = 2 J; and
+  // course2022's four 125 kg spheres 1 m up: 4 * 125 * 9.8 = 4900 J of gravitational energy
+  TraceSettings settings;
+  settings.steps = 0;
+  settings.stride = 1;
+  settings.dt = 1e-3;
+  settings.precision = Precision::Double;
+  const std::string spring = dir.file("spring.jsonl"), course = dir.file("course.jsonl");
+  test::writeLines(spring, test::traceLines(*findBuiltinScene("spring"), settings));
+  test::writeLines(course, test::traceLines(*findBuiltinScene("course2022"), settings));
+  const std::string script =
+      "import sys; sys.path.insert(0, '" CLOTHREF_PYTHON_DIR
+      "');"
+      "from clothref.trace import read_trace; from clothref.energy import EnergyModel;"
+      "out = [];"
+      "[out.append(EnergyModel(t.header['scene'], t.bodies['cloth']['position'][0]).energies("
+      "{k: {f: a[0] for f, a in v.items()} for k, v in t.bodies.items()})) for t in "
+      "(read_trace(p) for p in sys.argv[1:])];"
+      "print('%.9f %.9f %.9f %.6f %.9f' % (out[0]['spring'], out[0]['kinetic'], "
+      "out[0]['gravitational'], out[1]['gravitational'], out[1]['spring']))";
+  const std::string command =
+      std::string(CLOTHREF_PYTHON) + " -B -c \"" + script + "\" " + spring + " " + course;
+  FILE* pipe = ::popen(command.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  char buffer[256] = {};
+  const std::size_t n = std::fread(buffer, 1, sizeof buffer - 1, pipe);
+  ASSERT_EQ(::pclose(pipe), 0);
+  EXPECT_EQ(std::string(buffer, n),
+            "2.000000000 0.000000000 0.000000000 4900.000000 0.000000000\n");
+}
+
 TEST_F(PythonTest, PlotsATraceAndTwoOverlaidTraces) {
   const std::string a = smallTrace("a.jsonl", Method::Explicit);
   const std::string b = smallTrace("b.jsonl", Method::Rk4);
@@ -125,6 +157,24 @@ TEST_F(PythonTest, PlotsASweepAndAStabilityTable) {
       test::runCli("plot --stability " + stability + " --formats png -o " + dir.file("st"));
   ASSERT_EQ(chart.exit_code, 0) << chart.output;
   expectImage(dir.file("st.png"), "PNG", 15000);
+
+  // the docs table is computed from the same two files
+  const std::string command = "PYTHONPATH=" CLOTHREF_PYTHON_DIR " " + std::string(CLOTHREF_PYTHON) +
+                              " -B -m clothref.methods_table " + sweep + " " + stability;
+  FILE* pipe = ::popen(command.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string markdown;
+  char buffer[4096];
+  for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;)
+    markdown.append(buffer, n);
+  ASSERT_EQ(::pclose(pipe), 0) << markdown;
+  // the observed orders on the spring, from the sweep: 4 for rk4, 1 for explicit (+- 0.2)
+  const auto order = [&markdown](const std::string& method) {
+    const std::size_t at = markdown.find("| " + method + " | ");
+    return at == std::string::npos ? -1.0 : std::stod(markdown.substr(at + method.size() + 5));
+  };
+  EXPECT_NEAR(order("rk4"), 4.0, 0.2) << markdown;
+  EXPECT_NEAR(order("explicit"), 1.0, 0.2) << markdown;
 }
 
 TEST_F(PythonTest, BadInputIsOneLineExitTwoAndNoFile) {
