@@ -3,8 +3,10 @@
 // (lib/clothref/analysis/stability.h, docs/methods.md). Progress on stderr.
 #include <fmt/format.h>
 
+#include <cmath>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "clothref/analysis/stability.h"
 #include "clothref/io/error.h"
@@ -18,6 +20,7 @@ struct StabilityOptions {
   std::vector<std::string> scenes;
   std::vector<std::string> methods;
   std::string precision = "both";
+  std::optional<double> high;
   bool json = false;
   bool quiet = false;
 };
@@ -50,8 +53,10 @@ int runStability(const StabilityOptions& options) {
   const auto progress = [&options](const std::string& line) {
     if (!options.quiet) std::cerr << line << '\n';
   };
+  if (options.high && !(*options.high > 0 && std::isfinite(*options.high)))
+    throw InputError(fmt::format("--high: must be a finite number > 0 (got {})", *options.high));
   const std::vector<StabilityResult> results =
-      stabilityStudy(scenes, methods, precisions, progress);
+      stabilityStudy(scenes, methods, precisions, progress, options.high);
   if (options.json)
     std::cout << stabilityToJson(results).dump(2) << '\n';
   else
@@ -73,6 +78,9 @@ Command addStabilityCommand(CLI::App& root) {
                   "Method, repeatable (default: all six, backward-euler included)");
   app->add_option("--precision", options->precision, "float | double | both")
       ->capture_default_str();
+  app->add_option("--high", options->high,
+                  "Upper end of the dt search (s), instead of the scene's (1 s for the spring "
+                  "scenes, 0.02 s otherwise)");
   app->add_flag("--json", options->json,
                 "Print {\"results\": [{\"scene\", \"method\", \"precision\", \"dt_max_measured\", "
                 "\"dt_max_theory\", \"criterion\", ...}]}");

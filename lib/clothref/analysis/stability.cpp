@@ -87,9 +87,10 @@ bool finiteAndBounded(const Particles<T>& p, double speed_bound, double position
 
 template <typename T>
 bool clothRunIsStable(const Scene& scene, const MethodChoice& method, double dt,
-                      const StabilityCriterion& criterion) {
+                      const StabilityCriterion& criterion, CgStats* cg) {
   Simulation<T> simulation = makeSimulation<T>(scene, method, dt);
-  const auto steps = static_cast<std::int64_t>(std::ceil(criterion.horizon / dt - 1e-9));
+  const auto steps = std::max<std::int64_t>(
+      criterion.min_steps, static_cast<std::int64_t>(std::ceil(criterion.horizon / dt - 1e-9)));
   for (std::int64_t s = 0; s < steps; ++s) {
     simulation.advance();
     const World<T>& world = simulation.world;
@@ -100,12 +101,13 @@ bool clothRunIsStable(const Scene& scene, const MethodChoice& method, double dt,
                                            criterion.position_bound))
       return false;
   }
+  if (cg) *cg = simulation.solver.stats;
   return true;
 }
 
 template <typename T>
 bool oscillatorRunIsStable(const Scene& scene, const MethodChoice& method, double dt,
-                           const StabilityCriterion& criterion) {
+                           const StabilityCriterion& criterion, CgStats* cg) {
   const SpringProblem problem = springProblem(scene);
   const double omega = naturalFrequency(problem.oscillator);
   const Eigen::Vector3d equilibrium = problem.anchor + problem.rest_length * problem.axis;
@@ -147,6 +149,7 @@ bool oscillatorRunIsStable(const Scene& scene, const MethodChoice& method, doubl
     // still linear, but far beyond what a stable method reaches
     if (amplitude > criterion.amplitude_bound * initial) return false;
   }
+  if (cg) *cg = simulation.solver.stats;
   return !(last > first * (1 + criterion.growth));
 }
 
@@ -257,23 +260,25 @@ StabilityCriterion stabilityCriterion(const Scene& scene) {
   } else {
     criterion.kind = StabilityCriterion::Kind::Cloth;
     criterion.horizon = 0.5;
+    criterion.min_steps = 50;
     criterion.speed_bound = 100;
     criterion.position_bound = 100;
     criterion.text =
-        "0.5 s simulated; unstable when a position or velocity turns non-finite, a velocity "
+        "0.5 s simulated, at least 50 steps; unstable when a position or velocity turns "
+        "non-finite, a velocity "
         "component exceeds 100 m/s or a coordinate exceeds 100 m";
   }
   return criterion;
 }
 
 bool runIsStable(const Scene& scene, const MethodChoice& method, Precision precision, double dt,
-                 const StabilityCriterion& criterion) {
+                 const StabilityCriterion& criterion, CgStats* cg) {
   if (criterion.kind == StabilityCriterion::Kind::Oscillator)
     return precision == Precision::Float
-               ? oscillatorRunIsStable<float>(scene, method, dt, criterion)
-               : oscillatorRunIsStable<double>(scene, method, dt, criterion);
-  return precision == Precision::Float ? clothRunIsStable<float>(scene, method, dt, criterion)
-                                       : clothRunIsStable<double>(scene, method, dt, criterion);
+               ? oscillatorRunIsStable<float>(scene, method, dt, criterion, cg)
+               : oscillatorRunIsStable<double>(scene, method, dt, criterion, cg);
+  return precision == Precision::Float ? clothRunIsStable<float>(scene, method, dt, criterion, cg)
+                                       : clothRunIsStable<double>(scene, method, dt, criterion, cg);
 }
 
 SearchRange searchRange(const Scene& scene) {
@@ -286,7 +291,14 @@ MeasuredLimit measureLimit(const Scene& scene, const MethodChoice& method, Preci
   MeasuredLimit result;
   const auto stable = [&](double dt) {
     ++result.runs;
-    return runIsStable(scene, method, precision, dt, criterion);
+    CgStats cg;
+    const bool stable = runIsStable(scene, method, precision, dt, criterion, &cg);
+    // the CG effort of the largest dt found stable so far (the bisection only moves it up)
+    if (stable && method.backward_euler && cg.solves > 0) {
+      result.cg_iterations = cg.meanIterations();
+      result.cg_max_iterations = cg.max_iterations_seen;
+    }
+    return stable;
   };
   double lo = range.low, hi = range.high;
   if (!stable(lo)) {
@@ -307,17 +319,19 @@ MeasuredLimit measureLimit(const Scene& scene, const MethodChoice& method, Preci
   return result;
 }
 
-std::vector<StabilityResult> stabilityStudy(
-    const std::vector<Scene>& scenes, const std::vector<MethodChoice>& methods,
-    const std::vector<Precision>& precisions,
-    const std::function<void(const std::string&)>& progress) {
+std::vector<StabilityResult> stabilityStudy(const std::vector<Scene>& scenes,
+                                            const std::vector<MethodChoice>& methods,
+                                            const std::vector<Precision>& precisions,
+                                            const std::function<void(const std::string&)>& progress,
+                                            std::optional<double> high) {
   std::vector<StabilityResult> results;
   for (const Scene& scene : scenes) {
     const std::vector<Mode> modes = sceneModes(scene);
     double kappa_max = 0;
     for (const Mode& mode : modes) kappa_max = std::max(kappa_max, mode.kappa);
     const StabilityCriterion criterion = stabilityCriterion(scene);
-    const SearchRange range = searchRange(scene);
+    SearchRange range = searchRange(scene);
+    if (high) range.high = *high;
     for (const MethodChoice& method : methods) {
       const TheoryLimit theory = theoryLimit(method, modes);
       for (Precision precision : precisions) {
@@ -401,6 +415,10 @@ nlohmann::ordered_json stabilityToJson(const std::vector<StabilityResult>& resul
     item["search_low"] = r.range.low;
     item["search_high"] = r.range.high;
     item["runs"] = r.measured.runs;
+    item["cg_iterations_per_step"] =
+        optionalNumber(r.measured.cg_iterations.has_value(), r.measured.cg_iterations.value_or(0));
+    item["cg_max_iterations"] =
+        optionalNumber(r.measured.cg_iterations.has_value(), r.measured.cg_max_iterations);
     item["seconds"] = r.seconds;
     items.push_back(item);
   }
@@ -426,6 +444,9 @@ std::string stabilityTable(const std::vector<StabilityResult>& results) {
         measured && theory ? fmt::format("{:.4f}", r.measured.dt / r.theory.dt) : std::string("-");
     std::string note = measuredNote(r);
     if (r.omega_max) note += fmt::format("; omega_max {:.1f} rad/s", *r.omega_max);
+    if (r.measured.cg_iterations)
+      note += fmt::format("; CG {:.1f} iterations per step (max {})", *r.measured.cg_iterations,
+                          r.measured.cg_max_iterations);
     out += fmt::format("{:<16} {:<15} {:<7} {:>13} {:>13} {:>7}  {}\n", r.scene, r.method,
                        precisionName(r.precision), m, t, ratio, note);
   }

@@ -69,6 +69,7 @@ struct StabilityCriterion {
   double initial_scale = 1;    // Oscillator: factor on the initial displacement and velocity
   double amplitude_bound = 0;  // Oscillator: largest amplitude allowed, in initial amplitudes
   double horizon = 0;          // Cloth: simulated seconds per run
+  int min_steps = 0;           // Cloth: at least this many steps per run
   double speed_bound = 0;      // Cloth: m/s
   double position_bound = 0;   // Cloth: m
   std::string text;
@@ -78,8 +79,9 @@ struct StabilityCriterion {
 StabilityCriterion stabilityCriterion(const Scene& scene);
 
 // True when a run of `scene` with `method` at `dt` stays stable by `criterion`.
+// With `cg`, a backward-Euler run's CG statistics are written there.
 bool runIsStable(const Scene& scene, const MethodChoice& method, Precision precision, double dt,
-                 const StabilityCriterion& criterion);
+                 const StabilityCriterion& criterion, CgStats* cg = nullptr);
 
 struct SearchRange {
   double low = 0;         // s
@@ -101,6 +103,8 @@ struct MeasuredLimit {
   MeasuredKind kind = MeasuredKind::Limit;
   double dt = 0;  // s: the largest dt found stable (Limit), or range.high (StableAtHigh)
   int runs = 0;
+  std::optional<double> cg_iterations;  // backward Euler: mean CG iterations per step at dt
+  int cg_max_iterations = 0;
 };
 
 MeasuredLimit measureLimit(const Scene& scene, const MethodChoice& method, Precision precision,
@@ -119,10 +123,12 @@ struct StabilityResult {
 };
 
 // Every (scene, method, precision) asked for. `progress` (may be empty) gets one line per result.
-std::vector<StabilityResult> stabilityStudy(
-    const std::vector<Scene>& scenes, const std::vector<MethodChoice>& methods,
-    const std::vector<Precision>& precisions,
-    const std::function<void(const std::string&)>& progress);
+// `high`, when given, replaces the search range's upper end (s) for every scene.
+std::vector<StabilityResult> stabilityStudy(const std::vector<Scene>& scenes,
+                                            const std::vector<MethodChoice>& methods,
+                                            const std::vector<Precision>& precisions,
+                                            const std::function<void(const std::string&)>& progress,
+                                            std::optional<double> high = std::nullopt);
 
 // {"results": [{"scene", "method", "precision", "dt_max_measured", "dt_max_theory",
 //   "criterion", "ratio", "measured_note", "theory_note", "omega_max", "resolution",
