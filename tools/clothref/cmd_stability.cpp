@@ -44,11 +44,11 @@ int runStability(const StabilityOptions& options) {
   if (options.precision == "both") {
     precisions = {Precision::Float, Precision::Double};
   } else {
-    Precision precision;
-    if (!parsePrecision(options.precision, precision))
+    const std::optional<Precision> precision = parseEnum(kPrecisionNames, options.precision);
+    if (!precision)
       throw InputError("--precision: must be float, double or both, got '" + options.precision +
                        "'");
-    precisions = {precision};
+    precisions = {*precision};
   }
   const auto progress = [&options](const std::string& line) {
     if (!options.quiet) std::cerr << line << '\n';

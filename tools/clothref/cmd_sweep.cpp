@@ -5,6 +5,7 @@
 
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "clothref/analysis/work_precision.h"
 #include "clothref/io/error.h"
@@ -44,11 +45,11 @@ int runSweep(const SweepOptions& options) {
   if (options.precision == "both") {
     precisions = {Precision::Float, Precision::Double};
   } else {
-    Precision precision;
-    if (!parsePrecision(options.precision, precision))
+    const std::optional<Precision> precision = parseEnum(kPrecisionNames, options.precision);
+    if (!precision)
       throw InputError("--precision: must be float, double or both, got '" + options.precision +
                        "'");
-    precisions = {precision};
+    precisions = {*precision};
   }
   if (options.repeats < 1)
     throw InputError(fmt::format("--repeats: must be >= 1 (got {})", options.repeats));

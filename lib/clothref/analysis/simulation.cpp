@@ -7,7 +7,7 @@ std::string_view MethodChoice::name() const {
 }
 
 int MethodChoice::evaluationsPerStep() const {
-  return backward_euler ? 1 : clothref::evaluationsPerStep(core);
+  return backward_euler ? 1 : methodInfo(core).evaluations;
 }
 
 std::vector<MethodChoice> analysisMethods() {

@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "clothref/analysis/simulation.h"
+#include "clothref/base/precision.h"
 #include "clothref/core/types.h"
 #include "clothref/scene/scene.h"
 
