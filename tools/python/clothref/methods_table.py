@@ -77,7 +77,7 @@ def main(argv=None):
                  and r["precision"] == args.precision]
         theory = limit[0]["dt_max_theory"] if limit else None
         measured = limit[0]["dt_max_measured"] if limit else None
-        if limit and theory is None and "never" in limit[0]["theory_note"]:
+        if limit and theory is None and "every dt > 0" in limit[0]["theory_note"]:
             theory_text = "none"
         elif limit and theory is None:
             theory_text = "no limit"

@@ -235,7 +235,7 @@ def slope_fan(axis, x_left, y_top, orders=(1, 2, 4)):
         xs = np.array([x_left, x_left * 10])
         ys = y_top * (xs / x_left) ** (-p)
         axis.plot(xs, ys, color="black", linestyle=style, linewidth=1.0, label=f"order {p}")
-        axis.text(xs[1] * 1.1, ys[1], f"{p}", fontsize=8, va="center")
+        axis.text(xs[1] * 1.1, ys[1], f"{p}", fontsize=8, va="center", clip_on=True)
 
 
 def plot_sweep(args):
@@ -281,7 +281,7 @@ def plot_sweep(args):
                 axis.axhline(top, color="black", linewidth=0.5)
                 axis.text(0.99, 0.985, "x: unstable (on the top line: blew up)",
                           transform=axis.transAxes, fontsize=8, va="top", ha="right")
-                if precision == "float":
+                if precision == "float" and bottom < 2.0 ** -24:
                     floor = 2.0 ** -24
                     axis.axhline(floor, color="black", linestyle=(0, (1, 3)), linewidth=0.8)
                     axis.text(0.99, floor * 1.4, "float epsilon x 1 m", ha="right",
@@ -296,10 +296,10 @@ def plot_sweep(args):
             axes[row][1].legend(fontsize=8, ncol=2, loc="lower left")
         caption = (f"{data.get('machine', '?')}; {data.get('compiler', '?')} "
                    f"({data.get('build_type', '?')}). Error: {data['norms'][key]}. "
-                   "Times: the thread's CPU time (wall time, min and max are in the data); on a "
+                   "\nTimes: the thread's CPU time (wall time, min and max are in the data); on a "
                    "shared 2-core machine they are noisy, evaluation counts are not.")
         figure.text(0.01, 0.005, caption, fontsize=7)
-        figure.tight_layout(rect=(0, 0.02, 1, 1))
+        figure.tight_layout(rect=(0, 0.035, 1, 1))
         written += save(figure, args.output, f"-{scene}", args.formats)
     return written
 
