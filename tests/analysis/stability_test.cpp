@@ -121,7 +121,9 @@ TEST(StabilityJson, NullWhereThereIsNoLimit) {
   none.criterion = "c";
   StabilityResult some = none;
   some.method = "rk4";
-  some.measured = {MeasuredKind::Limit, 0.28, 10};
+  some.measured.kind = MeasuredKind::Limit;
+  some.measured.dt = 0.28;
+  some.measured.runs = 10;
   some.theory = {TheoryKind::Limit, 0.2828};
   const nlohmann::ordered_json json = stabilityToJson({none, some});
   ASSERT_EQ(json["results"].size(), 2u);

@@ -141,10 +141,11 @@ TEST(SweepCli, WritesCsvAndJson) {
 TEST(SweepCli, BadInputLeavesNoOutput) {
   test::TempDir dir;
   const std::string csv = dir.file("sweep.csv");
-  for (const std::string args : {"sweep --scene spring --method leapfrog --csv " + csv,
-                                 "sweep --scene spring --repeats 0 --csv " + csv,
-                                 "sweep --scene spring --substeps 0 --csv " + csv,
-                                 "sweep --scene spring --csv " + dir.file("missing/dir/out.csv")}) {
+  for (const std::string& args :
+       {"sweep --scene spring --method leapfrog --csv " + csv,
+        "sweep --scene spring --repeats 0 --csv " + csv,
+        "sweep --scene spring --substeps 0 --csv " + csv,
+        "sweep --scene spring --csv " + dir.file("missing/dir/out.csv")}) {
     const test::CommandResult result = test::runCli(args + " --quiet");
     EXPECT_EQ(result.exit_code, 2) << args << ": " << result.output;
     EXPECT_EQ(std::count(result.output.begin(), result.output.end(), '\n'), 1) << result.output;

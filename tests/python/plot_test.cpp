@@ -180,7 +180,7 @@ TEST_F(PythonTest, PlotsASweepAndAStabilityTable) {
 TEST_F(PythonTest, BadInputIsOneLineExitTwoAndNoFile) {
   std::ofstream(dir.file("bad.jsonl")) << "{\"format\": \"something-else\"}\n";
   std::ofstream(dir.file("bad.json")) << "[1, 2]\n";
-  for (const std::string args :
+  for (const std::string& args :
        {"plot " + dir.file("bad.jsonl") + " -o " + dir.file("out"),
         "plot " + dir.file("missing.jsonl") + " -o " + dir.file("out"),
         "plot --sweep " + dir.file("bad.json") + " -o " + dir.file("out"),
