@@ -64,5 +64,8 @@ Command addGoldenCommand(CLI::App& root);
 Command addVerifyCommand(CLI::App& root);
 Command addScenesCommand(CLI::App& root);
 Command addBenchCommand(CLI::App& root);
+Command addStabilityCommand(CLI::App& root);
+Command addSweepCommand(CLI::App& root);
+Command addPlotCommand(CLI::App& root);
 
 }  // namespace clothref::cli

@@ -1,0 +1,157 @@
+// Work-precision sweeps (analysis/work_precision.h): errors converge at each method's order
+// against the closed form, unstable points are flagged and kept, counts and timing statistics
+// are consistent, and `clothref sweep` writes its CSV and JSON (or nothing, on bad input).
+#include "clothref/analysis/work_precision.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "clothref/verify/verify.h"
+#include "test_util.h"
+
+namespace clothref {
+namespace {
+
+MethodChoice method(const char* name) {
+  MethodChoice m;
+  EXPECT_TRUE(parseMethodChoice(name, m)) << name;
+  return m;
+}
+
+SweepSettings springSettings(std::vector<int> substeps, int repeats = 1) {
+  SweepSettings settings = defaultSweepSettings(*findBuiltinScene("spring"));
+  settings.substeps = std::move(substeps);
+  settings.repeats = repeats;
+  return settings;
+}
+
+double observedOrder(const char* name, std::vector<int> substeps) {
+  const Scene& scene = *findBuiltinScene("spring");
+  const SweepSettings settings = springSettings(substeps);
+  const SweepReference reference = sweepReference(scene, settings);
+  std::vector<double> dts, errors;
+  for (int s : substeps) {
+    const SweepPoint p = sweepPoint(scene, method(name), Precision::Double, s, settings, reference);
+    EXPECT_TRUE(p.stable);
+    dts.push_back(p.dt);
+    errors.push_back(*p.error_final);
+  }
+  return fitOrder(dts, errors);
+}
+
+TEST(WorkPrecision, ErrorsConvergeAtEachMethodsOrder) {
+  EXPECT_NEAR(observedOrder("explicit", {80, 160, 320, 640}), 1.0, 0.2);
+  EXPECT_NEAR(observedOrder("backward-euler", {80, 160, 320, 640}), 1.0, 0.2);
+  EXPECT_NEAR(observedOrder("midpoint", {40, 80, 160, 320}), 2.0, 0.2);
+  EXPECT_NEAR(observedOrder("rk4", {10, 20, 40, 80}), 4.0, 0.2);
+}
+
+TEST(WorkPrecision, UnstablePointsAreFlaggedAndKept) {
+  const Scene& scene = *findBuiltinScene("spring");
+  const SweepSettings settings = springSettings({1, 10}, 3);
+  const SweepReference reference = sweepReference(scene, settings);
+  // dt = 0.1 s is five times explicit Euler's limit on this spring: it grows, but stays within
+  // the bounds over 1 s, so it keeps its (large) errors
+  const SweepPoint p =
+      sweepPoint(scene, method("explicit"), Precision::Float, 1, settings, reference);
+  EXPECT_FALSE(p.stable);
+  EXPECT_GT(*p.error_final, 0.2);
+  // and dt = 0.01 s is stable
+  EXPECT_TRUE(
+      sweepPoint(scene, method("explicit"), Precision::Float, 10, settings, reference).stable);
+
+  // course2022 at 5 ms blows up: the run stops, errors are null, it is timed once
+  const Scene& course = *findBuiltinScene("course2022");
+  SweepSettings course_settings = defaultSweepSettings(course);
+  course_settings.horizon = 0.1;
+  course_settings.reference_substeps = 50;  // 2e-4 s, inside RK4's limit
+  const SweepReference course_reference = sweepReference(course, course_settings);
+  const SweepPoint blown = sweepPoint(course, method("explicit"), Precision::Float, 2,
+                                      course_settings, course_reference);
+  EXPECT_FALSE(blown.stable);
+  EXPECT_FALSE(blown.error_final.has_value());
+  EXPECT_FALSE(blown.error_rms.has_value());
+  EXPECT_EQ(blown.runs, 1);
+  EXPECT_GT(blown.seconds_median, 0.0);
+}
+
+TEST(WorkPrecision, CountsAndTimingStatisticsAreConsistent) {
+  const Scene& scene = *findBuiltinScene("spring");
+  const SweepSettings settings = springSettings({20}, 5);
+  const SweepReference reference = sweepReference(scene, settings);
+  for (const char* name : {"explicit", "implicit", "rk4", "backward-euler"}) {
+    const MethodChoice m = method(name);
+    const SweepPoint p = sweepPoint(scene, m, Precision::Double, 20, settings, reference);
+    EXPECT_EQ(p.steps, 200);  // 1 s at 5 ms
+    EXPECT_EQ(p.evaluations, 200 * m.evaluationsPerStep()) << name;
+    EXPECT_EQ(p.runs, 5);
+    EXPECT_LE(p.seconds_min, p.seconds_median);
+    EXPECT_LE(p.seconds_median, p.seconds_max);
+    EXPECT_LE(p.cpu_seconds_min, p.cpu_seconds_median);
+    EXPECT_LE(p.cpu_seconds_median, p.cpu_seconds_max);
+    EXPECT_GT(p.cpu_seconds_min, 0.0);
+    // the RMS over time of the max error is at most its maximum over time, which is at least
+    // the final error's size order; both are positive
+    EXPECT_GT(*p.error_final, 0.0);
+    EXPECT_GT(*p.error_rms, 0.0);
+    EXPECT_EQ(p.cg_iterations.has_value(), m.backward_euler) << name;
+  }
+}
+
+TEST(WorkPrecision, FloatErrorsStopAtTheFloatFloor) {
+  const Scene& scene = *findBuiltinScene("spring");
+  const SweepSettings settings = springSettings({10240});
+  const SweepReference reference = sweepReference(scene, settings);
+  const SweepPoint f =
+      sweepPoint(scene, method("rk4"), Precision::Float, 10240, settings, reference);
+  const SweepPoint d =
+      sweepPoint(scene, method("rk4"), Precision::Double, 10240, settings, reference);
+  // RK4 at 1e-5 s is far below float's resolution: float sees round-off, double does not
+  EXPECT_GT(*f.error_final, 1e-8);
+  EXPECT_LT(*d.error_final, 1e-12);
+}
+
+TEST(SweepCli, WritesCsvAndJson) {
+  test::TempDir dir;
+  const std::string csv = dir.file("sweep.csv"), json = dir.file("sweep.json");
+  const test::CommandResult result = test::runCli(
+      "sweep --scene spring --method rk4 --method backward-euler --precision double "
+      "--repeats 2 --substeps 10 --substeps 20 --quiet --csv " +
+      csv + " --json " + json);
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  std::ifstream csv_in(csv);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(csv_in, line);) lines.push_back(line);
+  ASSERT_EQ(lines.size(), 5u);  // header + 2 methods x 2 dts
+  EXPECT_EQ(lines[0].rfind("scene,method,precision,dt,", 0), 0u);
+  std::ifstream json_in(json);
+  const auto data = nlohmann::json::parse(json_in);
+  EXPECT_EQ(data["format"], "clothref-sweep");
+  ASSERT_EQ(data["points"].size(), 4u);
+  EXPECT_EQ(data["points"][0]["runs"], 2);
+  EXPECT_TRUE(data["points"][2]["cg_iterations"].is_number());
+  EXPECT_TRUE(data.contains("machine"));
+  EXPECT_TRUE(data.contains("compiler"));
+}
+
+TEST(SweepCli, BadInputLeavesNoOutput) {
+  test::TempDir dir;
+  const std::string csv = dir.file("sweep.csv");
+  for (const std::string& args :
+       {"sweep --scene spring --method leapfrog --csv " + csv,
+        "sweep --scene spring --repeats 0 --csv " + csv,
+        "sweep --scene spring --substeps 0 --csv " + csv,
+        "sweep --scene spring --csv " + dir.file("missing/dir/out.csv")}) {
+    const test::CommandResult result = test::runCli(args + " --quiet");
+    EXPECT_EQ(result.exit_code, 2) << args << ": " << result.output;
+    EXPECT_EQ(std::count(result.output.begin(), result.output.end(), '\n'), 1) << result.output;
+    EXPECT_FALSE(std::filesystem::exists(csv)) << args;
+  }
+}
+
+}  // namespace
+}  // namespace clothref
