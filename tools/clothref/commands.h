@@ -64,5 +64,6 @@ Command addGoldenCommand(CLI::App& root);
 Command addVerifyCommand(CLI::App& root);
 Command addScenesCommand(CLI::App& root);
 Command addBenchCommand(CLI::App& root);
+Command addGradeCommand(CLI::App& root);
 
 }  // namespace clothref::cli

@@ -28,7 +28,8 @@ int main(int argc, char** argv) {
                                          std::string(clothref::fast::simdPathName(simd)) + ")");
   const std::vector<Command> commands = {
       addTraceCommand(root), addDiffCommand(root), addGoldenCommand(root),
-      addVerifyCommand(root), addScenesCommand(root), addBenchCommand(root)};
+      addVerifyCommand(root), addScenesCommand(root), addBenchCommand(root),
+      addGradeCommand(root)};
   // name an unknown command instead of CLI11's "A subcommand is required"
   if (argc > 1 && argv[1][0] != '-') {
     std::string names;
