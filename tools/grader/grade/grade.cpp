@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <future>
 #include <random>
@@ -138,7 +139,7 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
   for (const PlannedTest& planned : plannedTests(report.edition)) {
     auto it = unavailable.find(planned.stub);
     if (it == unavailable.end()) continue;
-    TestResult t{planned.stub, planned.check, planned.weight};
+    TestResult t = makeTest(planned.stub, planned.check, planned.weight);
     t.output = it->second;
     t.diagnoses = {"compile-error"};
     report.tests.push_back(t);

@@ -276,7 +276,7 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
                            util::vec3(after.cast<float>()) + "\n";
       }
     }
-    TestResult t{stub, c.check, 1};
+    TestResult t = makeTest(stub, c.check, 1);
     if (distance(actual, expected) <= rel) {
       t.fraction = 1;
       t.output = "Velocities and positions of every body match.";
@@ -347,7 +347,7 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
     tests.push_back(t);
   }
   if (answer) {
-    TestResult t{stub, "momentum conserved", 1};
+    TestResult t = makeTest(stub, "momentum conserved", 1);
     t.fraction = momentum_ok ? 1 : 0;
     if (momentum_ok) {
       t.output = "Total momentum (sum of m v) is unchanged by every contact between free bodies.";

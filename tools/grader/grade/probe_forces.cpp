@@ -175,7 +175,7 @@ std::vector<TestResult> probeForces(const ProbeContext& context) {
                                        failure + "\n\n" + context.catalogue->cause(id, true), {id}));
       continue;
     }
-    TestResult t{kStub, c.check, 1};
+    TestResult t = makeTest(kStub, c.check, 1);
     const Mat4X<float> actual = util::matrix(answer->f("acc." + std::to_string(k)), kN * kN);
     const Mat4X<float> expected = forces(c.cloth, c.acc0, ForceMistake::None);
     const auto scale = scales(c.cloth, c.acc0);

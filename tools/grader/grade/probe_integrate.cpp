@@ -7,6 +7,8 @@
 #include <functional>
 #include <random>
 
+#include <Eigen/QR>
+
 #include "clothref/core/cloth.h"
 #include "clothref/core/integrator.h"
 #include "clothref/core/spheres.h"
@@ -356,7 +358,7 @@ std::vector<TestResult> probeIntegrator(const ProbeContext& context, int index) 
   if (method == Method::Implicit && context.rubric.accepts("implicit-corrector-v-new"))
     accepted.push_back({"the corrector's position uses the new velocity",
                         variantStep(Method::Implicit, Variant::ImplicitVNew)});
-  TestResult one{stub, checks[0], 2};
+  TestResult one = makeTest(stub, checks[0], 2);
   const double d = distance(actual, expected);
   std::string matched_variant;
   for (const auto& [what, step] : accepted)
@@ -442,7 +444,7 @@ std::vector<TestResult> probeIntegrator(const ProbeContext& context, int index) 
   tests.push_back(one);
 
   // Every body integrated: each body the course method moves must move.
-  TestResult all{stub, checks[1], 1};
+  TestResult all = makeTest(stub, checks[1], 1);
   std::string stuck;
   if (distance(expected, random, 0) > rel && distance(actual, random, 0) <= rel) stuck += "the cloth (particles[0])";
   if (distance(expected, random, 1) > rel && distance(actual, random, 1) <= rel)
@@ -461,7 +463,7 @@ std::vector<TestResult> probeIntegrator(const ProbeContext& context, int index) 
   tests.push_back(all);
 
   // deltaTime unchanged.
-  TestResult dt_test{stub, checks[2], 1};
+  TestResult dt_test = makeTest(stub, checks[2], 1);
   const auto& after = answer->f("dt_after.0");
   const float dt_after = after.empty() ? std::nanf("") : after[0];
   dt_test.fraction = dt_after == random.dt ? 1 : 0;
@@ -474,7 +476,7 @@ std::vector<TestResult> probeIntegrator(const ProbeContext& context, int index) 
   tests.push_back(dt_test);
 
   if (has_backup) {
-    TestResult copies{stub, checks[3], 1};
+    TestResult copies = makeTest(stub, checks[3], 1);
     const bool alias = distance(actual, stepped(random, variantStep(method, Variant::Alias))) <= 10 * rel &&
                        d > rel;
     copies.fraction = alias ? 0 : 1;
@@ -487,7 +489,7 @@ std::vector<TestResult> probeIntegrator(const ProbeContext& context, int index) 
   }
 
   // Convergence order on the spring.
-  TestResult order{stub, "convergence order", 1};
+  TestResult order = makeTest(stub, "convergence order", 1);
   std::vector<double> student_errors, reference_errors;
   for (std::size_t k = 0; k < dts.size(); ++k) {
     const std::int64_t steps = std::llround(end_time / dts[k]);
@@ -517,7 +519,7 @@ std::vector<TestResult> probeIntegrator(const ProbeContext& context, int index) 
   tests.push_back(order);
 
   // No blow-up at half the stability limit.
-  TestResult stable{stub, "stable below the stability limit", 1};
+  TestResult stable = makeTest(stub, "stable below the stability limit", 1);
   const auto& trajectory = answer->f("trajectory." + std::to_string(stable_case));
   double amplitude = 0;
   for (std::size_t r = 0; r + 8 <= trajectory.size(); r += 8) {

@@ -200,7 +200,7 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
     const Comparison c = compare(*student, reference, 25, rest_rel);
     const std::string state = "The course cloth: 25 x 25 particles, built by your `Cloth()` "
                               "(your `initializeVertex` and `initializeSpring`).\n\n";
-    TestResult connections{kStub, checks[0], weights[0]};
+    TestResult connections = makeTest(kStub, checks[0], weights[0]);
     const int errors = c.missing + c.extra + c.duplicates;
     connections.fraction = errors == 0 ? 1.0 : std::max(0.0, 1.0 - double(errors) / reference.count);
     if (errors) {
@@ -223,7 +223,7 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
     }
     tests.push_back(connections);
 
-    TestResult rest{kStub, checks[1], weights[1]};
+    TestResult rest = makeTest(kStub, checks[1], weights[1]);
     rest.fraction = c.matched && c.wrong_rest == 0 ? 1.0 : 0.0;
     if (c.wrong_rest || !c.matched) {
       rest.output = state + std::to_string(c.wrong_rest) + " of " + std::to_string(c.matched) +
@@ -241,7 +241,7 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
     }
     tests.push_back(rest);
 
-    TestResult labels{kStub, checks[2], weights[2]};
+    TestResult labels = makeTest(kStub, checks[2], weights[2]);
     labels.fraction = c.matched && c.wrong_type == 0 ? 1.0 : 0.0;
     if (c.wrong_type || !c.matched) {
       labels.output = state + std::to_string(c.wrong_type) + " of " + std::to_string(c.matched) +
@@ -263,7 +263,7 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
   // The second size: hard-coded 25s show up here.
   const int n = kSecondParticlesPerEdge;
   const std::string check = "all springs at N = " + std::to_string(n);
-  TestResult small{kStub, check, 1};
+  TestResult small = makeTest(kStub, check, 1);
   const std::string state = "A " + std::to_string(n) + " x " + std::to_string(n) +
                             " cloth (your cloth.cpp compiled again with particlesPerEdge = " +
                             std::to_string(n) + ").\n\n";

@@ -31,6 +31,14 @@ struct TestResult {
   bool passed() const { return fraction >= 1.0; }
 };
 
+inline TestResult makeTest(std::string stub, std::string check, double weight) {
+  TestResult test;
+  test.stub = std::move(stub);
+  test.check = std::move(check);
+  test.weight = weight;
+  return test;
+}
+
 struct UsedFile {
   std::string name;        // cloth.cpp, sphere.cpp, integrator.cpp
   std::string path;        // as found below the submission directory, or empty when missing

@@ -14,8 +14,8 @@ namespace clothref::grader {
 
 std::vector<TestResult> probeWholeRun(const ProbeContext& context) {
   const std::string scene_name = context.edition == 2024 ? "course2024" : "course2022";
-  TestResult t{"Cloth + Spheres + ExplicitEuler (whole run)",
-               "course scene " + scene_name + " for 200 steps (information only)", 0};
+  TestResult t = makeTest("Cloth + Spheres + ExplicitEuler (whole run)",
+                          "course scene " + scene_name + " for 200 steps (information only)", 0);
   t.informational = true;
   t.fraction = 1;
   const Scene* scene = findBuiltinScene(scene_name);
