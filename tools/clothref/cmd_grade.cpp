@@ -16,7 +16,7 @@ Command addGradeCommand(CLI::App& root) {
   struct Options {
     std::vector<std::string> dirs;
     int edition = 0;
-    std::string results, junit, report, rubric, work_dir;
+    std::string results, junit, report, rubric, work_dir, cache_dir;
     bool keep_work = false, no_whole_run = false;
     double timeout = 20;
     std::string optimisation = "-O2";
@@ -37,6 +37,8 @@ Command addGradeCommand(CLI::App& root) {
   app->add_option("--opt", options->optimisation, "optimisation flag for student code")
       ->check(CLI::IsMember({"-O0", "-O1", "-O2", "-O3"}));
   app->add_option("--work-dir", options->work_dir, "parent of the scratch folders (default: temp)");
+  app->add_option("--cache-dir", options->cache_dir,
+                  "reuse compiled objects of identical files across runs (keyed by bytes + flags)");
   app->add_flag("--keep-work", options->keep_work, "keep the scratch folder (objects, probe I/O)");
   app->add_flag("--no-whole-run", options->no_whole_run, "skip the information-only whole run");
   return {app, [options] {
@@ -54,6 +56,7 @@ Command addGradeCommand(CLI::App& root) {
             grade.limits.wall_seconds = options->timeout;
             grade.limits.cpu_seconds = static_cast<std::uint64_t>(options->timeout) + 1;
             grade.toolchain.optimisation = options->optimisation;
+            grade.toolchain.cache_dir = options->cache_dir;
             int exit_code = kExitOk;
             for (const std::string& dir : options->dirs) {
               grader::GradeReport report;

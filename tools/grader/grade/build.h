@@ -24,6 +24,7 @@ struct CourseToolchain {
   std::filesystem::path driver_lib_dir; // holds libclothref_grader_course_<edition>.a
   std::filesystem::path eigen_include;  // e.g. /usr/include/eigen3
   int jobs = 2;                         // compiles at once
+  std::filesystem::path cache_dir;      // object cache keyed by source bytes + flags; empty = off
   double compile_seconds = 120;         // per compile
 };
 
