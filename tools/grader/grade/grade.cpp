@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <chrono>
 #include <future>
+#include <fstream>
 #include <random>
+#include <regex>
 
 #include "clothref/io/error.h"
 #include "probes.h"
@@ -47,6 +49,23 @@ class ScratchDir {
   fs::path path_;
   bool keep_;
 };
+
+// Lines that hold an Eigen expression in an `auto` variable (e.g. `auto d = p.position(i) -
+// p.position(j);`): it may refer to temporaries that are gone when it is read.
+std::vector<std::string> autoExpressionLines(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  static const std::regex pattern(
+      R"(\bauto\s*&{0,2}\s*\w+\s*=\s*[^;]*(position|velocity|acceleration|normalized|cross3)\s*\([^;]*[-+*/][^;]*;)");
+  std::vector<std::string> lines;
+  int number = 0;
+  for (std::string line; std::getline(in, line);) {
+    ++number;
+    if (std::regex_search(line, pattern))
+      lines.push_back("line " + std::to_string(number) + ": `" +
+                      line.substr(line.find_first_not_of(" \t")) + "`");
+  }
+  return lines;
+}
 
 double since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -146,6 +165,24 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
   }
   for (auto& group : results)
     for (auto& t : group) report.tests.push_back(std::move(t));
+  // A crash or an unexplained result next to an `auto` Eigen expression: name it, as a guess.
+  for (const UsedFile& used : build.files) {
+    if (!used.compiled) continue;
+    const auto lines = autoExpressionLines(used.path);
+    if (lines.empty()) continue;
+    for (TestResult& t : report.tests) {
+      const auto& stubs = stubsOfFile().at(used.name);
+      if (t.passed() || std::find(stubs.begin(), stubs.end(), t.stub) == stubs.end()) continue;
+      const bool suspicious = std::any_of(t.diagnoses.begin(), t.diagnoses.end(), [](const auto& id) {
+        return id == "crashed" || id == "unknown" || id == "non-finite";
+      });
+      if (!suspicious) continue;
+      t.diagnoses.push_back("dangling-auto-expression");
+      t.output += "\n" + catalogue.cause("dangling-auto-expression", true) + " In " + used.name +
+                  ":\n\n";
+      for (std::size_t k = 0; k < lines.size() && k < 3; ++k) t.output += "- " + lines[k] + "\n";
+    }
+  }
   // Course order of stubs, then the order the probes produced.
   std::stable_sort(report.tests.begin(), report.tests.end(), [](const TestResult& a, const TestResult& b) {
     const auto rank = [](const std::string& stub) {

@@ -58,10 +58,12 @@ Step clothrefStep(Method method, int bodies_integrated = 2) {
 // Course-form variants written the way students write them, for the numeric signatures.
 // `alias`: every read of "the backup" sees the live state (a pointer or Eigen::Ref "copy").
 enum class Variant { ImplicitVNew, Alias, NoReevaluation, RkIntDivision, RkMixedFinal,
-                     RkMixedStage, PositionUsesAcceleration, VelocityOnly, PositionOnly };
+                     RkMixedStage, RkStageFromCurrent, PositionUsesAcceleration, VelocityOnly,
+                     PositionOnly };
 
-Step variantStep(Method method, Variant variant) {
-  return [method, variant](System& s) {
+// `stage`: for RkMixedStage, the stage (0..2) whose position uses the velocity increment.
+Step variantStep(Method method, Variant variant, int stage_index = -1) {
+  return [method, variant, stage_index](System& s) {
     std::vector<Particles<float>*> bodies{&s.cloth.particles, &s.spheres.particles};
     const float dt = s.dt;
     simulate(s);
@@ -108,8 +110,11 @@ Step variantStep(Method method, Variant variant) {
       for (auto* p : bodies) kx[k].push_back(p->velocity * dt), kv[k].push_back(p->acceleration * dt);
       if (k == 3) break;
       for (std::size_t b = 0; b < bodies.size(); ++b) {
-        const Mat4X<float> x = X0(b), v = V0(b);
-        bodies[b]->position = x + (variant == Variant::RkMixedStage ? kv[k][b] : kx[k][b]) * stage[k];
+        const bool current = variant == Variant::RkStageFromCurrent && k > 0;
+        const Mat4X<float> x = current ? bodies[b]->position : X0(b);
+        const Mat4X<float> v = current ? bodies[b]->velocity : V0(b);
+        const bool mixed = variant == Variant::RkMixedStage && stage_index == k;
+        bodies[b]->position = x + (mixed ? kv[k][b] : kx[k][b]) * stage[k];
         bodies[b]->velocity = v + kv[k][b] * stage[k];
       }
     }
@@ -394,7 +399,9 @@ std::vector<TestResult> probeIntegrator(const ProbeContext& context, int index) 
     if (method == Method::Rk4) {
       signatures.push_back({"integer-division-rk4", variantStep(method, Variant::RkIntDivision)});
       signatures.push_back({"rk4-mixed-increments", variantStep(method, Variant::RkMixedFinal)});
-      signatures.push_back({"rk4-mixed-increments", variantStep(method, Variant::RkMixedStage)});
+      for (int k = 0; k < 3; ++k)
+        signatures.push_back({"rk4-mixed-increments", variantStep(method, Variant::RkMixedStage, k)});
+      signatures.push_back({"rk4-stage-not-from-backup", variantStep(method, Variant::RkStageFromCurrent)});
     }
     for (const auto& [id, step] : signatures)
       if (distance(actual, stepped(random, step)) <= 10 * rel &&
@@ -433,6 +440,22 @@ std::vector<TestResult> probeIntegrator(const ProbeContext& context, int index) 
     }
     const float dt_after = answer->f("dt_after.0").empty() ? random.dt : answer->f("dt_after.0")[0];
     if (dt_after != random.dt) ids.push_back("deltatime-mutated");
+    // simulateOneStep calls during integrate: 1 (implicit, midpoint) or 3 (RK4) in the course.
+    const std::int64_t calls = answer->i("calls.0").empty() ? -1 : answer->i("calls.0")[0];
+    const std::int64_t expected_calls = method == Method::Rk4 ? 3 : method == Method::Explicit ? 0 : 1;
+    if (calls >= 0 && calls < expected_calls) {
+      one.output += "\nsimulateOneStep() was called " + std::to_string(calls) +
+                    " times during integrate(); the course method calls it " +
+                    std::to_string(expected_calls) + " times.\n";
+      ids.erase(std::remove(ids.begin(), ids.end(), "no-reevaluation"), ids.end());
+      ids.push_back("no-reevaluation");
+    } else if (method == Method::Midpoint && calls == expected_calls) {
+      // Explicit Euler's result despite a re-evaluation: the half step added nothing.
+      if (std::find(ids.begin(), ids.end(), "no-reevaluation") != ids.end()) {
+        ids.erase(std::remove(ids.begin(), ids.end(), "no-reevaluation"), ids.end());
+        ids.push_back("integer-division-half");
+      }
+    }
     if (ids.empty()) {
       one.output += "\n" + context.catalogue->cause("unknown", true) + "\n";
       ids.push_back("unknown");
