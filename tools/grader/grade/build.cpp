@@ -148,7 +148,6 @@ std::string firstCompilerError(const std::string& log, const std::string& file_n
   std::vector<std::string> lines;
   for (std::string line; std::getline(in, line);) lines.push_back(line);
   for (std::size_t i = 0; i < lines.size(); ++i) {
-    if (lines[i].find("error") == std::string::npos) continue;
     if (lines[i].find(": error:") == std::string::npos &&
         lines[i].find("fatal error:") == std::string::npos &&
         lines[i].find("undefined reference") == std::string::npos)

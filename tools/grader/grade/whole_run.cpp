@@ -4,10 +4,12 @@
 // symplectic explicit drifts from the reference trajectory more than many real bugs do.
 #include <fstream>
 
-#include "clothref/core/world.h"
+#include "clothref/record/record.h"
+#include "clothref/record/world_views.h"
+#include "clothref/scene/make_world.h"
+#include "clothref/trace/format.h"
 #include "clothref/diff/diff.h"
 #include "clothref/scene/scene.h"
-#include "clothref/trace/writer.h"
 #include "probe_util.h"
 
 namespace clothref::grader {
