@@ -25,7 +25,8 @@ TEST(FirstCompilerError, LinkErrors) {
       "/usr/bin/ld: probe_driver.o: in function `main':\n"
       "driver.cpp:(.text+0x1): undefined reference to `Cloth::computeNormal()'\n",
       "cloth.cpp");
-  EXPECT_NE(quote.find("undefined reference to `Cloth::computeNormal()'"), std::string::npos) << quote;
+  EXPECT_NE(quote.find("undefined reference to `Cloth::computeNormal()'"), std::string::npos)
+      << quote;
 }
 
 }  // namespace

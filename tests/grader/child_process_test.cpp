@@ -42,14 +42,16 @@ TEST(RunChild, PrintingAFrameOnStdoutIsNotAnAnswer) {
   ASSERT_EQ(fd3.status, ChildStatus::Ok);
   EXPECT_EQ(fd3.answer->text("score"), "100");
   fake.nonce = 43;  // a stale or guessed nonce
-  std::ofstream(temp.file("frame"), std::ios::binary | std::ios::trunc) << probe::encodeMessage(fake);
+  std::ofstream(temp.file("frame"), std::ios::binary | std::ios::trunc)
+      << probe::encodeMessage(fake);
   EXPECT_EQ(runShell(temp, "cat frame >&3").status, ChildStatus::NoAnswer);
 }
 
 TEST(RunTools, ResultsInCommandOrder) {
   test::TempDir temp;
-  const auto runs = runTools({{"/bin/sh", "-c", "sleep 0.2; echo one"}, {"/bin/sh", "-c", "echo two; exit 1"}},
-                             temp.path(), 2, 10);
+  const auto runs =
+      runTools({{"/bin/sh", "-c", "sleep 0.2; echo one"}, {"/bin/sh", "-c", "echo two; exit 1"}},
+               temp.path(), 2, 10);
   ASSERT_EQ(runs.size(), 2u);
   EXPECT_TRUE(runs[0].ok);
   EXPECT_EQ(runs[0].output, "one\n");

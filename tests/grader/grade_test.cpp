@@ -2,13 +2,13 @@
 // mutant loses points in exactly the stubs its expected.json names, with the expected diagnoses
 // in the feedback of a failed test of those stubs. One test per submission, graded by the CLI
 // (`clothref grade --results`), so ctest -j runs them in parallel.
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
-#include <set>
-
-#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "test_util.h"
 
@@ -49,7 +49,8 @@ fs::path findFile(const fs::path& dir, const std::string& name) {
 }
 
 // A mutant with a "base" holds only its changed files: the submission is the base overlaid.
-fs::path materialise(const fs::path& case_dir, const nlohmann::json& expected, const fs::path& scratch) {
+fs::path materialise(const fs::path& case_dir, const nlohmann::json& expected,
+                     const fs::path& scratch) {
   if (!expected.contains("base")) return case_dir;
   const fs::path base = kCorpus / expected["base"].get<std::string>();
   const fs::path target = scratch / "submission" / "src";
@@ -76,13 +77,15 @@ TEST_P(Corpus, LosesPointsExactlyInTheExpectedStubsWithTheExpectedDiagnoses) {
   const CommandResult run = runCli(args);
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const nlohmann::json results = readJson(temp.file("results.json"));
-  EXPECT_EQ(results["extra_data"]["edition"].get<int>(), std::stoi(expected["edition"].get<std::string>()));
+  EXPECT_EQ(results["extra_data"]["edition"].get<int>(),
+            std::stoi(expected["edition"].get<std::string>()));
 
   std::set<std::string> losing, expected_losing;
   for (const auto& [stub, max] : results["extra_data"]["stub_max"].items())
     if (results["extra_data"]["stub_scores"][stub].get<double>() < max.get<double>() - 1e-9)
       losing.insert(stub);
-  for (const auto& stub : expected["stubs_losing_points"]) expected_losing.insert(stub.get<std::string>());
+  for (const auto& stub : expected["stubs_losing_points"])
+    expected_losing.insert(stub.get<std::string>());
   EXPECT_EQ(losing, expected_losing) << results.dump(1).substr(0, 4000);
 
   std::set<std::string> shown;  // diagnosis ids on failed tests of the losing stubs
@@ -90,12 +93,12 @@ TEST_P(Corpus, LosesPointsExactlyInTheExpectedStubsWithTheExpectedDiagnoses) {
     const std::string name = test["name"];
     EXPECT_EQ(name.rfind(test["tags"][0].get<std::string>() + ": ", 0), 0u) << name;
     if (test["status"] == "failed" && expected_losing.count(test["tags"][0].get<std::string>()))
-      for (std::size_t k = 1; k < test["tags"].size(); ++k) shown.insert(test["tags"][k].get<std::string>());
+      for (std::size_t k = 1; k < test["tags"].size(); ++k)
+        shown.insert(test["tags"][k].get<std::string>());
   }
   for (const auto& id : expected["diagnoses"])
     EXPECT_TRUE(shown.count(id.get<std::string>())) << "diagnosis " << id << " not shown";
-  if (expected["kind"] == "correct")
-    EXPECT_DOUBLE_EQ(results["score"].get<double>(), 80.0);
+  if (expected["kind"] == "correct") EXPECT_DOUBLE_EQ(results["score"].get<double>(), 80.0);
   if (expected.contains("compile_errors"))
     for (const auto& file : expected["compile_errors"])
       for (const auto& used : results["extra_data"]["files"])
@@ -114,10 +117,10 @@ INSTANTIATE_TEST_SUITE_P(Submissions, Corpus, ::testing::ValuesIn(corpusCases())
 TEST(WholeRun, ReferenceIsIdenticalToClothrefAndNeverScored) {
   TempDir temp;
   const fs::path submission = kCorpus / "2022" / "reference";
-  const CommandResult run = runCli("grade '" + submission.string() + "' --cache-dir '" +
-                                   std::string(CLOTHREF_GRADER_CACHE) + "' --results '" +
-                                   temp.file("results.json") + "' --junit '" +
-                                   temp.file("junit.xml") + "' --report '" + temp.file("report.md") + "'");
+  const CommandResult run = runCli(
+      "grade '" + submission.string() + "' --cache-dir '" + std::string(CLOTHREF_GRADER_CACHE) +
+      "' --results '" + temp.file("results.json") + "' --junit '" + temp.file("junit.xml") +
+      "' --report '" + temp.file("report.md") + "'");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const nlohmann::json results = readJson(temp.file("results.json"));
   bool found = false;
@@ -125,7 +128,8 @@ TEST(WholeRun, ReferenceIsIdenticalToClothrefAndNeverScored) {
     if (test["name"].get<std::string>().find("whole run") != std::string::npos) {
       found = true;
       EXPECT_EQ(test["max_score"].get<double>(), 0.0);
-      EXPECT_NE(test["output"].get<std::string>().find("identical"), std::string::npos) << test["output"];
+      EXPECT_NE(test["output"].get<std::string>().find("identical"), std::string::npos)
+          << test["output"];
     }
   EXPECT_TRUE(found);
   EXPECT_TRUE(fs::file_size(temp.file("junit.xml")) > 0);

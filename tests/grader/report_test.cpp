@@ -33,7 +33,8 @@ TEST(ResultsJson, GradescopeFields) {
   EXPECT_EQ(test["max_score"], 2.0);
   EXPECT_EQ(test["output_format"], "md");
   EXPECT_EQ(test["visibility"], "visible");
-  EXPECT_EQ(test["tags"], nlohmann::ordered_json({"Spheres::collide(Cloth*)", "no-approach-check"}));
+  EXPECT_EQ(test["tags"],
+            nlohmann::ordered_json({"Spheres::collide(Cloth*)", "no-approach-check"}));
   EXPECT_EQ(json["tests"][0]["status"], "passed");
 }
 
@@ -48,8 +49,10 @@ TEST(JunitXml, EscapesFeedback) {
 
 TEST(MarkdownReport, FailedChecksComeWithTheirFeedback) {
   const std::string md = markdownReport(sampleReport());
-  EXPECT_NE(md.find("### Spheres::collide(Cloth*): approaching pair (0 / 2)"), std::string::npos) << md;
-  EXPECT_NE(md.find("- RungeKuttaFourth::integrate: convergence order (3 / 3)"), std::string::npos) << md;
+  EXPECT_NE(md.find("### Spheres::collide(Cloth*): approaching pair (0 / 2)"), std::string::npos)
+      << md;
+  EXPECT_NE(md.find("- RungeKuttaFourth::integrate: convergence order (3 / 3)"), std::string::npos)
+      << md;
 }
 
 }  // namespace

@@ -33,7 +33,8 @@ TEST(FindSubmissionFiles, PrefersSrcThenShallowestAndListsTheOthers) {
   EXPECT_EQ(files.found.at("sphere.cpp"), root / "HW1" / "src" / "Sphere.cpp");
   EXPECT_EQ(files.found.at("integrator.cpp"), root / "integrator.cpp");
   bool listed_old = false;
-  for (const auto& note : files.notes) listed_old |= note.find("old/cloth.cpp") != std::string::npos;
+  for (const auto& note : files.notes)
+    listed_old |= note.find("old/cloth.cpp") != std::string::npos;
   EXPECT_TRUE(listed_old);
 }
 
@@ -45,7 +46,8 @@ TEST(FindSubmissionFiles, NamesBomCrlfAndNonUtf8Bytes) {
   const SubmissionFiles files = findSubmissionFiles(temp.path());
   std::string notes;
   for (const auto& note : files.notes) notes += note + "\n";
-  EXPECT_NE(notes.find("cloth.cpp: UTF-8 byte-order mark; CRLF line ends;"), std::string::npos) << notes;
+  EXPECT_NE(notes.find("cloth.cpp: UTF-8 byte-order mark; CRLF line ends;"), std::string::npos)
+      << notes;
   EXPECT_NE(notes.find("sphere.cpp: bytes that are not UTF-8"), std::string::npos) << notes;
   EXPECT_EQ(notes.find("integrator.cpp"), std::string::npos) << notes;
 }
@@ -59,13 +61,16 @@ TEST(DetectEdition, FromTheDefinitionsNotFromComments) {
   test::TempDir temp;
   SubmissionFiles files;
   files.found["sphere.cpp"] = temp.path() / "sphere.cpp";
-  write(files.found["sphere.cpp"], "void Spheres::collide(Cloth* c) {}\nvoid Spheres::collide() {}\n");
+  write(files.found["sphere.cpp"],
+        "void Spheres::collide(Cloth* c) {}\nvoid Spheres::collide() {}\n");
   std::string why;
   EXPECT_EQ(detectEdition(files, why), 2022);
-  write(files.found["sphere.cpp"], "// Spheres::collide() was removed\n"
-                                   "void Spheres::setVelocity(int i, const Eigen::Vector4f v) {}\n");
+  write(files.found["sphere.cpp"],
+        "// Spheres::collide() was removed\n"
+        "void Spheres::setVelocity(int i, const Eigen::Vector4f v) {}\n");
   EXPECT_EQ(detectEdition(files, why), 2024);
-  write(files.found["sphere.cpp"], "/* void Spheres::setVelocity(int) */ void Spheres::collide ( ) {}\n");
+  write(files.found["sphere.cpp"],
+        "/* void Spheres::setVelocity(int) */ void Spheres::collide ( ) {}\n");
   EXPECT_EQ(detectEdition(files, why), 2022);
   write(files.found["sphere.cpp"], "int nothing;\n");
   EXPECT_EQ(detectEdition(files, why), 0);

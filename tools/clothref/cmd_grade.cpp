@@ -25,12 +25,14 @@ Command addGradeCommand(CLI::App& root) {
   app->add_option("DIR", options->dirs, "submission directories (the three files anywhere below)")
       ->required()
       ->check(CLI::ExistingDirectory);
-  app->add_option("--edition", options->edition, "course edition (default: detected from the files)")
+  app->add_option("--edition", options->edition,
+                  "course edition (default: detected from the files)")
       ->check(CLI::IsMember({2022, 2024}));
   app->add_option("--results", options->results, "write Gradescope results.json here");
   app->add_option("--junit", options->junit, "write JUnit XML here");
   app->add_option("--report", options->report, "write the Markdown report here (default: stdout)");
-  app->add_option("--rubric", options->rubric, "JSON rubric: weights, tolerances, accepted variants")
+  app->add_option("--rubric", options->rubric,
+                  "JSON rubric: weights, tolerances, accepted variants")
       ->check(CLI::ExistingFile);
   app->add_option("--timeout", options->timeout, "wall-clock limit per probe process, seconds")
       ->check(CLI::PositiveNumber);
@@ -43,8 +45,8 @@ Command addGradeCommand(CLI::App& root) {
   app->add_flag("--no-whole-run", options->no_whole_run, "skip the information-only whole run");
   return {app, [options] {
             const bool single = options->dirs.size() == 1;
-            if (!single && (!options->results.empty() || !options->junit.empty() ||
-                            !options->report.empty()))
+            if (!single &&
+                (!options->results.empty() || !options->junit.empty() || !options->report.empty()))
               throw InputError("--results, --junit and --report take one submission DIR; got " +
                                std::to_string(options->dirs.size()));
             grader::GradeOptions grade;

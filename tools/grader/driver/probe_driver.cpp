@@ -13,6 +13,7 @@
 //   whole-run        the student's full simulation of the course scene (information only)
 #include <unistd.h>
 
+#include <Eigen/Core>
 #include <cerrno>
 #include <cstdio>
 #include <iostream>
@@ -20,8 +21,6 @@
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "../bridge/probe_protocol.h"
 #include "cloth.h"
@@ -57,9 +56,9 @@ std::vector<Spring> springsFrom(const ProbeMessage& in, const std::string& prefi
   const auto& rest = in.f(prefix + "rest");
   std::vector<Spring> springs;
   for (size_t s = 0; s < start.size() && s < end.size() && s < rest.size(); ++s)
-    springs.emplace_back(static_cast<unsigned>(start[s]), static_cast<unsigned>(end[s]), rest[s],
-                         s < type.size() ? static_cast<Spring::Type>(type[s])
-                                         : Spring::Type::STRUCTURAL);
+    springs.emplace_back(
+        static_cast<unsigned>(start[s]), static_cast<unsigned>(end[s]), rest[s],
+        s < type.size() ? static_cast<Spring::Type>(type[s]) : Spring::Type::STRUCTURAL);
   return springs;
 }
 
@@ -165,9 +164,8 @@ void springForce(MiniWorld& w) {
     Eigen::Vector4f d = p.position(s) - p.position(e);
     const float length = d.norm();
     d.normalize();
-    const Eigen::Vector4f force =
-        d * (w.damper_coef * (p.velocity(s) - p.velocity(e)).dot(d) +
-             w.spring_coef * (length - spring.length()));
+    const Eigen::Vector4f force = d * (w.damper_coef * (p.velocity(s) - p.velocity(e)).dot(d) +
+                                       w.spring_coef * (length - spring.length()));
     p.acceleration(s) -= force * p.inverseMass(s);
     p.acceleration(e) += force * p.inverseMass(e);
   }
@@ -192,8 +190,10 @@ void contact(Particles& a, int i, Particles& b, int j, float reach, float e) {
 
 void simulate(MiniWorld& w) {
   externalForce(w.cloth, w.gravity, w.viscous);
-  if (w.sphere_gravity) externalForce(w.spheres, w.gravity, w.viscous);
-  else w.spheres.acceleration().setZero();
+  if (w.sphere_gravity)
+    externalForce(w.spheres, w.gravity, w.viscous);
+  else
+    w.spheres.acceleration().setZero();
   springForce(w);
   if (w.cloth_contact)
     for (int i = 0; i < w.spheres.getCapacity(); ++i)
@@ -212,10 +212,14 @@ const Integrator& integratorFor(std::int64_t method) {
   static const MidpointEuler midpointEuler;
   static const RungeKuttaFourth rungeKutta;
   switch (method) {
-    case 1: return implicitEuler;
-    case 2: return midpointEuler;
-    case 3: return rungeKutta;
-    default: return explicitEuler;
+    case 1:
+      return implicitEuler;
+    case 2:
+      return midpointEuler;
+    case 3:
+      return rungeKutta;
+    default:
+      return explicitEuler;
   }
 }
 
@@ -308,13 +312,13 @@ void probeWholeRun(const ProbeMessage& in, ProbeMessage& out) {
   };
   std::vector<float> clothX, clothV, sphereX, sphereV;
   auto record = [&] {
-    for (auto [from, to] : {std::pair{&cloth.particles(), &clothX},
-                            std::pair{&spheres.particles(), &sphereX}}) {
+    for (auto [from, to] :
+         {std::pair{&cloth.particles(), &clothX}, std::pair{&spheres.particles(), &sphereX}}) {
       auto x = save(from->position());
       to->insert(to->end(), x.begin(), x.end());
     }
-    for (auto [from, to] : {std::pair{&cloth.particles(), &clothV},
-                            std::pair{&spheres.particles(), &sphereV}}) {
+    for (auto [from, to] :
+         {std::pair{&cloth.particles(), &clothV}, std::pair{&spheres.particles(), &sphereV}}) {
       auto v = save(from->velocity());
       to->insert(to->end(), v.begin(), v.end());
     }
@@ -355,12 +359,18 @@ int main() {
   ProbeMessage out;
   out.nonce = in->nonce;
   const std::string group = in->text("group");
-  if (group == "springs") probeSprings(*in, out);
-  else if (group == "forces") probeForces(*in, out);
-  else if (group == "collide-cloth") probeCollide(*in, out, false);
-  else if (group == "collide-spheres") probeCollide(*in, out, true);
-  else if (group == "integrate") probeIntegrate(*in, out);
-  else if (group == "whole-run") probeWholeRun(*in, out);
+  if (group == "springs")
+    probeSprings(*in, out);
+  else if (group == "forces")
+    probeForces(*in, out);
+  else if (group == "collide-cloth")
+    probeCollide(*in, out, false);
+  else if (group == "collide-spheres")
+    probeCollide(*in, out, true);
+  else if (group == "integrate")
+    probeIntegrate(*in, out);
+  else if (group == "whole-run")
+    probeWholeRun(*in, out);
   else {
     std::fprintf(stderr, "probe driver: unknown group '%s'\n", group.c_str());
     return 70;

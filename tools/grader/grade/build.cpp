@@ -48,10 +48,10 @@ std::vector<std::string> compileCommand(const CourseToolchain& t, int edition,
   if (!pch.empty()) command.insert(command.end(), {"-include", pch.string()});
   if (particles_per_edge != 25)
     command.push_back("-DCLOTHREF_GRADER_PARTICLES_PER_EDGE=" + std::to_string(particles_per_edge));
-  command.insert(command.end(), {"-I" + (t.course_dir / ed / "include").string(),
-                                 "-I" + (t.course_dir / "common" / "include").string(),
-                                 "-isystem", t.eigen_include.string(), "-c", source.string(),
-                                 "-o", object.string()});
+  command.insert(command.end(),
+                 {"-I" + (t.course_dir / ed / "include").string(),
+                  "-I" + (t.course_dir / "common" / "include").string(), "-isystem",
+                  t.eigen_include.string(), "-c", source.string(), "-o", object.string()});
   return command;
 }
 
@@ -157,7 +157,8 @@ std::vector<ToolRun> compileAll(const CourseToolchain& t,
     const fs::path object = *(std::find(c.begin(), c.end(), "-o") + 1);
     std::error_code error;
     fs::create_directories(t.cache_dir, error);
-    const fs::path temporary = cached[k].string() + ".tmp" + std::to_string(getpid()) + "-" + std::to_string(k);
+    const fs::path temporary =
+        cached[k].string() + ".tmp" + std::to_string(getpid()) + "-" + std::to_string(k);
     if (fs::copy_file(object, temporary, fs::copy_options::overwrite_existing, error))
       fs::rename(temporary, cached[k], error);  // atomic: concurrent graders never see half a file
   }
@@ -207,8 +208,8 @@ std::string firstCompilerError(const std::string& log, const std::string& file_n
   return lines.empty() ? std::string("(no compiler output)") : lines.front();
 }
 
-ProbeBuild buildProbes(const SubmissionFiles& files, int edition,
-                       const CourseToolchain& toolchain, const fs::path& work_dir) {
+ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseToolchain& toolchain,
+                       const fs::path& work_dir) {
   ProbeBuild build;
   const std::string ed = std::to_string(edition);
   const auto stem = [](const std::string& name) { return name.substr(0, name.size() - 4); };
@@ -230,8 +231,8 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition,
     const fs::path folder = work_dir / ("src-" + stem(name));
     fs::create_directories(folder);
     fs::copy_file(found->second, folder / name, fs::copy_options::overwrite_existing);
-    commands.push_back(compileCommand(toolchain, edition, folder / name,
-                                      work_dir / (stem(name) + ".o"), 25, pch));
+    commands.push_back(
+        compileCommand(toolchain, edition, folder / name, work_dir / (stem(name) + ".o"), 25, pch));
     names.push_back(name);
     if (name == "cloth.cpp") {
       commands.push_back(compileCommand(toolchain, edition, folder / name,
@@ -270,8 +271,8 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition,
   runs = compileAll(toolchain, commands, work_dir);
   for (std::size_t k = 0; k < runs.size(); ++k)
     if (!runs[k].ok) {
-      build.problem = "our reference " + names[k] + " for " + ed + " does not compile: " +
-                      firstCompilerError(runs[k].output, names[k]);
+      build.problem = "our reference " + names[k] + " for " + ed +
+                      " does not compile: " + firstCompilerError(runs[k].output, names[k]);
       return build;
     }
   build.compile_seconds =
@@ -295,9 +296,9 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition,
     if (linked.ok) break;
     if (!used.compiled) continue;
     const std::string error = firstCompilerError(linked.output, used.name);
-    std::vector<std::string> ref = compileCommand(toolchain, edition,
-                                                  toolchain.reference_dir / ed / used.name,
-                                                  work_dir / (stem(used.name) + "-ref.o"), 25, pch);
+    std::vector<std::string> ref =
+        compileCommand(toolchain, edition, toolchain.reference_dir / ed / used.name,
+                       work_dir / (stem(used.name) + "-ref.o"), 25, pch);
     if (!compileAll(toolchain, {ref}, work_dir).front().ok) continue;
     std::vector<fs::path> swapped = objects;
     for (auto& o : swapped)

@@ -43,15 +43,24 @@ std::string readHead(const std::filesystem::path& path, std::size_t max_bytes, i
 
 std::string signalName(int signal) {
   switch (signal) {
-    case SIGSEGV: return "SIGSEGV, segmentation fault";
-    case SIGABRT: return "SIGABRT, abort";
-    case SIGFPE: return "SIGFPE, arithmetic error";
-    case SIGBUS: return "SIGBUS, bus error";
-    case SIGILL: return "SIGILL, illegal instruction";
-    case SIGKILL: return "SIGKILL";
-    case SIGXCPU: return "SIGXCPU, CPU time limit";
-    case SIGXFSZ: return "SIGXFSZ, output file size limit";
-    default: return "signal " + std::to_string(signal);
+    case SIGSEGV:
+      return "SIGSEGV, segmentation fault";
+    case SIGABRT:
+      return "SIGABRT, abort";
+    case SIGFPE:
+      return "SIGFPE, arithmetic error";
+    case SIGBUS:
+      return "SIGBUS, bus error";
+    case SIGILL:
+      return "SIGILL, illegal instruction";
+    case SIGKILL:
+      return "SIGKILL";
+    case SIGXCPU:
+      return "SIGXCPU, CPU time limit";
+    case SIGXFSZ:
+      return "SIGXFSZ, output file size limit";
+    default:
+      return "signal " + std::to_string(signal);
   }
 }
 
@@ -104,11 +113,21 @@ struct ExecArgs {
 std::string ChildRun::describe() const {
   std::ostringstream out;
   switch (status) {
-    case ChildStatus::Ok: out << "finished"; break;
-    case ChildStatus::Crashed: out << "crashed (" << signalName(signal) << ")"; break;
-    case ChildStatus::TimedOut: out << "timed out after " << static_cast<int>(seconds + 0.5) << " s"; break;
-    case ChildStatus::ExitedNonZero: out << "exited with code " << exit_code; break;
-    case ChildStatus::NoAnswer: out << "exited without sending the probe results"; break;
+    case ChildStatus::Ok:
+      out << "finished";
+      break;
+    case ChildStatus::Crashed:
+      out << "crashed (" << signalName(signal) << ")";
+      break;
+    case ChildStatus::TimedOut:
+      out << "timed out after " << static_cast<int>(seconds + 0.5) << " s";
+      break;
+    case ChildStatus::ExitedNonZero:
+      out << "exited with code " << exit_code;
+      break;
+    case ChildStatus::NoAnswer:
+      out << "exited without sending the probe results";
+      break;
   }
   return out.str();
 }
@@ -159,8 +178,10 @@ ChildRun runChild(const std::vector<std::string>& command, const std::filesystem
     char buffer[65536];
     const ssize_t n = read(pipe_fds[0], buffer, sizeof buffer);
     if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) open_pipe = false;
-    else if (answer.size() < max_answer) answer.append(buffer, static_cast<std::size_t>(n));
+    if (n <= 0)
+      open_pipe = false;
+    else if (answer.size() < max_answer)
+      answer.append(buffer, static_cast<std::size_t>(n));
   }
   close(pipe_fds[0]);
   int status = 0;
@@ -254,7 +275,8 @@ std::vector<ToolRun> runTools(const std::vector<std::vector<std::string>>& comma
         result.ok = !late && WIFEXITED(status) && WEXITSTATUS(status) == 0;
         result.seconds = secondsSince(running[r].start);
         result.output = readHead(log_path(running[r].index), 200000, 4000);
-        if (late) result.output += "\n(stopped after " + std::to_string(int(wall_seconds)) + " s)\n";
+        if (late)
+          result.output += "\n(stopped after " + std::to_string(int(wall_seconds)) + " s)\n";
         running.erase(running.begin() + static_cast<long>(r));
       } else {
         ++r;

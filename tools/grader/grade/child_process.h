@@ -16,12 +16,12 @@
 namespace clothref::grader {
 
 struct ChildLimits {
-  double wall_seconds = 20;                          // killed (whole process group) after this
-  std::uint64_t cpu_seconds = 20;                    // RLIMIT_CPU
-  std::uint64_t address_space_bytes = 4ull << 30;    // RLIMIT_AS
-  std::uint64_t file_size_bytes = 64ull << 20;       // RLIMIT_FSIZE (stdout/stderr floods)
-  std::uint64_t open_files = 64;                     // RLIMIT_NOFILE
-  std::vector<std::string> launcher;                 // argv prefix, empty = run directly
+  double wall_seconds = 20;                        // killed (whole process group) after this
+  std::uint64_t cpu_seconds = 20;                  // RLIMIT_CPU
+  std::uint64_t address_space_bytes = 4ull << 30;  // RLIMIT_AS
+  std::uint64_t file_size_bytes = 64ull << 20;     // RLIMIT_FSIZE (stdout/stderr floods)
+  std::uint64_t open_files = 64;                   // RLIMIT_NOFILE
+  std::vector<std::string> launcher;               // argv prefix, empty = run directly
 };
 
 enum class ChildStatus {
@@ -34,9 +34,9 @@ enum class ChildStatus {
 
 struct ChildRun {
   ChildStatus status = ChildStatus::NoAnswer;
-  int signal = 0;      // for Crashed
-  int exit_code = 0;   // for ExitedNonZero
-  double seconds = 0;  // wall time
+  int signal = 0;           // for Crashed
+  int exit_code = 0;        // for ExitedNonZero
+  double seconds = 0;       // wall time
   std::string stderr_head;  // first lines of the child's stderr (for the report)
   std::optional<probe::ProbeMessage> answer;
   // One line for a report: "crashed (SIGSEGV)", "timed out after 20 s", ...
@@ -63,7 +63,6 @@ struct ToolRun {
 };
 // Runs several tool commands at once (at most `jobs` in parallel); results in command order.
 std::vector<ToolRun> runTools(const std::vector<std::vector<std::string>>& commands,
-                              const std::filesystem::path& work_dir, int jobs,
-                              double wall_seconds);
+                              const std::filesystem::path& work_dir, int jobs, double wall_seconds);
 
 }  // namespace clothref::grader

@@ -4,8 +4,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <future>
 #include <fstream>
+#include <future>
 #include <random>
 #include <regex>
 
@@ -22,8 +22,9 @@ const std::map<std::string, std::vector<std::string>>& stubsOfFile() {
   static const std::map<std::string, std::vector<std::string>> stubs = {
       {"cloth.cpp", {"Cloth::initializeSpring", "Cloth::computeSpringForce"}},
       {"sphere.cpp", {"Spheres::collide(Cloth*)", "Spheres::collide()"}},
-      {"integrator.cpp", {"ExplicitEuler::integrate", "ImplicitEuler::integrate",
-                          "MidpointEuler::integrate", "RungeKuttaFourth::integrate"}}};
+      {"integrator.cpp",
+       {"ExplicitEuler::integrate", "ImplicitEuler::integrate", "MidpointEuler::integrate",
+        "RungeKuttaFourth::integrate"}}};
   return stubs;
 }
 
@@ -85,17 +86,20 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
   const int detected = detectEdition(files, why);
   if (options.edition) {
     report.edition = options.edition;
-    report.edition_source = "forced with --edition" +
-                            (detected && detected != options.edition
-                                 ? " (the files look like " + std::to_string(detected) + ": " + why + ")"
-                                 : std::string());
+    report.edition_source =
+        "forced with --edition" +
+        (detected && detected != options.edition
+             ? " (the files look like " + std::to_string(detected) + ": " + why + ")"
+             : std::string());
   } else {
     report.edition = detected ? detected : 2022;
-    report.edition_source = detected ? "detected: " + why : "not detected (" + why + "); assumed 2022";
+    report.edition_source =
+        detected ? "detected: " + why : "not detected (" + why + "); assumed 2022";
   }
   Rubric rubric = defaultRubric(report.edition);
   if (options.rubric_path) rubric = loadRubric(*options.rubric_path, rubric);
-  const Catalogue catalogue = loadCatalogue(options.toolchain.course_dir.parent_path() / "diagnoses.json");
+  const Catalogue catalogue =
+      loadCatalogue(options.toolchain.course_dir.parent_path() / "diagnoses.json");
 
   ScratchDir scratch(options.work_root, options.keep_work);
   const ProbeBuild build = buildProbes(files, report.edition, options.toolchain, scratch.path());
@@ -122,8 +126,8 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
     const std::string text =
         used.problem == "missing"
             ? used.name + " was not found in the submission; its stubs get no points."
-            : used.name + " does not compile against the course's headers:\n\n```\n" + used.problem +
-                  "```\n\n" + catalogue.cause("compile-error");
+            : used.name + " does not compile against the course's headers:\n\n```\n" +
+                  used.problem + "```\n\n" + catalogue.cause("compile-error");
     for (const auto& stub : stubsOfFile().at(used.name)) unavailable[stub] = text;
   }
 
@@ -173,24 +177,25 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
     for (TestResult& t : report.tests) {
       const auto& stubs = stubsOfFile().at(used.name);
       if (t.passed() || std::find(stubs.begin(), stubs.end(), t.stub) == stubs.end()) continue;
-      const bool suspicious = std::any_of(t.diagnoses.begin(), t.diagnoses.end(), [](const auto& id) {
-        return id == "crashed" || id == "unknown" || id == "non-finite";
-      });
+      const bool suspicious = std::any_of(
+          t.diagnoses.begin(), t.diagnoses.end(),
+          [](const auto& id) { return id == "crashed" || id == "unknown" || id == "non-finite"; });
       if (!suspicious) continue;
       t.diagnoses.push_back("dangling-auto-expression");
-      t.output += "\n" + catalogue.cause("dangling-auto-expression", true) + " In " + used.name +
-                  ":\n\n";
+      t.output +=
+          "\n" + catalogue.cause("dangling-auto-expression", true) + " In " + used.name + ":\n\n";
       for (std::size_t k = 0; k < lines.size() && k < 3; ++k) t.output += "- " + lines[k] + "\n";
     }
   }
   // Course order of stubs, then the order the probes produced.
-  std::stable_sort(report.tests.begin(), report.tests.end(), [](const TestResult& a, const TestResult& b) {
-    const auto rank = [](const std::string& stub) {
-      const auto& names = stubNames();
-      return std::find(names.begin(), names.end(), stub) - names.begin();
-    };
-    return rank(a.stub) < rank(b.stub);
-  });
+  std::stable_sort(report.tests.begin(), report.tests.end(),
+                   [](const TestResult& a, const TestResult& b) {
+                     const auto rank = [](const std::string& stub) {
+                       const auto& names = stubNames();
+                       return std::find(names.begin(), names.end(), stub) - names.begin();
+                     };
+                     return rank(a.stub) < rank(b.stub);
+                   });
   applyRubric(rubric, report);
   report.seconds["total"] = since(start);
   return report;

@@ -13,14 +13,14 @@
 namespace clothref::grader {
 
 struct GradeOptions {
-  int edition = 0;                          // 2022 or 2024; 0 = detect from the files
-  std::optional<std::string> rubric_path;   // JSON rubric overriding the course's weights
+  int edition = 0;                         // 2022 or 2024; 0 = detect from the files
+  std::optional<std::string> rubric_path;  // JSON rubric overriding the course's weights
   CourseToolchain toolchain = defaultToolchain();
   ChildLimits limits;
-  std::filesystem::path work_root;          // scratch parent; empty = the system temp dir
-  bool keep_work = false;                   // keep the scratch folder (for debugging)
-  bool whole_run = true;                    // run the information-only whole-run check
-  int probe_jobs = 2;                       // probe groups at once
+  std::filesystem::path work_root;  // scratch parent; empty = the system temp dir
+  bool keep_work = false;           // keep the scratch folder (for debugging)
+  bool whole_run = true;            // run the information-only whole-run check
+  int probe_jobs = 2;               // probe groups at once
   std::uint64_t seed = 20221;
 };
 

@@ -15,10 +15,22 @@ namespace {
 constexpr int kN = 25;
 const float kRadii[] = {0.5f, 0.5f, 1.0f};
 
-enum class ContactMistake { None, NoApproachCheck, RestitutionFull, CorrectionSphereOnly,
-                            CorrectionOtherOnly, NoCorrection, FixedMassless, FirstSphereOnly,
-                            NormalSign, TouchingSkipped, RestitutionZero, RestitutionOne,
-                            PairTwice, ImpulseNotDivided };
+enum class ContactMistake {
+  None,
+  NoApproachCheck,
+  RestitutionFull,
+  CorrectionSphereOnly,
+  CorrectionOtherOnly,
+  NoCorrection,
+  FixedMassless,
+  FirstSphereOnly,
+  NormalSign,
+  TouchingSkipped,
+  RestitutionZero,
+  RestitutionOne,
+  PairTwice,
+  ImpulseNotDivided
+};
 
 struct State {
   Cloth<float> cloth;
@@ -47,7 +59,8 @@ void contact(Particles<float>& a, int i, Particles<float>& b, int j, float reach
       a.velocity.col(i) += va - ua;
       b.velocity.col(j) += vb - ub;
     } else {
-      const Vec4<float> u = m == ContactMistake::RestitutionFull ? relative : Vec4<float>(n * approach);
+      const Vec4<float> u =
+          m == ContactMistake::RestitutionFull ? relative : Vec4<float>(n * approach);
       const Vec4<float> impulse =
           m == ContactMistake::ImpulseNotDivided
               ? Vec4<float>(-(1 + e) * u)
@@ -83,7 +96,8 @@ State baseState(int edition) {
     for (int j = 0; j < kN; ++j)  // parked 50 m below, 3 m apart: nothing touches them
       s.cloth.particles.position.col(i * kN + j) =
           Vec4<float>(-36.0f + 3.0f * float(j), -50.0f, -36.0f + 3.0f * float(i), 1.0f);
-  for (int corner : {0, kN - 1, kN * (kN - 1), kN * kN - 1}) setMass(s.cloth.particles, corner, 0.0f);
+  for (int corner : {0, kN - 1, kN * (kN - 1), kN * kN - 1})
+    setMass(s.cloth.particles, corner, 0.0f);
   for (int k = 0; k < 3; ++k)
     addSphere(s.spheres, Vec4<float>(100.0f * float(k + 1), 100, 0, 1), kRadii[k], 1000.0f);
   return s;
@@ -133,10 +147,13 @@ std::vector<Case> clothCases(int edition) {
     place(s, true, 2, P(0.3f, 0.85f, 0), V(0, -1, 0));
     place(s, false, 312, P(0, 0, 0), V(0, 0, 0));
   });
-  make("fixed particle", {0}, {0}, [](State& s) {
-    place(s, false, 0, P(0, 0, 0), V(0, 0, 0));
-    place(s, true, 0, P(0, 0.45f, 0.05f), V(0.2f, -1, 0));
-  }, false);
+  make(
+      "fixed particle", {0}, {0},
+      [](State& s) {
+        place(s, false, 0, P(0, 0, 0), V(0, 0, 0));
+        place(s, true, 0, P(0, 0.45f, 0.05f), V(0.2f, -1, 0));
+      },
+      false);
   make("deep penetration", {0}, {312}, [](State& s) {
     place(s, true, 0, P(0.05f, 0.1f, 0.02f), V(0, -1, 0.5f));
     place(s, false, 312, P(0, 0, 0), V(0, 0.2f, 0));
@@ -202,8 +219,8 @@ double distance(const Outcome& a, const Outcome& b) {
   double worst = 0;
   const auto one = [&](const Mat4X<float>& x, const Mat4X<float>& y) {
     for (int k = 0; k < x.size(); ++k) {
-      const double d = std::abs(double(x.data()[k]) - double(y.data()[k])) /
-                       (1 + std::abs(double(y.data()[k])));
+      const double d =
+          std::abs(double(x.data()[k]) - double(y.data()[k])) / (1 + std::abs(double(y.data()[k])));
       worst = std::isfinite(d) ? std::max(worst, d) : 1e300;
     }
   };
@@ -227,7 +244,8 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
   const std::string stub = sphere_sphere ? "Spheres::collide()" : "Spheres::collide(Cloth*)";
   const float e = sphere_sphere ? 0.8f : 0.0f;
   const double rel = context.rubric.tolerances.collide_rel;
-  std::vector<Case> cases = sphere_sphere ? sphereCases(context.edition) : clothCases(context.edition);
+  std::vector<Case> cases =
+      sphere_sphere ? sphereCases(context.edition) : clothCases(context.edition);
   probe::ProbeMessage request;
   request.texts["group"] = sphere_sphere ? "collide-spheres" : "collide-cloth";
   request.ints["cases"] = {static_cast<std::int64_t>(cases.size())};
@@ -243,7 +261,8 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
     request.floats["sph.mass" + n] = util::flat(s.spheres.particles.mass);
   }
   std::string failure;
-  const auto answer = util::runGroup(context, context.probe, request.texts["group"], request, failure);
+  const auto answer =
+      util::runGroup(context, context.probe, request.texts["group"], request, failure);
   std::vector<TestResult> tests;
   std::string momentum_report;
   bool momentum_ok = true;
@@ -251,8 +270,8 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
     const Case& c = cases[k];
     if (!answer) {
       const std::string id = util::verdictId(failure);
-      tests.push_back(util::failedTest(stub, c.check, 1,
-                                       failure + "\n\n" + context.catalogue->cause(id, true), {id}));
+      tests.push_back(util::failedTest(
+          stub, c.check, 1, failure + "\n\n" + context.catalogue->cause(id, true), {id}));
       continue;
     }
     const std::string n = "." + std::to_string(k);
@@ -261,17 +280,21 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
                          util::matrix(answer->f("sph.pos" + n), 3),
                          util::matrix(answer->f("sph.vel" + n), 3)};
     State reference = c.state;
-    if (sphere_sphere) collide(reference.spheres, e, 0.15f);
-    else collide(reference.spheres, reference.cloth, e, 0.15f);
+    if (sphere_sphere)
+      collide(reference.spheres, e, 0.15f);
+    else
+      collide(reference.spheres, reference.cloth, e, 0.15f);
     const Outcome expected = outcomeOf(reference);
     if (c.free_bodies) {
       const Vec4<double> before = momentum(c.state, outcomeOf(c.state));
       const Vec4<double> after = momentum(c.state, actual);
       double scale = 0;
-      for (int q : c.spheres) scale += c.state.spheres.particles.mass[q] *
-                                      c.state.spheres.particles.velocity.col(q).cast<double>().norm();
-      for (int q : c.particles) scale += c.state.cloth.particles.mass[q] *
-                                        c.state.cloth.particles.velocity.col(q).cast<double>().norm();
+      for (int q : c.spheres)
+        scale += c.state.spheres.particles.mass[q] *
+                 c.state.spheres.particles.velocity.col(q).cast<double>().norm();
+      for (int q : c.particles)
+        scale += c.state.cloth.particles.mass[q] *
+                 c.state.cloth.particles.velocity.col(q).cast<double>().norm();
       if (!((after - before).norm() <= 1e-5 * (1 + scale))) {
         momentum_ok = false;
         momentum_report += "- " + c.check + ": total momentum before " +
@@ -286,7 +309,8 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
       tests.push_back(t);
       continue;
     }
-    t.output = "State tried (" + std::string(sphere_sphere ? "coefRestitution 0.8" : "coefRestitution 0") +
+    t.output = "State tried (" +
+               std::string(sphere_sphere ? "coefRestitution 0.8" : "coefRestitution 0") +
                ", radii 0.5, 0.5, 1.0, sphere masses 1000 r^3; all other bodies far away):\n\n";
     const auto line = [&](const char* what, int index, const Mat4X<float>& x0,
                           const Mat4X<float>& v0, float mass, const Mat4X<float>& xe,
@@ -299,8 +323,8 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
     };
     for (int q : c.spheres)
       line("sphere", q, c.state.spheres.particles.position, c.state.spheres.particles.velocity,
-           c.state.spheres.particles.mass[q], expected.sphere_x, expected.sphere_v,
-           actual.sphere_x, actual.sphere_v);
+           c.state.spheres.particles.mass[q], expected.sphere_x, expected.sphere_v, actual.sphere_x,
+           actual.sphere_v);
     for (int q : c.particles)
       line("cloth particle", q, c.state.cloth.particles.position, c.state.cloth.particles.velocity,
            c.state.cloth.particles.mass[q], expected.cloth_x, expected.cloth_v, actual.cloth_x,
@@ -352,8 +376,9 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
     if (momentum_ok) {
       t.output = "Total momentum (sum of m v) is unchanged by every contact between free bodies.";
     } else {
-      t.output = "The impulse must change the two bodies' momenta by equal and opposite amounts.\n\n" +
-                 momentum_report + "\n" + context.catalogue->cause("wrong-mass-split", true) + "\n";
+      t.output =
+          "The impulse must change the two bodies' momenta by equal and opposite amounts.\n\n" +
+          momentum_report + "\n" + context.catalogue->cause("wrong-mass-split", true) + "\n";
       t.diagnoses.push_back("wrong-mass-split");
     }
     tests.push_back(t);

@@ -14,8 +14,17 @@ const char* kStub = "Cloth::computeSpringForce";
 constexpr int kN = 25;
 
 // Course-form force with one known mistake switched on (for the numeric signatures).
-enum class ForceMistake { None, Assign, SpringSign, DamperSign, NoDamper, DamperUnnormalised,
-                          OneEnd, MassNotInverse, DivideByMass };
+enum class ForceMistake {
+  None,
+  Assign,
+  SpringSign,
+  DamperSign,
+  NoDamper,
+  DamperUnnormalised,
+  OneEnd,
+  MassNotInverse,
+  DivideByMass
+};
 
 Mat4X<float> forces(const Cloth<float>& cloth, const Mat4X<float>& acc0, ForceMistake mistake) {
   const auto& p = cloth.particles;
@@ -171,8 +180,8 @@ std::vector<TestResult> probeForces(const ProbeContext& context) {
     const Case& c = cases[k];
     if (!answer) {
       const std::string id = util::verdictId(failure);
-      tests.push_back(util::failedTest(kStub, c.check, 1,
-                                       failure + "\n\n" + context.catalogue->cause(id, true), {id}));
+      tests.push_back(util::failedTest(
+          kStub, c.check, 1, failure + "\n\n" + context.catalogue->cause(id, true), {id}));
       continue;
     }
     TestResult t = makeTest(kStub, c.check, 1);
@@ -189,16 +198,16 @@ std::vector<TestResult> probeForces(const ProbeContext& context) {
     }
     const int i = m.worst;
     const auto& p = c.cloth.particles;
-    t.output = "State: the 25 x 25 course cloth with our springs (k_s = " +
-               util::num(base.spring_coef) + ", k_d = " + util::num(base.damper_coef) + "), " +
-               c.check + ". " + std::to_string(m.count) + " of " + std::to_string(kN * kN) +
-               " particles differ. Worst, particle " + std::to_string(i) + " (row " +
-               std::to_string(i / kN) + ", col " + std::to_string(i % kN) + "):\n\n" +
-               "- position " + util::vec3(p.position.col(i)) + ", velocity " +
-               util::vec3(p.velocity.col(i)) + ", mass " + util::num(p.mass[i]) + "\n" +
-               "- acceleration before the call " + util::vec3(c.acc0.col(i)) + "\n" +
-               "- expected after " + util::vec3(expected.col(i)) + "\n" +
-               "- actual after " + util::vec3(actual.col(i)) + "\n";
+    t.output =
+        "State: the 25 x 25 course cloth with our springs (k_s = " + util::num(base.spring_coef) +
+        ", k_d = " + util::num(base.damper_coef) + "), " + c.check + ". " +
+        std::to_string(m.count) + " of " + std::to_string(kN * kN) +
+        " particles differ. Worst, particle " + std::to_string(i) + " (row " +
+        std::to_string(i / kN) + ", col " + std::to_string(i % kN) + "):\n\n" + "- position " +
+        util::vec3(p.position.col(i)) + ", velocity " + util::vec3(p.velocity.col(i)) + ", mass " +
+        util::num(p.mass[i]) + "\n" + "- acceleration before the call " +
+        util::vec3(c.acc0.col(i)) + "\n" + "- expected after " + util::vec3(expected.col(i)) +
+        "\n" + "- actual after " + util::vec3(actual.col(i)) + "\n";
     const std::pair<ForceMistake, const char*> signatures[] = {
         {ForceMistake::Assign, "assign-not-accumulate"},
         {ForceMistake::SpringSign, "spring-force-sign"},
@@ -215,8 +224,10 @@ std::vector<TestResult> probeForces(const ProbeContext& context) {
       for (int q = 0; q < kN * kN && same; ++q) {
         const auto& vc = variant.col(q);
         const auto& ac = actual.col(q);
-        if (!vc.allFinite() || !ac.allFinite()) same = vc.allFinite() == ac.allFinite();
-        else same = (vc - ac).cast<double>().norm() <= 10 * (rel * scale[q] + 1e-6);
+        if (!vc.allFinite() || !ac.allFinite())
+          same = vc.allFinite() == ac.allFinite();
+        else
+          same = (vc - ac).cast<double>().norm() <= 10 * (rel * scale[q] + 1e-6);
       }
       if (same) t.diagnoses.push_back(id);
     }
@@ -224,8 +235,10 @@ std::vector<TestResult> probeForces(const ProbeContext& context) {
       bool fixed_moved = false;
       for (int q = 0; q < kN * kN; ++q)
         if (p.mass[q] == 0 && actual.col(q) != c.acc0.col(q)) fixed_moved = true;
-      if (fixed_moved) t.diagnoses.push_back("fixed-particle-moves");
-      else if (!util::finite(util::flat(actual))) t.diagnoses.push_back("non-finite");
+      if (fixed_moved)
+        t.diagnoses.push_back("fixed-particle-moves");
+      else if (!util::finite(util::flat(actual)))
+        t.diagnoses.push_back("non-finite");
     }
     if (t.diagnoses.empty()) {
       t.output += "\n" + context.catalogue->cause("unknown", true) + "\n";

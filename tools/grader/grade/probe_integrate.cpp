@@ -3,11 +3,10 @@
 // method (or an accepted variant), every body integrated, deltaTime unchanged, backups are
 // copies, the observed convergence order on a single damped spring, and no blow-up at half the
 // method's stability limit. Known mistakes are recognised by simulating them here and comparing.
+#include <Eigen/QR>
 #include <complex>
 #include <functional>
 #include <random>
-
-#include <Eigen/QR>
 
 #include "clothref/core/cloth.h"
 #include "clothref/core/integrator.h"
@@ -36,8 +35,10 @@ struct System {
 
 void simulate(System& s) {
   computeExternalForce(s.cloth.particles, s.gravity, s.viscous);
-  if (s.sphere_gravity) computeExternalForce(s.spheres.particles, s.gravity, s.viscous);
-  else s.spheres.particles.acceleration.setZero();
+  if (s.sphere_gravity)
+    computeExternalForce(s.spheres.particles, s.gravity, s.viscous);
+  else
+    s.spheres.particles.acceleration.setZero();
   computeSpringForce(s.cloth);
 }
 
@@ -57,9 +58,18 @@ Step clothrefStep(Method method, int bodies_integrated = 2) {
 
 // Course-form variants written the way students write them, for the numeric signatures.
 // `alias`: every read of "the backup" sees the live state (a pointer or Eigen::Ref "copy").
-enum class Variant { ImplicitVNew, Alias, NoReevaluation, RkIntDivision, RkMixedFinal,
-                     RkMixedStage, RkStageFromCurrent, PositionUsesAcceleration, VelocityOnly,
-                     PositionOnly };
+enum class Variant {
+  ImplicitVNew,
+  Alias,
+  NoReevaluation,
+  RkIntDivision,
+  RkMixedFinal,
+  RkMixedStage,
+  RkStageFromCurrent,
+  PositionUsesAcceleration,
+  VelocityOnly,
+  PositionOnly
+};
 
 // `stage`: for RkMixedStage, the stage (0..2) whose position uses the velocity increment.
 Step variantStep(Method method, Variant variant, int stage_index = -1) {
@@ -107,7 +117,8 @@ Step variantStep(Method method, Variant variant, int stage_index = -1) {
     const float stage[] = {0.5f, 0.5f, 1.0f};
     for (int k = 0; k < 4; ++k) {
       if (k > 0) simulate(s);
-      for (auto* p : bodies) kx[k].push_back(p->velocity * dt), kv[k].push_back(p->acceleration * dt);
+      for (auto* p : bodies)
+        kx[k].push_back(p->velocity * dt), kv[k].push_back(p->acceleration * dt);
       if (k == 3) break;
       for (std::size_t b = 0; b < bodies.size(); ++b) {
         const bool current = variant == Variant::RkStageFromCurrent && k > 0;
@@ -122,8 +133,10 @@ Step variantStep(Method method, Variant variant, int stage_index = -1) {
       const Mat4X<float> x = X0(b), v = V0(b);
       const float w = variant == Variant::RkIntDivision ? 0.0f : 1.0f;
       const auto& kxs = variant == Variant::RkMixedFinal ? kv : kx;
-      bodies[b]->position = x + (kxs[0][b] + 2.0f * kxs[1][b] + 2.0f * kxs[2][b] + kxs[3][b]) / 6.0f * w;
-      bodies[b]->velocity = v + (kv[0][b] + 2.0f * kv[1][b] + 2.0f * kv[2][b] + kv[3][b]) / 6.0f * w;
+      bodies[b]->position =
+          x + (kxs[0][b] + 2.0f * kxs[1][b] + 2.0f * kxs[2][b] + kxs[3][b]) / 6.0f * w;
+      bodies[b]->velocity =
+          v + (kv[0][b] + 2.0f * kv[1][b] + 2.0f * kv[2][b] + kv[3][b]) / 6.0f * w;
     }
   };
 }
@@ -182,16 +195,25 @@ DampedOscillator springOscillator() {
 // Largest dt with |R(lambda dt)| <= 1 for the spring's eigenvalues (bisection on [0, 1]).
 double stabilityLimit(Method method) {
   const DampedOscillator o = springOscillator();
-  const double w = std::sqrt(o.stiffness / o.mass), zeta = o.damping / (2 * std::sqrt(o.stiffness * o.mass));
+  const double w = std::sqrt(o.stiffness / o.mass),
+               zeta = o.damping / (2 * std::sqrt(o.stiffness * o.mass));
   const std::complex<double> lambda(-zeta * w, w * std::sqrt(1 - zeta * zeta));
   const auto stable = [&](double h) {
     const std::complex<double> z = lambda * h;
     std::complex<double> r;
     switch (method) {
-      case Method::Explicit: r = 1.0 + z; break;
-      case Method::Implicit: r = 1.0 + z + z * z; break;
-      case Method::Midpoint: r = 1.0 + z + z * z / 2.0; break;
-      default: r = 1.0 + z + z * z / 2.0 + z * z * z / 6.0 + z * z * z * z / 24.0; break;
+      case Method::Explicit:
+        r = 1.0 + z;
+        break;
+      case Method::Implicit:
+        r = 1.0 + z + z * z;
+        break;
+      case Method::Midpoint:
+        r = 1.0 + z + z * z / 2.0;
+        break;
+      default:
+        r = 1.0 + z + z * z / 2.0 + z * z * z / 6.0 + z * z * z * z / 24.0;
+        break;
     }
     return std::abs(r) <= 1.0;
   };
@@ -221,7 +243,7 @@ void addSystem(probe::ProbeMessage& m, int k, const System& s, std::int64_t step
     m.floats[sp + "rest"].push_back(spring.rest_length);
   }
   m.floats["params" + n] = {s.cloth.spring_coef, s.cloth.damper_coef, s.viscous, s.gravity[0],
-                            s.gravity[1], s.gravity[2], 0.0f, 0.8f};
+                            s.gravity[1],        s.gravity[2],        0.0f,      0.8f};
   m.ints["flags" + n] = {s.sphere_gravity ? 1 : 0, 0, 0};
   m.floats["dt" + n] = {s.dt};
   m.ints["steps" + n] = {steps};
@@ -242,14 +264,22 @@ System answerSystem(const probe::ProbeMessage& a, int k, const System& like) {
 double distance(const System& a, const System& b, int body = -1) {
   double worst = 0;
   const auto one = [&](const Mat4X<float>& x, const Mat4X<float>& y) {
-    if (x.size() != y.size()) { worst = 1e300; return; }
+    if (x.size() != y.size()) {
+      worst = 1e300;
+      return;
+    }
     for (int k = 0; k < x.size(); ++k) {
-      const double d = std::abs(double(x.data()[k]) - double(y.data()[k])) / (1 + std::abs(double(y.data()[k])));
+      const double d =
+          std::abs(double(x.data()[k]) - double(y.data()[k])) / (1 + std::abs(double(y.data()[k])));
       worst = std::isfinite(d) ? std::max(worst, d) : 1e300;
     }
   };
-  if (body != 1) one(a.cloth.particles.position, b.cloth.particles.position), one(a.cloth.particles.velocity, b.cloth.particles.velocity);
-  if (body != 0) one(a.spheres.particles.position, b.spheres.particles.position), one(a.spheres.particles.velocity, b.spheres.particles.velocity);
+  if (body != 1)
+    one(a.cloth.particles.position, b.cloth.particles.position),
+        one(a.cloth.particles.velocity, b.cloth.particles.velocity);
+  if (body != 0)
+    one(a.spheres.particles.position, b.spheres.particles.position),
+        one(a.spheres.particles.velocity, b.spheres.particles.velocity);
   return worst;
 }
 
@@ -291,8 +321,11 @@ double referenceError(Method method, double dt, std::int64_t steps, std::int64_t
 
 std::string systemText(const System& s) {
   return "a 4 x 4 cloth (corners fixed, k_s = 500, k_d = 5, positions and velocities randomly "
-         "perturbed) and 2 spheres under gravity, dt = " + util::num(s.dt) + "; first free cloth "
-         "particle (index 1): x " + util::vec3(s.cloth.particles.position.col(1)) + ", v " +
+         "perturbed) and 2 spheres under gravity, dt = " +
+         util::num(s.dt) +
+         "; first free cloth "
+         "particle (index 1): x " +
+         util::vec3(s.cloth.particles.position.col(1)) + ", v " +
          util::vec3(s.cloth.particles.velocity.col(1)) + "; sphere 0: x " +
          util::vec3(s.spheres.particles.position.col(0)) + ", v " +
          util::vec3(s.spheres.particles.velocity.col(0));
@@ -312,9 +345,16 @@ std::vector<TestResult> probeIntegrator(const ProbeContext& context, int index) 
   double end_time = 1.0;
   switch (method) {
     case Method::Explicit:
-    case Method::Implicit: dts = {0.002, 0.001, 0.0005, 0.00025}; break;
-    case Method::Midpoint: dts = {0.01, 0.005, 0.0025, 0.00125}; break;
-    default: dts = {0.1, 0.05, 0.025}; end_time = 2.0; break;
+    case Method::Implicit:
+      dts = {0.002, 0.001, 0.0005, 0.00025};
+      break;
+    case Method::Midpoint:
+      dts = {0.01, 0.005, 0.0025, 0.00125};
+      break;
+    default:
+      dts = {0.1, 0.05, 0.025};
+      end_time = 2.0;
+      break;
   }
   const double limit = stabilityLimit(method);
   const double stable_dt = 0.5 * limit;
@@ -349,7 +389,8 @@ std::vector<TestResult> probeIntegrator(const ProbeContext& context, int index) 
     const std::string id = util::verdictId(failure);
     for (const auto& check : checks)
       tests.push_back(util::failedTest(stub, check, check == checks[0] ? 2 : 1,
-                                       failure + "\n\n" + context.catalogue->cause(id, true), {id}));
+                                       failure + "\n\n" + context.catalogue->cause(id, true),
+                                       {id}));
     return tests;
   }
 
@@ -387,7 +428,8 @@ std::vector<TestResult> probeIntegrator(const ProbeContext& context, int index) 
         {"only-first-body", clothrefStep(method, 1)}};
     if (method == Method::Explicit) {
       signatures.push_back({"only-first-body", clothrefStep(Method::Symplectic, 1)});
-      signatures.push_back({"position-uses-acceleration", variantStep(method, Variant::PositionUsesAcceleration)});
+      signatures.push_back(
+          {"position-uses-acceleration", variantStep(method, Variant::PositionUsesAcceleration)});
       signatures.push_back({"velocity-not-integrated", variantStep(method, Variant::PositionOnly)});
       signatures.push_back({"position-not-integrated", variantStep(method, Variant::VelocityOnly)});
     } else {
@@ -400,8 +442,10 @@ std::vector<TestResult> probeIntegrator(const ProbeContext& context, int index) 
       signatures.push_back({"integer-division-rk4", variantStep(method, Variant::RkIntDivision)});
       signatures.push_back({"rk4-mixed-increments", variantStep(method, Variant::RkMixedFinal)});
       for (int k = 0; k < 3; ++k)
-        signatures.push_back({"rk4-mixed-increments", variantStep(method, Variant::RkMixedStage, k)});
-      signatures.push_back({"rk4-stage-not-from-backup", variantStep(method, Variant::RkStageFromCurrent)});
+        signatures.push_back(
+            {"rk4-mixed-increments", variantStep(method, Variant::RkMixedStage, k)});
+      signatures.push_back(
+          {"rk4-stage-not-from-backup", variantStep(method, Variant::RkStageFromCurrent)});
     }
     for (const auto& [id, step] : signatures)
       if (distance(actual, stepped(random, step)) <= 10 * rel &&
@@ -426,10 +470,12 @@ std::vector<TestResult> probeIntegrator(const ProbeContext& context, int index) 
         }
       }
       Eigen::MatrixXd a(x0.size(), 4);
-      for (int k = 0; k < 4; ++k) a.col(k) = Eigen::Map<const Eigen::VectorXf>(kx[k].data(), x0.size()).cast<double>();
+      for (int k = 0; k < 4; ++k)
+        a.col(k) = Eigen::Map<const Eigen::VectorXf>(kx[k].data(), x0.size()).cast<double>();
       const Eigen::VectorXd b =
           (Eigen::Map<const Eigen::VectorXf>(actual.cloth.particles.position.data(), x0.size()) -
-           Eigen::Map<const Eigen::VectorXf>(x0.data(), x0.size())).cast<double>();
+           Eigen::Map<const Eigen::VectorXf>(x0.data(), x0.size()))
+              .cast<double>();
       const Eigen::Vector4d w = a.colPivHouseholderQr().solve(b);
       if ((a * w - b).norm() <= 1e-4 * (1e-12 + b.norm()) && w.allFinite()) {
         ids.push_back("rk4-wrong-weights");
@@ -442,7 +488,9 @@ std::vector<TestResult> probeIntegrator(const ProbeContext& context, int index) 
     if (dt_after != random.dt) ids.push_back("deltatime-mutated");
     // simulateOneStep calls during integrate: 1 (implicit, midpoint) or 3 (RK4) in the course.
     const std::int64_t calls = answer->i("calls.0").empty() ? -1 : answer->i("calls.0")[0];
-    const std::int64_t expected_calls = method == Method::Rk4 ? 3 : method == Method::Explicit ? 0 : 1;
+    const std::int64_t expected_calls = method == Method::Rk4        ? 3
+                                        : method == Method::Explicit ? 0
+                                                                     : 1;
     if (calls >= 0 && calls < expected_calls) {
       one.output += "\nsimulateOneStep() was called " + std::to_string(calls) +
                     " times during integrate(); the course method calls it " +
@@ -469,17 +517,22 @@ std::vector<TestResult> probeIntegrator(const ProbeContext& context, int index) 
   // Every body integrated: each body the course method moves must move.
   TestResult all = makeTest(stub, checks[1], 1);
   std::string stuck;
-  if (distance(expected, random, 0) > rel && distance(actual, random, 0) <= rel) stuck += "the cloth (particles[0])";
+  if (distance(expected, random, 0) > rel && distance(actual, random, 0) <= rel)
+    stuck += "the cloth (particles[0])";
   if (distance(expected, random, 1) > rel && distance(actual, random, 1) <= rel)
     stuck += std::string(stuck.empty() ? "" : " and ") + "the spheres (particles[1])";
   all.fraction = stuck.empty() ? 1 : 0;
   if (stuck.empty()) {
     all.output = "Every Particles* in the vector was integrated.";
   } else {
-    all.output = "After one step " + stuck + " did not move at all, although the course method "
-                 "moves it (state: " + systemText(random) + ").\n\n";
+    all.output = "After one step " + stuck +
+                 " did not move at all, although the course method "
+                 "moves it (state: " +
+                 systemText(random) + ").\n\n";
     const bool only_spheres = stuck.find("cloth") == std::string::npos;
-    const std::string id = only_spheres ? "only-first-body" : method == Method::Rk4 ? "integer-division-rk4" : "unknown";
+    const std::string id = only_spheres            ? "only-first-body"
+                           : method == Method::Rk4 ? "integer-division-rk4"
+                                                   : "unknown";
     all.output += context.catalogue->cause(id, !only_spheres && method != Method::Rk4) + "\n";
     all.diagnoses.push_back(id);
   }
@@ -500,8 +553,9 @@ std::vector<TestResult> probeIntegrator(const ProbeContext& context, int index) 
 
   if (has_backup) {
     TestResult copies = makeTest(stub, checks[3], 1);
-    const bool alias = distance(actual, stepped(random, variantStep(method, Variant::Alias))) <= 10 * rel &&
-                       d > rel;
+    const bool alias =
+        distance(actual, stepped(random, variantStep(method, Variant::Alias))) <= 10 * rel &&
+        d > rel;
     copies.fraction = alias ? 0 : 1;
     copies.output = alias ? "The result is exactly what a step gives when the backup follows the "
                             "live state (same state as the one-step test).\n\n" +
@@ -516,26 +570,32 @@ std::vector<TestResult> probeIntegrator(const ProbeContext& context, int index) 
   std::vector<double> student_errors, reference_errors;
   for (std::size_t k = 0; k < dts.size(); ++k) {
     const std::int64_t steps = std::llround(end_time / dts[k]);
-    student_errors.push_back(trajectoryError(answer->f("trajectory." + std::to_string(k + 1)), dts[k], strides[k]));
+    student_errors.push_back(
+        trajectoryError(answer->f("trajectory." + std::to_string(k + 1)), dts[k], strides[k]));
     reference_errors.push_back(referenceError(method, dts[k], steps, strides[k]));
   }
   bool usable = true;
   for (double e : student_errors) usable = usable && std::isfinite(e) && e > 0 && e < 1e299;
   const double expected_order = fitOrder(dts, reference_errors);
   const double observed = usable ? fitOrder(dts, student_errors) : std::nan("");
-  order.fraction = usable && std::abs(observed - expected_order) <= context.rubric.tolerances.order ? 1 : 0;
+  order.fraction =
+      usable && std::abs(observed - expected_order) <= context.rubric.tolerances.order ? 1 : 0;
   std::string table = "| dt (s) | your max error (m) | course method's |\n|---|---|---|\n";
   for (std::size_t k = 0; k < dts.size(); ++k)
     table += "| " + util::num(dts[k]) + " | " + util::num(student_errors[k]) + " | " +
              util::num(reference_errors[k]) + " |\n";
-  order.output = "A unit mass on a damped spring (k = 100 N/m, c = 2 N s/m, rest 1 m, released at "
-                 "1.2 m), " + util::num(end_time) + " s against the closed form, at " +
-                 std::to_string(dts.size()) + " step sizes. Observed order " +
-                 (usable ? util::num(observed) : std::string("not measurable")) +
-                 ", the course method's " + util::num(expected_order) + " (theory " +
-                 std::to_string(kTheoreticalOrder[index]) + ").\n\n" + table;
+  order.output =
+      "A unit mass on a damped spring (k = 100 N/m, c = 2 N s/m, rest 1 m, released at "
+      "1.2 m), " +
+      util::num(end_time) + " s against the closed form, at " + std::to_string(dts.size()) +
+      " step sizes. Observed order " +
+      (usable ? util::num(observed) : std::string("not measurable")) + ", the course method's " +
+      util::num(expected_order) + " (theory " + std::to_string(kTheoreticalOrder[index]) +
+      ").\n\n" + table;
   if (order.fraction == 0) {
-    const std::string id = one.fraction == 1 ? "wrong-order" : one.diagnoses.empty() ? "wrong-order" : one.diagnoses.front();
+    const std::string id = one.fraction == 1       ? "wrong-order"
+                           : one.diagnoses.empty() ? "wrong-order"
+                                                   : one.diagnoses.front();
     order.output += "\n" + context.catalogue->cause(id, id == "unknown") + "\n";
     order.diagnoses.push_back(id);
   }
@@ -550,8 +610,10 @@ std::vector<TestResult> probeIntegrator(const ProbeContext& context, int index) 
     amplitude = std::isfinite(u) ? std::max(amplitude, u) : 1e300;
   }
   stable.fraction = amplitude <= 0.3 ? 1 : 0;
-  stable.output = "The same spring for 20 s at dt = " + util::num(stable_dt) + " s, half the course "
-                  "method's stability limit " + util::num(limit) + " s. Largest |stretch| " +
+  stable.output = "The same spring for 20 s at dt = " + util::num(stable_dt) +
+                  " s, half the course "
+                  "method's stability limit " +
+                  util::num(limit) + " s. Largest |stretch| " +
                   (amplitude >= 1e299 ? std::string("not finite") : util::num(amplitude)) +
                   " m (released at 0.2 m; must stay below 0.3 m).\n";
   if (stable.fraction == 0) {

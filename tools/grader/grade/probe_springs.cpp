@@ -162,8 +162,9 @@ std::string familyLines(const std::map<std::string, int>& counts,
                         const std::map<std::string, int>& sizes, const char* what) {
   std::string out;
   for (const auto& [fam, count] : counts)
-    out += "- " + std::to_string(count) + (sizes.count(fam) ? " of " + std::to_string(sizes.at(fam)) : "") +
-           " " + (fam.empty() ? "?" : fam) + " springs " + what + "\n";
+    out += "- " + std::to_string(count) +
+           (sizes.count(fam) ? " of " + std::to_string(sizes.at(fam)) : "") + " " +
+           (fam.empty() ? "?" : fam) + " springs " + what + "\n";
   return out;
 }
 
@@ -195,25 +196,28 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
     const std::string id = answer ? "wrong-spring-endpoints" : util::verdictId(failure);
     for (int k = 0; k < 3; ++k)
       tests.push_back(util::failedTest(kStub, checks[k], weights[k],
-                                       failure + "\n\n" + context.catalogue->cause(id, true), {id}));
+                                       failure + "\n\n" + context.catalogue->cause(id, true),
+                                       {id}));
   } else {
     const Comparison c = compare(*student, reference, 25, rest_rel);
-    const std::string state = "The course cloth: 25 x 25 particles, built by your `Cloth()` "
-                              "(your `initializeVertex` and `initializeSpring`).\n\n";
+    const std::string state =
+        "The course cloth: 25 x 25 particles, built by your `Cloth()` "
+        "(your `initializeVertex` and `initializeSpring`).\n\n";
     TestResult connections = makeTest(kStub, checks[0], weights[0]);
     const int errors = c.missing + c.extra + c.duplicates;
-    connections.fraction = errors == 0 ? 1.0 : std::max(0.0, 1.0 - double(errors) / reference.count);
+    connections.fraction =
+        errors == 0 ? 1.0 : std::max(0.0, 1.0 - double(errors) / reference.count);
     if (errors) {
       connections.fraction = std::min(connections.fraction, 0.5);
       connections.output = state + "Expected " + std::to_string(reference.count) +
-                            " springs, got " + std::to_string(student->count) + ": " +
-                            std::to_string(c.missing) + " missing, " + std::to_string(c.extra) +
-                            " unexpected, " + std::to_string(c.duplicates) + " duplicated.\n\n" +
-                            familyLines(c.missing_by_family, c.family_size, "missing") +
-                            familyLines(c.extra_by_family, {}, "unexpected") + "\nExamples:\n";
+                           " springs, got " + std::to_string(student->count) + ": " +
+                           std::to_string(c.missing) + " missing, " + std::to_string(c.extra) +
+                           " unexpected, " + std::to_string(c.duplicates) + " duplicated.\n\n" +
+                           familyLines(c.missing_by_family, c.family_size, "missing") +
+                           familyLines(c.extra_by_family, {}, "unexpected") + "\nExamples:\n";
       for (const auto& e : c.connection_examples) connections.output += "- " + e + "\n";
-      connections.output += causes(context, c.diagnoses,
-                                   {"missing-springs", "duplicate-springs", "wrong-spring-endpoints"});
+      connections.output += causes(
+          context, c.diagnoses, {"missing-springs", "duplicate-springs", "wrong-spring-endpoints"});
       for (const auto& id : c.diagnoses)
         if (id == "missing-springs" || id == "duplicate-springs" || id == "wrong-spring-endpoints")
           connections.diagnoses.push_back(id);
@@ -227,8 +231,8 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
     rest.fraction = c.matched && c.wrong_rest == 0 ? 1.0 : 0.0;
     if (c.wrong_rest || !c.matched) {
       rest.output = state + std::to_string(c.wrong_rest) + " of " + std::to_string(c.matched) +
-                    " matching springs have a rest length off by more than " +
-                    util::num(rest_rel) + " (relative). Reference rest lengths: structural " +
+                    " matching springs have a rest length off by more than " + util::num(rest_rel) +
+                    " (relative). Reference rest lengths: structural " +
                     "|p0 - p1|, shear |p0 - p(N+1)|, bend |p0 - p2| of the initial positions.\n\n";
       for (const auto& e : c.rest_examples) rest.output += "- " + e + "\n";
       rest.output += causes(context, c.diagnoses,
@@ -247,9 +251,9 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
       labels.output = state + std::to_string(c.wrong_type) + " of " + std::to_string(c.matched) +
                       " matching springs carry the wrong type label.\n\n";
       for (const auto& [swap, count] : c.label_swaps)
-        labels.output += "- " + std::to_string(count) + " " + kTypeNames[swap.first] +
-                         " springs labelled " +
-                         (swap.second >= 0 && swap.second < 3 ? kTypeNames[swap.second] : "?") + "\n";
+        labels.output +=
+            "- " + std::to_string(count) + " " + kTypeNames[swap.first] + " springs labelled " +
+            (swap.second >= 0 && swap.second < 3 ? kTypeNames[swap.second] : "?") + "\n";
       for (const auto& e : c.type_examples) labels.output += "- e.g. " + e + "\n";
       labels.output += causes(context, c.diagnoses, {"swapped-spring-types"});
       if (c.wrong_type) labels.diagnoses.push_back("swapped-spring-types");
@@ -264,9 +268,10 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
   const int n = kSecondParticlesPerEdge;
   const std::string check = "all springs at N = " + std::to_string(n);
   TestResult small = makeTest(kStub, check, 1);
-  const std::string state = "A " + std::to_string(n) + " x " + std::to_string(n) +
-                            " cloth (your cloth.cpp compiled again with particlesPerEdge = " +
-                            std::to_string(n) + ").\n\n";
+  const std::string state =
+      "A " + std::to_string(n) + " x " + std::to_string(n) +
+      " cloth (your cloth.cpp compiled again with particlesPerEdge = " + std::to_string(n) +
+      ").\n\n";
   if (context.probe_small.empty()) {
     small.output = state + "Not run: " +
                    (context.small_problem.empty() ? std::string("cloth.cpp is not yours")
@@ -274,8 +279,8 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
     small.fraction = 0;
   } else {
     std::string small_failure;
-    auto small_answer = util::runGroup(context, context.probe_small, "springs-small", request,
-                                       small_failure);
+    auto small_answer =
+        util::runGroup(context, context.probe_small, "springs-small", request, small_failure);
     std::optional<SpringSet> small_set;
     if (small_answer) small_set = studentSprings(*small_answer, n, small_failure);
     if (!small_set) {

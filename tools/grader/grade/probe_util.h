@@ -38,11 +38,9 @@ inline std::string vec3(const Eigen::Ref<const Eigen::Vector4f>& v) {
 
 // Runs `request` in a fresh folder under the context's work dir. On failure returns nullopt and
 // sets `failure` to the verdict line (with the first lines of stderr).
-inline std::optional<probe::ProbeMessage> runGroup(const ProbeContext& context,
-                                                   const std::filesystem::path& executable,
-                                                   const std::string& folder,
-                                                   probe::ProbeMessage request,
-                                                   std::string& failure, ChildRun* run_out = nullptr) {
+inline std::optional<probe::ProbeMessage> runGroup(
+    const ProbeContext& context, const std::filesystem::path& executable, const std::string& folder,
+    probe::ProbeMessage request, std::string& failure, ChildRun* run_out = nullptr) {
   const auto dir = context.work_dir / folder;
   std::filesystem::create_directories(dir);
   ChildRun run = runProbe(executable, std::move(request), dir, context.limits);

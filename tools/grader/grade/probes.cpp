@@ -1,7 +1,6 @@
 #include "probes.h"
 
 #include <fstream>
-
 #include <nlohmann/json.hpp>
 
 #include "clothref/io/error.h"
@@ -24,7 +23,8 @@ Catalogue loadCatalogue(const std::filesystem::path& path) {
     const auto document = nlohmann::json::parse(in);
     for (const auto& entry : document.at("diagnoses")) {
       Diagnosis d{entry.at("id").get<std::string>(), entry.at("stub").get<std::string>(),
-                  entry.at("recognised_by").get<std::string>(), entry.at("text").get<std::string>()};
+                  entry.at("recognised_by").get<std::string>(),
+                  entry.at("text").get<std::string>()};
       catalogue.entries[d.id] = d;
     }
   } catch (const nlohmann::json::exception& error) {
@@ -43,9 +43,9 @@ std::vector<PlannedTest> plannedTests(int edition) {
   for (const char* check : {"random perturbed state", "moving state (damper)",
                             "accumulates into existing accelerations", "fixed and heavy particles"})
     tests.push_back({"Cloth::computeSpringForce", check, 1});
-  for (const char* check : {"approaching pair", "separating pair", "several spheres",
-                            "sphere at index 2", "fixed particle", "deep penetration",
-                            "touching exactly", "momentum conserved"})
+  for (const char* check :
+       {"approaching pair", "separating pair", "several spheres", "sphere at index 2",
+        "fixed particle", "deep penetration", "touching exactly", "momentum conserved"})
     tests.push_back({"Spheres::collide(Cloth*)", check, 1});
   if (edition == 2022)
     for (const char* check : {"approaching pair", "separating pair", "three spheres in a chain",

@@ -36,7 +36,7 @@ struct ProbeContext {
   std::string small_problem;          // why there is no second-size probe
   std::filesystem::path work_dir;     // scratch; one sub-folder per group
   ChildLimits limits;
-  std::uint64_t seed = 20221;         // random states are reproducible
+  std::uint64_t seed = 20221;  // random states are reproducible
 };
 
 std::vector<TestResult> probeSprings(const ProbeContext& context);

@@ -12,14 +12,24 @@ std::string xmlEscape(const std::string& text) {
   std::string out;
   for (char c : text) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
       default:
         // Control characters other than tab and newline are not allowed in XML 1.0.
-        if (static_cast<unsigned char>(c) < 0x20 && c != '\n' && c != '\t') out += ' ';
-        else out += c;
+        if (static_cast<unsigned char>(c) < 0x20 && c != '\n' && c != '\t')
+          out += ' ';
+        else
+          out += c;
     }
   }
   return out;
@@ -34,9 +44,12 @@ std::string number(double value) {
 std::string filesSection(const GradeReport& report) {
   std::string out = "| file | used | status |\n|---|---|---|\n";
   for (const UsedFile& f : report.files) {
-    std::string status = f.compiled ? "compiled" : f.problem == "missing" ? "missing" : "did not build";
+    std::string status = f.compiled               ? "compiled"
+                         : f.problem == "missing" ? "missing"
+                                                  : "did not build";
     if (!f.compiled) status += "; our reference version linked instead";
-    out += "| " + f.name + " | " + (f.path.empty() ? "-" : "`" + f.path + "`") + " | " + status + " |\n";
+    out += "| " + f.name + " | " + (f.path.empty() ? "-" : "`" + f.path + "`") + " | " + status +
+           " |\n";
   }
   return out;
 }
@@ -44,8 +57,8 @@ std::string filesSection(const GradeReport& report) {
 }  // namespace
 
 std::string summaryLine(const GradeReport& report) {
-  return "graded " + report.submission + " (" + std::to_string(report.edition) + "): " +
-         number(report.score) + " / " + number(report.max_score);
+  return "graded " + report.submission + " (" + std::to_string(report.edition) +
+         "): " + number(report.score) + " / " + number(report.max_score);
 }
 
 nlohmann::ordered_json resultsJson(const GradeReport& report) {
@@ -80,7 +93,8 @@ nlohmann::ordered_json resultsJson(const GradeReport& report) {
   extra["edition"] = report.edition;
   nlohmann::ordered_json files = nlohmann::ordered_json::array();
   for (const UsedFile& f : report.files)
-    files.push_back({{"name", f.name}, {"path", f.path}, {"compiled", f.compiled}, {"problem", f.problem}});
+    files.push_back(
+        {{"name", f.name}, {"path", f.path}, {"compiled", f.compiled}, {"problem", f.problem}});
   extra["files"] = files;
   extra["stub_scores"] = report.stub_score;
   extra["stub_max"] = report.stub_max;
@@ -105,8 +119,9 @@ std::string junitXml(const GradeReport& report) {
     out << "    <testcase classname=\"" << xmlEscape(t.stub) << "\" name=\"" << xmlEscape(t.check)
         << "\">";
     if (!t.passed())
-      out << "\n      <failure message=\"" << xmlEscape(number(t.score) + " / " + number(t.max_score))
-          << "\">" << xmlEscape(t.output) << "</failure>\n    ";
+      out << "\n      <failure message=\""
+          << xmlEscape(number(t.score) + " / " + number(t.max_score)) << "\">"
+          << xmlEscape(t.output) << "</failure>\n    ";
     out << "<system-out>" << xmlEscape(number(t.score) + " / " + number(t.max_score))
         << "</system-out></testcase>\n";
   }
@@ -138,7 +153,8 @@ std::string markdownReport(const GradeReport& report) {
     if (t.passed() || t.informational) continue;
     any = true;
     out << "\n### " << t.name() << " (" << number(t.score) << " / " << number(t.max_score)
-        << ")\n\n" << t.output << "\n";
+        << ")\n\n"
+        << t.output << "\n";
   }
   if (!any) out << "\nNone.\n";
   out << "\n## Passed checks\n\n";

@@ -1,7 +1,6 @@
 #include "rubric.h"
 
 #include <fstream>
-
 #include <nlohmann/json.hpp>
 
 #include "clothref/io/error.h"
@@ -55,12 +54,18 @@ Rubric loadRubric(const std::string& path, Rubric rubric) {
       if (!value.is_object()) throw InputError(path + ": /tolerances must be an object");
       for (const auto& [name, tolerance] : value.items()) {
         const double t = number(tolerance, "/tolerances/" + name);
-        if (name == "force_rel") rubric.tolerances.force_rel = t;
-        else if (name == "collide_rel") rubric.tolerances.collide_rel = t;
-        else if (name == "integrate_rel") rubric.tolerances.integrate_rel = t;
-        else if (name == "rest_length_rel") rubric.tolerances.rest_length_rel = t;
-        else if (name == "order") rubric.tolerances.order = t;
-        else throw InputError(path + ": /tolerances/" + name + ": unknown tolerance");
+        if (name == "force_rel")
+          rubric.tolerances.force_rel = t;
+        else if (name == "collide_rel")
+          rubric.tolerances.collide_rel = t;
+        else if (name == "integrate_rel")
+          rubric.tolerances.integrate_rel = t;
+        else if (name == "rest_length_rel")
+          rubric.tolerances.rest_length_rel = t;
+        else if (name == "order")
+          rubric.tolerances.order = t;
+        else
+          throw InputError(path + ": /tolerances/" + name + ": unknown tolerance");
       }
     } else if (key == "accepted_variants") {
       if (!value.is_object()) throw InputError(path + ": /accepted_variants must be an object");

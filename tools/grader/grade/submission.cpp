@@ -65,7 +65,8 @@ std::string codeOnly(const std::string& source) {
 SubmissionFiles findSubmissionFiles(const std::filesystem::path& dir) {
   std::error_code error;
   if (!std::filesystem::is_directory(dir, error))
-    throw InputError(dir.string() + ": not a directory (a submission is a directory holding "
+    throw InputError(dir.string() +
+                     ": not a directory (a submission is a directory holding "
                      "cloth.cpp, sphere.cpp and integrator.cpp)");
   std::map<std::string, std::vector<std::filesystem::path>> candidates;
   auto it = std::filesystem::recursive_directory_iterator(

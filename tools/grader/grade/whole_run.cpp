@@ -4,12 +4,12 @@
 // symplectic explicit drifts from the reference trajectory more than many real bugs do.
 #include <fstream>
 
+#include "clothref/diff/diff.h"
 #include "clothref/record/record.h"
 #include "clothref/record/world_views.h"
 #include "clothref/scene/make_world.h"
-#include "clothref/trace/format.h"
-#include "clothref/diff/diff.h"
 #include "clothref/scene/scene.h"
+#include "clothref/trace/format.h"
 #include "probe_util.h"
 
 namespace clothref::grader {
@@ -65,15 +65,20 @@ std::vector<TestResult> probeWholeRun(const ProbeContext& context) {
       if (!isRecorded(s, settings.steps, settings.stride)) continue;
       const std::size_t c0 = std::size_t(record) * std::size_t(4 * cloth_n);
       const std::size_t s0 = std::size_t(record) * std::size_t(4 * capacity);
-      if (c0 + std::size_t(4 * cloth_n) > cx.size() || s0 + std::size_t(4 * sphere_n) > sx.size()) break;
+      if (c0 + std::size_t(4 * cloth_n) > cx.size() || s0 + std::size_t(4 * sphere_n) > sx.size())
+        break;
       world.step = s;
       if (world.cloth) {
-        world.cloth->particles.position = util::matrix({cx.begin() + long(c0), cx.begin() + long(c0 + 4 * cloth_n)}, cloth_n);
-        world.cloth->particles.velocity = util::matrix({cv.begin() + long(c0), cv.begin() + long(c0 + 4 * cloth_n)}, cloth_n);
+        world.cloth->particles.position =
+            util::matrix({cx.begin() + long(c0), cx.begin() + long(c0 + 4 * cloth_n)}, cloth_n);
+        world.cloth->particles.velocity =
+            util::matrix({cv.begin() + long(c0), cv.begin() + long(c0 + 4 * cloth_n)}, cloth_n);
       }
       if (world.spheres) {
-        world.spheres->particles.position = util::matrix({sx.begin() + long(s0), sx.begin() + long(s0 + 4 * sphere_n)}, sphere_n);
-        world.spheres->particles.velocity = util::matrix({sv.begin() + long(s0), sv.begin() + long(s0 + 4 * sphere_n)}, sphere_n);
+        world.spheres->particles.position =
+            util::matrix({sx.begin() + long(s0), sx.begin() + long(s0 + 4 * sphere_n)}, sphere_n);
+        world.spheres->particles.velocity =
+            util::matrix({sv.begin() + long(s0), sv.begin() + long(s0 + 4 * sphere_n)}, sphere_n);
       }
       appendStepLine(text, world);
       ++record;
@@ -88,12 +93,14 @@ std::vector<TestResult> probeWholeRun(const ProbeContext& context) {
   options.common_steps = true;
   try {
     const DiffReport report = diffTraces(reference_path.string(), student_path.string(), options);
-    t.output = "Your cloth.cpp, sphere.cpp and integrator.cpp run the course's main loop "
-               "(simulateOneStep, then ExplicitEuler::integrate) on " + scene_name +
-               " for 200 steps of " + util::num(settings.dt) + " s; `clothref diff` against "
-               "clothref (tolerance 1e-5 absolute or relative). This never changes your score: "
-               "an accepted variant (e.g. symplectic explicit Euler) also differs here.\n\n```\n" +
-               formatReport(report) + "```\n";
+    t.output =
+        "Your cloth.cpp, sphere.cpp and integrator.cpp run the course's main loop "
+        "(simulateOneStep, then ExplicitEuler::integrate) on " +
+        scene_name + " for 200 steps of " + util::num(settings.dt) +
+        " s; `clothref diff` against "
+        "clothref (tolerance 1e-5 absolute or relative). This never changes your score: "
+        "an accepted variant (e.g. symplectic explicit Euler) also differs here.\n\n```\n" +
+        formatReport(report) + "```\n";
   } catch (const std::exception& error) {
     t.output = "The traces could not be compared: " + std::string(error.what());
   }

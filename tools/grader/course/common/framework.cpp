@@ -1,15 +1,15 @@
 // Our definitions of the course framework's non-stub members and globals, shared by both editions
 // (the student files define Cloth::*, Spheres::* and the integrators). Compiled once per edition,
 // against that edition's headers, into the probe driver library.
+#include <glad/gl.h>
+
+#include <Eigen/LU>
+
 #include "buffer.h"
 #include "configs.h"
 #include "particles.h"
 #include "shape.h"
 #include "vertexarray.h"
-
-#include <glad/gl.h>
-
-#include <Eigen/LU>
 
 // No-op GL: the grader never draws.
 void glDrawElements(GLenum, GLsizei, GLenum, const void*) {}
@@ -71,7 +71,8 @@ void Shape::computeExternalForce() {
       _particles.acceleration(k).setZero();
     } else {
       _particles.acceleration(k) = Eigen::Vector4f(0, -9.8f, 0, 0);
-      _particles.acceleration(k) -= _particles.velocity(k) * viscousCoef * _particles.inverseMass(k);
+      _particles.acceleration(k) -=
+          _particles.velocity(k) * viscousCoef * _particles.inverseMass(k);
     }
   }
 }

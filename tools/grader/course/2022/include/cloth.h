@@ -1,9 +1,9 @@
 // Stand-in for the course's cloth.h (2022 edition): the student's cloth.cpp defines every member
 // except springs().
 #pragma once
-#include <vector>
-
 #include <glad/gl.h>
+
+#include <vector>
 
 #include "buffer.h"
 #include "shape.h"
@@ -16,12 +16,12 @@ class Cloth final : public Shape {
   MOVE_ONLY(Cloth)
   enum class DrawType { FULL, STRUCTURAL, SHEAR, BEND, PARTICLE };
   Cloth();
-  std::vector<Spring> &springs() { return _springs; }
+  std::vector<Spring>& springs() { return _springs; }
   void draw(DrawType type) const;
   void computeSpringForce();
   void computeNormal();
-  void collide(Shape *shape) override;
-  void collide(Spheres *sphere) override;
+  void collide(Shape* shape) override;
+  void collide(Spheres* sphere) override;
 
  private:
   void initializeVertex();

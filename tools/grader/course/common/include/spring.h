@@ -5,7 +5,10 @@ class Spring {
  public:
   enum class Type { STRUCTURAL, SHEAR, BEND };
   Spring(unsigned int start, unsigned int end, float restLength, Type type)
-      : _startParticleIndex(start), _endParticleIndex(end), _length(restLength), _springType(type) {}
+      : _startParticleIndex(start),
+        _endParticleIndex(end),
+        _length(restLength),
+        _springType(type) {}
   unsigned int startParticleIndex() const { return _startParticleIndex; }
   unsigned int endParticleIndex() const { return _endParticleIndex; }
   float length() const { return _length; }
