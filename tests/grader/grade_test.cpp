@@ -71,7 +71,7 @@ TEST_P(Corpus, LosesPointsExactlyInTheExpectedStubsWithTheExpectedDiagnoses) {
   const fs::path submission = materialise(case_dir, expected, temp.path());
   std::string args = "grade '" + submission.string() + "' --no-whole-run --cache-dir '" +
                      std::string(CLOTHREF_GRADER_CACHE) + "' --results '" +
-                     temp.file("results.json") + "' --work-dir '" + temp.path().string() + "'";
+                     temp.file("results.json") + "'";
   if (expected.value("force_edition", false))
     args += " --edition " + expected["edition"].get<std::string>();
   const CommandResult run = runCli(args);

@@ -16,8 +16,8 @@ Command addGradeCommand(CLI::App& root) {
   struct Options {
     std::vector<std::string> dirs;
     int edition = 0;
-    std::string results, junit, report, rubric, work_dir, cache_dir;
-    bool keep_work = false, no_whole_run = false;
+    std::string results, junit, report, rubric, keep_work, cache_dir;
+    bool no_whole_run = false;
     double timeout = 20;
     std::string optimisation = "-O2";
   };
@@ -38,10 +38,10 @@ Command addGradeCommand(CLI::App& root) {
       ->check(CLI::PositiveNumber);
   app->add_option("--opt", options->optimisation, "optimisation flag for student code")
       ->check(CLI::IsMember({"-O0", "-O1", "-O2", "-O3"}));
-  app->add_option("--work-dir", options->work_dir, "parent of the scratch folders (default: temp)");
   app->add_option("--cache-dir", options->cache_dir,
                   "reuse compiled objects of identical files across runs (keyed by bytes + flags)");
-  app->add_flag("--keep-work", options->keep_work, "keep the scratch folder (objects, probe I/O)");
+  app->add_option("--keep-work", options->keep_work,
+                  "copy the scratch folder (objects, probe I/O, child output) to this directory");
   app->add_flag("--no-whole-run", options->no_whole_run, "skip the information-only whole run");
   return {app, [options] {
             const bool single = options->dirs.size() == 1;
@@ -54,7 +54,6 @@ Command addGradeCommand(CLI::App& root) {
             if (!options->rubric.empty()) grade.rubric_path = options->rubric;
             grade.keep_work = options->keep_work;
             grade.whole_run = !options->no_whole_run;
-            grade.work_root = options->work_dir;
             grade.limits.wall_seconds = options->timeout;
             grade.limits.cpu_seconds = static_cast<std::uint64_t>(options->timeout) + 1;
             grade.toolchain.optimisation = options->optimisation;

@@ -10,6 +10,7 @@
 #include <regex>
 
 #include "clothref/io/error.h"
+#include "clothref/io/files.h"
 #include "probes.h"
 
 namespace clothref::grader {
@@ -28,28 +29,6 @@ const std::map<std::string, std::vector<std::string>>& stubsOfFile() {
   return stubs;
 }
 
-class ScratchDir {
- public:
-  ScratchDir(const fs::path& root, bool keep) : keep_(keep) {
-    const fs::path parent = root.empty() ? fs::temp_directory_path() : root;
-    std::random_device entropy;
-    for (int attempt = 0; attempt < 100; ++attempt) {
-      path_ = parent / ("clothref-grade-" + std::to_string(getpid()) + "-" +
-                        std::to_string(entropy() % 1000000));
-      if (fs::create_directories(path_)) return;
-    }
-    throw InputError(parent.string() + ": cannot create a scratch folder");
-  }
-  ~ScratchDir() {
-    std::error_code ignored;
-    if (!keep_) fs::remove_all(path_, ignored);
-  }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-  bool keep_;
-};
 
 // Lines that hold an Eigen expression in an `auto` variable (e.g. `auto d = p.position(i) -
 // p.position(j);`): it may refer to temporaries that are gone when it is read.
@@ -101,7 +80,7 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
   const Catalogue catalogue =
       loadCatalogue(options.toolchain.course_dir.parent_path() / "diagnoses.json");
 
-  ScratchDir scratch(options.work_root, options.keep_work);
+  ScratchDir scratch("clothref-grade");
   const ProbeBuild build = buildProbes(files, report.edition, options.toolchain, scratch.path());
   report.files = build.files;
   report.seconds["compile"] = build.compile_seconds;
@@ -197,6 +176,12 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
                      return rank(a.stub) < rank(b.stub);
                    });
   applyRubric(rubric, report);
+  if (!options.keep_work.empty()) {
+    std::error_code error;
+    fs::create_directories(options.keep_work, error);
+    fs::copy(scratch.path(), options.keep_work, fs::copy_options::recursive | fs::copy_options::overwrite_existing, error);
+    if (error) report.notes.push_back("--keep-work: could not copy the scratch folder: " + error.message());
+  }
   report.seconds["total"] = since(start);
   return report;
 }

@@ -17,8 +17,7 @@ struct GradeOptions {
   std::optional<std::string> rubric_path;  // JSON rubric overriding the course's weights
   CourseToolchain toolchain = defaultToolchain();
   ChildLimits limits;
-  std::filesystem::path work_root;  // scratch parent; empty = the system temp dir
-  bool keep_work = false;           // keep the scratch folder (for debugging)
+  std::filesystem::path keep_work;  // copy the scratch folder here (debugging); empty = no
   bool whole_run = true;            // run the information-only whole-run check
   int probe_jobs = 2;               // probe groups at once
   std::uint64_t seed = 20221;

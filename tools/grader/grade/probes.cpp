@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "clothref/io/error.h"
+#include "clothref/io/json_input.h"
 
 namespace clothref::grader {
 
@@ -16,11 +17,9 @@ std::string Catalogue::cause(const std::string& id, bool guess) const {
 }
 
 Catalogue loadCatalogue(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path.string() + ": cannot read the diagnosis catalogue");
   Catalogue catalogue;
   try {
-    const auto document = nlohmann::json::parse(in);
+    const auto document = readJsonFile(path.string(), "diagnosis catalogue");
     for (const auto& entry : document.at("diagnoses")) {
       Diagnosis d{entry.at("id").get<std::string>(), entry.at("stub").get<std::string>(),
                   entry.at("recognised_by").get<std::string>(),

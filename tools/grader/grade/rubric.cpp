@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "clothref/io/error.h"
+#include "clothref/io/json_input.h"
 
 namespace clothref::grader {
 
@@ -23,14 +24,7 @@ Rubric defaultRubric(int edition) {
 }
 
 Rubric loadRubric(const std::string& path, Rubric rubric) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path + ": cannot read the rubric file");
-  nlohmann::json document;
-  try {
-    document = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception& error) {
-    throw InputError(path + ": not valid JSON (" + std::string(error.what()) + ")");
-  }
+  const nlohmann::json document = readJsonFile(path, "rubric");
   const auto number = [&](const nlohmann::json& value, const std::string& field) {
     if (!value.is_number() || value.get<double>() < 0)
       throw InputError(path + ": " + field + " must be a number >= 0");

@@ -1,11 +1,11 @@
 #include "submission.h"
 
 #include <algorithm>
-#include <fstream>
 #include <regex>
 #include <sstream>
 
 #include "clothref/io/error.h"
+#include "clothref/io/files.h"
 
 namespace clothref::grader {
 namespace {
@@ -16,11 +16,11 @@ std::string lower(std::string s) {
   return s;
 }
 
-std::string readFile(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream out;
-  out << in.rdbuf();
-  return out.str();
+// Student files are small; a huge one is refused rather than read.
+constexpr std::size_t kMaxSourceBytes = 16u << 20;
+
+std::string readSource(const std::filesystem::path& path) {
+  return readFile(path, "student file", kMaxSourceBytes);
 }
 
 bool isUtf8(const std::string& bytes) {
@@ -106,7 +106,7 @@ SubmissionFiles findSubmissionFiles(const std::filesystem::path& dir) {
                             std::filesystem::relative(list.front(), dir).string() +
                             "; also found " + others);
     }
-    const std::string bytes = readFile(list.front());
+    const std::string bytes = readSource(list.front());
     const bool bom = bytes.rfind("\xEF\xBB\xBF", 0) == 0;
     const bool crlf = bytes.find("\r\n") != std::string::npos;
     const bool utf8 = isUtf8(bom ? bytes.substr(3) : bytes);
@@ -122,7 +122,7 @@ SubmissionFiles findSubmissionFiles(const std::filesystem::path& dir) {
 int detectEdition(const SubmissionFiles& files, std::string& why) {
   const auto source = [&](const std::string& name) {
     auto it = files.found.find(name);
-    return it == files.found.end() ? std::string() : codeOnly(readFile(it->second));
+    return it == files.found.end() ? std::string() : codeOnly(readSource(it->second));
   };
   const std::string sphere = source("sphere.cpp");
   if (std::regex_search(sphere, std::regex(R"(Spheres\s*::\s*setVelocity\s*\()"))) {
