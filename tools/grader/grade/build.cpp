@@ -208,8 +208,11 @@ std::string firstCompilerError(const std::string& log, const std::string& file_n
   return lines.empty() ? std::string("(no compiler output)") : lines.front();
 }
 
-ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseToolchain& toolchain,
+ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseToolchain& given,
                        const fs::path& work_dir) {
+  // Compiles run inside the scratch folder: every path they get must be absolute.
+  CourseToolchain toolchain = given;
+  if (!toolchain.cache_dir.empty()) toolchain.cache_dir = fs::absolute(toolchain.cache_dir);
   ProbeBuild build;
   const std::string ed = std::to_string(edition);
   const auto stem = [](const std::string& name) { return name.substr(0, name.size() - 4); };
