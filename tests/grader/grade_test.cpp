@@ -63,6 +63,8 @@ fs::path materialise(const fs::path& case_dir, const nlohmann::json& expected,
 }
 
 class Corpus : public ::testing::TestWithParam<std::string> {};
+// Until the corpus is merged the folder may be empty: that is not a failure of this file.
+GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(Corpus);
 
 TEST_P(Corpus, LosesPointsExactlyInTheExpectedStubsWithTheExpectedDiagnoses) {
   TempDir temp;
