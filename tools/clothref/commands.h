@@ -67,5 +67,6 @@ Command addBenchCommand(CLI::App& root);
 Command addStabilityCommand(CLI::App& root);
 Command addSweepCommand(CLI::App& root);
 Command addPlotCommand(CLI::App& root);
+Command addGradeCommand(CLI::App& root);
 
 }  // namespace clothref::cli

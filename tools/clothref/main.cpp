@@ -29,7 +29,8 @@ int main(int argc, char** argv) {
   const std::vector<Command> commands = {
       addTraceCommand(root), addDiffCommand(root), addGoldenCommand(root),
       addVerifyCommand(root), addScenesCommand(root), addBenchCommand(root),
-      addStabilityCommand(root), addSweepCommand(root), addPlotCommand(root)};
+      addStabilityCommand(root), addSweepCommand(root), addPlotCommand(root),
+      addGradeCommand(root)};
   // name an unknown command instead of CLI11's "A subcommand is required"
   if (argc > 1 && argv[1][0] != '-') {
     std::string names;

@@ -1,0 +1,62 @@
+// Child processes: every way a child can fail gets its own verdict, and only a frame on fd 3
+// with the request's nonce counts as an answer.
+#include "grader/grade/child_process.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "test_util.h"
+
+namespace clothref::grader {
+namespace {
+
+namespace fs = std::filesystem;
+
+ChildRun runShell(const test::TempDir& temp, const std::string& script, double wall = 5) {
+  std::ofstream(temp.file("in"), std::ios::trunc) << "";
+  ChildLimits limits;
+  limits.wall_seconds = wall;
+  return runChild({"/bin/sh", "-c", script}, temp.path(), temp.file("in"), limits, true, 42);
+}
+
+TEST(RunChild, Verdicts) {
+  test::TempDir temp;
+  EXPECT_EQ(runShell(temp, "exit 3").status, ChildStatus::ExitedNonZero);
+  EXPECT_EQ(runShell(temp, "kill -SEGV $$").status, ChildStatus::Crashed);
+  EXPECT_EQ(runShell(temp, "echo hello; echo oops >&2").status, ChildStatus::NoAnswer);
+  const ChildRun slow = runShell(temp, "sleep 30", 0.5);
+  EXPECT_EQ(slow.status, ChildStatus::TimedOut);
+  EXPECT_LT(slow.seconds, 5);
+  EXPECT_EQ(runShell(temp, "echo oops >&2; exit 1").stderr_head, "oops\n");
+}
+
+TEST(RunChild, PrintingAFrameOnStdoutIsNotAnAnswer) {
+  test::TempDir temp;
+  probe::ProbeMessage fake;
+  fake.nonce = 42;
+  fake.texts["score"] = "100";
+  std::ofstream(temp.file("frame"), std::ios::binary) << probe::encodeMessage(fake);
+  EXPECT_EQ(runShell(temp, "cat frame").status, ChildStatus::NoAnswer);
+  const ChildRun fd3 = runShell(temp, "cat frame >&3");
+  ASSERT_EQ(fd3.status, ChildStatus::Ok);
+  EXPECT_EQ(fd3.answer->text("score"), "100");
+  fake.nonce = 43;  // a stale or guessed nonce
+  std::ofstream(temp.file("frame"), std::ios::binary | std::ios::trunc)
+      << probe::encodeMessage(fake);
+  EXPECT_EQ(runShell(temp, "cat frame >&3").status, ChildStatus::NoAnswer);
+}
+
+TEST(RunTools, ResultsInCommandOrder) {
+  test::TempDir temp;
+  const auto runs =
+      runTools({{"/bin/sh", "-c", "sleep 0.2; echo one"}, {"/bin/sh", "-c", "echo two; exit 1"}},
+               temp.path(), 2, 10);
+  ASSERT_EQ(runs.size(), 2u);
+  EXPECT_TRUE(runs[0].ok);
+  EXPECT_EQ(runs[0].output, "one\n");
+  EXPECT_FALSE(runs[1].ok);
+}
+
+}  // namespace
+}  // namespace clothref::grader

@@ -1,0 +1,153 @@
+// The corpus (tests/grader/submissions): every student-style submission scores 100 %, and every
+// mutant loses points in exactly the stubs its expected.json names, with the expected diagnoses
+// in the feedback of a failed test of those stubs. One test per submission, graded by the CLI
+// (`clothref grade --results`), so ctest -j runs them in parallel.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "test_util.h"
+
+namespace clothref::test {
+namespace {
+
+namespace fs = std::filesystem;
+const fs::path kCorpus = fs::path(CLOTHREF_SOURCE_DIR) / "tests" / "grader" / "submissions";
+const char* kFiles[] = {"cloth.cpp", "sphere.cpp", "integrator.cpp"};
+
+std::vector<std::string> corpusCases() {
+  std::vector<std::string> cases;
+  for (const char* edition : {"2022", "2024"}) {
+    std::error_code error;
+    for (const auto& entry : fs::directory_iterator(kCorpus / edition, error))
+      if (fs::exists(entry.path() / "expected.json"))
+        cases.push_back(std::string(edition) + "/" + entry.path().filename().string());
+  }
+  std::sort(cases.begin(), cases.end());
+  return cases;
+}
+
+nlohmann::json readJson(const fs::path& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+// The file `name` below `dir`, preferring a src/ folder (as the grader does).
+fs::path findFile(const fs::path& dir, const std::string& name) {
+  std::vector<fs::path> found;
+  for (const auto& entry : fs::recursive_directory_iterator(dir))
+    if (entry.path().filename() == name) found.push_back(entry.path());
+  std::sort(found.begin(), found.end(), [](const fs::path& a, const fs::path& b) {
+    const bool sa = a.parent_path().filename() == "src", sb = b.parent_path().filename() == "src";
+    return sa != sb ? sa : a < b;
+  });
+  return found.empty() ? fs::path() : found.front();
+}
+
+// A mutant with a "base" holds only its changed files: the submission is the base overlaid.
+fs::path materialise(const fs::path& case_dir, const nlohmann::json& expected,
+                     const fs::path& scratch) {
+  if (!expected.contains("base")) return case_dir;
+  const fs::path base = kCorpus / expected["base"].get<std::string>();
+  const fs::path target = scratch / "submission" / "src";
+  fs::create_directories(target);
+  for (const char* name : kFiles) {
+    fs::path own = findFile(case_dir, name);
+    fs::copy_file(own.empty() ? findFile(base, name) : own, target / name);
+  }
+  return target.parent_path();
+}
+
+class Corpus : public ::testing::TestWithParam<std::string> {};
+// Until the corpus is merged the folder may be empty: that is not a failure of this file.
+GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(Corpus);
+
+TEST_P(Corpus, LosesPointsExactlyInTheExpectedStubsWithTheExpectedDiagnoses) {
+  TempDir temp;
+  const fs::path case_dir = kCorpus / GetParam();
+  const nlohmann::json expected = readJson(case_dir / "expected.json");
+  const fs::path submission = materialise(case_dir, expected, temp.path());
+  std::string args = "grade '" + submission.string() + "' --no-whole-run --cache-dir '" +
+                     std::string(CLOTHREF_GRADER_CACHE) + "' --results '" +
+                     temp.file("results.json") + "'";
+  if (expected.value("force_edition", false))
+    args += " --edition " + expected["edition"].get<std::string>();
+  const CommandResult run = runCli(args);
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const nlohmann::json results = readJson(temp.file("results.json"));
+  EXPECT_EQ(results["extra_data"]["edition"].get<int>(),
+            std::stoi(expected["edition"].get<std::string>()));
+
+  std::set<std::string> losing, expected_losing;
+  for (const auto& [stub, max] : results["extra_data"]["stub_max"].items())
+    if (results["extra_data"]["stub_scores"][stub].get<double>() < max.get<double>() - 1e-9)
+      losing.insert(stub);
+  for (const auto& stub : expected["stubs_losing_points"])
+    expected_losing.insert(stub.get<std::string>());
+  EXPECT_EQ(losing, expected_losing) << results.dump(1).substr(0, 4000);
+
+  std::set<std::string> shown;  // diagnosis ids on failed tests of the losing stubs
+  for (const auto& test : results["tests"]) {
+    const std::string name = test["name"];
+    EXPECT_EQ(name.rfind(test["tags"][0].get<std::string>() + ": ", 0), 0u) << name;
+    if (test["status"] == "failed" && expected_losing.count(test["tags"][0].get<std::string>()))
+      for (std::size_t k = 1; k < test["tags"].size(); ++k)
+        shown.insert(test["tags"][k].get<std::string>());
+  }
+  for (const auto& id : expected["diagnoses"])
+    EXPECT_TRUE(shown.count(id.get<std::string>())) << "diagnosis " << id << " not shown";
+  if (expected["kind"] == "correct") EXPECT_DOUBLE_EQ(results["score"].get<double>(), 80.0);
+  if (expected.contains("compile_errors"))
+    for (const auto& file : expected["compile_errors"])
+      for (const auto& used : results["extra_data"]["files"])
+        if (used["name"] == file) EXPECT_FALSE(used["compiled"].get<bool>()) << file;
+}
+
+INSTANTIATE_TEST_SUITE_P(Submissions, Corpus, ::testing::ValuesIn(corpusCases()),
+                         [](const auto& info) {
+                           std::string name = info.param;
+                           for (char& c : name)
+                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return name;
+                         });
+
+// The whole-run check is information only, and the reference reproduces clothref bit for bit.
+TEST(WholeRun, ReferenceIsIdenticalToClothrefAndNeverScored) {
+  TempDir temp;
+  const fs::path submission = kCorpus / "2022" / "reference";
+  const CommandResult run = runCli(
+      "grade '" + submission.string() + "' --cache-dir '" + std::string(CLOTHREF_GRADER_CACHE) +
+      "' --results '" + temp.file("results.json") + "' --junit '" + temp.file("junit.xml") +
+      "' --report '" + temp.file("report.md") + "'");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const nlohmann::json results = readJson(temp.file("results.json"));
+  bool found = false;
+  for (const auto& test : results["tests"])
+    if (test["name"].get<std::string>().find("whole run") != std::string::npos) {
+      found = true;
+      EXPECT_EQ(test["max_score"].get<double>(), 0.0);
+      EXPECT_NE(test["output"].get<std::string>().find("identical"), std::string::npos)
+          << test["output"];
+    }
+  EXPECT_TRUE(found);
+  EXPECT_TRUE(fs::file_size(temp.file("junit.xml")) > 0);
+  EXPECT_TRUE(fs::file_size(temp.file("report.md")) > 0);
+}
+
+// Exit 0 whatever the score; non-zero only when nothing can be graded.
+TEST(Exit, NoStudentFileIsBadInput) {
+  TempDir temp;
+  fs::create_directories(temp.path() / "empty");
+  const CommandResult run = runCli("grade '" + (temp.path() / "empty").string() + "' --results '" +
+                                   temp.file("results.json") + "'");
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  EXPECT_NE(run.output.find("none of cloth.cpp"), std::string::npos) << run.output;
+  EXPECT_FALSE(fs::exists(temp.file("results.json")));
+}
+
+}  // namespace
+}  // namespace clothref::test

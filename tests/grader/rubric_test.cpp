@@ -1,0 +1,78 @@
+// The rubric: the course's weights by default, JSON overrides, and how points split over tests.
+#include "grader/grade/rubric.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "clothref/io/error.h"
+#include "test_util.h"
+
+namespace clothref::grader {
+namespace {
+
+double total(const Rubric& rubric) {
+  double sum = 0;
+  for (const auto& [stub, points] : rubric.stub_points) sum += points;
+  return sum;
+}
+
+TEST(Rubric, CourseWeightsAddUpToTheCodePart) {
+  EXPECT_DOUBLE_EQ(total(defaultRubric(2022)), 80);
+  EXPECT_DOUBLE_EQ(total(defaultRubric(2024)), 80);
+  EXPECT_DOUBLE_EQ(defaultRubric(2022).stub_points.at("Cloth::computeSpringForce"), 20);
+  EXPECT_DOUBLE_EQ(defaultRubric(2024).stub_points.at("Cloth::computeSpringForce"), 25);
+  EXPECT_EQ(defaultRubric(2024).stub_points.count("Spheres::collide()"), 0u);
+  EXPECT_TRUE(defaultRubric(2022).accepts("explicit-as-symplectic"));
+}
+
+TEST(Rubric, FileOverridesWeightsTolerancesAndVariants) {
+  test::TempDir temp;
+  std::ofstream(temp.file("rubric.json")) << R"({"stubs": {"RungeKuttaFourth::integrate": 30},
+    "tests": {"RungeKuttaFourth::integrate: convergence order": 3},
+    "tolerances": {"force_rel": 0.01}, "accepted_variants": {"explicit-as-symplectic": false}})";
+  const Rubric rubric = loadRubric(temp.file("rubric.json"), defaultRubric(2022));
+  EXPECT_DOUBLE_EQ(rubric.stub_points.at("RungeKuttaFourth::integrate"), 30);
+  EXPECT_DOUBLE_EQ(rubric.tolerances.force_rel, 0.01);
+  EXPECT_FALSE(rubric.accepts("explicit-as-symplectic"));
+  EXPECT_TRUE(rubric.accepts("implicit-corrector-v-new"));
+}
+
+TEST(Rubric, BadFilesNameTheField) {
+  test::TempDir temp;
+  const auto expectError = [&](const std::string& text, const std::string& field) {
+    std::ofstream(temp.file("rubric.json"), std::ios::trunc) << text;
+    try {
+      loadRubric(temp.file("rubric.json"), defaultRubric(2022));
+      ADD_FAILURE() << "accepted: " << text;
+    } catch (const InputError& error) {
+      EXPECT_NE(std::string(error.what()).find(field), std::string::npos) << error.what();
+    }
+  };
+  expectError(R"({"stubs": {"Cloth::draw": 3}})", "/stubs/Cloth::draw: unknown stub");
+  expectError(R"({"stubs": {"Cloth::initializeSpring": -1}})", "/stubs/Cloth::initializeSpring");
+  expectError(R"({"tolerances": {"speed": 1}})", "/tolerances/speed");
+  expectError(R"({"accepted_variants": {"anything": true}})", "/accepted_variants/anything");
+  expectError(R"({"weights": {}})", "/weights: unknown field");
+  expectError("{", "not valid JSON");
+}
+
+TEST(Rubric, PointsSplitByWeightAndPartialCredit) {
+  GradeReport report;
+  report.tests.push_back(makeTest("Cloth::initializeSpring", "a", 3));
+  report.tests.push_back(makeTest("Cloth::initializeSpring", "b", 1));
+  report.tests.push_back(makeTest("whole run", "info", 0));
+  report.tests[0].fraction = 1;
+  report.tests[1].fraction = 0.5;
+  report.tests[2].informational = true;
+  report.tests[2].fraction = 1;
+  applyRubric(defaultRubric(2022), report);
+  EXPECT_DOUBLE_EQ(report.tests[0].max_score, 11.25);
+  EXPECT_DOUBLE_EQ(report.tests[1].score, 1.875);
+  EXPECT_DOUBLE_EQ(report.tests[2].max_score, 0);
+  EXPECT_DOUBLE_EQ(report.score, 13.125);
+  EXPECT_DOUBLE_EQ(report.max_score, 15);
+}
+
+}  // namespace
+}  // namespace clothref::grader

@@ -1,0 +1,380 @@
+// The probe driver: the child process's main, linked with the student's three object files and
+// our framework definitions. It reads one ProbeMessage (the probe group and its inputs) from
+// stdin, calls the student's stubs of that group, and writes one ProbeMessage with the outputs to
+// fd 3. It never computes a score or a reference result: those live in the grader process.
+//
+// Groups (request text "group"):
+//   springs          Cloth() and its springs (N = particlesPerEdge of this build)
+//   forces           Cloth::computeSpringForce on given states and OUR spring set
+//   collide-cloth    Spheres::collide(Cloth*) on crafted states
+//   collide-spheres  Spheres::collide() on crafted states (2022 only)
+//   integrate        one integrator on small systems whose derivatives come from the course-form
+//                    force code below (never the student's forces)
+//   whole-run        the student's full simulation of the course scene (information only)
+#include <unistd.h>
+
+#include <Eigen/Core>
+#include <cerrno>
+#include <cstdio>
+#include <iostream>
+#include <iterator>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "../bridge/probe_protocol.h"
+#include "cloth.h"
+#include "configs.h"
+#include "integrator.h"
+#include "particles.h"
+#include "sphere.h"
+
+namespace {
+
+using probe::ProbeMessage;
+
+// Copies a 4 x n column-major float array in or out of a Particles matrix.
+void load(Eigen::Ref<Eigen::Matrix4Xf> target, const std::vector<float>& values) {
+  const long n = std::min<long>(target.cols(), static_cast<long>(values.size() / 4));
+  for (long c = 0; c < n; ++c)
+    for (int r = 0; r < 4; ++r) target(r, c) = values[static_cast<size_t>(4 * c + r)];
+}
+std::vector<float> save(const Eigen::Ref<Eigen::Matrix4Xf>& source) {
+  return std::vector<float>(source.data(), source.data() + source.size());
+}
+void loadMass(Particles& particles, const std::vector<float>& masses) {
+  for (size_t i = 0; i < masses.size() && i < particles.mass().size(); ++i)
+    particles.mass(static_cast<int>(i)) = masses[i];
+}
+
+std::string key(const std::string& name, int k) { return name + "." + std::to_string(k); }
+
+std::vector<Spring> springsFrom(const ProbeMessage& in, const std::string& prefix) {
+  const auto& start = in.i(prefix + "start");
+  const auto& end = in.i(prefix + "end");
+  const auto& type = in.i(prefix + "type");
+  const auto& rest = in.f(prefix + "rest");
+  std::vector<Spring> springs;
+  for (size_t s = 0; s < start.size() && s < end.size() && s < rest.size(); ++s)
+    springs.emplace_back(
+        static_cast<unsigned>(start[s]), static_cast<unsigned>(end[s]), rest[s],
+        s < type.size() ? static_cast<Spring::Type>(type[s]) : Spring::Type::STRUCTURAL);
+  return springs;
+}
+
+void probeSprings(const ProbeMessage&, ProbeMessage& out) {
+  Cloth cloth;
+  std::vector<std::int64_t> start, end, type;
+  std::vector<float> rest;
+  for (const Spring& spring : cloth.springs()) {
+    start.push_back(spring.startParticleIndex());
+    end.push_back(spring.endParticleIndex());
+    type.push_back(static_cast<std::int64_t>(spring.type()));
+    rest.push_back(spring.length());
+  }
+  out.ints["n"] = {particlesPerEdge};
+  out.ints["start"] = start;
+  out.ints["end"] = end;
+  out.ints["type"] = type;
+  out.floats["rest"] = rest;
+  out.floats["position"] = save(cloth.particles().position());
+}
+
+void probeForces(const ProbeMessage& in, ProbeMessage& out) {
+  Cloth cloth;
+  // Our spring set, never the student's: a wrong initializeSpring must not fail the forces.
+  cloth.springs() = springsFrom(in, "s.");
+  springCoef = in.scalar("spring_coef");
+  damperCoef = in.scalar("damper_coef");
+  const int cases = static_cast<int>(in.scalarInt("cases"));
+  Particles& p = cloth.particles();
+  for (int k = 0; k < cases; ++k) {
+    load(p.position(), in.f(key("pos", k)));
+    load(p.velocity(), in.f(key("vel", k)));
+    load(p.acceleration(), in.f(key("acc", k)));
+    loadMass(p, in.f(key("mass", k)));
+    cloth.computeSpringForce();
+    out.floats[key("acc", k)] = save(p.acceleration());
+  }
+}
+
+// Both collision groups: three spheres added once (the singleton persists), then every case
+// restores the whole state before the call, as the course's main restores its backups.
+void probeCollide(const ProbeMessage& in, ProbeMessage& out, bool sphereSphere) {
+  Cloth cloth;
+  Spheres& spheres = Spheres::initSpheres();
+  const auto& radii = in.f("radius");
+  for (size_t s = 0; s < radii.size(); ++s)
+    spheres.addSphere(Eigen::Vector4f(100.0f * float(s + 1), 100, 0, 1), radii[s]);
+  const int cases = static_cast<int>(in.scalarInt("cases"));
+  Particles& c = cloth.particles();
+  Particles& s = spheres.particles();
+  for (int k = 0; k < cases; ++k) {
+    load(c.position(), in.f(key("cloth.pos", k)));
+    load(c.velocity(), in.f(key("cloth.vel", k)));
+    c.acceleration().setZero();
+    loadMass(c, in.f(key("cloth.mass", k)));
+    load(s.position(), in.f(key("sph.pos", k)));
+    load(s.velocity(), in.f(key("sph.vel", k)));
+    s.acceleration().setZero();
+    loadMass(s, in.f(key("sph.mass", k)));
+#ifdef CLOTHREF_GRADER_EDITION_2024
+    (void)sphereSphere;
+    spheres.collide(&cloth);
+#else
+    if (sphereSphere)
+      spheres.collide();
+    else
+      spheres.collide(&cloth);
+#endif
+    out.floats[key("cloth.pos", k)] = save(c.position());
+    out.floats[key("cloth.vel", k)] = save(c.velocity());
+    out.floats[key("sph.pos", k)] = save(s.position());
+    out.floats[key("sph.vel", k)] = save(s.velocity());
+  }
+}
+
+// ---- Course-form reference derivatives for the integrator probes (our code, not the student's).
+struct MiniWorld {
+  Particles cloth, spheres;
+  std::vector<Spring> springs;
+  std::vector<float> radius;
+  float spring_coef = 0, damper_coef = 0, viscous = 0;
+  Eigen::Vector4f gravity = Eigen::Vector4f::Zero();
+  bool sphere_gravity = false, cloth_contact = false, sphere_contact = false;
+  float e_cloth = 0, e_sphere = 0.8f;
+};
+
+void externalForce(Particles& p, const Eigen::Vector4f& gravity, float viscous) {
+  for (int i = 0; i < p.getCapacity(); ++i) {
+    if (p.mass(i) == 0.0f) {
+      p.acceleration(i).setZero();
+    } else {
+      p.acceleration(i) = gravity;
+      p.acceleration(i) -= p.velocity(i) * viscous * p.inverseMass(i);
+    }
+  }
+}
+
+void springForce(MiniWorld& w) {
+  Particles& p = w.cloth;
+  for (const Spring& spring : w.springs) {
+    const int s = static_cast<int>(spring.startParticleIndex());
+    const int e = static_cast<int>(spring.endParticleIndex());
+    Eigen::Vector4f d = p.position(s) - p.position(e);
+    const float length = d.norm();
+    d.normalize();
+    const Eigen::Vector4f force = d * (w.damper_coef * (p.velocity(s) - p.velocity(e)).dot(d) +
+                                       w.spring_coef * (length - spring.length()));
+    p.acceleration(s) -= force * p.inverseMass(s);
+    p.acceleration(e) += force * p.inverseMass(e);
+  }
+}
+
+void contact(Particles& a, int i, Particles& b, int j, float reach, float e) {
+  Eigen::Vector4f n = a.position(i) - b.position(j);
+  const float penetration = reach - n.norm();
+  if (penetration < 0) return;
+  n.normalize();
+  const float approach = (a.velocity(i) - b.velocity(j)).dot(n);
+  if (approach < 0) {
+    const Eigen::Vector4f u = n * approach;
+    const Eigen::Vector4f impulse = (-(1 + e) * u) / (b.inverseMass(j) + a.inverseMass(i));
+    a.velocity(i) += impulse * a.inverseMass(i);
+    b.velocity(j) -= impulse * b.inverseMass(j);
+  }
+  const Eigen::Vector4f c = (penetration * n) * 0.15f;
+  a.position(i) += c;
+  b.position(j) -= c;
+}
+
+void simulate(MiniWorld& w) {
+  externalForce(w.cloth, w.gravity, w.viscous);
+  if (w.sphere_gravity)
+    externalForce(w.spheres, w.gravity, w.viscous);
+  else
+    w.spheres.acceleration().setZero();
+  springForce(w);
+  if (w.cloth_contact)
+    for (int i = 0; i < w.spheres.getCapacity(); ++i)
+      for (int j = 0; j < w.cloth.getCapacity(); ++j)
+        contact(w.spheres, i, w.cloth, j, w.radius[static_cast<size_t>(i)], w.e_cloth);
+  if (w.sphere_contact)
+    for (int i = 0; i < w.spheres.getCapacity(); ++i)
+      for (int j = i + 1; j < w.spheres.getCapacity(); ++j)
+        contact(w.spheres, i, w.spheres, j,
+                w.radius[static_cast<size_t>(i)] + w.radius[static_cast<size_t>(j)], w.e_sphere);
+}
+
+const Integrator& integratorFor(std::int64_t method) {
+  static const ExplicitEuler explicitEuler;
+  static const ImplicitEuler implicitEuler;
+  static const MidpointEuler midpointEuler;
+  static const RungeKuttaFourth rungeKutta;
+  switch (method) {
+    case 1:
+      return implicitEuler;
+    case 2:
+      return midpointEuler;
+    case 3:
+      return rungeKutta;
+    default:
+      return explicitEuler;
+  }
+}
+
+void probeIntegrate(const ProbeMessage& in, ProbeMessage& out) {
+  const Integrator& integrator = integratorFor(in.scalarInt("method"));
+  const int cases = static_cast<int>(in.scalarInt("cases"));
+  for (int k = 0; k < cases; ++k) {
+    const auto& clothMass = in.f(key("c.mass", k));
+    const auto& sphereMass = in.f(key("s.mass", k));
+    MiniWorld w{Particles(static_cast<int>(clothMass.size())),
+                Particles(static_cast<int>(sphereMass.size()))};
+    load(w.cloth.position(), in.f(key("c.pos", k)));
+    load(w.cloth.velocity(), in.f(key("c.vel", k)));
+    loadMass(w.cloth, clothMass);
+    load(w.spheres.position(), in.f(key("s.pos", k)));
+    load(w.spheres.velocity(), in.f(key("s.vel", k)));
+    loadMass(w.spheres, sphereMass);
+    w.springs = springsFrom(in, key("sp", k) + ".");
+    w.radius = in.f(key("s.rad", k));
+    const auto& params = in.f(key("params", k));  // ks, kd, viscous, gx, gy, gz, e_cloth, e_sphere
+    w.spring_coef = params.at(0);
+    w.damper_coef = params.at(1);
+    w.viscous = params.at(2);
+    w.gravity = Eigen::Vector4f(params.at(3), params.at(4), params.at(5), 0);
+    w.e_cloth = params.at(6);
+    w.e_sphere = params.at(7);
+    const auto& flags = in.i(key("flags", k));  // sphere gravity, cloth contact, sphere contact
+    w.sphere_gravity = flags.at(0) != 0;
+    w.cloth_contact = flags.at(1) != 0;
+    w.sphere_contact = flags.at(2) != 0;
+    const float dt = in.scalar(key("dt", k));
+    const std::int64_t steps = in.scalarInt(key("steps", k), 1);
+    const std::int64_t stride = in.scalarInt(key("stride", k), 0);
+    std::int64_t calls = 0;
+    std::vector<Particles*> bodies{&w.cloth, &w.spheres};
+    std::function<void(void)> simulateOneStep = [&] {
+      ++calls;
+      simulate(w);
+    };
+    std::vector<float> trajectory;
+    float dtAfter = dt;
+    for (std::int64_t step = 0; step < steps; ++step) {
+      deltaTime = dt;  // a student's integrate may change it; each step starts from the probe's
+      simulate(w);
+      integrator.integrate(bodies, simulateOneStep);
+      if (step == 0) dtAfter = deltaTime;
+      if (stride > 0 && (step + 1) % stride == 0) {
+        const auto x = save(w.cloth.position());
+        trajectory.insert(trajectory.end(), x.begin(), x.end());
+      }
+    }
+    out.floats[key("c.pos", k)] = save(w.cloth.position());
+    out.floats[key("c.vel", k)] = save(w.cloth.velocity());
+    out.floats[key("s.pos", k)] = save(w.spheres.position());
+    out.floats[key("s.vel", k)] = save(w.spheres.velocity());
+    out.floats[key("dt_after", k)] = {dtAfter};
+    out.ints[key("calls", k)] = {calls};
+    out.floats[key("trajectory", k)] = trajectory;
+  }
+}
+
+// The course's main loop on its default scene, with every stub the student's.
+void probeWholeRun(const ProbeMessage& in, ProbeMessage& out) {
+  Cloth cloth;
+  Spheres& spheres = Spheres::initSpheres();
+#ifdef CLOTHREF_GRADER_EDITION_2024
+  spheres.addSphere(Eigen::Vector4f(0, 0, 0, 1), 1.0f);
+#else
+  spheres.addSphere(Eigen::Vector4f(-0.75f, 1, -0.75f, 1), 0.5f);
+  spheres.addSphere(Eigen::Vector4f(0.75f, 1, -0.75f, 1), 0.5f);
+  spheres.addSphere(Eigen::Vector4f(-0.75f, 1, 0.75f, 1), 0.5f);
+  spheres.addSphere(Eigen::Vector4f(0.75f, 1, 0.75f, 1), 0.5f);
+#endif
+  const Integrator& integrator = integratorFor(in.scalarInt("method"));
+  deltaTime = in.scalar("dt", 1e-4f);
+  const std::int64_t steps = in.scalarInt("steps", 100);
+  const std::int64_t stride = std::max<std::int64_t>(1, in.scalarInt("stride", 10));
+  std::vector<Particles*> particles{&cloth.particles(), &spheres.particles()};
+  std::function<void(void)> simulateOneStep = [&] {
+    cloth.computeExternalForce();
+#ifdef CLOTHREF_GRADER_EDITION_2024
+    cloth.computeSpringForce();
+    spheres.collide(&cloth);
+#else
+    spheres.computeExternalForce();
+    cloth.computeSpringForce();
+    spheres.collide(&cloth);
+    spheres.collide();
+#endif
+  };
+  std::vector<float> clothX, clothV, sphereX, sphereV;
+  auto record = [&] {
+    for (auto [from, to] :
+         {std::pair{&cloth.particles(), &clothX}, std::pair{&spheres.particles(), &sphereX}}) {
+      auto x = save(from->position());
+      to->insert(to->end(), x.begin(), x.end());
+    }
+    for (auto [from, to] :
+         {std::pair{&cloth.particles(), &clothV}, std::pair{&spheres.particles(), &sphereV}}) {
+      auto v = save(from->velocity());
+      to->insert(to->end(), v.begin(), v.end());
+    }
+  };
+  record();
+  for (std::int64_t step = 1; step <= steps; ++step) {
+    simulateOneStep();
+    integrator.integrate(particles, simulateOneStep);
+    if (step % stride == 0 || step == steps) record();
+  }
+  out.floats["cloth.pos"] = clothX;
+  out.floats["cloth.vel"] = clothV;
+  out.floats["sph.pos"] = sphereX;
+  out.floats["sph.vel"] = sphereV;
+  out.ints["sphere_capacity"] = {spheres.particles().getCapacity()};
+}
+
+bool writeAll(int fd, const std::string& data) {
+  size_t done = 0;
+  while (done < data.size()) {
+    const ssize_t n = ::write(fd, data.data() + done, data.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    done += static_cast<size_t>(n);
+  }
+  return true;
+}
+
+}  // namespace
+
+int main() {
+  std::string request((std::istreambuf_iterator<char>(std::cin)), std::istreambuf_iterator<char>());
+  const auto in = probe::decodeMessage(request);
+  if (!in) {
+    std::fprintf(stderr, "probe driver: malformed request\n");
+    return 70;
+  }
+  ProbeMessage out;
+  out.nonce = in->nonce;
+  const std::string group = in->text("group");
+  if (group == "springs")
+    probeSprings(*in, out);
+  else if (group == "forces")
+    probeForces(*in, out);
+  else if (group == "collide-cloth")
+    probeCollide(*in, out, false);
+  else if (group == "collide-spheres")
+    probeCollide(*in, out, true);
+  else if (group == "integrate")
+    probeIntegrate(*in, out);
+  else if (group == "whole-run")
+    probeWholeRun(*in, out);
+  else {
+    std::fprintf(stderr, "probe driver: unknown group '%s'\n", group.c_str());
+    return 70;
+  }
+  out.texts["group"] = group;
+  return writeAll(probe::kResultFd, probe::encodeMessage(out)) ? 0 : 71;
+}

@@ -1,0 +1,337 @@
+#include "build.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "child_process.h"
+
+#ifndef CLOTHREF_GRADER_COURSE_DIR
+#define CLOTHREF_GRADER_COURSE_DIR ""
+#endif
+#ifndef CLOTHREF_GRADER_REFERENCE_DIR
+#define CLOTHREF_GRADER_REFERENCE_DIR ""
+#endif
+#ifndef CLOTHREF_GRADER_LIB_DIR
+#define CLOTHREF_GRADER_LIB_DIR ""
+#endif
+#ifndef CLOTHREF_GRADER_EIGEN_INCLUDE
+#define CLOTHREF_GRADER_EIGEN_INCLUDE "/usr/include/eigen3"
+#endif
+
+namespace clothref::grader {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string fromEnv(const char* name, const char* fallback) {
+  const char* value = std::getenv(name);
+  return value && *value ? value : fallback;
+}
+
+std::vector<std::string> baseFlags(const CourseToolchain& t) {
+  return {t.compiler, "-std=c++20", t.optimisation, "-ffp-contract=off", "-fno-fast-math"};
+}
+
+std::vector<std::string> compileCommand(const CourseToolchain& t, int edition,
+                                        const fs::path& source, const fs::path& object,
+                                        int particles_per_edge, const fs::path& pch = {}) {
+  const std::string ed = std::to_string(edition);
+  std::vector<std::string> command = baseFlags(t);
+  command.insert(command.end(), {"-fmax-errors=3", "-fdiagnostics-color=never",
+                                 "-DCLOTHREF_GRADER_EDITION_" + ed});
+  if (!pch.empty()) command.insert(command.end(), {"-include", pch.string()});
+  if (particles_per_edge != 25)
+    command.push_back("-DCLOTHREF_GRADER_PARTICLES_PER_EDGE=" + std::to_string(particles_per_edge));
+  command.insert(command.end(),
+                 {"-I" + (t.course_dir / ed / "include").string(),
+                  "-I" + (t.course_dir / "common" / "include").string(), "-isystem",
+                  t.eigen_include.string(), "-c", source.string(), "-o", object.string()});
+  return command;
+}
+
+// FNV-1a, 64 bits: a cache key, not a security boundary (objects only ever come from our compiler).
+std::uint64_t fnv1a(const std::string& bytes, std::uint64_t hash = 1469598103934665603ull) {
+  for (unsigned char c : bytes) hash = (hash ^ c) * 1099511628211ull;
+  return hash;
+}
+
+std::string readBytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream out;
+  out << in.rdbuf();
+  return out.str();
+}
+
+// The cache file for a compile command: its flags (paths of the source and object excluded) and
+// the bytes of the source and of every stand-in header.
+fs::path cachePath(const CourseToolchain& t, const std::vector<std::string>& command,
+                   const fs::path& source) {
+  std::uint64_t hash = fnv1a(readBytes(source));
+  for (std::size_t k = 0; k + 1 < command.size(); ++k) {
+    if (command[k] == "-c" || command[k] == "-o") {
+      ++k;
+      continue;
+    }
+    hash = fnv1a(command[k] + '\n', hash);
+  }
+  static const std::uint64_t headers = [&] {
+    std::uint64_t h = 0;
+    std::vector<fs::path> files;
+    for (const auto& entry : fs::recursive_directory_iterator(t.course_dir))
+      if (entry.is_regular_file()) files.push_back(entry.path());
+    std::sort(files.begin(), files.end());
+    for (const auto& f : files) h = fnv1a(f.string() + readBytes(f), h);
+    return h;
+  }();
+  hash = fnv1a(std::to_string(headers), hash);
+  char name[32];
+  std::snprintf(name, sizeof name, "%016llx.o", static_cast<unsigned long long>(hash));
+  return t.cache_dir / name;
+}
+
+// With a cache: a precompiled header of exactly what every student file includes first anyway
+// (each course header starts with <Eigen/Core> and these std headers), built once per compiler
+// and flags. It halves a compile; without a cache it would cost more than it saves.
+fs::path precompiledHeader(const CourseToolchain& t, const fs::path& work_dir) {
+  if (t.cache_dir.empty()) return {};
+  std::uint64_t hash = fnv1a("clothref-grader-pch-1");
+  for (const std::string& flag : baseFlags(t)) hash = fnv1a(flag + '\n', hash);
+  hash = fnv1a(t.eigen_include.string(), hash);
+  char name[40];
+  std::snprintf(name, sizeof name, "pch-%016llx", static_cast<unsigned long long>(hash));
+  const fs::path dir = t.cache_dir / name;
+  const fs::path header = dir / "course_pch.h";
+  std::error_code error;
+  if (fs::exists(dir / "course_pch.h.gch", error)) return header;
+  const fs::path temporary = t.cache_dir / (std::string(name) + ".tmp" + std::to_string(getpid()));
+  fs::create_directories(temporary, error);
+  std::ofstream(temporary / "course_pch.h")
+      << "#include <filesystem>\n#include <functional>\n#include <stdexcept>\n#include <string>\n"
+         "#include <vector>\n#include <Eigen/Core>\n";
+  std::vector<std::string> command = baseFlags(t);
+  command.insert(command.end(), {"-isystem", t.eigen_include.string(), "-x", "c++-header",
+                                 (temporary / "course_pch.h").string(), "-o",
+                                 (temporary / "course_pch.h.gch").string()});
+  const bool built = runTools({command}, work_dir, 1, t.compile_seconds).front().ok;
+  if (built) fs::rename(temporary, dir, error);  // another grader may have won: use theirs
+  fs::remove_all(temporary, error);
+  return fs::exists(dir / "course_pch.h.gch", error) ? header : fs::path();
+}
+
+// Runs the compile commands, taking objects from the cache where it has them and filling it.
+std::vector<ToolRun> compileAll(const CourseToolchain& t,
+                                const std::vector<std::vector<std::string>>& commands,
+                                const fs::path& work_dir) {
+  std::vector<ToolRun> results(commands.size());
+  std::vector<std::vector<std::string>> to_run;
+  std::vector<std::size_t> index;
+  std::vector<fs::path> cached(commands.size());
+  for (std::size_t k = 0; k < commands.size(); ++k) {
+    const auto& c = commands[k];
+    const fs::path source = *(std::find(c.begin(), c.end(), "-c") + 1);
+    const fs::path object = *(std::find(c.begin(), c.end(), "-o") + 1);
+    std::error_code error;
+    if (!t.cache_dir.empty()) {
+      cached[k] = cachePath(t, c, source);
+      if (fs::exists(cached[k], error) &&
+          fs::copy_file(cached[k], object, fs::copy_options::overwrite_existing, error)) {
+        results[k].ok = true;
+        continue;
+      }
+    }
+    to_run.push_back(c);
+    index.push_back(k);
+  }
+  const std::vector<ToolRun> runs = runTools(to_run, work_dir, t.jobs, t.compile_seconds);
+  for (std::size_t r = 0; r < runs.size(); ++r) {
+    const std::size_t k = index[r];
+    results[k] = runs[r];
+    if (!runs[r].ok || cached[k].empty()) continue;
+    const auto& c = commands[k];
+    const fs::path object = *(std::find(c.begin(), c.end(), "-o") + 1);
+    std::error_code error;
+    fs::create_directories(t.cache_dir, error);
+    const fs::path temporary =
+        cached[k].string() + ".tmp" + std::to_string(getpid()) + "-" + std::to_string(k);
+    if (fs::copy_file(object, temporary, fs::copy_options::overwrite_existing, error))
+      fs::rename(temporary, cached[k], error);  // atomic: concurrent graders never see half a file
+  }
+  return results;
+}
+
+}  // namespace
+
+CourseToolchain defaultToolchain() {
+  CourseToolchain t;
+  t.course_dir = fromEnv("CLOTHREF_GRADER_COURSE_DIR", CLOTHREF_GRADER_COURSE_DIR);
+  t.reference_dir = fromEnv("CLOTHREF_GRADER_REFERENCE_DIR", CLOTHREF_GRADER_REFERENCE_DIR);
+  t.driver_lib_dir = fromEnv("CLOTHREF_GRADER_LIB_DIR", CLOTHREF_GRADER_LIB_DIR);
+  t.eigen_include = CLOTHREF_GRADER_EIGEN_INCLUDE;
+  t.compiler = fromEnv("CLOTHREF_GRADER_CXX", "g++");
+  return t;
+}
+
+std::string firstCompilerError(const std::string& log, const std::string& file_name) {
+  std::istringstream in(log);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    if (lines[i].find(": error:") == std::string::npos &&
+        lines[i].find("fatal error:") == std::string::npos &&
+        lines[i].find("undefined reference") == std::string::npos)
+      continue;
+    std::string quote;
+    for (std::size_t k = i; k < lines.size() && k < i + 3; ++k) {
+      std::string line = lines[k];
+      // Scratch paths say nothing to a student: keep only the file name.
+      for (std::size_t at; (at = line.find("/src-")) != std::string::npos;) {
+        std::size_t begin = line.rfind(' ', at);
+        begin = begin == std::string::npos ? 0 : begin + 1;
+        const std::size_t end = line.find(file_name, at);
+        if (end == std::string::npos) break;
+        line.replace(begin, end - begin, "");
+      }
+      if (k > i && (line.find(": error:") != std::string::npos ||
+                    line.find(": note:") != std::string::npos ||
+                    line.find("In function") != std::string::npos))
+        break;
+      quote += line + "\n";
+    }
+    return quote;
+  }
+  return lines.empty() ? std::string("(no compiler output)") : lines.front();
+}
+
+ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseToolchain& given,
+                       const fs::path& work_dir) {
+  // Compiles run inside the scratch folder: every path they get must be absolute.
+  CourseToolchain toolchain = given;
+  if (!toolchain.cache_dir.empty()) toolchain.cache_dir = fs::absolute(toolchain.cache_dir);
+  ProbeBuild build;
+  const std::string ed = std::to_string(edition);
+  const auto stem = [](const std::string& name) { return name.substr(0, name.size() - 4); };
+
+  const fs::path pch = precompiledHeader(toolchain, work_dir);
+  // 1. Student files, each alone in its folder; plus cloth.cpp at the second size.
+  std::vector<std::vector<std::string>> commands;
+  std::vector<std::string> names;
+  for (const std::string& name : studentFileNames()) {
+    UsedFile used;
+    used.name = name;
+    auto found = files.found.find(name);
+    if (found == files.found.end()) {
+      used.problem = "missing";
+      build.files.push_back(used);
+      continue;
+    }
+    used.path = found->second.string();
+    const fs::path folder = work_dir / ("src-" + stem(name));
+    fs::create_directories(folder);
+    fs::copy_file(found->second, folder / name, fs::copy_options::overwrite_existing);
+    commands.push_back(
+        compileCommand(toolchain, edition, folder / name, work_dir / (stem(name) + ".o"), 25, pch));
+    names.push_back(name);
+    if (name == "cloth.cpp") {
+      commands.push_back(compileCommand(toolchain, edition, folder / name,
+                                        work_dir / "cloth-small.o", kSecondParticlesPerEdge, pch));
+      names.push_back("cloth-small");
+    }
+    build.files.push_back(used);
+  }
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<ToolRun> runs = compileAll(toolchain, commands, work_dir);
+  bool small_compiled = false;
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    if (names[k] == "cloth-small") {
+      small_compiled = runs[k].ok;
+      if (!runs[k].ok) build.small_problem = firstCompilerError(runs[k].output, "cloth.cpp");
+      continue;
+    }
+    for (UsedFile& used : build.files)
+      if (used.name == names[k]) {
+        used.compiled = runs[k].ok;
+        used.compile_seconds = runs[k].seconds;
+        if (!runs[k].ok) used.problem = firstCompilerError(runs[k].output, used.name);
+      }
+  }
+
+  // 2. Our reference version for every file that is missing or did not compile.
+  commands.clear();
+  names.clear();
+  for (const UsedFile& used : build.files) {
+    if (used.compiled) continue;
+    const fs::path reference = toolchain.reference_dir / ed / used.name;
+    commands.push_back(compileCommand(toolchain, edition, reference,
+                                      work_dir / (stem(used.name) + ".o"), 25, pch));
+    names.push_back(used.name);
+  }
+  runs = compileAll(toolchain, commands, work_dir);
+  for (std::size_t k = 0; k < runs.size(); ++k)
+    if (!runs[k].ok) {
+      build.problem = "our reference " + names[k] + " for " + ed +
+                      " does not compile: " + firstCompilerError(runs[k].output, names[k]);
+      return build;
+    }
+  build.compile_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  // 3. Link. A link error (e.g. a framework function deleted) makes us swap in our version of
+  // the file the linker complains about, one file at a time.
+  const auto link_start = std::chrono::steady_clock::now();
+  const fs::path driver_lib = toolchain.driver_lib_dir / ("libclothref_grader_course_" + ed + ".a");
+  const auto link = [&](const std::vector<fs::path>& objects, const fs::path& out) {
+    std::vector<std::string> command = {toolchain.compiler, "-o", out.string()};
+    for (const auto& o : objects) command.push_back(o.string());
+    command.push_back(driver_lib.string());
+    return runTools({command}, work_dir, 1, toolchain.compile_seconds).front();
+  };
+  std::vector<fs::path> objects = {work_dir / "cloth.o", work_dir / "sphere.o",
+                                   work_dir / "integrator.o"};
+  build.probe = work_dir / "probe";
+  ToolRun linked = link(objects, build.probe);
+  for (UsedFile& used : build.files) {
+    if (linked.ok) break;
+    if (!used.compiled) continue;
+    const std::string error = firstCompilerError(linked.output, used.name);
+    std::vector<std::string> ref =
+        compileCommand(toolchain, edition, toolchain.reference_dir / ed / used.name,
+                       work_dir / (stem(used.name) + "-ref.o"), 25, pch);
+    if (!compileAll(toolchain, {ref}, work_dir).front().ok) continue;
+    std::vector<fs::path> swapped = objects;
+    for (auto& o : swapped)
+      if (o.filename() == stem(used.name) + ".o") o = work_dir / (stem(used.name) + "-ref.o");
+    ToolRun retry = link(swapped, build.probe);
+    if (retry.ok) {
+      used.compiled = false;
+      used.problem = "link error: " + error;
+      objects = swapped;
+      linked = retry;
+    }
+  }
+  if (!linked.ok) {
+    build.problem = "the probe does not link: " + firstCompilerError(linked.output, "");
+    return build;
+  }
+  // The second-size springs probe: the student's cloth.cpp rebuilt, the rest as above.
+  const bool cloth_is_students = build.files[0].compiled;
+  if (cloth_is_students && small_compiled) {
+    std::vector<fs::path> small = objects;
+    small[0] = work_dir / "cloth-small.o";
+    build.probe_small = work_dir / "probe-small";
+    const ToolRun small_link = link(small, build.probe_small);
+    build.small_ok = small_link.ok;
+    if (!small_link.ok) build.small_problem = firstCompilerError(small_link.output, "cloth.cpp");
+  }
+  build.link_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - link_start).count();
+  build.ok = true;
+  return build;
+}
+
+}  // namespace clothref::grader

@@ -1,0 +1,55 @@
+// Building the probe executables of one submission: each student file is copied alone into a
+// scratch folder (so no student header can be found) and compiled once against the edition's
+// stand-in headers; cloth.cpp is compiled a second time with another particlesPerEdge for the
+// springs probe. A file that does not compile (or is missing) is replaced by our course-form
+// reference version, so the other files are still graded. The objects are linked with the probe
+// driver and our framework definitions (built with clothref, one library per edition).
+#pragma once
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "results.h"
+#include "submission.h"
+
+namespace clothref::grader {
+
+// Where the course side lives and how to compile student code.
+struct CourseToolchain {
+  std::string compiler = "g++";
+  std::string optimisation = "-O2";
+  std::filesystem::path course_dir;      // tools/grader/course (stand-in headers)
+  std::filesystem::path reference_dir;   // tools/grader/reference (<edition>/<file>.cpp)
+  std::filesystem::path driver_lib_dir;  // holds libclothref_grader_course_<edition>.a
+  std::filesystem::path eigen_include;   // e.g. /usr/include/eigen3
+  int jobs = 2;                          // compiles at once
+  std::filesystem::path cache_dir;       // object cache keyed by source bytes + flags; empty = off
+  double compile_seconds = 120;          // per compile
+};
+
+// The built-in locations (set by CMake) with environment overrides CLOTHREF_GRADER_COURSE_DIR,
+// CLOTHREF_GRADER_REFERENCE_DIR and CLOTHREF_GRADER_LIB_DIR.
+CourseToolchain defaultToolchain();
+
+inline constexpr int kSecondParticlesPerEdge = 10;  // the springs probe's second cloth size
+
+struct ProbeBuild {
+  bool ok = false;  // false: nothing could be linked (report why in `problem`)
+  std::string problem;
+  std::filesystem::path probe;        // all three files, particlesPerEdge = 25
+  std::filesystem::path probe_small;  // springs only, particlesPerEdge = kSecondParticlesPerEdge
+  bool small_ok = false;
+  std::string small_problem;  // why the second-size cloth.cpp did not build
+  std::vector<UsedFile> files;
+  double compile_seconds = 0, link_seconds = 0;
+};
+
+ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseToolchain& toolchain,
+                       const std::filesystem::path& work_dir);
+
+// The first compiler error of `log` with up to two following lines, scratch paths replaced by
+// the file's name.
+std::string firstCompilerError(const std::string& log, const std::string& file_name);
+
+}  // namespace clothref::grader

@@ -1,0 +1,68 @@
+// Running untrusted code: one child process per probe group (or per compile), with resource limits
+// and a wall-clock timeout. The probe answer comes back on fd 3 (bridge/probe_protocol.h); stdout
+// and stderr go to files in the child's work directory and are only quoted, never trusted.
+//
+// The sandbox issue adds namespaces and an unprivileged uid here: `ChildLimits` and the
+// `launcher` prefix (e.g. a bubblewrap command line) are the slots it fills.
+#pragma once
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "../bridge/probe_protocol.h"
+
+namespace clothref::grader {
+
+struct ChildLimits {
+  double wall_seconds = 20;                        // killed (whole process group) after this
+  std::uint64_t cpu_seconds = 20;                  // RLIMIT_CPU
+  std::uint64_t address_space_bytes = 4ull << 30;  // RLIMIT_AS
+  std::uint64_t file_size_bytes = 64ull << 20;     // RLIMIT_FSIZE (stdout/stderr floods)
+  std::uint64_t open_files = 64;                   // RLIMIT_NOFILE
+  std::vector<std::string> launcher;               // argv prefix, empty = run directly
+};
+
+enum class ChildStatus {
+  Ok,             // exited 0 and answered with a well-formed frame carrying our nonce
+  Crashed,        // killed by a signal (segfault, abort, CPU limit, ...)
+  TimedOut,       // wall-clock limit reached
+  ExitedNonZero,  // exited with a non-zero code
+  NoAnswer        // exited 0 but sent no valid answer (missing, malformed, wrong nonce)
+};
+
+struct ChildRun {
+  ChildStatus status = ChildStatus::NoAnswer;
+  int signal = 0;           // for Crashed
+  int exit_code = 0;        // for ExitedNonZero
+  double seconds = 0;       // wall time
+  std::string stderr_head;  // first lines of the child's stderr (for the report)
+  std::optional<probe::ProbeMessage> answer;
+  // One line for a report: "crashed (SIGSEGV)", "timed out after 20 s", ...
+  std::string describe() const;
+};
+
+// Runs `command` (argv; argv[0] a path) in `work_dir` with `stdin_file` as stdin, a clean
+// environment and the limits; reads its fd-3 answer when `expect_answer`. `request_nonce` is the
+// nonce the answer must carry.
+ChildRun runChild(const std::vector<std::string>& command, const std::filesystem::path& work_dir,
+                  const std::filesystem::path& stdin_file, const ChildLimits& limits,
+                  bool expect_answer, std::uint64_t request_nonce);
+
+// Sends `request` (its nonce is set here, fresh and random) to the probe executable and returns
+// the run. The request is written to a file in `work_dir` first.
+ChildRun runProbe(const std::filesystem::path& executable, probe::ProbeMessage request,
+                  const std::filesystem::path& work_dir, const ChildLimits& limits);
+
+// A compiler or linker run: exit status and the combined output.
+struct ToolRun {
+  bool ok = false;
+  std::string output;
+  double seconds = 0;
+};
+// Runs several tool commands at once (at most `jobs` in parallel); results in command order.
+std::vector<ToolRun> runTools(const std::vector<std::vector<std::string>>& commands,
+                              const std::filesystem::path& work_dir, int jobs, double wall_seconds);
+
+}  // namespace clothref::grader

@@ -1,0 +1,189 @@
+#include "grade.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <fstream>
+#include <future>
+#include <random>
+#include <regex>
+
+#include "clothref/io/error.h"
+#include "clothref/io/files.h"
+#include "probes.h"
+
+namespace clothref::grader {
+namespace fs = std::filesystem;
+
+namespace {
+
+// The stubs defined in each student file.
+const std::map<std::string, std::vector<std::string>>& stubsOfFile() {
+  static const std::map<std::string, std::vector<std::string>> stubs = {
+      {"cloth.cpp", {"Cloth::initializeSpring", "Cloth::computeSpringForce"}},
+      {"sphere.cpp", {"Spheres::collide(Cloth*)", "Spheres::collide()"}},
+      {"integrator.cpp",
+       {"ExplicitEuler::integrate", "ImplicitEuler::integrate", "MidpointEuler::integrate",
+        "RungeKuttaFourth::integrate"}}};
+  return stubs;
+}
+
+
+// Lines that hold an Eigen expression in an `auto` variable (e.g. `auto d = p.position(i) -
+// p.position(j);`): it may refer to temporaries that are gone when it is read.
+std::vector<std::string> autoExpressionLines(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  static const std::regex pattern(
+      R"(\bauto\s*&{0,2}\s*\w+\s*=\s*[^;]*(position|velocity|acceleration|normalized|cross3)\s*\([^;]*[-+*/][^;]*;)");
+  std::vector<std::string> lines;
+  int number = 0;
+  for (std::string line; std::getline(in, line);) {
+    ++number;
+    if (std::regex_search(line, pattern))
+      lines.push_back("line " + std::to_string(number) + ": `" +
+                      line.substr(line.find_first_not_of(" \t")) + "`");
+  }
+  return lines;
+}
+
+double since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  GradeReport report;
+  report.submission = dir.string();
+  const SubmissionFiles files = findSubmissionFiles(dir);
+  if (files.found.empty())
+    throw InputError(dir.string() + ": none of cloth.cpp, sphere.cpp, integrator.cpp found");
+  report.notes = files.notes;
+  std::string why;
+  const int detected = detectEdition(files, why);
+  if (options.edition) {
+    report.edition = options.edition;
+    report.edition_source =
+        "forced with --edition" +
+        (detected && detected != options.edition
+             ? " (the files look like " + std::to_string(detected) + ": " + why + ")"
+             : std::string());
+  } else {
+    report.edition = detected ? detected : 2022;
+    report.edition_source =
+        detected ? "detected: " + why : "not detected (" + why + "); assumed 2022";
+  }
+  Rubric rubric = defaultRubric(report.edition);
+  if (options.rubric_path) rubric = loadRubric(*options.rubric_path, rubric);
+  const Catalogue catalogue =
+      loadCatalogue(options.toolchain.course_dir.parent_path() / "diagnoses.json");
+
+  ScratchDir scratch("clothref-grade");
+  const ProbeBuild build = buildProbes(files, report.edition, options.toolchain, scratch.path());
+  report.files = build.files;
+  report.seconds["compile"] = build.compile_seconds;
+  report.seconds["link"] = build.link_seconds;
+  if (!build.ok) throw InputError(dir.string() + ": cannot grade: " + build.problem);
+
+  ProbeContext context;
+  context.edition = report.edition;
+  context.rubric = rubric;
+  context.catalogue = &catalogue;
+  context.probe = build.probe;
+  context.probe_small = build.small_ok ? build.probe_small : fs::path();
+  context.small_problem = build.small_problem;
+  context.work_dir = scratch.path() / "probes";
+  context.limits = options.limits;
+  context.seed = options.seed;
+
+  // Stubs whose file is not the student's: every planned test gets the compile verdict.
+  std::map<std::string, std::string> unavailable;  // stub -> verdict text
+  for (const UsedFile& used : build.files) {
+    if (used.compiled) continue;
+    const std::string text =
+        used.problem == "missing"
+            ? used.name + " was not found in the submission; its stubs get no points."
+            : used.name + " does not compile against the course's headers:\n\n```\n" +
+                  used.problem + "```\n\n" + catalogue.cause("compile-error");
+    for (const auto& stub : stubsOfFile().at(used.name)) unavailable[stub] = text;
+  }
+
+  const auto probe_start = std::chrono::steady_clock::now();
+  using Group = std::function<std::vector<TestResult>()>;
+  std::vector<std::pair<std::vector<std::string>, Group>> groups = {
+      {{"Cloth::initializeSpring"}, [&] { return probeSprings(context); }},
+      {{"Cloth::computeSpringForce"}, [&] { return probeForces(context); }},
+      {{"Spheres::collide(Cloth*)"}, [&] { return probeCollideCloth(context); }}};
+  if (report.edition == 2022)
+    groups.push_back({{"Spheres::collide()"}, [&] { return probeCollideSpheres(context); }});
+  const char* integrators[] = {"ExplicitEuler::integrate", "ImplicitEuler::integrate",
+                               "MidpointEuler::integrate", "RungeKuttaFourth::integrate"};
+  for (int k = 0; k < 4; ++k)
+    groups.push_back({{integrators[k]}, [&context, k] { return probeIntegrator(context, k); }});
+  if (options.whole_run) groups.push_back({{}, [&] { return probeWholeRun(context); }});
+
+  std::vector<std::vector<TestResult>> results(groups.size());
+  std::vector<std::future<void>> running;
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    const bool skip = !groups[g].first.empty() && unavailable.count(groups[g].first.front());
+    if (skip) continue;
+    if (static_cast<int>(running.size()) >= std::max(1, options.probe_jobs)) {
+      running.front().get();
+      running.erase(running.begin());
+    }
+    running.push_back(std::async(std::launch::async, [&, g] { results[g] = groups[g].second(); }));
+  }
+  for (auto& r : running) r.get();
+  report.seconds["probes"] = since(probe_start);
+
+  for (const PlannedTest& planned : plannedTests(report.edition)) {
+    auto it = unavailable.find(planned.stub);
+    if (it == unavailable.end()) continue;
+    TestResult t = makeTest(planned.stub, planned.check, planned.weight);
+    t.output = it->second;
+    t.diagnoses = {"compile-error"};
+    report.tests.push_back(t);
+  }
+  for (auto& group : results)
+    for (auto& t : group) report.tests.push_back(std::move(t));
+  // A crash or an unexplained result next to an `auto` Eigen expression: name it, as a guess.
+  for (const UsedFile& used : build.files) {
+    if (!used.compiled) continue;
+    const auto lines = autoExpressionLines(used.path);
+    if (lines.empty()) continue;
+    for (TestResult& t : report.tests) {
+      const auto& stubs = stubsOfFile().at(used.name);
+      if (t.passed() || std::find(stubs.begin(), stubs.end(), t.stub) == stubs.end()) continue;
+      const bool suspicious = std::any_of(
+          t.diagnoses.begin(), t.diagnoses.end(),
+          [](const auto& id) { return id == "crashed" || id == "unknown" || id == "non-finite"; });
+      if (!suspicious) continue;
+      t.diagnoses.push_back("dangling-auto-expression");
+      t.output +=
+          "\n" + catalogue.cause("dangling-auto-expression", true) + " In " + used.name + ":\n\n";
+      for (std::size_t k = 0; k < lines.size() && k < 3; ++k) t.output += "- " + lines[k] + "\n";
+    }
+  }
+  // Course order of stubs, then the order the probes produced.
+  std::stable_sort(report.tests.begin(), report.tests.end(),
+                   [](const TestResult& a, const TestResult& b) {
+                     const auto rank = [](const std::string& stub) {
+                       const auto& names = stubNames();
+                       return std::find(names.begin(), names.end(), stub) - names.begin();
+                     };
+                     return rank(a.stub) < rank(b.stub);
+                   });
+  applyRubric(rubric, report);
+  if (!options.keep_work.empty()) {
+    std::error_code error;
+    fs::create_directories(options.keep_work, error);
+    fs::copy(scratch.path(), options.keep_work, fs::copy_options::recursive | fs::copy_options::overwrite_existing, error);
+    if (error) report.notes.push_back("--keep-work: could not copy the scratch folder: " + error.message());
+  }
+  report.seconds["total"] = since(start);
+  return report;
+}
+
+}  // namespace clothref::grader

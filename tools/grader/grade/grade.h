@@ -1,0 +1,30 @@
+// Grading one submission end to end: find the files, detect the edition, build the probes,
+// run every probe group (two at a time, each in its own child process), score with the rubric.
+#pragma once
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "build.h"
+#include "child_process.h"
+#include "results.h"
+#include "rubric.h"
+
+namespace clothref::grader {
+
+struct GradeOptions {
+  int edition = 0;                         // 2022 or 2024; 0 = detect from the files
+  std::optional<std::string> rubric_path;  // JSON rubric overriding the course's weights
+  CourseToolchain toolchain = defaultToolchain();
+  ChildLimits limits;
+  std::filesystem::path keep_work;  // copy the scratch folder here (debugging); empty = no
+  bool whole_run = true;            // run the information-only whole-run check
+  int probe_jobs = 2;               // probe groups at once
+  std::uint64_t seed = 20221;
+};
+
+// Throws InputError when the submission cannot be graded at all (not a directory, no student
+// file found, our own reference does not build).
+GradeReport gradeSubmission(const std::filesystem::path& dir, const GradeOptions& options);
+
+}  // namespace clothref::grader

@@ -1,0 +1,403 @@
+// Spheres::collide(Cloth*) and Spheres::collide(): crafted contacts (approaching, separating,
+// several spheres, a sphere at an index other than 0, a fixed particle, deep penetration,
+// touching exactly, unequal masses) compared with clothref's contact code, plus momentum.
+// Three spheres are added once; unused ones and the rest of the cloth are parked far away, so
+// each case touches only the bodies it names and the loop order cannot matter.
+#include <functional>
+
+#include "clothref/core/cloth.h"
+#include "clothref/core/spheres.h"
+#include "probe_util.h"
+
+namespace clothref::grader {
+namespace {
+
+constexpr int kN = 25;
+const float kRadii[] = {0.5f, 0.5f, 1.0f};
+
+enum class ContactMistake {
+  None,
+  NoApproachCheck,
+  RestitutionFull,
+  CorrectionSphereOnly,
+  CorrectionOtherOnly,
+  NoCorrection,
+  FixedMassless,
+  FirstSphereOnly,
+  NormalSign,
+  TouchingSkipped,
+  RestitutionZero,
+  RestitutionOne,
+  PairTwice,
+  ImpulseNotDivided
+};
+
+struct State {
+  Cloth<float> cloth;
+  Spheres<float> spheres;
+};
+
+// One contact in the course's form with one mistake switched on. a = sphere i, b = body j.
+void contact(Particles<float>& a, int i, Particles<float>& b, int j, float reach, float e,
+             ContactMistake m) {
+  Vec4<float> n = a.position.col(i) - b.position.col(j);
+  if (m == ContactMistake::NormalSign) n = -n;
+  const float penetration = reach - n.norm();
+  if (penetration < 0 || (m == ContactMistake::TouchingSkipped && penetration <= 0)) return;
+  n.normalize();
+  if (m == ContactMistake::RestitutionZero) e = 0;
+  if (m == ContactMistake::RestitutionOne) e = 1;
+  const Vec4<float> relative = a.velocity.col(i) - b.velocity.col(j);
+  const float approach = relative.dot(n);
+  if (approach < 0 || m == ContactMistake::NoApproachCheck) {
+    if (m == ContactMistake::FixedMassless) {
+      // The textbook mass formula with mass 0 meaning massless.
+      const float ma = a.mass[i], mb = b.mass[j];
+      const Vec4<float> ua = n * a.velocity.col(i).dot(n), ub = n * b.velocity.col(j).dot(n);
+      const Vec4<float> va = (ma * ua + mb * ub + mb * e * (ub - ua)) / (ma + mb);
+      const Vec4<float> vb = (ma * ua + mb * ub + ma * e * (ua - ub)) / (ma + mb);
+      a.velocity.col(i) += va - ua;
+      b.velocity.col(j) += vb - ub;
+    } else {
+      const Vec4<float> u =
+          m == ContactMistake::RestitutionFull ? relative : Vec4<float>(n * approach);
+      const Vec4<float> impulse =
+          m == ContactMistake::ImpulseNotDivided
+              ? Vec4<float>(-(1 + e) * u)
+              : Vec4<float>((-(1 + e) * u) / (b.inverse_mass[j] + a.inverse_mass[i]));
+      a.velocity.col(i) += impulse * a.inverse_mass[i];
+      b.velocity.col(j) -= impulse * b.inverse_mass[j];
+    }
+  }
+  if (m == ContactMistake::NoCorrection) return;
+  const Vec4<float> c = (penetration * n) * 0.15f;
+  if (m != ContactMistake::CorrectionOtherOnly) a.position.col(i) += c;
+  if (m != ContactMistake::CorrectionSphereOnly) b.position.col(j) -= c;
+}
+
+void collideVariant(State& s, bool sphere_sphere, float e, ContactMistake m) {
+  auto& sp = s.spheres.particles;
+  const int count = m == ContactMistake::FirstSphereOnly ? 1 : s.spheres.size();
+  if (!sphere_sphere) {
+    for (int i = 0; i < count; ++i)
+      for (int j = 0; j < s.cloth.particles.size(); ++j)
+        contact(sp, i, s.cloth.particles, j, s.spheres.radius[i], e, m);
+    return;
+  }
+  for (int i = 0; i < count; ++i)
+    for (int j = m == ContactMistake::PairTwice ? 0 : i + 1; j < s.spheres.size(); ++j)
+      if (j != i) contact(sp, i, sp, j, s.spheres.radius[i] + s.spheres.radius[j], e, m);
+}
+
+State baseState(int edition) {
+  State s;
+  s.cloth.particles = initializeVertex<float>(kN, 2.0f, edition == 2024 ? 1.0f : 0.0f, 1.0f);
+  for (int i = 0; i < kN; ++i)
+    for (int j = 0; j < kN; ++j)  // parked 50 m below, 3 m apart: nothing touches them
+      s.cloth.particles.position.col(i * kN + j) =
+          Vec4<float>(-36.0f + 3.0f * float(j), -50.0f, -36.0f + 3.0f * float(i), 1.0f);
+  for (int corner : {0, kN - 1, kN * (kN - 1), kN * kN - 1})
+    setMass(s.cloth.particles, corner, 0.0f);
+  for (int k = 0; k < 3; ++k)
+    addSphere(s.spheres, Vec4<float>(100.0f * float(k + 1), 100, 0, 1), kRadii[k], 1000.0f);
+  return s;
+}
+
+struct Case {
+  std::string check;
+  State state;
+  std::vector<int> spheres, particles;  // the bodies the case places (for the report)
+  bool free_bodies = true;              // momentum must be conserved
+};
+
+void place(State& s, bool sphere, int index, Vec4<float> x, Vec4<float> v) {
+  auto& p = sphere ? s.spheres.particles : s.cloth.particles;
+  p.position.col(index) = x;
+  p.velocity.col(index) = v;
+}
+Vec4<float> P(float x, float y, float z) { return Vec4<float>(x, y, z, 1); }
+Vec4<float> V(float x, float y, float z) { return Vec4<float>(x, y, z, 0); }
+
+std::vector<Case> clothCases(int edition) {
+  std::vector<Case> cases;
+  const auto make = [&](std::string check, std::vector<int> spheres, std::vector<int> particles,
+                        const std::function<void(State&)>& setup, bool free_bodies = true) {
+    Case c{std::move(check), baseState(edition), std::move(spheres), std::move(particles),
+           free_bodies};
+    setup(c.state);
+    cases.push_back(std::move(c));
+  };
+  make("approaching pair", {0}, {312}, [](State& s) {
+    place(s, true, 0, P(0.1f, 0.42f, -0.05f), V(0.3f, -2, 0.1f));
+    place(s, false, 312, P(0, 0, 0), V(0.2f, 0.5f, -0.1f));
+  });
+  make("separating pair", {0}, {312}, [](State& s) {
+    place(s, true, 0, P(0.05f, 0.45f, 0), V(0, 1.5f, 0.2f));
+    place(s, false, 312, P(0, 0, 0), V(0, -0.3f, 0));
+  });
+  make("several spheres", {0, 1, 2}, {100, 200, 312}, [](State& s) {
+    place(s, false, 100, P(-5, 0, 0), V(0, 0, 0));
+    place(s, false, 200, P(5, 0, 0), V(0, 0.1f, 0));
+    place(s, false, 312, P(0, 0, 5), V(0, 0, 0));
+    place(s, true, 0, P(-4.95f, 0.4f, 0), V(0, -1, 0));
+    place(s, true, 1, P(4.9f, 0.45f, 0.05f), V(0.5f, -1, 0));
+    place(s, true, 2, P(0, 0.9f, 5.2f), V(0, -0.5f, 0.3f));
+  });
+  make("sphere at index 2", {2}, {312}, [](State& s) {
+    place(s, true, 2, P(0.3f, 0.85f, 0), V(0, -1, 0));
+    place(s, false, 312, P(0, 0, 0), V(0, 0, 0));
+  });
+  make(
+      "fixed particle", {0}, {0},
+      [](State& s) {
+        place(s, false, 0, P(0, 0, 0), V(0, 0, 0));
+        place(s, true, 0, P(0, 0.45f, 0.05f), V(0.2f, -1, 0));
+      },
+      false);
+  make("deep penetration", {0}, {312}, [](State& s) {
+    place(s, true, 0, P(0.05f, 0.1f, 0.02f), V(0, -1, 0.5f));
+    place(s, false, 312, P(0, 0, 0), V(0, 0.2f, 0));
+  });
+  make("touching exactly", {0}, {312}, [](State& s) {
+    place(s, true, 0, P(0, 0.5f, 0), V(0, -1, 0));
+    place(s, false, 312, P(0, 0, 0), V(0, 0, 0));
+  });
+  return cases;
+}
+
+std::vector<Case> sphereCases(int edition) {
+  std::vector<Case> cases;
+  const auto make = [&](std::string check, std::vector<int> spheres,
+                        const std::function<void(State&)>& setup) {
+    Case c{std::move(check), baseState(edition), std::move(spheres), {}, true};
+    setup(c.state);
+    cases.push_back(std::move(c));
+  };
+  make("approaching pair", {0, 1}, [](State& s) {
+    place(s, true, 0, P(0, 0, 0), V(1, 0.2f, 0));
+    place(s, true, 1, P(0.9f, 0.1f, 0), V(-0.5f, 0, 0.3f));
+  });
+  make("separating pair", {0, 1}, [](State& s) {
+    place(s, true, 0, P(0, 0, 0), V(-1, 0, 0));
+    place(s, true, 1, P(0.95f, 0, 0), V(0.5f, 0, 0));
+  });
+  make("three spheres in a chain", {0, 1, 2}, [](State& s) {
+    place(s, true, 0, P(0, 0, 0), V(1, 0, 0));
+    place(s, true, 1, P(0.95f, 0, 0), V(0, 0, 0));
+    place(s, true, 2, P(2.4f, 0.05f, 0), V(-1, 0, 0));
+  });
+  make("pair without sphere 0", {1, 2}, [](State& s) {
+    place(s, true, 1, P(0, 0, 0), V(0.5f, 0, 0));
+    place(s, true, 2, P(1.4f, 0.2f, 0), V(-0.5f, 0, 0.1f));
+  });
+  make("deep penetration", {0, 1}, [](State& s) {
+    place(s, true, 0, P(0, 0, 0), V(0.3f, 0, 0));
+    place(s, true, 1, P(0.3f, 0.05f, 0.02f), V(-0.3f, 0, 0));
+  });
+  make("touching exactly", {0, 1}, [](State& s) {
+    place(s, true, 0, P(0, 0, 0), V(1, 0, 0));
+    place(s, true, 1, P(1, 0, 0), V(0, 0, 0));
+  });
+  make("unequal masses", {0, 2}, [](State& s) {
+    place(s, true, 0, P(0, 0, 0), V(2, 0, 0));
+    place(s, true, 2, P(1.45f, 0.1f, 0), V(0, 0, 0));
+  });
+  return cases;
+}
+
+struct Outcome {
+  Mat4X<float> cloth_x, cloth_v, sphere_x, sphere_v;
+};
+
+Outcome outcomeOf(const State& s) {
+  return {s.cloth.particles.position, s.cloth.particles.velocity, s.spheres.particles.position,
+          s.spheres.particles.velocity};
+}
+
+// Largest |a - b| / (1 + |b|) over every value (NaN counts as infinitely far).
+double distance(const Outcome& a, const Outcome& b) {
+  double worst = 0;
+  const auto one = [&](const Mat4X<float>& x, const Mat4X<float>& y) {
+    for (int k = 0; k < x.size(); ++k) {
+      const double d =
+          std::abs(double(x.data()[k]) - double(y.data()[k])) / (1 + std::abs(double(y.data()[k])));
+      worst = std::isfinite(d) ? std::max(worst, d) : 1e300;
+    }
+  };
+  one(a.cloth_x, b.cloth_x);
+  one(a.cloth_v, b.cloth_v);
+  one(a.sphere_x, b.sphere_x);
+  one(a.sphere_v, b.sphere_v);
+  return worst;
+}
+
+Vec4<double> momentum(const State& s, const Outcome& o) {
+  Vec4<double> total = Vec4<double>::Zero();
+  for (int i = 0; i < s.cloth.particles.size(); ++i)
+    total += double(s.cloth.particles.mass[i]) * o.cloth_v.col(i).cast<double>();
+  for (int i = 0; i < s.spheres.size(); ++i)
+    total += double(s.spheres.particles.mass[i]) * o.sphere_v.col(i).cast<double>();
+  return total;
+}
+
+std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_sphere) {
+  const std::string stub = sphere_sphere ? "Spheres::collide()" : "Spheres::collide(Cloth*)";
+  const float e = sphere_sphere ? 0.8f : 0.0f;
+  const double rel = context.rubric.tolerances.collide_rel;
+  std::vector<Case> cases =
+      sphere_sphere ? sphereCases(context.edition) : clothCases(context.edition);
+  probe::ProbeMessage request;
+  request.texts["group"] = sphere_sphere ? "collide-spheres" : "collide-cloth";
+  request.ints["cases"] = {static_cast<std::int64_t>(cases.size())};
+  request.floats["radius"] = std::vector<float>(std::begin(kRadii), std::end(kRadii));
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    const std::string n = "." + std::to_string(k);
+    const State& s = cases[k].state;
+    request.floats["cloth.pos" + n] = util::flat(s.cloth.particles.position);
+    request.floats["cloth.vel" + n] = util::flat(s.cloth.particles.velocity);
+    request.floats["cloth.mass" + n] = util::flat(s.cloth.particles.mass);
+    request.floats["sph.pos" + n] = util::flat(s.spheres.particles.position);
+    request.floats["sph.vel" + n] = util::flat(s.spheres.particles.velocity);
+    request.floats["sph.mass" + n] = util::flat(s.spheres.particles.mass);
+  }
+  std::string failure;
+  const auto answer =
+      util::runGroup(context, context.probe, request.texts["group"], request, failure);
+  std::vector<TestResult> tests;
+  std::string momentum_report;
+  bool momentum_ok = true;
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    const Case& c = cases[k];
+    if (!answer) {
+      const std::string id = util::verdictId(failure);
+      tests.push_back(util::failedTest(
+          stub, c.check, 1, failure + "\n\n" + context.catalogue->cause(id, true), {id}));
+      continue;
+    }
+    const std::string n = "." + std::to_string(k);
+    const Outcome actual{util::matrix(answer->f("cloth.pos" + n), kN * kN),
+                         util::matrix(answer->f("cloth.vel" + n), kN * kN),
+                         util::matrix(answer->f("sph.pos" + n), 3),
+                         util::matrix(answer->f("sph.vel" + n), 3)};
+    State reference = c.state;
+    if (sphere_sphere)
+      collide(reference.spheres, e, 0.15f);
+    else
+      collide(reference.spheres, reference.cloth, e, 0.15f);
+    const Outcome expected = outcomeOf(reference);
+    if (c.free_bodies) {
+      const Vec4<double> before = momentum(c.state, outcomeOf(c.state));
+      const Vec4<double> after = momentum(c.state, actual);
+      double scale = 0;
+      for (int q : c.spheres)
+        scale += c.state.spheres.particles.mass[q] *
+                 c.state.spheres.particles.velocity.col(q).cast<double>().norm();
+      for (int q : c.particles)
+        scale += c.state.cloth.particles.mass[q] *
+                 c.state.cloth.particles.velocity.col(q).cast<double>().norm();
+      if (!((after - before).norm() <= 1e-5 * (1 + scale))) {
+        momentum_ok = false;
+        momentum_report += "- " + c.check + ": total momentum before " +
+                           util::vec3(before.cast<float>()) + ", after your call " +
+                           util::vec3(after.cast<float>()) + "\n";
+      }
+    }
+    TestResult t = makeTest(stub, c.check, 1);
+    if (distance(actual, expected) <= rel) {
+      t.fraction = 1;
+      t.output = "Velocities and positions of every body match.";
+      tests.push_back(t);
+      continue;
+    }
+    t.output = "State tried (" +
+               std::string(sphere_sphere ? "coefRestitution 0.8" : "coefRestitution 0") +
+               ", radii 0.5, 0.5, 1.0, sphere masses 1000 r^3; all other bodies far away):\n\n";
+    const auto line = [&](const char* what, int index, const Mat4X<float>& x0,
+                          const Mat4X<float>& v0, float mass, const Mat4X<float>& xe,
+                          const Mat4X<float>& ve, const Mat4X<float>& xa, const Mat4X<float>& va) {
+      t.output += "- " + std::string(what) + " " + std::to_string(index) + " (mass " +
+                  util::num(mass) + "): x " + util::vec3(x0.col(index)) + ", v " +
+                  util::vec3(v0.col(index)) + "\n  - expected x " + util::vec3(xe.col(index)) +
+                  ", v " + util::vec3(ve.col(index)) + "\n  - actual   x " +
+                  util::vec3(xa.col(index)) + ", v " + util::vec3(va.col(index)) + "\n";
+    };
+    for (int q : c.spheres)
+      line("sphere", q, c.state.spheres.particles.position, c.state.spheres.particles.velocity,
+           c.state.spheres.particles.mass[q], expected.sphere_x, expected.sphere_v, actual.sphere_x,
+           actual.sphere_v);
+    for (int q : c.particles)
+      line("cloth particle", q, c.state.cloth.particles.position, c.state.cloth.particles.velocity,
+           c.state.cloth.particles.mass[q], expected.cloth_x, expected.cloth_v, actual.cloth_x,
+           actual.cloth_v);
+    std::vector<std::pair<ContactMistake, const char*>> signatures = {
+        {ContactMistake::NoApproachCheck, "no-approach-check"},
+        {ContactMistake::RestitutionFull, "restitution-full-velocity"},
+        {ContactMistake::CorrectionSphereOnly, "correction-one-body"},
+        {ContactMistake::CorrectionOtherOnly, "correction-one-body"},
+        {ContactMistake::NoCorrection, "no-position-correction"},
+        {ContactMistake::FirstSphereOnly, "first-sphere-only"},
+        {ContactMistake::NormalSign, "collision-normal-sign"},
+        {ContactMistake::TouchingSkipped, "touching-skipped"},
+        {ContactMistake::ImpulseNotDivided, "wrong-mass-split"}};
+    if (sphere_sphere) {
+      signatures.push_back({ContactMistake::RestitutionZero, "restitution-ignored"});
+      signatures.push_back({ContactMistake::RestitutionOne, "restitution-ignored"});
+      signatures.push_back({ContactMistake::PairTwice, "pair-processed-twice"});
+    } else {
+      signatures.push_back({ContactMistake::FixedMassless, "fixed-particle-massless"});
+    }
+    for (const auto& [mistake, id] : signatures) {
+      State variant = c.state;
+      collideVariant(variant, sphere_sphere, e, mistake);
+      const Outcome v = outcomeOf(variant);
+      if (distance(v, expected) <= rel) continue;  // this case cannot tell them apart
+      if (distance(actual, v) <= 10 * rel &&
+          std::find(t.diagnoses.begin(), t.diagnoses.end(), id) == t.diagnoses.end())
+        t.diagnoses.push_back(id);
+    }
+    if (t.diagnoses.empty()) {
+      if (!util::finite(util::flat(actual.sphere_v)) || !util::finite(util::flat(actual.cloth_v)))
+        t.diagnoses.push_back("non-finite");
+      else if (!sphere_sphere && c.check == "fixed particle" &&
+               actual.cloth_v.col(0) != c.state.cloth.particles.velocity.col(0))
+        t.diagnoses.push_back("fixed-particle-massless");
+    }
+    if (t.diagnoses.empty()) {
+      t.output += "\n" + context.catalogue->cause("unknown", true) + "\n";
+      t.diagnoses.push_back("unknown");
+    } else {
+      for (const auto& id : t.diagnoses) t.output += "\n" + context.catalogue->cause(id) + "\n";
+    }
+    tests.push_back(t);
+  }
+  if (answer) {
+    TestResult t = makeTest(stub, "momentum conserved", 1);
+    t.fraction = momentum_ok ? 1 : 0;
+    if (momentum_ok) {
+      t.output = "Total momentum (sum of m v) is unchanged by every contact between free bodies.";
+    } else {
+      t.output =
+          "The impulse must change the two bodies' momenta by equal and opposite amounts.\n\n" +
+          momentum_report + "\n" + context.catalogue->cause("wrong-mass-split", true) + "\n";
+      t.diagnoses.push_back("wrong-mass-split");
+    }
+    tests.push_back(t);
+  } else {
+    const std::string id = util::verdictId(failure);
+    tests.push_back(util::failedTest(stub, "momentum conserved", 1,
+                                     failure + "\n\n" + context.catalogue->cause(id, true), {id}));
+  }
+  return tests;
+}
+
+}  // namespace
+
+std::vector<TestResult> probeCollideCloth(const ProbeContext& context) {
+  return probeContacts(context, false);
+}
+
+std::vector<TestResult> probeCollideSpheres(const ProbeContext& context) {
+  return probeContacts(context, true);
+}
+
+}  // namespace clothref::grader

@@ -1,0 +1,317 @@
+// Cloth::initializeSpring: the student's spring set, compared as a set with ours at N = 25 and at
+// a second N (unordered endpoints, rest length within a tolerance, type label). Order does not
+// matter; duplicates, missing or foreign springs, wrong rest lengths and labels do.
+#include <algorithm>
+#include <array>
+#include <map>
+#include <set>
+
+#include "build.h"
+#include "clothref/core/cloth.h"
+#include "probe_util.h"
+
+namespace clothref::grader {
+namespace {
+
+const char* kStub = "Cloth::initializeSpring";
+const char* kTypeNames[] = {"STRUCTURAL", "SHEAR", "BEND"};
+
+struct SpringSet {
+  // (lower index, higher index) -> every (rest length, type) pushed for that pair.
+  std::map<std::pair<int, int>, std::vector<std::pair<float, int>>> pairs;
+  int count = 0;
+};
+
+SpringSet referenceSprings(int n, int edition) {
+  Cloth<float> cloth;
+  cloth.particles = initializeVertex<float>(n, 2.0f, edition == 2024 ? 1.0f : 0.0f, 1.0f);
+  initializeSpring(cloth, n);
+  SpringSet set;
+  for (const auto& s : cloth.springs) {
+    set.pairs[{int(std::min(s.start, s.end)), int(std::max(s.start, s.end))}].push_back(
+        {s.rest_length, static_cast<int>(s.type)});
+    ++set.count;
+  }
+  return set;
+}
+
+std::optional<SpringSet> studentSprings(const probe::ProbeMessage& answer, int n,
+                                        std::string& problem) {
+  const auto& start = answer.i("start");
+  const auto& end = answer.i("end");
+  const auto& type = answer.i("type");
+  const auto& rest = answer.f("rest");
+  if (start.size() != end.size() || start.size() != type.size() || start.size() != rest.size()) {
+    problem = "the probe returned inconsistent spring arrays";
+    return std::nullopt;
+  }
+  SpringSet set;
+  for (std::size_t k = 0; k < start.size(); ++k) {
+    const auto a = start[k], b = end[k];
+    if (a < 0 || b < 0 || a >= n * n || b >= n * n) {
+      problem = "spring " + std::to_string(k) + " connects particle " + std::to_string(a) +
+                " and " + std::to_string(b) + ", outside the " + std::to_string(n * n) +
+                " particles of an " + std::to_string(n) + "x" + std::to_string(n) + " cloth";
+      return std::nullopt;
+    }
+    set.pairs[{int(std::min(a, b)), int(std::max(a, b))}].push_back({rest[k], int(type[k])});
+    ++set.count;
+  }
+  return set;
+}
+
+// The grid family of a pair: "structural horizontal", ..., or "" for a non-neighbour pair.
+std::string family(std::pair<int, int> pair, int n) {
+  const int ia = pair.first / n, ja = pair.first % n, ib = pair.second / n, jb = pair.second % n;
+  const int di = ib - ia, dj = jb - ja;
+  if (di == 0 && dj == 1) return "structural horizontal (i,j)-(i,j+1)";
+  if (di == 1 && dj == 0) return "structural vertical (i,j)-(i+1,j)";
+  if (di == 1 && dj == 1) return "shear down-right (i,j)-(i+1,j+1)";
+  if (di == 1 && dj == -1) return "shear down-left (i,j)-(i+1,j-1)";
+  if (di == 0 && dj == 2) return "bend horizontal (i,j)-(i,j+2)";
+  if (di == 2 && dj == 0) return "bend vertical (i,j)-(i+2,j)";
+  return "";
+}
+
+std::string pairText(std::pair<int, int> pair, int n) {
+  return std::to_string(pair.first) + "-" + std::to_string(pair.second) + " (row " +
+         std::to_string(pair.first / n) + " col " + std::to_string(pair.first % n) + " to row " +
+         std::to_string(pair.second / n) + " col " + std::to_string(pair.second % n) + ")";
+}
+
+struct Comparison {
+  int missing = 0, extra = 0, duplicates = 0, wrong_rest = 0, wrong_type = 0, matched = 0;
+  std::map<std::string, int> missing_by_family, extra_by_family, family_size;
+  std::vector<std::string> connection_examples, rest_examples, type_examples;
+  std::map<int, std::vector<double>> rest_ratio_by_type;  // student / reference rest, per ref type
+  std::map<std::pair<int, int>, int> label_swaps;         // (ref type, student type) -> count
+  std::vector<std::string> diagnoses;
+};
+
+Comparison compare(const SpringSet& student, const SpringSet& reference, int n, double rest_rel) {
+  Comparison c;
+  for (const auto& [pair, entries] : reference.pairs) {
+    const std::string fam = family(pair, n);
+    ++c.family_size[fam];
+    auto it = student.pairs.find(pair);
+    if (it == student.pairs.end()) {
+      ++c.missing;
+      ++c.missing_by_family[fam];
+      if (c.connection_examples.size() < 3)
+        c.connection_examples.push_back("missing: " + pairText(pair, n) + ", a " + fam + " spring");
+      continue;
+    }
+    ++c.matched;
+    if (it->second.size() > 1) {
+      c.duplicates += static_cast<int>(it->second.size()) - 1;
+      if (c.connection_examples.size() < 3)
+        c.connection_examples.push_back("pushed " + std::to_string(it->second.size()) +
+                                        " times: " + pairText(pair, n));
+    }
+    const auto [ref_rest, ref_type] = entries.front();
+    const auto [rest, type] = it->second.front();
+    c.rest_ratio_by_type[ref_type].push_back(double(rest) / double(ref_rest));
+    if (!(std::abs(double(rest) - double(ref_rest)) <= rest_rel * double(ref_rest))) {
+      ++c.wrong_rest;
+      if (c.rest_examples.size() < 3)
+        c.rest_examples.push_back(pairText(pair, n) + " (" + kTypeNames[ref_type] +
+                                  "): expected rest length " + util::num(ref_rest) + ", got " +
+                                  util::num(rest));
+    }
+    if (type != ref_type) {
+      ++c.wrong_type;
+      ++c.label_swaps[{ref_type, type}];
+      if (c.type_examples.size() < 3)
+        c.type_examples.push_back(pairText(pair, n) + ": expected " + kTypeNames[ref_type] +
+                                  ", got " + (type >= 0 && type < 3 ? kTypeNames[type] : "?"));
+    }
+  }
+  for (const auto& [pair, entries] : student.pairs) {
+    if (reference.pairs.count(pair)) continue;
+    c.extra += static_cast<int>(entries.size());
+    const std::string fam = family(pair, n);
+    ++c.extra_by_family[fam.empty() ? "not a grid neighbour of any type" : fam];
+    if (c.connection_examples.size() < 4)
+      c.connection_examples.push_back("unexpected: " + pairText(pair, n));
+  }
+  if (c.missing) c.diagnoses.push_back("missing-springs");
+  if (c.duplicates) c.diagnoses.push_back("duplicate-springs");
+  if (c.extra) c.diagnoses.push_back("wrong-spring-endpoints");
+  // Rest length signatures: shear at the structural length, bend wrong, close-but-not-exact.
+  const auto median = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.empty() ? 1.0 : v[v.size() / 2];
+  };
+  const double shear = median(c.rest_ratio_by_type[1]);
+  const double bend = median(c.rest_ratio_by_type[2]);
+  if (std::abs(shear - 1 / std::sqrt(2.0)) < 1e-3) c.diagnoses.push_back("shear-rest-length");
+  if (std::abs(bend - 1) > 1e-3) c.diagnoses.push_back("bend-rest-length");
+  for (const auto& [type, ratios] : c.rest_ratio_by_type) {
+    const double r = median(ratios);
+    if (std::abs(r - 1) > rest_rel && std::abs(r - 1) < 1e-2 &&
+        !(type == 1 && std::abs(shear - 1 / std::sqrt(2.0)) < 1e-3))
+      c.diagnoses.push_back("approximate-sqrt2");
+  }
+  if (c.wrong_type) c.diagnoses.push_back("swapped-spring-types");
+  std::sort(c.diagnoses.begin(), c.diagnoses.end());
+  c.diagnoses.erase(std::unique(c.diagnoses.begin(), c.diagnoses.end()), c.diagnoses.end());
+  return c;
+}
+
+std::string familyLines(const std::map<std::string, int>& counts,
+                        const std::map<std::string, int>& sizes, const char* what) {
+  std::string out;
+  for (const auto& [fam, count] : counts)
+    out += "- " + std::to_string(count) +
+           (sizes.count(fam) ? " of " + std::to_string(sizes.at(fam)) : "") + " " +
+           (fam.empty() ? "?" : fam) + " springs " + what + "\n";
+  return out;
+}
+
+std::string causes(const ProbeContext& context, const std::vector<std::string>& ids,
+                   const std::set<std::string>& only) {
+  std::string out;
+  for (const auto& id : ids)
+    if (only.count(id)) out += "\n" + context.catalogue->cause(id) + "\n";
+  return out;
+}
+
+}  // namespace
+
+std::vector<TestResult> probeSprings(const ProbeContext& context) {
+  std::vector<TestResult> tests;
+  const double rest_rel = context.rubric.tolerances.rest_length_rel;
+  probe::ProbeMessage request;
+  request.texts["group"] = "springs";
+  std::string failure;
+  auto answer = util::runGroup(context, context.probe, "springs", request, failure);
+  const char* checks[] = {"connections at N = 25", "rest lengths at N = 25",
+                          "type labels at N = 25"};
+  const double weights[] = {2, 1, 1};
+  std::optional<SpringSet> student;
+  const SpringSet reference = referenceSprings(25, context.edition);
+  if (answer) student = studentSprings(*answer, 25, failure);
+  bool big_ok = false;
+  if (!student) {
+    const std::string id = answer ? "wrong-spring-endpoints" : util::verdictId(failure);
+    for (int k = 0; k < 3; ++k)
+      tests.push_back(util::failedTest(kStub, checks[k], weights[k],
+                                       failure + "\n\n" + context.catalogue->cause(id, true),
+                                       {id}));
+  } else {
+    const Comparison c = compare(*student, reference, 25, rest_rel);
+    const std::string state =
+        "The course cloth: 25 x 25 particles, built by your `Cloth()` "
+        "(your `initializeVertex` and `initializeSpring`).\n\n";
+    TestResult connections = makeTest(kStub, checks[0], weights[0]);
+    const int errors = c.missing + c.extra + c.duplicates;
+    connections.fraction =
+        errors == 0 ? 1.0 : std::max(0.0, 1.0 - double(errors) / reference.count);
+    if (errors) {
+      connections.fraction = std::min(connections.fraction, 0.5);
+      connections.output = state + "Expected " + std::to_string(reference.count) +
+                           " springs, got " + std::to_string(student->count) + ": " +
+                           std::to_string(c.missing) + " missing, " + std::to_string(c.extra) +
+                           " unexpected, " + std::to_string(c.duplicates) + " duplicated.\n\n" +
+                           familyLines(c.missing_by_family, c.family_size, "missing") +
+                           familyLines(c.extra_by_family, {}, "unexpected") + "\nExamples:\n";
+      for (const auto& e : c.connection_examples) connections.output += "- " + e + "\n";
+      connections.output += causes(
+          context, c.diagnoses, {"missing-springs", "duplicate-springs", "wrong-spring-endpoints"});
+      for (const auto& id : c.diagnoses)
+        if (id == "missing-springs" || id == "duplicate-springs" || id == "wrong-spring-endpoints")
+          connections.diagnoses.push_back(id);
+    } else {
+      connections.output = "All " + std::to_string(reference.count) +
+                           " springs connect the right particles (order ignored).";
+    }
+    tests.push_back(connections);
+
+    TestResult rest = makeTest(kStub, checks[1], weights[1]);
+    rest.fraction = c.matched && c.wrong_rest == 0 ? 1.0 : 0.0;
+    if (c.wrong_rest || !c.matched) {
+      rest.output = state + std::to_string(c.wrong_rest) + " of " + std::to_string(c.matched) +
+                    " matching springs have a rest length off by more than " + util::num(rest_rel) +
+                    " (relative). Reference rest lengths: structural " +
+                    "|p0 - p1|, shear |p0 - p(N+1)|, bend |p0 - p2| of the initial positions.\n\n";
+      for (const auto& e : c.rest_examples) rest.output += "- " + e + "\n";
+      rest.output += causes(context, c.diagnoses,
+                            {"shear-rest-length", "bend-rest-length", "approximate-sqrt2"});
+      for (const auto& id : c.diagnoses)
+        if (id == "shear-rest-length" || id == "bend-rest-length" || id == "approximate-sqrt2")
+          rest.diagnoses.push_back(id);
+    } else {
+      rest.output = "Every spring's rest length matches the initial distance of its ends.";
+    }
+    tests.push_back(rest);
+
+    TestResult labels = makeTest(kStub, checks[2], weights[2]);
+    labels.fraction = c.matched && c.wrong_type == 0 ? 1.0 : 0.0;
+    if (c.wrong_type || !c.matched) {
+      labels.output = state + std::to_string(c.wrong_type) + " of " + std::to_string(c.matched) +
+                      " matching springs carry the wrong type label.\n\n";
+      for (const auto& [swap, count] : c.label_swaps)
+        labels.output +=
+            "- " + std::to_string(count) + " " + kTypeNames[swap.first] + " springs labelled " +
+            (swap.second >= 0 && swap.second < 3 ? kTypeNames[swap.second] : "?") + "\n";
+      for (const auto& e : c.type_examples) labels.output += "- e.g. " + e + "\n";
+      labels.output += causes(context, c.diagnoses, {"swapped-spring-types"});
+      if (c.wrong_type) labels.diagnoses.push_back("swapped-spring-types");
+    } else {
+      labels.output = "Every spring has the right type label.";
+    }
+    tests.push_back(labels);
+    big_ok = errors == 0 && c.wrong_rest == 0 && c.wrong_type == 0;
+  }
+
+  // The second size: hard-coded 25s show up here.
+  const int n = kSecondParticlesPerEdge;
+  const std::string check = "all springs at N = " + std::to_string(n);
+  TestResult small = makeTest(kStub, check, 1);
+  const std::string state =
+      "A " + std::to_string(n) + " x " + std::to_string(n) +
+      " cloth (your cloth.cpp compiled again with particlesPerEdge = " + std::to_string(n) +
+      ").\n\n";
+  if (context.probe_small.empty()) {
+    small.output = state + "Not run: " +
+                   (context.small_problem.empty() ? std::string("cloth.cpp is not yours")
+                                                  : context.small_problem);
+    small.fraction = 0;
+  } else {
+    std::string small_failure;
+    auto small_answer =
+        util::runGroup(context, context.probe_small, "springs-small", request, small_failure);
+    std::optional<SpringSet> small_set;
+    if (small_answer) small_set = studentSprings(*small_answer, n, small_failure);
+    if (!small_set) {
+      small.output = state + small_failure + "\n";
+      if (big_ok) {
+        small.output += "\n" + context.catalogue->cause("hard-coded-n25", true) + "\n";
+        small.diagnoses.push_back("hard-coded-n25");
+      }
+    } else {
+      const Comparison c = compare(*small_set, referenceSprings(n, context.edition), n, rest_rel);
+      const bool ok = c.missing + c.extra + c.duplicates + c.wrong_rest + c.wrong_type == 0;
+      small.fraction = ok ? 1.0 : 0.0;
+      if (ok) {
+        small.output = "All springs match at N = " + std::to_string(n) + ".";
+      } else {
+        small.output = state + std::to_string(c.missing) + " missing, " + std::to_string(c.extra) +
+                       " unexpected, " + std::to_string(c.duplicates) + " duplicated, " +
+                       std::to_string(c.wrong_rest) + " wrong rest lengths, " +
+                       std::to_string(c.wrong_type) + " wrong labels.\n\n";
+        for (const auto& e : c.connection_examples) small.output += "- " + e + "\n";
+        if (big_ok) {
+          small.output += "\n" + context.catalogue->cause("hard-coded-n25") + "\n";
+          small.diagnoses.push_back("hard-coded-n25");
+        } else {
+          small.diagnoses = c.diagnoses;
+        }
+      }
+    }
+  }
+  tests.push_back(small);
+  return tests;
+}
+
+}  // namespace clothref::grader

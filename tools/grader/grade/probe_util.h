@@ -1,0 +1,79 @@
+// Helpers shared by the probe files: conversions between clothref matrices and probe arrays,
+// Markdown formatting of small states, and running a group's child with the failure verdicts.
+#pragma once
+#include <Eigen/Core>
+#include <cmath>
+#include <iomanip>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "clothref/core/types.h"
+#include "probes.h"
+
+namespace clothref::grader::util {
+
+inline std::vector<float> flat(const Mat4X<float>& m) {
+  return std::vector<float>(m.data(), m.data() + m.size());
+}
+inline Mat4X<float> matrix(const std::vector<float>& values, int columns) {
+  Mat4X<float> m = Mat4X<float>::Zero(4, columns);
+  for (int c = 0; c < columns && 4 * c + 3 < static_cast<int>(values.size()); ++c)
+    for (int r = 0; r < 4; ++r) m(r, c) = values[static_cast<std::size_t>(4 * c + r)];
+  return m;
+}
+inline std::vector<float> flat(const VecX<float>& v) {
+  return std::vector<float>(v.data(), v.data() + v.size());
+}
+
+inline std::string num(double value) {
+  std::ostringstream out;
+  out << std::setprecision(7) << value;
+  return out.str();
+}
+inline std::string vec3(const Eigen::Ref<const Eigen::Vector4f>& v) {
+  return "(" + num(v[0]) + ", " + num(v[1]) + ", " + num(v[2]) + ")";
+}
+
+// Runs `request` in a fresh folder under the context's work dir. On failure returns nullopt and
+// sets `failure` to the verdict line (with the first lines of stderr).
+inline std::optional<probe::ProbeMessage> runGroup(
+    const ProbeContext& context, const std::filesystem::path& executable, const std::string& folder,
+    probe::ProbeMessage request, std::string& failure, ChildRun* run_out = nullptr) {
+  const auto dir = context.work_dir / folder;
+  std::filesystem::create_directories(dir);
+  ChildRun run = runProbe(executable, std::move(request), dir, context.limits);
+  if (run_out) *run_out = run;
+  if (run.status == ChildStatus::Ok) return run.answer;
+  failure = "The probe process " + run.describe() + ".";
+  if (!run.stderr_head.empty()) failure += "\n\n```\n" + run.stderr_head + "```";
+  return std::nullopt;
+}
+
+// A test of the group that could not run: zero points, the verdict as output.
+inline TestResult failedTest(const std::string& stub, const std::string& check, double weight,
+                             const std::string& why, const std::vector<std::string>& diagnoses) {
+  TestResult t;
+  t.stub = stub;
+  t.check = check;
+  t.weight = weight;
+  t.fraction = 0;
+  t.output = why;
+  t.diagnoses = diagnoses;
+  return t;
+}
+
+// Verdict id for a crashed or stuck child.
+inline std::string verdictId(const std::string& failure) {
+  if (failure.find("timed out") != std::string::npos) return "timed-out";
+  return "crashed";
+}
+
+inline bool finite(const std::vector<float>& v) {
+  for (float x : v)
+    if (!std::isfinite(x)) return false;
+  return true;
+}
+
+}  // namespace clothref::grader::util

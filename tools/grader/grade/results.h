@@ -1,0 +1,62 @@
+// What grading produces: one result per test, grouped by the course stub it grades, and the
+// report for a submission. Plain data; the writers (report.h) turn it into results.json, JUnit
+// and Markdown.
+#pragma once
+#include <map>
+#include <string>
+#include <vector>
+
+namespace clothref::grader {
+
+// The course's names of the graded stubs, in the course's order.
+inline const std::vector<std::string>& stubNames() {
+  static const std::vector<std::string> names = {
+      "Cloth::initializeSpring",  "Cloth::computeSpringForce",  "Spheres::collide(Cloth*)",
+      "Spheres::collide()",       "ExplicitEuler::integrate",   "ImplicitEuler::integrate",
+      "MidpointEuler::integrate", "RungeKuttaFourth::integrate"};
+  return names;
+}
+
+struct TestResult {
+  std::string stub;            // course name of the stub, e.g. "RungeKuttaFourth::integrate"
+  std::string check;           // what is checked, e.g. "convergence order"
+  double weight = 1;           // share of the stub's points, relative to its other tests
+  double fraction = 0;         // earned share of this test's points, 0..1
+  double max_score = 0;        // points, filled in by the rubric
+  double score = 0;            // points, filled in by the rubric
+  bool informational = false;  // never scored (e.g. the whole-run comparison)
+  std::string output;          // Markdown: state tried, expected vs actual, likely cause
+  std::vector<std::string> diagnoses;  // catalogue ids named in the output
+  std::string name() const { return stub + ": " + check; }
+  bool passed() const { return fraction >= 1.0; }
+};
+
+inline TestResult makeTest(std::string stub, std::string check, double weight) {
+  TestResult test;
+  test.stub = std::move(stub);
+  test.check = std::move(check);
+  test.weight = weight;
+  return test;
+}
+
+struct UsedFile {
+  std::string name;       // cloth.cpp, sphere.cpp, integrator.cpp
+  std::string path;       // as found below the submission directory, or empty when missing
+  bool compiled = false;  // false: our reference version was linked in its place
+  std::string problem;    // compile or link error (first error quoted), or "missing"
+  double compile_seconds = 0;
+};
+
+struct GradeReport {
+  std::string submission;  // the directory graded
+  int edition = 2022;
+  std::string edition_source;  // "detected: ..." or "forced with --edition"
+  std::vector<UsedFile> files;
+  std::vector<std::string> notes;  // BOM, CRLF, non-UTF-8 bytes, several candidates, ...
+  std::vector<TestResult> tests;
+  double score = 0, max_score = 0;
+  std::map<std::string, double> stub_score, stub_max;  // per course stub
+  std::map<std::string, double> seconds;               // "compile", "link", "probes", "total"
+};
+
+}  // namespace clothref::grader

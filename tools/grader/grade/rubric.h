@@ -1,0 +1,50 @@
+// The rubric: points per stub (the course's weights by default), optional per-test weights,
+// tolerances and which accepted variants get full marks. A JSON file overrides any of it:
+//
+//   {"stubs": {"Cloth::computeSpringForce": 25, ...},          points per stub
+//    "tests": {"RungeKuttaFourth::integrate: convergence order": 2, ...},  relative weights
+//    "tolerances": {"force_rel": 1e-4, "collide_rel": 1e-5, "integrate_rel": 2e-5,
+//                   "rest_length_rel": 1e-5, "order": 0.35},
+//    "accepted_variants": {"explicit-as-symplectic": true, "implicit-corrector-v-new": true}}
+#pragma once
+#include <map>
+#include <string>
+#include <vector>
+
+#include "results.h"
+
+namespace clothref::grader {
+
+struct Tolerances {
+  double force_rel = 1e-4;        // of the sum of |spring force| / m acting on the particle
+  double collide_rel = 1e-5;      // of the largest |value| in the compared state
+  double integrate_rel = 2e-5;    // of |x0| + |v0 dt| + |a0 dt^2| per component
+  double rest_length_rel = 1e-5;  // of the reference rest length
+  double order = 0.35;            // |observed - expected| convergence order
+};
+
+struct Rubric {
+  std::map<std::string, double> stub_points;   // course stub name -> points
+  std::map<std::string, double> test_weights;  // full test name -> relative weight
+  Tolerances tolerances;
+  std::map<std::string, bool> accepted_variants;
+  bool accepts(const std::string& variant) const {
+    auto it = accepted_variants.find(variant);
+    return it != accepted_variants.end() && it->second;
+  }
+};
+
+// The course's weights for `edition` (2022: springs 15, forces 20, collisions 10 + 10,
+// Explicit 5, Implicit + Midpoint 5, RK4 15; 2024: springs 10, forces 25, collision 20, same
+// integrators), both accepted variants on.
+Rubric defaultRubric(int edition);
+
+// `base` with the overrides of the JSON file at `path`. Throws InputError naming the file and
+// the field for a malformed file or an unknown stub or variant.
+Rubric loadRubric(const std::string& path, Rubric base);
+
+// Splits each stub's points over its scored tests by weight and fills score / max_score; fills
+// the report's totals.
+void applyRubric(const Rubric& rubric, GradeReport& report);
+
+}  // namespace clothref::grader
