@@ -11,6 +11,7 @@
 
 #include "clothref/io/error.h"
 #include "clothref/io/json_input.h"
+#include "clothref/trace/format.h"
 #include "clothref/trace/reader.h"
 
 namespace clothref {
@@ -600,7 +601,17 @@ DiffReport diffReaders(TraceReader& a, TraceReader& b, const DiffOptions& option
           }
         }
       }
-      if (all_equal && pa.hash != pb.hash) ++report.steps_equal_values_different_hash;
+      if (all_equal && pa.hash != pb.hash) {
+        // equal values, different hashes: legitimate for -0 vs +0, but a hash that does not
+        // match its own values is a corrupt (edited) record, never "identical"
+        if (use_hash && ha.json["hash"] == std::string(kTraceHashDescription)) {
+          if (stateHashOf(ha, step_a) != pa.hash)
+            a.fail("/hash: does not match the step's own values (a corrupt or edited record)");
+          if (stateHashOf(b.header(), step_b) != pb.hash)
+            b.fail("/hash: does not match the step's own values (a corrupt or edited record)");
+        }
+        ++report.steps_equal_values_different_hash;
+      }
     }
     more_a = advance(a, report.steps_a);
     more_b = advance(b, report.steps_b);
