@@ -511,12 +511,14 @@ TEST_F(DiffTest, HostileHeadersAndTolerancesExitTwoWithOneLine) {
     write(name, edited);
     return path(name);
   };
-  const std::string particles = lines[0].substr(lines[0].find("\"particles\":"), 14);
+  const std::string particles =
+      lines[0].substr(lines[0].find("\"particles\":", lines[0].find("\"bodies\"")), 14);
   const std::vector<std::pair<std::string, std::string>> cases = {
       {withHeader("dt.jsonl", "\"dt\":", "\"dt\":1e400,\"x\":"), "not valid JSON"},
       {withHeader("particles.jsonl", particles, "\"particles\":1000000000000"), "--max-particles"},
-      {withHeader("deep.jsonl", "\"build\":",
-                  "\"deep\":" + std::string(100000, '[') + std::string(100000, ']') + ",\"build\":"),
+      {withHeader(
+           "deep.jsonl", "\"build\":",
+           "\"deep\":" + std::string(100000, '[') + std::string(100000, ']') + ",\"build\":"),
        "nested deeper than 64 levels"},
   };
   for (const auto& [file, expected] : cases) {
@@ -528,8 +530,9 @@ TEST_F(DiffTest, HostileHeadersAndTolerancesExitTwoWithOneLine) {
   }
   std::ofstream(path("tolerances.json")) << R"({"format": "clothref-tolerances", "version": 1,
       "default": {"mode": "absolute", "abs": 1e400}})";
-  const test::CommandResult tolerances = test::runCli(
-      "diff --tolerances " + path("tolerances.json") + " " + path("a.jsonl") + " " + path("a.jsonl"));
+  const test::CommandResult tolerances =
+      test::runCli("diff --tolerances " + path("tolerances.json") + " " + path("a.jsonl") + " " +
+                   path("a.jsonl"));
   EXPECT_EQ(tolerances.exit_code, 2) << tolerances.output;
   EXPECT_NE(tolerances.output.find("not valid JSON (line 2"), std::string::npos)
       << tolerances.output;
@@ -544,9 +547,8 @@ TEST_F(DiffTest, NonUtf8FileNamesDoNotAbortJsonOutput) {
   const test::CommandResult json = test::runCli("diff --json '" + odd + "' " + path("a.jsonl"));
   EXPECT_EQ(json.exit_code, 0) << json.output;
   EXPECT_NE(json.output.find("caf\xef\xbf\xbd.jsonl"), std::string::npos) << json.output;
-  const test::CommandResult written = test::runCli("diff --write-tolerances " +
-                                                   path("tol.json") + " '" + odd + "' " +
-                                                   path("a.jsonl"));
+  const test::CommandResult written = test::runCli("diff --write-tolerances " + path("tol.json") +
+                                                   " '" + odd + "' " + path("a.jsonl"));
   EXPECT_EQ(written.exit_code, 0) << written.output;
   for (const auto& entry : fs::directory_iterator(dir_.path()))
     EXPECT_EQ(entry.path().string().find(".tmp"), std::string::npos) << entry.path();
@@ -586,9 +588,9 @@ TEST_F(DiffTest, StandardInputAndGzipTraces) {
   ASSERT_EQ(test::runCli(run + path("a.jsonl.gz")).exit_code, 0);
   std::ifstream gz(path("a.jsonl.gz"), std::ios::binary);
   EXPECT_EQ(gz.get(), 0x1f);
-  for (const std::string& args :
-       {path("a.jsonl.gz") + " " + path("a.jsonl"), "- " + path("a.jsonl") + " < " + path("a.jsonl"),
-        path("a.jsonl") + " - < " + path("a.jsonl.gz")}) {
+  for (const std::string& args : {path("a.jsonl.gz") + " " + path("a.jsonl"),
+                                  "- " + path("a.jsonl") + " < " + path("a.jsonl"),
+                                  path("a.jsonl") + " - < " + path("a.jsonl.gz")}) {
     const test::CommandResult diff = test::runCli("diff " + args);
     EXPECT_EQ(diff.exit_code, 0) << args << ": " << diff.output;
     EXPECT_EQ(diff.output.rfind("identical:", 0), 0u) << diff.output;

@@ -6,8 +6,8 @@
 #include <iterator>
 #include <string>
 
-#include <gtest/gtest.h>
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -128,8 +128,8 @@ TEST(OutputFileCli, SignalRemovesTheTemporaryFile) {
     if (child == 0) {
       const int fd = ::open(errors.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
       ::dup2(fd, 2);
-      ::execl(CLOTHREF_BIN, CLOTHREF_BIN, "trace", "--scene", "small-cloth", "--steps",
-              "100000000", "--stride", "1", "-o", output.c_str(), static_cast<char*>(nullptr));
+      ::execl(CLOTHREF_BIN, CLOTHREF_BIN, "trace", "--scene", "small-cloth", "--steps", "100000000",
+              "--stride", "1", "-o", output.c_str(), static_cast<char*>(nullptr));
       ::_exit(127);
     }
     const std::string temporary = output + ".tmp" + std::to_string(child);
@@ -142,7 +142,9 @@ TEST(OutputFileCli, SignalRemovesTheTemporaryFile) {
     int status = 0;
     ASSERT_EQ(::waitpid(child, &status, 0), child);
     EXPECT_TRUE(WIFSIGNALED(status)) << signal;
-    if (WIFSIGNALED(status)) EXPECT_EQ(WTERMSIG(status), signal);
+    if (WIFSIGNALED(status)) {
+      EXPECT_EQ(WTERMSIG(status), signal);
+    }
     EXPECT_FALSE(std::filesystem::exists(temporary)) << signal;
     EXPECT_FALSE(std::filesystem::exists(output)) << signal;
     EXPECT_EQ(readAll(errors),

@@ -12,9 +12,9 @@
 #include "clothref/io/error.h"
 #include "clothref/io/limits.h"
 #include "clothref/io/progress.h"
-#include "clothref/trace/hash.h"
-#include "clothref/record/record.h"
 #include "clothref/io/output_file.h"
+#include "clothref/record/record.h"
+#include "clothref/trace/hash.h"
 #include "commands.h"
 
 namespace clothref::cli {

@@ -33,8 +33,7 @@ inline CLI::Validator atLeast(long long minimum) {
         // from_chars refuses what does not fit (strtoll would clamp 10^20 to 2^63-1)
         long long value = 0;
         const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-        if (error == std::errc::result_out_of_range)
-          return "too large (got " + text + ")";
+        if (error == std::errc::result_out_of_range) return "too large (got " + text + ")";
         if (error != std::errc() || end != text.data() + text.size())
           return "expected an integer, got '" + text + "'";
         if (value < minimum)

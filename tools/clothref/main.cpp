@@ -35,15 +35,22 @@ int main(int argc, char** argv) {
   root.fallthrough();
   root.add_option("--max-file-bytes", limits.file_bytes,
                   "Largest file read whole (scene, tolerance file, manifest), bytes")
-      ->capture_default_str()->group("Input limits");
+      ->capture_default_str()
+      ->group("Input limits");
   root.add_option("--max-line-bytes", limits.line_bytes, "Longest trace line, bytes")
-      ->capture_default_str()->group("Input limits");
+      ->capture_default_str()
+      ->group("Input limits");
   root.add_option("--max-json-depth", limits.json_depth, "Deepest nesting in any JSON input")
-      ->capture_default_str()->group("Input limits");
+      ->capture_default_str()
+      ->group("Input limits");
   root.add_option("--max-particles", limits.particles, "Most particles of a body in a trace header")
-      ->check(atLeast(0))->capture_default_str()->group("Input limits");
+      ->check(atLeast(0))
+      ->capture_default_str()
+      ->group("Input limits");
   root.add_option("--max-steps", limits.steps, "Most steps of a run or a trace header")
-      ->check(atLeast(0))->capture_default_str()->group("Input limits");
+      ->check(atLeast(0))
+      ->capture_default_str()
+      ->group("Input limits");
   const std::vector<Command> commands = {
       addTraceCommand(root), addDiffCommand(root), addGoldenCommand(root),
       addVerifyCommand(root), addScenesCommand(root), addBenchCommand(root)};

@@ -11,9 +11,7 @@ struct GzipOutputBuffer::State {
   z_stream z{};
 };
 
-bool startsLikeGzip(std::streambuf& source) {
-  return source.sgetc() == 0x1f;
-}
+bool startsLikeGzip(std::streambuf& source) { return source.sgetc() == 0x1f; }
 
 GzipInputBuffer::GzipInputBuffer(std::streambuf& source, std::string name)
     : source_(source), name_(std::move(name)), state_(std::make_unique<State>()) {

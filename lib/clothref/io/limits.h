@@ -11,11 +11,12 @@
 namespace clothref {
 
 struct InputLimits {
-  std::size_t file_bytes = std::size_t(256) << 20;  // a whole file read into memory (scene, tolerance file, manifest)
+  std::size_t file_bytes =
+      std::size_t(256) << 20;  // a whole file read into memory (scene, tolerance file, manifest)
   std::size_t line_bytes = std::size_t(256) << 20;  // one trace line (header or step)
-  std::size_t json_depth = 64;                      // nesting of arrays and objects in any JSON input
-  std::int64_t particles = 10'000'000;              // particles of one body in a trace header
-  std::int64_t steps = 1'000'000'000'000;           // steps of a run or a trace header
+  std::size_t json_depth = 64;             // nesting of arrays and objects in any JSON input
+  std::int64_t particles = 10'000'000;     // particles of one body in a trace header
+  std::int64_t steps = 1'000'000'000'000;  // steps of a run or a trace header
 };
 
 // The process's limits (defaults above until the CLI changes them).
@@ -28,8 +29,7 @@ inline InputLimits& inputLimits() {
 // a 100 MB unterminated string does not come back as a 100 MB error line.
 inline std::string excerpt(std::string_view text, std::size_t max_chars = 60) {
   if (text.size() <= max_chars) return std::string(text);
-  return std::string(text.substr(0, max_chars)) + "...(" + std::to_string(text.size()) +
-         " bytes)";
+  return std::string(text.substr(0, max_chars)) + "...(" + std::to_string(text.size()) + " bytes)";
 }
 
 }  // namespace clothref

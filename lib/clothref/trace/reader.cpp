@@ -118,6 +118,9 @@ class StepLineParser {
   }
 
   char peek() const { return pos_ < text_.size() ? text_[pos_] : '\0'; }
+  char peekAt(std::size_t ahead) const {
+    return pos_ + ahead < text_.size() ? text_[pos_ + ahead] : '\0';
+  }
 
   void needMore(const Where& pointer) const {
     if (pos_ >= text_.size()) fail(pointer, "truncated line: unexpected end");
@@ -160,7 +163,7 @@ class StepLineParser {
     std::uint64_t value = 0;
     const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value, 16);
     if (text.size() != 16 || error != std::errc() || end != text.data() + text.size())
-      fail("/hash", fmt::format("expected 16 hex digits, got \"{}\"", text));
+      fail("/hash", fmt::format("expected 16 hex digits, got \"{}\"", excerpt(text)));
     for (char c : text)
       if (c >= 'A' && c <= 'F') fail("/hash", "expected lowercase hex digits");
     return value;
@@ -181,11 +184,14 @@ class StepLineParser {
                                 excerpt(marker)));
     }
     const std::size_t start = pos_;
-    // Python's json.dumps writes bare NaN, Infinity and -Infinity tokens
-    for (const auto& [token, value] : kBareNonFinite) {
-      if (text_.substr(pos_, token.size()) == token) {
-        pos_ += token.size();
-        return value;
+    // Python's json.dumps writes bare NaN, Infinity and -Infinity tokens (looked for only when
+    // the first character says so: this is the hot loop)
+    if (text_[pos_] == 'N' || text_[pos_] == 'I' || (text_[pos_] == '-' && peekAt(1) == 'I')) {
+      for (const auto& [token, value] : kBareNonFinite) {
+        if (text_.substr(pos_, token.size()) == token) {
+          pos_ += token.size();
+          return value;
+        }
       }
     }
     if (text_[pos_] == '-') ++pos_;
@@ -394,7 +400,8 @@ TraceHeader parseTraceHeader(const ordered_json& json, const std::string& source
                           ? parseEnum(kPrecisionNames, precision.get<std::string>())
                           : std::nullopt;
   if (!parsed)
-    headerError(source, "/precision: expected \"float\" or \"double\", got " + excerpt(precision.dump()));
+    headerError(source,
+                "/precision: expected \"float\" or \"double\", got " + excerpt(precision.dump()));
   header.precision = *parsed;
   const ordered_json& dt = headerKey(json, source, "dt");
   if (!dt.is_number() || !(dt.get<double>() > 0))
@@ -478,8 +485,7 @@ void TraceReader::readHeader() {
   bool ended_with_newline = false;
   const bool read = readLine(ended_with_newline);
   line_number_ = 1;
-  if (!read || line_.empty())
-    throw InputError(path_ + ":1: empty file, expected a trace header");
+  if (!read || line_.empty()) throw InputError(path_ + ":1: empty file, expected a trace header");
   const ordered_json json = parseOrderedJson(line_, path_ + ":1: header");
   header_ = parseTraceHeader(json, path_);
 }
@@ -506,7 +512,7 @@ bool TraceReader::next() {
   // the recorded steps are exactly those the header's steps and stride give, in order
   // (written so no step count near 2^63 overflows: base <= previous <= steps)
   const std::int64_t base = previous - previous % header_.stride;
-  const std::int64_t expected = previous < 0 ? 0
+  const std::int64_t expected = previous < 0                             ? 0
                                 : header_.steps - base <= header_.stride ? header_.steps
                                                                          : base + header_.stride;
   if (previous == header_.steps)

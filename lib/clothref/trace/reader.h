@@ -1,18 +1,18 @@
 // Trace reading: parses a clothref trace (JSON Lines, docs/trace-format.md) back into numbers.
 //
 // Inputs: a trace file path ("-" for standard input; gzip-compressed input, such as a .jsonl.gz
-// file, is recognised by its first byte and decompressed). Line 1 is the header (parsed with nlohmann::json, matched by key);
-// each further line is one recorded step, parsed by a small hand-written parser (std::from_chars)
-// because a DOM per 40 kB line is slow. Keys are matched by name in any order; unknown keys,
-// missing keys, wrong array shapes and truncated lines are errors. Lines longer than
-// inputLimits().line_bytes and headers declaring more particles or steps than the limits allow
-// (io/limits.h) are refused before anything is allocated for them.
-// Outputs: TraceHeader; per step the step number, t (seconds, double), the 64-bit state hash and,
-// on request, every body's positions (m) and velocities (m/s) as flat x,y,z arrays (3 per
-// particle) in the header's body order. Float traces are parsed as float (exact bits) and widened.
-// Non-finite values, written as "NaN", "Infinity", "-Infinity" (strings, as clothref writes them,
-// or bare tokens, as Python's json.dumps writes them), come back as NaN and +-infinity; t too.
-// Every error is an InputError "FILE:LINE: problem".
+// file, is recognised by its first byte and decompressed). Line 1 is the header (parsed with
+// nlohmann::json, matched by key); each further line is one recorded step, parsed by a small
+// hand-written parser (std::from_chars) because a DOM per 40 kB line is slow. Keys are matched by
+// name in any order; unknown keys, missing keys, wrong array shapes and truncated lines are errors.
+// Lines longer than inputLimits().line_bytes and headers declaring more particles or steps than the
+// limits allow (io/limits.h) are refused before anything is allocated for them. Outputs:
+// TraceHeader; per step the step number, t (seconds, double), the 64-bit state hash and, on
+// request, every body's positions (m) and velocities (m/s) as flat x,y,z arrays (3 per particle) in
+// the header's body order. Float traces are parsed as float (exact bits) and widened. Non-finite
+// values, written as "NaN", "Infinity", "-Infinity" (strings, as clothref writes them, or bare
+// tokens, as Python's json.dumps writes them), come back as NaN and +-infinity; t too. Every error
+// is an InputError "FILE:LINE: problem".
 #pragma once
 
 #include <cstdint>
@@ -107,7 +107,7 @@ class TraceReader {
 
   std::string path_;
   std::unique_ptr<std::ifstream> owned_;  // set when the reader opened the file itself
-  std::unique_ptr<GzipInputBuffer> gzip_;       // set for gzip-compressed input
+  std::unique_ptr<GzipInputBuffer> gzip_;  // set for gzip-compressed input
   std::unique_ptr<std::istream> gzip_stream_;
   std::istream* in_ = nullptr;
   std::string line_;
