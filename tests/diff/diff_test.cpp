@@ -511,8 +511,9 @@ TEST_F(DiffTest, HostileHeadersAndTolerancesExitTwoWithOneLine) {
     write(name, edited);
     return path(name);
   };
-  const std::string particles =
-      lines[0].substr(lines[0].find("\"particles\":", lines[0].find("\"bodies\"")), 14);
+  // the first body's "particles":N (the scene object has a "particles" key of its own)
+  const std::size_t first = lines[0].find("\"particles\":", lines[0].find("\"bodies\""));
+  const std::string particles = lines[0].substr(first, lines[0].find('}', first) - first);
   const std::vector<std::pair<std::string, std::string>> cases = {
       {withHeader("dt.jsonl", "\"dt\":", "\"dt\":1e400,\"x\":"), "not valid JSON"},
       {withHeader("particles.jsonl", particles, "\"particles\":1000000000000"), "--max-particles"},

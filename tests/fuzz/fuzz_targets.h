@@ -59,7 +59,8 @@ inline void goldenManifest(std::string_view input) {
 // Two traces separated by a line "----": diff them both ways and render every report.
 inline void diffTwo(std::string_view input) {
   const std::size_t split = input.find("\n----\n");
-  const std::string a(input.substr(0, split));
+  // A keeps its last newline; B is the rest after the separator line
+  const std::string a(input.substr(0, split == std::string_view::npos ? split : split + 1));
   const std::string b(split == std::string_view::npos ? "" : input.substr(split + 6));
   for (int order = 0; order < 2; ++order) {
     std::istringstream in_a(order ? b : a), in_b(order ? a : b);
