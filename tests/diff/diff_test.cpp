@@ -422,9 +422,8 @@ TEST_F(DiffTest, MalformedInputExitsTwoWithFileAndLine) {
   const std::vector<Case> cases = {
       {"truncated", 3, lines[3].substr(0, 300)},
       {"not-json", 2, "hello"},
-      {"bare-nan", 2, withValue(lines, centre, "NaN")[2]},
-      {"bare-infinity", 3,
-       withValue(lines, Location{3, "spheres", "velocity", 0, 1}, "-Infinity")[3]},
+      {"lowercase-nan", 2, withValue(lines, centre, "nan")[2]},
+      {"cut-infinity", 3, withValue(lines, Location{3, "spheres", "velocity", 0, 1}, "-Inf")[3]},
       {"string-value", 2, withValue(lines, centre, "\"1.5\"")[2]},
       {"wrong-shape", 2, withValue(lines, centre, "0,0")[2]},
       {"missing-key", 1,
@@ -491,6 +490,112 @@ TEST_F(DiffTest, JsonReportCarriesVerdictWorstAndFields) {
   EXPECT_EQ(within["tolerances"]["bodies"]["cloth"]["velocity"]["abs"], 2.0);
   EXPECT_EQ(within["fields"][1]["tolerance"]["mode"], "absolute");
   EXPECT_EQ(within["fields"][0]["tolerance"]["mode"], "ulps");
+}
+
+// Runs `clothref ARGS` with a shell's redirections of its own (REDIRECTS), stderr to `err`.
+int runWithRedirects(const std::string& args, const std::string& redirects, const std::string& err,
+                     std::string& stderr_text) {
+  const int status =
+      std::system((std::string(CLOTHREF_BIN) + " " + args + " " + redirects + " 2>" + err).c_str());
+  std::ifstream in(err);
+  stderr_text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// Inputs that used to abort, exhaust memory or overflow the stack: one line, exit 2.
+TEST_F(DiffTest, HostileHeadersAndTolerancesExitTwoWithOneLine) {
+  const std::vector<std::string> lines = write("a.jsonl", smallCloth(), settings(20, 10));
+  auto withHeader = [&](const std::string& name, const std::string& from, const std::string& to) {
+    std::vector<std::string> edited = lines;
+    edited[0].replace(edited[0].find(from), from.size(), to);
+    write(name, edited);
+    return path(name);
+  };
+  // the first body's "particles":N (the scene object has a "particles" key of its own)
+  const std::size_t first = lines[0].find("\"particles\":", lines[0].find("\"bodies\""));
+  const std::string particles = lines[0].substr(first, lines[0].find('}', first) - first);
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {withHeader("dt.jsonl", "\"dt\":", "\"dt\":1e400,\"x\":"), "not valid JSON"},
+      {withHeader("particles.jsonl", particles, "\"particles\":1000000000000"), "--max-particles"},
+      {withHeader(
+           "deep.jsonl", "\"build\":",
+           "\"deep\":" + std::string(100000, '[') + std::string(100000, ']') + ",\"build\":"),
+       "nested deeper than 64 levels"},
+  };
+  for (const auto& [file, expected] : cases) {
+    const test::CommandResult run = test::runCli("diff " + file + " " + file);
+    EXPECT_EQ(run.exit_code, 2) << file << ": " << run.output;
+    EXPECT_EQ(run.output.rfind("clothref: " + file + ":1:", 0), 0u) << run.output;
+    EXPECT_NE(run.output.find(expected), std::string::npos) << run.output;
+    EXPECT_EQ(std::count(run.output.begin(), run.output.end(), '\n'), 1) << run.output;
+  }
+  std::ofstream(path("tolerances.json")) << R"({"format": "clothref-tolerances", "version": 1,
+      "default": {"mode": "absolute", "abs": 1e400}})";
+  const test::CommandResult tolerances =
+      test::runCli("diff --tolerances " + path("tolerances.json") + " " + path("a.jsonl") + " " +
+                   path("a.jsonl"));
+  EXPECT_EQ(tolerances.exit_code, 2) << tolerances.output;
+  EXPECT_NE(tolerances.output.find("not valid JSON (line 2"), std::string::npos)
+      << tolerances.output;
+}
+
+// A file name that is not UTF-8 is shown with U+FFFD in --json and --write-tolerances instead of
+// aborting (and leaving the temporary file behind).
+TEST_F(DiffTest, NonUtf8FileNamesDoNotAbortJsonOutput) {
+  write("a.jsonl", smallCloth(), settings(20, 10));
+  const std::string odd = path("caf\xe9.jsonl");
+  fs::copy_file(path("a.jsonl"), odd);
+  const test::CommandResult json = test::runCli("diff --json '" + odd + "' " + path("a.jsonl"));
+  EXPECT_EQ(json.exit_code, 0) << json.output;
+  EXPECT_NE(json.output.find("caf\xef\xbf\xbd.jsonl"), std::string::npos) << json.output;
+  const test::CommandResult written = test::runCli("diff --write-tolerances " + path("tol.json") +
+                                                   " '" + odd + "' " + path("a.jsonl"));
+  EXPECT_EQ(written.exit_code, 0) << written.output;
+  for (const auto& entry : fs::directory_iterator(dir_.path()))
+    EXPECT_EQ(entry.path().string().find(".tmp"), std::string::npos) << entry.path();
+  EXPECT_TRUE(fs::exists(path("tol.json")));
+}
+
+// A hash edited on a step whose values are unchanged is a corrupt record, not "identical".
+TEST_F(DiffTest, EditedHashWithUnchangedValuesIsACorruptRecord) {
+  std::vector<std::string> lines = write("a.jsonl", smallCloth(), settings(20, 10));
+  const std::size_t at = lines[2].find("\"hash\":\"") + 8;
+  lines[2][at] = lines[2][at] == '0' ? '1' : '0';
+  write("b.jsonl", lines);
+  const test::CommandResult run = test::runCli("diff " + path("a.jsonl") + " " + path("b.jsonl"));
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  EXPECT_EQ(run.output.rfind("clothref: " + path("b.jsonl") + ":3: /hash: does not match", 0), 0u)
+      << run.output;
+}
+
+// A report nobody received is not a success: closed stdout is exit 2 with a message.
+TEST_F(DiffTest, ClosedStandardOutputIsExitTwo) {
+  write("a.jsonl", smallCloth(), settings(20, 10));
+  std::string err;
+  EXPECT_EQ(runWithRedirects("diff " + path("a.jsonl") + " " + path("a.jsonl"), ">&-",
+                             path("err.txt"), err),
+            2);
+  EXPECT_EQ(err, "clothref diff: standard output: write failed (closed, or the disk is full)\n");
+  EXPECT_EQ(runWithRedirects("scenes", ">&-", path("err.txt"), err), 2);
+  EXPECT_NE(err.find("clothref scenes: standard output: write failed"), std::string::npos) << err;
+  EXPECT_EQ(runWithRedirects("scenes", ">" + path("out.txt"), path("err.txt"), err), 0) << err;
+}
+
+// "-" reads a trace from standard input; gzip-compressed traces (trace -o x.jsonl.gz) compare
+// like plain ones, in a file or through a pipe.
+TEST_F(DiffTest, StandardInputAndGzipTraces) {
+  const std::string run = "trace --scene small-cloth --steps 30 --stride 10 -o ";
+  ASSERT_EQ(test::runCli(run + path("a.jsonl")).exit_code, 0);
+  ASSERT_EQ(test::runCli(run + path("a.jsonl.gz")).exit_code, 0);
+  std::ifstream gz(path("a.jsonl.gz"), std::ios::binary);
+  EXPECT_EQ(gz.get(), 0x1f);
+  for (const std::string& args : {path("a.jsonl.gz") + " " + path("a.jsonl"),
+                                  "- " + path("a.jsonl") + " < " + path("a.jsonl"),
+                                  path("a.jsonl") + " - < " + path("a.jsonl.gz")}) {
+    const test::CommandResult diff = test::runCli("diff " + args);
+    EXPECT_EQ(diff.exit_code, 0) << args << ": " << diff.output;
+    EXPECT_EQ(diff.output.rfind("identical:", 0), 0u) << diff.output;
+  }
 }
 
 }  // namespace

@@ -324,6 +324,25 @@ TEST(GoldenCli, BadInputExitsTwo) {
   EXPECT_EQ(malformed.exit_code, 2);
   EXPECT_NE(malformed.output.find("manifest.json: /version: not valid JSON (line 1, column 44)"), std::string::npos)
       << malformed.output;
+
+  // --update under a path that is a regular file: one line, exit 2 (was an uncaught
+  // filesystem_error, so an abort)
+  writeText(root.path() / "plain-file", "x");
+  const test::CommandResult under_file =
+      test::runCli("golden --update --golden " + root.file("plain-file") + "/golden");
+  EXPECT_EQ(under_file.exit_code, 2) << under_file.output;
+  EXPECT_EQ(under_file.output.rfind("clothref: " + root.file("plain-file"), 0), 0u)
+      << under_file.output;
+  EXPECT_EQ(std::count(under_file.output.begin(), under_file.output.end(), '\n'), 1)
+      << under_file.output;
+
+  // a number too large for a double in the tolerance file
+  writeText(root.path() / "tolerances.json", "{\"default\": {\"abs\": 1e400}}");
+  const test::CommandResult huge = test::runCli("golden --golden " + root.file("none") +
+                                                " --tolerances " + root.file("tolerances.json"));
+  EXPECT_EQ(huge.exit_code, 2) << huge.output;
+  EXPECT_NE(huge.output.find("tolerances.json: /default/abs: not valid JSON"), std::string::npos)
+      << huge.output;
 }
 
 // The golden directory defaults to the source tree's (recorded at configure time), so a run from

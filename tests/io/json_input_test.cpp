@@ -10,6 +10,8 @@
 #include "clothref/diff/diff.h"
 #include "clothref/golden/golden.h"
 #include "clothref/io/error.h"
+#include "clothref/io/files.h"
+#include "clothref/io/limits.h"
 #include "clothref/scene/scene.h"
 #include "clothref/trace/reader.h"
 #include "test_util.h"
@@ -59,6 +61,43 @@ TEST(JsonInput, EveryFormatUsesIt) {
   const std::string message = errorOf([&] { TraceReader reader(trace); });
   EXPECT_EQ(message.rfind(trace + ":1: header: /format: not valid JSON (line 1, column ", 0), 0u)
       << message;
+}
+
+// Nesting deeper than the limit is refused before parsing (freeing a 10^5-deep document
+// recursed once per level and overflowed the stack); strings and raised limits are respected.
+TEST(JsonInput, NestingDeeperThanTheLimitIsRefused) {
+  const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+  EXPECT_EQ(errorOf([&] { parseJson(deep, "deep.json"); }),
+            "deep.json: nested deeper than 64 levels (line 1; raise the limit with "
+            "--max-json-depth)");
+  EXPECT_EQ(errorOf([&] { parseJson("[\"" + std::string(1000, '[') + "\"]", "s.json"); }),
+            "(no error)");
+  const std::size_t saved = inputLimits().json_depth;
+  inputLimits().json_depth = 200;
+  EXPECT_EQ(errorOf([&] { parseJson(std::string(100, '[') + std::string(100, ']'), "x"); }),
+            "(no error)");
+  inputLimits().json_depth = saved;
+}
+
+// A 10 MB unterminated string comes back as a short error line, not a 10 MB one.
+TEST(JsonInput, ErrorsQuoteShortExcerpts) {
+  const std::string message =
+      errorOf([] { parseJson("{\"a\": \"" + std::string(10 << 20, 'x'), "big.json"); });
+  EXPECT_EQ(message.rfind("big.json: /a: not valid JSON", 0), 0u) << message.substr(0, 300);
+  EXPECT_LT(message.size(), 300u);
+}
+
+// Files larger than the limit are refused while reading (/dev/zero cannot grow without bound).
+TEST(JsonInput, FilesLargerThanTheLimitAreRefused) {
+  const test::TempDir dir;
+  std::ofstream(dir.file("big.json")) << "[" << std::string(5000, ' ') << "]";
+  const std::size_t saved = inputLimits().file_bytes;
+  inputLimits().file_bytes = 4096;
+  EXPECT_EQ(
+      errorOf([&] { readJsonFile(dir.file("big.json"), "scene file"); }),
+      dir.file("big.json") + ": larger than 4096 bytes (raise the limit with --max-file-bytes)");
+  inputLimits().file_bytes = saved;
+  EXPECT_EQ(errorOf([&] { readJsonFile(dir.file("big.json"), "scene file"); }), "(no error)");
 }
 
 }  // namespace

@@ -6,8 +6,15 @@
 #include <iterator>
 #include <string>
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <signal.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <thread>
 
 #include "test_util.h"
 
@@ -88,6 +95,61 @@ TEST(OutputFileCli, TraceIntoAFifoKeepsTheFifo) {
   const std::string text = reader.get();
   EXPECT_EQ(text.rfind("{\"format\":\"clothref-trace\"", 0), 0u) << text.substr(0, 80);
   EXPECT_TRUE(isFifo(path));
+}
+
+// A ".gz" path is written gzip-compressed, atomically like any other.
+TEST(OutputFile, GzPathIsCompressed) {
+  const test::TempDir dir;
+  const std::string path = dir.file("out.txt.gz");
+  {
+    OutputFile out(path);
+    for (int i = 0; i < 10000; ++i) out.stream() << "line " << i << '\n';
+    out.commit();
+  }
+  const std::string bytes = readAll(path);
+  ASSERT_GE(bytes.size(), 2u);
+  EXPECT_EQ(static_cast<unsigned char>(bytes[0]), 0x1f);
+  EXPECT_EQ(static_cast<unsigned char>(bytes[1]), 0x8b);
+  EXPECT_LT(bytes.size(), 30000u);  // 10000 lines of ~9 bytes, compressed
+  const std::string command = "gzip -dc " + path + " | tail -n 1 > " + dir.file("last.txt");
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  EXPECT_EQ(readAll(dir.file("last.txt")), "line 9999\n");
+}
+
+// SIGINT, SIGTERM and SIGHUP during `trace -o`: the temporary file is removed, one line says so,
+// and the process ends by the signal (a shell reports 128 + N).
+TEST(OutputFileCli, SignalRemovesTheTemporaryFile) {
+  for (int signal : {SIGINT, SIGTERM, SIGHUP}) {
+    const test::TempDir dir;
+    const std::string output = dir.file("out.jsonl");
+    const std::string errors = dir.file("err.txt");
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      const int fd = ::open(errors.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      ::dup2(fd, 2);
+      ::execl(CLOTHREF_BIN, CLOTHREF_BIN, "trace", "--scene", "small-cloth", "--steps", "100000000",
+              "--stride", "1", "-o", output.c_str(), static_cast<char*>(nullptr));
+      ::_exit(127);
+    }
+    const std::string temporary = output + ".tmp" + std::to_string(child);
+    for (int i = 0; i < 3000 && !(std::filesystem::exists(temporary) &&
+                                  std::filesystem::file_size(temporary) > 0);
+         ++i)
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    ASSERT_TRUE(std::filesystem::exists(temporary)) << signal;
+    ::kill(child, signal);
+    int status = 0;
+    ASSERT_EQ(::waitpid(child, &status, 0), child);
+    EXPECT_TRUE(WIFSIGNALED(status)) << signal;
+    if (WIFSIGNALED(status)) {
+      EXPECT_EQ(WTERMSIG(status), signal);
+    }
+    EXPECT_FALSE(std::filesystem::exists(temporary)) << signal;
+    EXPECT_FALSE(std::filesystem::exists(output)) << signal;
+    EXPECT_EQ(readAll(errors),
+              "clothref: stopped by a signal; removed the unfinished output " + temporary + "\n");
+  }
 }
 
 }  // namespace

@@ -16,8 +16,10 @@
 #include <gtest/gtest.h>
 
 #include "clothref/io/error.h"
-#include "clothref/record/world_views.h"
+#include "clothref/io/limits.h"
+#include "clothref/io/output_file.h"
 #include "clothref/record/record.h"
+#include "clothref/record/world_views.h"
 #include "clothref/trace/format.h"
 #include "test_util.h"
 
@@ -156,14 +158,12 @@ TEST_F(TraceReaderTest, MalformedInputNamesFileAndLine) {
   const std::vector<Case> cases = {
       {"truncated", 4, [](std::string s) { return s.substr(0, s.size() / 2); }, "truncated line"},
       {"not-json", 3, [](std::string) { return std::string("not json"); }, "expected '{'"},
-      {"bare-nan", 4,
-       [&](std::string s) { return replaceFirst(s, "\"velocity\":[[0", "\"velocity\":[[NaN"); },
-       "bare NaN"},
-      {"bare-infinity", 4,
-       [&](std::string s) {
-         return replaceFirst(s, "\"velocity\":[[0", "\"velocity\":[[-Infinity");
-       },
-       "bare NaN/Infinity"},
+      {"lowercase-nan", 4,
+       [&](std::string s) { return replaceFirst(s, "\"velocity\":[[0", "\"velocity\":[[nan"); },
+       "expected a number, got 'n'"},
+      {"cut-infinity", 4,
+       [&](std::string s) { return replaceFirst(s, "\"velocity\":[[0", "\"velocity\":[[-Inf"); },
+       "expected a number, got 'I'"},
       {"missing-key", 5, [&](std::string s) { return replaceFirst(s, "\"t\":", "\"time\":"); },
        "/time: unknown key"},
       {"missing-hash", 5,
@@ -265,6 +265,202 @@ TEST_F(TraceReaderTest, KeysAreMatchedByNameNotPosition) {
   EXPECT_EQ(b.steps[1].prefix.hash, a.steps[1].prefix.hash);
   EXPECT_EQ(b.steps[1].bodies[0].position, a.steps[1].bodies[0].position);
   EXPECT_EQ(b.steps[1].bodies[0].velocity, a.steps[1].bodies[0].velocity);
+}
+
+// Python's json.dumps writes bare NaN, Infinity and -Infinity: they read like the strings.
+TEST_F(TraceReaderTest, BareNonFiniteTokensReadLikeTheStrings) {
+  const Scene& scene = *findBuiltinScene("spring");
+  std::vector<std::string> lines =
+      writeLines("a.jsonl", scene, settingsFor(scene, Precision::Double, 10, 10));
+  const std::string last = lines[2];
+  const auto position = last.find("\"position\":[[0,0,0],[") + 21;
+  lines[2] =
+      last.substr(0, position) + "NaN, Infinity, -Infinity" + last.substr(last.find(']', position));
+  writeLines("b.jsonl", lines);
+  const Trace trace = readTrace(path("b.jsonl"));
+  const std::vector<double>& p = trace.steps[1].bodies[0].position;
+  EXPECT_TRUE(std::isnan(p[3]));
+  EXPECT_EQ(p[4], std::numeric_limits<double>::infinity());
+  EXPECT_EQ(p[5], -std::numeric_limits<double>::infinity());
+}
+
+// t follows the rule of every other number: a run whose time overflows reads back.
+TEST_F(TraceReaderTest, NonFiniteTimeReadsBack) {
+  const Scene& scene = *findBuiltinScene("spring");
+  TraceSettings settings = settingsFor(scene, Precision::Double, 2, 1);
+  settings.dt = 1e308;  // t = 2e308 overflows at step 2
+  const std::vector<std::string> lines = writeLines("a.jsonl", scene, settings);
+  ASSERT_NE(lines[3].find("\"t\":\"Infinity\""), std::string::npos) << lines[3];
+  const Trace trace = readTrace(path("a.jsonl"));
+  ASSERT_EQ(trace.steps.size(), 3u);
+  EXPECT_EQ(trace.steps[2].prefix.t, std::numeric_limits<double>::infinity());
+}
+
+// Header values that used to abort, exhaust memory, overflow or recurse without bound are one
+// InputError each.
+TEST_F(TraceReaderTest, HostileHeadersAreInputErrors) {
+  const Scene& scene = *findBuiltinScene("spring");
+  const std::vector<std::string> lines =
+      writeLines("good.jsonl", scene, settingsFor(scene, Precision::Float, 10, 5));
+  auto replaced = [](std::string text, const std::string& from, const std::string& to) {
+    const auto at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    return text.replace(at, from.size(), to);
+  };
+  const std::string header = lines[0];
+  // the first body's "particles":N (the scene object has a "particles" key of its own)
+  const std::size_t first = header.find("\"particles\":", header.find("\"bodies\""));
+  const std::string particles = header.substr(first, header.find('}', first) - first);
+  struct Case {
+    std::string name, header, expected;
+  };
+  const std::vector<Case> cases = {
+      {"huge-dt", replaced(header, "\"dt\":", "\"dt\":1e400,\"x\":"), "not valid JSON"},
+      {"particles-1e12", replaced(header, particles, "\"particles\":1000000000000"),
+       "above the limit 10000000 (raise it with --max-particles)"},
+      {"particles-4e18", replaced(header, particles, "\"particles\":4000000000000000000"),
+       "above the limit"},
+      {"particles-2e19", replaced(header, particles, "\"particles\":18000000000000000000"),
+       "too large"},
+      {"deep",
+       replaced(header, "\"build\":", "\"deep\":" + std::string(100000, '[') + "],\"build\":"),
+       "nested deeper than 64 levels"},
+      {"steps-huge", replaced(header, "\"steps\":10", "\"steps\":9223372036854775807"),
+       "above the limit"},
+  };
+  for (const Case& c : cases) {
+    std::vector<std::string> edited = lines;
+    edited[0] = c.header;
+    writeLines(c.name + ".jsonl", edited);
+    const std::string message = readError(c.name + ".jsonl");
+    EXPECT_EQ(message.rfind(path(c.name + ".jsonl") + ":1", 0), 0u) << c.name << ": " << message;
+    EXPECT_NE(message.find(c.expected), std::string::npos) << c.name << ": " << message;
+    EXPECT_LT(message.size(), 400u) << c.name;
+  }
+}
+
+// steps 2^63-1 with stride 2^62+1: the next expected step is computed without overflow (UBSan
+// flagged the old form), and the limit raised to allow it.
+TEST_F(TraceReaderTest, StepArithmeticNearTheTopOfInt64DoesNotOverflow) {
+  const Scene& scene = *findBuiltinScene("spring");
+  std::vector<std::string> lines =
+      writeLines("a.jsonl", scene, settingsFor(scene, Precision::Float, 10, 5));
+  std::string& header = lines[0];
+  header.replace(header.find("\"steps\":10"), 10, "\"steps\":9223372036854775807");
+  header.replace(header.find("\"stride\":5"), 10, "\"stride\":4611686018427387905");
+  lines[2].replace(lines[2].find("\"step\":5"), 8, "\"step\":4611686018427387905");
+  writeLines("b.jsonl", lines);
+  const std::int64_t saved = inputLimits().steps;
+  inputLimits().steps = std::numeric_limits<std::int64_t>::max();
+  TraceReader reader(path("b.jsonl"));
+  EXPECT_TRUE(reader.next());
+  EXPECT_TRUE(reader.next());
+  EXPECT_EQ(reader.prefix().step, 4611686018427387905);
+  try {
+    reader.next();  // step 10 where 2^63-1 is expected
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("expected step 9223372036854775807"),
+              std::string::npos)
+        << error.what();
+  }
+  inputLimits().steps = saved;
+}
+
+// A line longer than the limit is refused while reading it; its message quotes no content.
+TEST_F(TraceReaderTest, LinesLongerThanTheLimitAreRefused) {
+  const Scene& scene = *findBuiltinScene("spring");
+  std::vector<std::string> lines =
+      writeLines("a.jsonl", scene, settingsFor(scene, Precision::Float, 10, 5));
+  lines[2] = std::string(5000, '"');
+  writeLines("b.jsonl", lines);
+  const std::size_t saved = inputLimits().line_bytes;
+  inputLimits().line_bytes = 4096;
+  const std::string message = readError("b.jsonl");
+  inputLimits().line_bytes = saved;
+  EXPECT_NE(message.find(":3: line longer than 4096 bytes (raise the limit with --max-line-bytes)"),
+            std::string::npos)
+      << message;
+  EXPECT_EQ(readError("a.jsonl"), "");
+}
+
+// An unterminated 1 MB string: the error line quotes a short excerpt, not the string.
+TEST_F(TraceReaderTest, ErrorsQuoteShortExcerpts) {
+  const Scene& scene = *findBuiltinScene("spring");
+  std::vector<std::string> lines =
+      writeLines("a.jsonl", scene, settingsFor(scene, Precision::Float, 10, 5));
+  for (const std::string& text :
+       {"{\"format\":\"" + std::string(1 << 20, 'x'),
+        "{\"step\":0,\"t\":0,\"hash\":\"" + std::string(1 << 20, 'x') + "\"}"}) {
+    std::vector<std::string> edited = lines;
+    edited[text[2] == 's' ? 1 : 0] = text;
+    writeLines("b.jsonl", edited);
+    const std::string message = readError("b.jsonl");
+    EXPECT_FALSE(message.empty());
+    EXPECT_LT(message.size(), 400u) << message.substr(0, 400);
+  }
+}
+
+// Gzip-compressed traces (written by OutputFile for a .gz path) read exactly like plain ones.
+TEST_F(TraceReaderTest, GzipTracesReadLikePlainOnes) {
+  const Scene& scene = *findBuiltinScene("small-cloth");
+  const TraceSettings settings = settingsFor(scene, Precision::Float, 60, 20);
+  writeLines("a.jsonl", scene, settings);
+  {
+    OutputFile out(path("a.jsonl.gz"));
+    writeTrace(scene, settings, out.stream());
+    out.commit();
+  }
+  std::ifstream compressed(path("a.jsonl.gz"), std::ios::binary);
+  ASSERT_EQ(compressed.get(), 0x1f);  // really gzip
+  const Trace plain = readTrace(path("a.jsonl"));
+  const Trace unzipped = readTrace(path("a.jsonl.gz"));
+  ASSERT_EQ(unzipped.steps.size(), plain.steps.size());
+  for (std::size_t s = 0; s < plain.steps.size(); ++s) {
+    EXPECT_EQ(unzipped.steps[s].prefix.hash, plain.steps[s].prefix.hash);
+    EXPECT_EQ(unzipped.steps[s].bodies[0].position, plain.steps[s].bodies[0].position);
+  }
+  // cut short: an error naming the file, not a crash or a silent short trace
+  std::ifstream in(path("a.jsonl.gz"), std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::ofstream(path("cut.jsonl.gz"), std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+  const std::string message = readError("cut.jsonl.gz");
+  EXPECT_EQ(message.rfind(path("cut.jsonl.gz") + ":", 0), 0u) << message;
+}
+
+// The state hash recomputed from a step's values equals the one the writer put on the line.
+TEST_F(TraceReaderTest, RecomputedHashMatchesTheWrittenOne) {
+  for (Precision precision : {Precision::Float, Precision::Double}) {
+    const Scene& scene = *findBuiltinScene("small-cloth");
+    writeLines("a.jsonl", scene, settingsFor(scene, precision, 20, 10));
+    const Trace trace = readTrace(path("a.jsonl"));
+    for (const TraceStep& step : trace.steps)
+      EXPECT_EQ(stateHashOf(trace.header, step), step.prefix.hash);
+  }
+}
+
+// A dt that is 0 or infinite in the run's precision, and a step count that does not fit, are bad
+// input; a run whose t overflows writes a trace clothref reads back.
+TEST(TraceCli, RunPrecisionDtAndHugeStepsAreBadInput) {
+  const test::TempDir dir;
+  const std::string out = " -o " + dir.file("out.jsonl");
+  for (const std::string args :
+       {"--scene spring --steps 2 --dt 1e39", "--scene spring --steps 2 --dt 1e-50",
+        "--scene spring --steps 99999999999999999999", "--scene spring --steps 2000000000000"}) {
+    const test::CommandResult run = test::runCli("trace " + args + out);
+    EXPECT_EQ(run.exit_code, 2) << args << ": " << run.output;
+    EXPECT_EQ(std::count(run.output.begin(), run.output.end(), '\n'), 1) << run.output;
+    EXPECT_EQ(run.output.rfind("clothref: --", 0), 0u) << run.output;
+    EXPECT_FALSE(fs::exists(dir.file("out.jsonl")));
+  }
+  // in double, 1e39 is fine, and t overflows to infinity at step 2 with dt 1e308
+  ASSERT_EQ(
+      test::runCli("trace --scene spring --steps 2 --stride 1 --precision double --dt 1e308" + out)
+          .exit_code,
+      0);
+  const test::CommandResult diff =
+      test::runCli("diff " + dir.file("out.jsonl") + " " + dir.file("out.jsonl"));
+  EXPECT_EQ(diff.exit_code, 0) << diff.output;
 }
 
 }  // namespace

@@ -68,11 +68,15 @@ int runDiff(const DiffCommandOptions& o) {
   const DiffReport report = diffTraces(o.path_a, o.path_b, options);
   if (!o.write_tolerances.empty()) {
     OutputFile file(o.write_tolerances);
-    file.stream() << observedTolerances(report).dump(2) << '\n';
+    // a file name that is not UTF-8 is shown with U+FFFD rather than aborting the dump
+    file.stream() << observedTolerances(report).dump(2, ' ', false,
+                                                     nlohmann::json::error_handler_t::replace)
+                  << '\n';
     file.commit();
   }
   if (o.json)
-    std::cout << reportToJson(report).dump(2) << '\n';
+    std::cout << reportToJson(report).dump(2, ' ', false, nlohmann::json::error_handler_t::replace)
+              << '\n';
   else
     std::cout << formatReport(report);
   std::cout.flush();

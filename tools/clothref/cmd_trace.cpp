@@ -1,5 +1,6 @@
 // clothref trace: simulate a scene and write its trace (JSON Lines) to stdout or a file, then a
 // short summary on stderr.
+#include <cmath>
 #include <iostream>
 #include <limits>
 #include <memory>
@@ -9,10 +10,11 @@
 #include <fmt/format.h>
 
 #include "clothref/io/error.h"
+#include "clothref/io/limits.h"
 #include "clothref/io/progress.h"
-#include "clothref/trace/hash.h"
-#include "clothref/record/record.h"
 #include "clothref/io/output_file.h"
+#include "clothref/record/record.h"
+#include "clothref/trace/hash.h"
 #include "commands.h"
 
 namespace clothref::cli {
@@ -67,6 +69,15 @@ int runTrace(const TraceOptions& options) {
   settings.precision = *parseEnum(kPrecisionNames, options.precision);
   const Scene scene = loadScene(options.scene);
   settings.dt = options.dt.value_or(scene.dt);
+  // the run computes in its precision: 1e-50 is 0 in float and 1e39 is infinite
+  const double run_dt =
+      settings.precision == Precision::Float ? double(float(settings.dt)) : settings.dt;
+  if (!(run_dt > 0) || !std::isfinite(run_dt))
+    throw InputError(fmt::format("--dt: {} becomes {} in {} precision (must be finite and > 0)",
+                                 settings.dt, run_dt, precisionName(settings.precision)));
+  if (options.steps > inputLimits().steps)
+    throw InputError(fmt::format("--steps: {} is above the limit {} (raise it with --max-steps)",
+                                 options.steps, inputLimits().steps));
   settings.steps = options.steps;
   settings.stride = options.stride;
 

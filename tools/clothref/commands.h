@@ -2,6 +2,7 @@
 // the command; main runs the one the user named. A run returns the process exit code.
 #pragma once
 
+#include <charconv>
 #include <functional>
 #include <limits>
 #include <string>
@@ -29,8 +30,12 @@ inline constexpr int kExitBadInput = 2;  // bad flag, file or content
 inline CLI::Validator atLeast(long long minimum) {
   return CLI::Validator(
       [minimum](std::string& text) -> std::string {
+        // from_chars refuses what does not fit (strtoll would clamp 10^20 to 2^63-1)
         long long value = 0;
-        if (!CLI::detail::lexical_cast(text, value)) return "expected an integer, got '" + text + "'";
+        const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+        if (error == std::errc::result_out_of_range) return "too large (got " + text + ")";
+        if (error != std::errc() || end != text.data() + text.size())
+          return "expected an integer, got '" + text + "'";
         if (value < minimum)
           return "must be >= " + std::to_string(minimum) + " (got " + text + ")";
         return "";

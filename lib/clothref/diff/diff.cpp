@@ -11,6 +11,8 @@
 
 #include "clothref/io/error.h"
 #include "clothref/io/json_input.h"
+#include "clothref/io/limits.h"
+#include "clothref/trace/format.h"
 #include "clothref/trace/reader.h"
 
 namespace clothref {
@@ -259,7 +261,7 @@ double nonNegative(const json& object, const std::string& key, const std::string
   const json& value = object[key];
   if (!value.is_number() || !(value.get<double>() >= 0) || !std::isfinite(value.get<double>()))
     toleranceError(source, pointer + "/" + key,
-                   "expected a finite number >= 0, got " + value.dump());
+                   "expected a finite number >= 0, got " + excerpt(value.dump()));
   return value.get<double>();
 }
 
@@ -277,7 +279,8 @@ Tolerance toleranceFromJson(const json& value, const std::string& source,
   if (value.contains("ulps")) {
     const json& ulps = value["ulps"];
     if (!ulps.is_number_integer() || ulps.get<std::int64_t>() < 0)
-      toleranceError(source, pointer + "/ulps", "expected an integer >= 0, got " + ulps.dump());
+      toleranceError(source, pointer + "/ulps",
+                     "expected an integer >= 0, got " + excerpt(ulps.dump()));
     tolerance.ulps = ulps.get<std::int64_t>();
   }
   if (value.contains("mode")) {
@@ -292,9 +295,9 @@ Tolerance toleranceFromJson(const json& value, const std::string& source,
     else if (name == "combined")
       tolerance.mode = ToleranceMode::Combined;
     else
-      toleranceError(
-          source, pointer + "/mode",
-          "expected \"ulps\", \"absolute\", \"relative\" or \"combined\", got " + mode.dump());
+      toleranceError(source, pointer + "/mode",
+                     "expected \"ulps\", \"absolute\", \"relative\" or \"combined\", got " +
+                         excerpt(mode.dump()));
   } else if (value.contains("abs") && value.contains("rel")) {
     tolerance.mode = ToleranceMode::Combined;
   } else if (value.contains("abs")) {
@@ -454,12 +457,13 @@ DiffOptions toleranceOptionsFromJson(const json& document, const std::string& so
     const json& value = item.value();
     if (key == "format") {
       if (value != "clothref-tolerances")
-        toleranceError(source, "/format", "expected \"clothref-tolerances\", got " + value.dump());
+        toleranceError(source, "/format",
+                       "expected \"clothref-tolerances\", got " + excerpt(value.dump()));
     } else if (key == "version") {
       if (value != kToleranceFileVersion)
         toleranceError(source, "/version",
-                       fmt::format("unsupported version {} (this build reads {})", value.dump(),
-                                   kToleranceFileVersion));
+                       fmt::format("unsupported version {} (this build reads {})",
+                                   excerpt(value.dump()), kToleranceFileVersion));
     } else if (key == "comment") {
       if (!value.is_string()) toleranceError(source, "/comment", "expected a string");
     } else if (key == "default") {
@@ -600,7 +604,17 @@ DiffReport diffReaders(TraceReader& a, TraceReader& b, const DiffOptions& option
           }
         }
       }
-      if (all_equal && pa.hash != pb.hash) ++report.steps_equal_values_different_hash;
+      if (all_equal && pa.hash != pb.hash) {
+        // equal values, different hashes: legitimate for -0 vs +0, but a hash that does not
+        // match its own values is a corrupt (edited) record, never "identical"
+        if (use_hash && ha.json["hash"] == std::string(kTraceHashDescription)) {
+          if (stateHashOf(ha, step_a) != pa.hash)
+            a.fail("/hash: does not match the step's own values (a corrupt or edited record)");
+          if (stateHashOf(b.header(), step_b) != pb.hash)
+            b.fail("/hash: does not match the step's own values (a corrupt or edited record)");
+        }
+        ++report.steps_equal_values_different_hash;
+      }
     }
     more_a = advance(a, report.steps_a);
     more_b = advance(b, report.steps_b);

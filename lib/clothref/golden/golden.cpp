@@ -431,9 +431,7 @@ void writeFile(const std::filesystem::path& path, FunctionRef<void(std::ostream&
   output.commit();
 }
 
-}  // namespace
-
-GoldenUpdateSummary updateGolden(const std::filesystem::path& dir, const GoldenSet& set) {
+GoldenUpdateSummary writeGoldenSet(const std::filesystem::path& dir, const GoldenSet& set) {
   GoldenUpdateSummary summary;
   std::filesystem::create_directories(dir / "scenes");
   std::filesystem::create_directories(dir / "traces");
@@ -470,6 +468,19 @@ GoldenUpdateSummary updateGolden(const std::filesystem::path& dir, const GoldenS
     }
   }
   return summary;
+}
+
+}  // namespace
+
+GoldenUpdateSummary updateGolden(const std::filesystem::path& dir, const GoldenSet& set) {
+  try {
+    return writeGoldenSet(dir, set);
+  } catch (const std::filesystem::filesystem_error& error) {
+    // a read-only directory, or a path under a regular file: bad input, one line
+    throw InputError(fmt::format("{}: cannot update the golden set: {}",
+                                 error.path1().empty() ? dir.string() : error.path1().string(),
+                                 error.code().message()));
+  }
 }
 
 GoldenCheckSummary checkGolden(const std::filesystem::path& dir, const GoldenCheckOptions& options,

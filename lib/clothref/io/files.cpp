@@ -7,11 +7,13 @@
 #include <vector>
 
 #include "clothref/io/error.h"
+#include "clothref/io/limits.h"
 
 namespace clothref {
 
 std::string readFile(const std::filesystem::path& path, const std::string& what,
                      std::size_t max_bytes) {
+  if (max_bytes == 0) max_bytes = inputLimits().file_bytes;
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path.string() + ": cannot read the " + what);
   std::string text;
@@ -19,7 +21,8 @@ std::string readFile(const std::filesystem::path& path, const std::string& what,
   while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
     text.append(buffer, static_cast<std::size_t>(in.gcount()));
     if (text.size() > max_bytes)
-      throw InputError(path.string() + ": larger than " + std::to_string(max_bytes) + " bytes");
+      throw InputError(path.string() + ": larger than " + std::to_string(max_bytes) +
+                       " bytes (raise the limit with --max-file-bytes)");
   }
   if (in.bad()) throw InputError(path.string() + ": cannot read the " + what);
   return text;

@@ -10,9 +10,9 @@ namespace clothref {
 
 // The bytes of `path`. Throws InputError "PATH: cannot read the <what>" when it cannot be opened
 // or read, and "PATH: larger than LIMIT bytes" past `max_bytes` (so /dev/zero cannot exhaust
-// memory).
+// memory); 0 means the process's limit, inputLimits().file_bytes (io/limits.h).
 std::string readFile(const std::filesystem::path& path, const std::string& what,
-                     std::size_t max_bytes = std::size_t(1) << 30);
+                     std::size_t max_bytes = 0);
 
 // A fresh directory under the system temporary directory, removed with its contents when this
 // goes out of scope. `prefix` names the directory (prefix-XXXXXX).

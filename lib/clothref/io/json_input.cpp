@@ -7,6 +7,7 @@
 
 #include "clothref/io/error.h"
 #include "clothref/io/files.h"
+#include "clothref/io/limits.h"
 
 namespace clothref {
 
@@ -92,15 +93,44 @@ std::string reasonOf(const json::exception& error) {
   return reason;
 }
 
+// Refuses nesting deeper than the limit before parsing: a 10^5-deep array parses, but freeing or
+// printing it recurses once per level and overflows the stack.
+void checkDepth(std::string_view text, const std::string& source) {
+  const std::size_t limit = inputLimits().json_depth;
+  std::size_t depth = 0, line = 1;
+  bool in_string = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      if (c == '\\')
+        ++i;
+      else if (c == '"')
+        in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '\n') {
+      ++line;
+    } else if (c == '[' || c == '{') {
+      if (++depth > limit)
+        throw InputError(fmt::format(
+            "{}: nested deeper than {} levels (line {}; raise the limit with --max-json-depth)",
+            source, limit, line));
+    } else if ((c == ']' || c == '}') && depth > 0) {
+      --depth;
+    }
+  }
+}
+
 template <typename Json>
 Json parse(std::string_view text, const std::string& source) {
+  checkDepth(text, source);
   try {
     return Json::parse(text);
   } catch (const json::exception& error) {
     const std::string copy(text);
     JsonErrorLocator locator(copy);
     json::sax_parse(copy, &locator);
-    throw InputError(source + ": " + locator.where() + ": " + reasonOf(error));
+    throw InputError(source + ": " + locator.where() + ": " + excerpt(reasonOf(error), 160));
   }
 }
 

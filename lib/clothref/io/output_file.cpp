@@ -1,15 +1,62 @@
 #include "clothref/io/output_file.h"
 
+#include <signal.h>
+#include <unistd.h>
+
+#include <cstring>
 #include <iostream>
 #include <system_error>
 
-#include <unistd.h>
-
 #include "clothref/io/error.h"
+#include "clothref/io/gzip_stream.h"
 
 namespace clothref {
 
 namespace {
+
+// The temporary file a signal must remove, and the line saying so, composed beforehand: a signal
+// handler may only call async-signal-safe functions (unlink, write, raise), never allocate.
+char g_temporary[4096];
+char g_message[4352];
+volatile sig_atomic_t g_has_temporary = 0;
+
+void onSignal(int signal) {
+  if (g_has_temporary) {
+    ::unlink(g_temporary);
+    [[maybe_unused]] const ssize_t written = ::write(2, g_message, std::strlen(g_message));
+  }
+  // the default action ends the process with the conventional status (128 + N in a shell)
+  ::signal(signal, SIG_DFL);
+  ::raise(signal);
+}
+
+void registerTemporary(const std::filesystem::path& temporary) {
+  const std::string path = temporary.string();
+  if (path.size() >= sizeof g_temporary) return;  // too long to remove from a handler
+  g_has_temporary = 0;
+  std::memcpy(g_temporary, path.c_str(), path.size() + 1);
+  const std::string message =
+      "clothref: stopped by a signal; removed the unfinished output " + path + "\n";
+  std::memcpy(g_message, message.c_str(), std::min(message.size() + 1, sizeof g_message - 1));
+  g_message[sizeof g_message - 1] = '\0';
+  static bool installed = false;
+  if (!installed) {
+    struct sigaction action {};
+    action.sa_handler = onSignal;
+    sigemptyset(&action.sa_mask);
+    for (int signal : {SIGINT, SIGTERM, SIGHUP}) ::sigaction(signal, &action, nullptr);
+    installed = true;
+  }
+  g_has_temporary = 1;
+}
+
+void unregisterTemporary(const std::filesystem::path& temporary) {
+  if (g_has_temporary && temporary.string() == g_temporary) g_has_temporary = 0;
+}
+
+bool endsWithGz(const std::string& path) {
+  return path.size() > 3 && path.compare(path.size() - 3, 3, ".gz") == 0;
+}
 
 // Atomic replacement (temporary file, then rename) is only for regular files and new paths:
 // renaming over a device, FIFO or socket would replace the node itself (as root, /dev/null
@@ -25,6 +72,14 @@ bool writesInPlace(const std::filesystem::path& target) {
 
 OutputFile::OutputFile(const std::string& path) : path_(path) {
   if (path_ == "-") return;
+  open();
+  if (endsWithGz(path_)) {
+    gzip_ = std::make_unique<GzipOutputBuffer>(*file_.rdbuf());
+    gzip_stream_ = std::make_unique<std::ostream>(gzip_.get());
+  }
+}
+
+void OutputFile::open() {
   std::filesystem::path target(path_);
   if (writesInPlace(target)) {
     direct_ = true;
@@ -43,16 +98,21 @@ OutputFile::OutputFile(const std::string& path) : path_(path) {
   temporary_ += ".tmp" + std::to_string(::getpid());
   file_.open(temporary_, std::ios::binary | std::ios::trunc);
   if (!file_) throw InputError(path_ + ": cannot create the output file");
+  registerTemporary(temporary_);
 }
 
 OutputFile::~OutputFile() {
   if (path_ == "-" || direct_ || committed_) return;
+  unregisterTemporary(temporary_);
   file_.close();
   std::error_code ignored;
   std::filesystem::remove(temporary_, ignored);
 }
 
-std::ostream& OutputFile::stream() { return path_ == "-" ? std::cout : file_; }
+std::ostream& OutputFile::stream() {
+  if (gzip_stream_) return *gzip_stream_;
+  return path_ == "-" ? std::cout : file_;
+}
 
 void OutputFile::commit() {
   if (path_ == "-") {
@@ -61,9 +121,11 @@ void OutputFile::commit() {
     committed_ = true;
     return;
   }
+  const bool compressed = !gzip_ || (*gzip_stream_ && gzip_->finish());
   file_.close();
-  if (!file_) throw InputError(path_ + ": write failed");
+  if (!file_ || !compressed) throw InputError(path_ + ": write failed");
   if (!direct_) {
+    unregisterTemporary(temporary_);
     std::error_code error;
     std::filesystem::rename(temporary_, final_, error);
     if (error) throw InputError(path_ + ": cannot move the output into place: " + error.message());

@@ -1,15 +1,20 @@
 // OutputFile: for a regular file or a new path, writes to a temporary file beside the target and
 // renames it into place on commit, so a failed command never leaves a half-written output behind.
 // Anything else that exists (a character device such as /dev/null, a FIFO, a socket) is written
-// directly, never replaced. "-" means standard output.
+// directly, never replaced. "-" means standard output. A path ending in ".gz" is written
+// gzip-compressed. While a temporary file exists, SIGINT, SIGTERM and SIGHUP remove it, say so in
+// one line on stderr and end the process with the signal's conventional status (128 + N).
 #pragma once
 
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <ostream>
 #include <string>
 
 namespace clothref {
+
+class GzipOutputBuffer;
 
 class OutputFile {
  public:
@@ -24,11 +29,15 @@ class OutputFile {
   void commit();
 
  private:
+  void open();
+
   std::string path_;
   std::filesystem::path final_;      // the regular file the rename replaces
   std::filesystem::path temporary_;  // final_ + ".tmp<pid>"
   bool direct_ = false;              // written in place (device, FIFO, socket)
   std::ofstream file_;
+  std::unique_ptr<GzipOutputBuffer> gzip_;  // set for a ".gz" path
+  std::unique_ptr<std::ostream> gzip_stream_;
   bool committed_ = false;
 };
 

@@ -3,19 +3,28 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <iostream>
 #include <limits>
 
 #include <fmt/format.h>
 
 #include "clothref/io/error.h"
+#include "clothref/io/gzip_stream.h"
 #include "clothref/io/json_input.h"
+#include "clothref/io/limits.h"
 #include "clothref/trace/format.h"
+#include "clothref/trace/hash.h"
 
 namespace clothref {
 
 namespace {
 
 using ordered_json = nlohmann::ordered_json;
+
+const std::pair<std::string_view, double> kBareNonFinite[] = {
+    {"NaN", std::numeric_limits<double>::quiet_NaN()},
+    {"Infinity", std::numeric_limits<double>::infinity()},
+    {"-Infinity", -std::numeric_limits<double>::infinity()}};
 
 // Where a value sits in the step object; turned into a JSON pointer only for an error message,
 // so the hot loop builds no strings.
@@ -59,7 +68,6 @@ class StepLineParser {
       } else if (key == "t") {
         once(has_t, key);
         prefix.t = number("/t", false);
-        if (!std::isfinite(prefix.t)) fail("/t", "must be a finite number");
       } else if (key == "hash") {
         once(has_hash, key);
         prefix.hash = hash();
@@ -71,7 +79,7 @@ class StepLineParser {
           skipValue("/bodies");
         }
       } else {
-        fail(std::string("/").append(key), "unknown key");
+        fail("/" + excerpt(key), "unknown key");
       }
       if (!out && has_step && has_t && has_hash) return;
       skipSpace();
@@ -110,6 +118,9 @@ class StepLineParser {
   }
 
   char peek() const { return pos_ < text_.size() ? text_[pos_] : '\0'; }
+  char peekAt(std::size_t ahead) const {
+    return pos_ + ahead < text_.size() ? text_[pos_ + ahead] : '\0';
+  }
 
   void needMore(const Where& pointer) const {
     if (pos_ >= text_.size()) fail(pointer, "truncated line: unexpected end");
@@ -152,7 +163,7 @@ class StepLineParser {
     std::uint64_t value = 0;
     const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value, 16);
     if (text.size() != 16 || error != std::errc() || end != text.data() + text.size())
-      fail("/hash", fmt::format("expected 16 hex digits, got \"{}\"", text));
+      fail("/hash", fmt::format("expected 16 hex digits, got \"{}\"", excerpt(text)));
     for (char c : text)
       if (c >= 'A' && c <= 'F') fail("/hash", "expected lowercase hex digits");
     return value;
@@ -170,16 +181,22 @@ class StepLineParser {
       if (marker == "-Infinity") return -std::numeric_limits<double>::infinity();
       fail(pointer, fmt::format("expected a number or \"NaN\", \"Infinity\", \"-Infinity\", got "
                                 "\"{}\"",
-                                marker));
+                                excerpt(marker)));
     }
     const std::size_t start = pos_;
+    // Python's json.dumps writes bare NaN, Infinity and -Infinity tokens (looked for only when
+    // the first character says so: this is the hot loop)
+    if (text_[pos_] == 'N' || text_[pos_] == 'I' || (text_[pos_] == '-' && peekAt(1) == 'I')) {
+      for (const auto& [token, value] : kBareNonFinite) {
+        if (text_.substr(pos_, token.size()) == token) {
+          pos_ += token.size();
+          return value;
+        }
+      }
+    }
     if (text_[pos_] == '-') ++pos_;
     const char first = peek();
     if (first < '0' || first > '9') {
-      if (first == 'N' || first == 'n' || first == 'I' || first == 'i')
-        fail(pointer,
-             "bare NaN/Infinity token (non-finite values are written as the strings "
-             "\"NaN\", \"Infinity\", \"-Infinity\")");
       if (first == '\0') fail(pointer, "truncated line: unexpected end");
       fail(pointer, fmt::format("expected a number, got '{}'", first));
     }
@@ -204,7 +221,7 @@ class StepLineParser {
     }
     if (result.ec != std::errc() || result.ptr != stop)
       fail(pointer, fmt::format("malformed or out-of-range number '{}'",
-                                std::string_view(begin, std::size_t(stop - begin))));
+                                excerpt(std::string_view(begin, std::size_t(stop - begin)))));
     pos_ = end;
     return value;
   }
@@ -247,7 +264,7 @@ class StepLineParser {
         const std::string_view name = string("/bodies");
         std::size_t index = 0;
         while (index < declared.size() && declared[index].name != name) ++index;
-        const std::string pointer = "/bodies/" + std::string(name);
+        const std::string pointer = "/bodies/" + excerpt(name);
         if (index == declared.size()) fail(pointer, "body not declared in the header");
         if (seen[index]) fail(pointer, "duplicate key");
         seen[index] = true;
@@ -268,7 +285,7 @@ class StepLineParser {
     expect('{', pointer);
     for (;;) {
       const std::string_view key = string(pointer);
-      const std::string field = pointer + "/" + std::string(key);
+      const std::string field = pointer + "/" + excerpt(key);
       expect(':', field);
       if (key == "position") {
         once(has_position, field.substr(1));
@@ -291,7 +308,8 @@ class StepLineParser {
   // [[x, y, z], ...] with exactly `particles` entries.
   void columns(const std::string& pointer, std::int64_t particles, bool as_float,
                std::vector<double>& out) {
-    out.resize(std::size_t(3 * particles));
+    // grown as values are read: memory follows the line's length, not the header's claim
+    out.clear();
     expect('[', pointer);
     skipSpace();
     std::int64_t count = 0;
@@ -303,7 +321,7 @@ class StepLineParser {
         expect('[', particle);
         for (int k = 0; k < 3; ++k) {
           if (k) expect(',', particle);
-          out[std::size_t(3 * count + k)] = number(Where(pointer, count, k), as_float);
+          out.push_back(number(Where(pointer, count, k), as_float));
         }
         skipSpace();
         if (peek() == ',') fail(particle, "expected 3 components [x, y, z]");
@@ -336,11 +354,19 @@ const ordered_json& headerKey(const ordered_json& json, const std::string& sourc
 }
 
 std::int64_t headerInteger(const ordered_json& value, const std::string& source,
-                           const std::string& pointer, std::int64_t minimum) {
+                           const std::string& pointer, std::int64_t minimum,
+                           std::int64_t maximum = std::numeric_limits<std::int64_t>::max(),
+                           const char* flag = nullptr) {
   if (!value.is_number_integer()) headerError(source, pointer + ": expected an integer");
+  if (value.is_number_unsigned() &&
+      value.get<std::uint64_t>() > std::uint64_t(std::numeric_limits<std::int64_t>::max()))
+    headerError(source, fmt::format("{}: too large (got {})", pointer, value.get<std::uint64_t>()));
   const auto i = value.get<std::int64_t>();
   if (i < minimum)
     headerError(source, fmt::format("{}: must be >= {} (got {})", pointer, minimum, i));
+  if (i > maximum)
+    headerError(source, fmt::format("{}: {} is above the limit {} (raise it with {})", pointer, i,
+                                    maximum, flag));
   return i;
 }
 
@@ -353,7 +379,7 @@ TraceHeader parseTraceHeader(const ordered_json& json, const std::string& source
   const ordered_json& format = headerKey(json, source, "format");
   if (format != "clothref-trace")
     headerError(source, "/format: not a clothref trace (expected \"clothref-trace\", got " +
-                            format.dump() + ")");
+                            excerpt(format.dump()) + ")");
   header.version = int(headerInteger(headerKey(json, source, "version"), source, "/version", 0));
   if (header.version != kTraceVersion)
     headerError(source, fmt::format("/version: unsupported version {} (this build reads {})",
@@ -363,7 +389,7 @@ TraceHeader parseTraceHeader(const ordered_json& json, const std::string& source
                                        "bodies",    "hash",    "build"};
   for (const auto& item : json.items())
     if (std::find(std::begin(kKnown), std::end(kKnown), item.key()) == std::end(kKnown))
-      headerError(source, "/" + item.key() + ": unknown key");
+      headerError(source, "/" + excerpt(item.key()) + ": unknown key");
   if (!headerKey(json, source, "scene").is_object())
     headerError(source, "/scene: expected an object");
   const ordered_json& integrator = headerKey(json, source, "integrator");
@@ -374,13 +400,15 @@ TraceHeader parseTraceHeader(const ordered_json& json, const std::string& source
                           ? parseEnum(kPrecisionNames, precision.get<std::string>())
                           : std::nullopt;
   if (!parsed)
-    headerError(source, "/precision: expected \"float\" or \"double\", got " + precision.dump());
+    headerError(source,
+                "/precision: expected \"float\" or \"double\", got " + excerpt(precision.dump()));
   header.precision = *parsed;
   const ordered_json& dt = headerKey(json, source, "dt");
   if (!dt.is_number() || !(dt.get<double>() > 0))
-    headerError(source, "/dt: expected a number > 0, got " + dt.dump());
+    headerError(source, "/dt: expected a number > 0, got " + excerpt(dt.dump()));
   header.dt = dt.get<double>();
-  header.steps = headerInteger(headerKey(json, source, "steps"), source, "/steps", 0);
+  header.steps = headerInteger(headerKey(json, source, "steps"), source, "/steps", 0,
+                               inputLimits().steps, "--max-steps");
   header.stride = headerInteger(headerKey(json, source, "stride"), source, "/stride", 1);
   const ordered_json& bodies = headerKey(json, source, "bodies");
   if (!bodies.is_array()) headerError(source, "/bodies: expected an array");
@@ -391,10 +419,11 @@ TraceHeader parseTraceHeader(const ordered_json& json, const std::string& source
         !body["name"].is_string() || !body.contains("particles"))
       headerError(source, pointer + ": expected {\"name\": string, \"particles\": integer}");
     TraceBody parsed{body["name"].get<std::string>(),
-                     headerInteger(body["particles"], source, pointer + "/particles", 0)};
+                     headerInteger(body["particles"], source, pointer + "/particles", 0,
+                                   inputLimits().particles, "--max-particles")};
     for (const TraceBody& other : header.bodies)
       if (other.name == parsed.name)
-        headerError(source, pointer + ": duplicate body " + parsed.name);
+        headerError(source, pointer + ": duplicate body " + excerpt(parsed.name));
     header.bodies.push_back(std::move(parsed));
   }
   if (!headerKey(json, source, "hash").is_string()) headerError(source, "/hash: expected a string");
@@ -403,9 +432,15 @@ TraceHeader parseTraceHeader(const ordered_json& json, const std::string& source
   return header;
 }
 
-TraceReader::TraceReader(const std::string& path)
-    : path_(path), owned_(std::make_unique<std::ifstream>(path, std::ios::binary)), in_(owned_.get()) {
-  if (!*owned_) throw InputError(path + ": cannot open the trace file");
+TraceReader::TraceReader(const std::string& path) : path_(path) {
+  if (path == "-") {
+    path_ = "standard input";
+    in_ = &std::cin;
+  } else {
+    owned_ = std::make_unique<std::ifstream>(path, std::ios::binary);
+    if (!*owned_) throw InputError(path + ": cannot open the trace file");
+    in_ = owned_.get();
+  }
   readHeader();
 }
 
@@ -413,10 +448,44 @@ TraceReader::TraceReader(std::istream& in, const std::string& source) : path_(so
   readHeader();
 }
 
+TraceReader::~TraceReader() = default;
+
+bool TraceReader::readLine(bool& ended_with_newline) {
+  line_.clear();
+  ended_with_newline = false;
+  std::streambuf& buffer = *in_->rdbuf();
+  const std::size_t limit = inputLimits().line_bytes;
+  try {
+    for (;;) {
+      const int c = buffer.sbumpc();
+      if (c == std::char_traits<char>::eof()) return !line_.empty();
+      if (c == '\n') {
+        ended_with_newline = true;
+        return true;
+      }
+      if (line_.size() == limit) {
+        ++line_number_;
+        fail(fmt::format("line longer than {} bytes (raise the limit with --max-line-bytes)",
+                         limit));
+      }
+      line_.push_back(char(c));
+    }
+  } catch (const std::ios_base::failure&) {
+    fail(gzip_ && !gzip_->error().empty() ? gzip_->error() : "read error");
+  }
+}
+
 void TraceReader::readHeader() {
+  if (startsLikeGzip(*in_->rdbuf())) {
+    gzip_ = std::make_unique<GzipInputBuffer>(*in_->rdbuf(), path_);
+    gzip_stream_ = std::make_unique<std::istream>(gzip_.get());
+    in_ = gzip_stream_.get();
+  }
+  line_number_ = 0;
+  bool ended_with_newline = false;
+  const bool read = readLine(ended_with_newline);
   line_number_ = 1;
-  if (!std::getline(*in_, line_) || line_.empty())
-    throw InputError(path_ + ":1: empty file, expected a trace header");
+  if (!read || line_.empty()) throw InputError(path_ + ":1: empty file, expected a trace header");
   const ordered_json json = parseOrderedJson(line_, path_ + ":1: header");
   header_ = parseTraceHeader(json, path_);
 }
@@ -426,8 +495,8 @@ void TraceReader::fail(const std::string& problem) const {
 }
 
 bool TraceReader::next() {
-  if (!std::getline(*in_, line_)) {
-    if (in_->bad()) fail("read error");
+  bool ended_with_newline = false;
+  if (!readLine(ended_with_newline)) {
     // a complete trace ends with the last step (always recorded)
     const std::int64_t last = has_step_ ? prefix_.step : -1;
     if (last != header_.steps)
@@ -435,16 +504,17 @@ bool TraceReader::next() {
                        header_.steps));
     return false;
   }
-  const bool ended_with_newline = !in_->eof();
   ++line_number_;
   if (line_.empty()) fail("empty line");
   const std::int64_t previous = has_step_ ? prefix_.step : -1;
   StepPrefix prefix;
   StepLineParser(*this, line_).parse(prefix, nullptr);
   // the recorded steps are exactly those the header's steps and stride give, in order
-  const std::int64_t expected =
-      previous < 0 ? 0
-                   : std::min(previous - previous % header_.stride + header_.stride, header_.steps);
+  // (written so no step count near 2^63 overflows: base <= previous <= steps)
+  const std::int64_t base = previous - previous % header_.stride;
+  const std::int64_t expected = previous < 0                             ? 0
+                                : header_.steps - base <= header_.stride ? header_.steps
+                                                                         : base + header_.stride;
   if (previous == header_.steps)
     fail(fmt::format("/step: {} after the last step {} the header declares", prefix.step,
                      header_.steps));
@@ -461,6 +531,27 @@ bool TraceReader::next() {
 void TraceReader::parseStep(TraceStep& step) const {
   StepPrefix prefix;
   StepLineParser(*this, line_).parse(prefix, &step);
+}
+
+std::uint64_t stateHashOf(const TraceHeader& header, const TraceStep& step) {
+  return withPrecision(header.precision, [&]<typename T>() {
+    // BodyView's layout: one (x, y, z, w) column per particle; w is not hashed
+    std::vector<std::vector<T>> storage;
+    std::vector<BodyView<T>> views;
+    for (std::size_t i = 0; i < header.bodies.size() && i < step.bodies.size(); ++i) {
+      const BodyState& body = step.bodies[i];
+      const std::size_t n = body.position.size() / 3;
+      for (const std::vector<double>* values : {&body.position, &body.velocity}) {
+        std::vector<T>& columns = storage.emplace_back(4 * n, T(0));
+        for (std::size_t p = 0; p < n && 3 * p + 2 < values->size(); ++p)
+          for (std::size_t k = 0; k < 3; ++k) columns[4 * p + k] = T((*values)[3 * p + k]);
+      }
+    }
+    for (std::size_t i = 0; i < header.bodies.size() && i < step.bodies.size(); ++i)
+      views.push_back({header.bodies[i].name, storage[2 * i].data(), storage[2 * i + 1].data(),
+                       int(step.bodies[i].position.size() / 3)});
+    return stateHash<T>(std::span<const BodyView<T>>(views));
+  });
 }
 
 Trace readTrace(const std::string& path) {

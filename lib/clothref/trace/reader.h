@@ -1,14 +1,18 @@
 // Trace reading: parses a clothref trace (JSON Lines, docs/trace-format.md) back into numbers.
 //
-// Inputs: a trace file path. Line 1 is the header (parsed with nlohmann::json, matched by key);
-// each further line is one recorded step, parsed by a small hand-written parser (std::from_chars)
-// because a DOM per 40 kB line is slow. Keys are matched by name in any order; unknown keys,
-// missing keys, bare NaN/Infinity tokens, wrong array shapes and truncated lines are errors.
-// Outputs: TraceHeader; per step the step number, t (seconds, double), the 64-bit state hash and,
-// on request, every body's positions (m) and velocities (m/s) as flat x,y,z arrays (3 per
-// particle) in the header's body order. Float traces are parsed as float (exact bits) and widened.
-// Non-finite values, written as "NaN", "Infinity", "-Infinity", come back as NaN and +-infinity.
-// Every error is an InputError "FILE:LINE: problem".
+// Inputs: a trace file path ("-" for standard input; gzip-compressed input, such as a .jsonl.gz
+// file, is recognised by its first byte and decompressed). Line 1 is the header (parsed with
+// nlohmann::json, matched by key); each further line is one recorded step, parsed by a small
+// hand-written parser (std::from_chars) because a DOM per 40 kB line is slow. Keys are matched by
+// name in any order; unknown keys, missing keys, wrong array shapes and truncated lines are errors.
+// Lines longer than inputLimits().line_bytes and headers declaring more particles or steps than the
+// limits allow (io/limits.h) are refused before anything is allocated for them. Outputs:
+// TraceHeader; per step the step number, t (seconds, double), the 64-bit state hash and, on
+// request, every body's positions (m) and velocities (m/s) as flat x,y,z arrays (3 per particle) in
+// the header's body order. Float traces are parsed as float (exact bits) and widened. Non-finite
+// values, written as "NaN", "Infinity", "-Infinity" (strings, as clothref writes them, or bare
+// tokens, as Python's json.dumps writes them), come back as NaN and +-infinity; t too. Every error
+// is an InputError "FILE:LINE: problem".
 #pragma once
 
 #include <cstdint>
@@ -24,6 +28,8 @@
 #include "clothref/base/precision.h"
 
 namespace clothref {
+
+class GzipInputBuffer;
 
 // One body as declared in the header ("bodies": [{"name": "cloth", "particles": 625}, ...]).
 struct TraceBody {
@@ -67,8 +73,10 @@ struct TraceStep {
 //   }
 class TraceReader {
  public:
-  // Opens `path` and parses line 1; throws InputError for a missing file or a bad header.
+  // Opens `path` ("-": standard input) and parses line 1; throws InputError for a missing file
+  // or a bad header.
   explicit TraceReader(const std::string& path);
+  ~TraceReader();
   // Reads from `in` (a pipe, a string, a file already open), which must outlive the reader;
   // `source` names it in messages.
   TraceReader(std::istream& in, const std::string& source);
@@ -94,9 +102,13 @@ class TraceReader {
 
  private:
   void readHeader();
+  // Reads one line (bounded by the line limit) into line_; false at the end of the input.
+  bool readLine(bool& ended_with_newline);
 
   std::string path_;
   std::unique_ptr<std::ifstream> owned_;  // set when the reader opened the file itself
+  std::unique_ptr<GzipInputBuffer> gzip_;  // set for gzip-compressed input
+  std::unique_ptr<std::istream> gzip_stream_;
   std::istream* in_ = nullptr;
   std::string line_;
   std::int64_t line_number_ = 0;
@@ -107,6 +119,10 @@ class TraceReader {
 
 // Parses a header object (already read as JSON); throws InputError("SOURCE:1: problem").
 TraceHeader parseTraceHeader(const nlohmann::ordered_json& json, const std::string& source);
+
+// The state hash (trace/hash.h) of a parsed step's values in the header's precision: what the
+// step's "hash" is when the header's "hash" is kTraceHashDescription (trace/format.h).
+std::uint64_t stateHashOf(const TraceHeader& header, const TraceStep& step);
 
 // Reads a whole trace into memory (convenient for small traces and tests).
 struct Trace {
