@@ -124,7 +124,7 @@ Scene twoSpheresOblique() {
   scene.description =
       "Two spheres r = 0.5 (125 kg) and r = 0.3 (27 kg) meeting off-axis (contact normal oblique "
       "to both velocities at ~0.29 s), restitution 0.8; no gravity, no drag";
-  scene.spheres->items = {SphereSpec{{-1, 0.2, -0.1}, 0.5, {2, -0.3, 0.4}, std::nullopt},
+  scene.spheres->items = {SphereSpec{{-1, 0.2, -0.1}, 0.5, {2, -0.2, 0.4}, std::nullopt},
                           SphereSpec{{0.8, -0.15, 0.25}, 0.3, {-1.5, 0.6, -0.2}, std::nullopt}};
   return scene;
 }
