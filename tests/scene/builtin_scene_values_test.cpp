@@ -1,7 +1,7 @@
-// Every parameter of every built-in scene, against the course's facts (docs/course-facts in
-// docs/design.md and docs/verification.md: the 2022 and 2024 defaults) or, for the small scenes,
-// against what their descriptions promise; then the worlds they build: masses, fixed particles,
-// spring counts per type and the rest lengths' bits, in float.
+// Every parameter of every built-in scene, against the course's facts (the 2022 and 2024 defaults,
+// restated in docs/verification.md "Mutation testing") or, for the small scenes, against what
+// their descriptions promise; then the worlds they build in float: masses, fixed particles, spring
+// counts per type and the rest lengths' bits.
 #include <cmath>
 #include <map>
 #include <set>
@@ -58,6 +58,7 @@ TEST(BuiltinSceneValues, Course2022IsTheCourseDefault) {
   EXPECT_EQ(spheres.restitution_cloth, 0.0);        // coefRestitution in collide(Cloth*)
   EXPECT_EQ(spheres.restitution_sphere, 0.8);       // coefRestitution in collide()
   EXPECT_EQ(spheres.correction, 0.15);              // the TODO hint's penetration * normal * 0.15
+  EXPECT_FALSE(s.frame_loop.has_value());           // 2022's loop has no per-frame work
 }
 
 TEST(BuiltinSceneValues, Course2024DiffersOnlyWhereTheCourseDoes) {
@@ -78,6 +79,11 @@ TEST(BuiltinSceneValues, Course2024DiffersOnlyWhereTheCourseDoes) {
   EXPECT_FALSE(spheres.sphere_sphere_collision);  // and has no Spheres::collide()
   EXPECT_EQ(spheres.restitution_cloth, 0.0);
   EXPECT_EQ(spheres.correction, 0.15);
+  // every frame (simulationPerFrame 10 x speedMultiplier 4 on a 60 Hz monitor = 40 steps) the
+  // corners are re-pinned and the sphere's velocity set to the held arrow-key value, 0 at rest
+  ASSERT_TRUE(s.frame_loop.has_value());
+  EXPECT_EQ(s.frame_loop->steps_per_frame, 40);
+  EXPECT_EQ(s.frame_loop->sphere_velocity, (Vector3{0, 0, 0}));
 }
 
 TEST(BuiltinSceneValues, SmallScenesAreWhatTheirDescriptionsSay) {
