@@ -3,9 +3,9 @@
 // component in that order (the course's `gravity - velocity * viscousCoef * inverseMass(i)`); a
 // fixed particle's (mass 0) is set to zero. Masses and drag coefficients that are not powers of
 // two, so that the association order shows in the last bit. Also the world's use of it.
-#include <vector>
-
 #include <gtest/gtest.h>
+
+#include <vector>
 
 #include "clothref/core/particles.h"
 #include "clothref/core/world.h"
@@ -27,7 +27,8 @@ Particles<T> sampleParticles() {
   Particles<T> p = makeParticles<T>(int(masses.size()), T(1));
   for (int i = 0; i < p.size(); ++i) {
     setMass(p, i, masses[std::size_t(i)]);
-    p.velocity.col(i) = Vec4<T>(T(0.37) * T(i + 1), T(-1.9) + T(0.61) * T(i), T(2.3) / T(i + 3), T(0));
+    p.velocity.col(i) =
+        Vec4<T>(T(0.37) * T(i + 1), T(-1.9) + T(0.61) * T(i), T(2.3) / T(i + 3), T(0));
     p.acceleration.col(i) = Vec4<T>(T(100), T(-200), T(300), T(0));  // stale
   }
   return p;
@@ -48,7 +49,8 @@ TYPED_TEST(ExternalForce, BitsAreTheCoursesExpressionOrder) {
         EXPECT_EQ(test::bits(p.acceleration(k, i)), test::bits(expected))
             << "particle " << i << " component " << k << " drag " << drag << ": "
             << p.acceleration(k, i) << " expected " << expected;
-        association_differs += p.mass[i] != T(0) && gravity[k] - v * (drag * inverse_mass) != expected;
+        association_differs +=
+            p.mass[i] != T(0) && gravity[k] - v * (drag * inverse_mass) != expected;
       }
     }
   }

@@ -4,9 +4,9 @@
 // velocity u = n (v_rel . n) first, then J = (-(1 + e) u) / (invM_b + invM_a), then the position
 // correction (p n) 0.15. With e != 0 and n not along an axis, the other association orders of the
 // impulse round differently; the test checks that they would, so it can see them.
-#include <optional>
-
 #include <gtest/gtest.h>
+
+#include <optional>
 
 #include "clothref/core/world.h"
 #include "test_util.h"
@@ -37,7 +37,8 @@ std::optional<Contact> courseContact(const Particles<float>& p, float r0, float 
         (-(1 + e) * normal_velocity) / (p.inverse_mass[1] + p.inverse_mass[0]);
     const Eigen::Vector4f other =
         (-(1 + e) * normal) * approach / (p.inverse_mass[1] + p.inverse_mass[0]);
-    for (int k = 0; k < 4; ++k) c.other_order_differs |= test::bits(impulse[k]) != test::bits(other[k]);
+    for (int k = 0; k < 4; ++k)
+      c.other_order_differs |= test::bits(impulse[k]) != test::bits(other[k]);
     c.velocity.col(0) += impulse * p.inverse_mass[0];
     c.velocity.col(1) -= impulse * p.inverse_mass[1];
   }
@@ -54,9 +55,8 @@ TEST(ObliqueImpact, FirstContactHasTheCoursesBits) {
   ASSERT_NE(e, 0.0f);
   for (int s = 0; s < 1000; ++s) {
     const Particles<float> before = world.spheres->particles;
-    const std::optional<Contact> contact =
-        courseContact(before, world.spheres->radius[0], world.spheres->radius[1], e,
-                      world.physics.correction);
+    const std::optional<Contact> contact = courseContact(
+        before, world.spheres->radius[0], world.spheres->radius[1], e, world.physics.correction);
     step(world);
     if (!contact) {
       ASSERT_EQ(world.spheres->particles.velocity, before.velocity) << "no contact, no force";

@@ -5,10 +5,10 @@
 // method that integrates only the first body fails.
 //   float:  bit for bit against the course's expressions in the course's evaluation order
 //   double: against the exact real-number result, within a few roundings
+#include <gtest/gtest.h>
+
 #include <array>
 #include <cmath>
-
-#include <gtest/gtest.h>
 
 #include "clothref/core/world.h"
 #include "test_util.h"
@@ -16,12 +16,12 @@
 namespace clothref {
 namespace {
 
-constexpr double kDt = 0.01;                            // s
-constexpr Vector3 kGravity{0.5, -9.8, 0.25};            // m/s^2, not axis-aligned
-constexpr Vector3 kClothX{0.1, 2.0, -0.3};              // m
-constexpr Vector3 kClothV{1.25, 2.5, -0.75};            // m/s
-constexpr Vector3 kSphereX{5.0, 7.0, 3.0};              // far from the particle: no contact
-constexpr Vector3 kSphereV{-0.3, 0.7, 1.1};             // m/s
+constexpr double kDt = 0.01;                  // s
+constexpr Vector3 kGravity{0.5, -9.8, 0.25};  // m/s^2, not axis-aligned
+constexpr Vector3 kClothX{0.1, 2.0, -0.3};    // m
+constexpr Vector3 kClothV{1.25, 2.5, -0.75};  // m/s
+constexpr Vector3 kSphereX{5.0, 7.0, 3.0};    // far from the particle: no contact
+constexpr Vector3 kSphereV{-0.3, 0.7, 1.1};   // m/s
 
 // One free cloth particle (1.5 kg) and one sphere, both under gravity, no drag, no springs.
 Scene constantAccelerationScene() {
@@ -110,7 +110,8 @@ TEST_P(OneStep, FloatHasTheCoursesBitsOnBothBodies) {
   auto check = [&](const char* body, const Particles<float>& p, const Vector3& x0,
                    const Vector3& v0) {
     for (int k = 0; k < 3; ++k) {
-      const auto [x, v] = courseStep<float>(method, float(x0[k]), float(v0[k]), float(kGravity[k]), h);
+      const auto [x, v] =
+          courseStep<float>(method, float(x0[k]), float(v0[k]), float(kGravity[k]), h);
       EXPECT_EQ(test::bits(p.position(k, 0)), test::bits(x))
           << body << " x[" << k << "]: " << p.position(k, 0) << " expected " << x;
       EXPECT_EQ(test::bits(p.velocity(k, 0)), test::bits(v))

@@ -2,12 +2,12 @@
 // restated in docs/verification.md "Mutation testing") or, for the small scenes, against what
 // their descriptions promise; then the worlds they build in float: masses, fixed particles, spring
 // counts per type and the rest lengths' bits.
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <map>
 #include <set>
 #include <string>
-
-#include <gtest/gtest.h>
 
 #include "clothref/core/world.h"
 #include "clothref/scene/scene.h"
@@ -24,41 +24,42 @@ const Scene& scene(const std::string& name) {
 
 void expectCourseGrid(const ClothSpec& cloth, double y, double spring_coef) {
   ASSERT_TRUE(cloth.grid.has_value());
-  EXPECT_EQ(cloth.grid->particles_per_edge, 25);  // particlesPerEdge
-  EXPECT_EQ(cloth.grid->half_extent, 2.0);        // clothWidth = clothHeight = 2
-  EXPECT_EQ(cloth.grid->y, y);                    // 0 in 2022, 1 in 2024
-  EXPECT_EQ(cloth.grid->particle_mass, 1.0);      // particleMass
+  EXPECT_EQ(cloth.grid->particles_per_edge, 25);                // particlesPerEdge
+  EXPECT_EQ(cloth.grid->half_extent, 2.0);                      // clothWidth = clothHeight = 2
+  EXPECT_EQ(cloth.grid->y, y);                                  // 0 in 2022, 1 in 2024
+  EXPECT_EQ(cloth.grid->particle_mass, 1.0);                    // particleMass
   EXPECT_EQ(cloth.fixed, (std::vector<int>{0, 24, 600, 624}));  // the four corners
   EXPECT_TRUE(cloth.particles.empty());
   EXPECT_TRUE(cloth.springs.empty());
-  EXPECT_EQ(cloth.spring_coef, spring_coef);      // springCoef
-  EXPECT_EQ(cloth.damper_coef, 750.0);            // damperCoef
+  EXPECT_EQ(cloth.spring_coef, spring_coef);  // springCoef
+  EXPECT_EQ(cloth.damper_coef, 750.0);        // damperCoef
 }
 
 TEST(BuiltinSceneValues, Course2022IsTheCourseDefault) {
   const Scene& s = scene("course2022");
   EXPECT_EQ(builtinScenes().front().name, "course2022");
-  EXPECT_EQ(s.dt, 1e-4);                            // deltaTime
-  EXPECT_EQ(s.gravity, (Vector3{0, -9.8, 0}));      // Shape::computeExternalForce
-  EXPECT_EQ(s.viscous_coef, 3.4e-4);                // viscousCoef
+  EXPECT_EQ(s.dt, 1e-4);                        // deltaTime
+  EXPECT_EQ(s.gravity, (Vector3{0, -9.8, 0}));  // Shape::computeExternalForce
+  EXPECT_EQ(s.viscous_coef, 3.4e-4);            // viscousCoef
   ASSERT_TRUE(s.cloth && s.spheres);
   expectCourseGrid(*s.cloth, 0, 25000);
   const SpheresSpec& spheres = *s.spheres;
   ASSERT_EQ(spheres.items.size(), 4u);
-  const Vector3 centres[4] = {{-0.75, 1, -0.75}, {0.75, 1, -0.75}, {-0.75, 1, 0.75}, {0.75, 1, 0.75}};
+  const Vector3 centres[4] = {
+      {-0.75, 1, -0.75}, {0.75, 1, -0.75}, {-0.75, 1, 0.75}, {0.75, 1, 0.75}};
   for (int i = 0; i < 4; ++i) {
     EXPECT_EQ(spheres.items[i].center, centres[i]) << "sphere " << i;
     EXPECT_EQ(spheres.items[i].radius, 0.5) << "sphere " << i;
     EXPECT_EQ(spheres.items[i].velocity, (Vector3{0, 0, 0})) << "sphere " << i;
     EXPECT_FALSE(spheres.items[i].mass.has_value()) << "mass from the course's density * r^3";
   }
-  EXPECT_EQ(spheres.density, 1000.0);               // sphereDensity
-  EXPECT_TRUE(spheres.external_force);              // 2022 calls spheres.computeExternalForce()
-  EXPECT_TRUE(spheres.sphere_sphere_collision);     // 2022 calls spheres.collide()
-  EXPECT_EQ(spheres.restitution_cloth, 0.0);        // coefRestitution in collide(Cloth*)
-  EXPECT_EQ(spheres.restitution_sphere, 0.8);       // coefRestitution in collide()
-  EXPECT_EQ(spheres.correction, 0.15);              // the TODO hint's penetration * normal * 0.15
-  EXPECT_FALSE(s.frame_loop.has_value());           // 2022's loop has no per-frame work
+  EXPECT_EQ(spheres.density, 1000.0);            // sphereDensity
+  EXPECT_TRUE(spheres.external_force);           // 2022 calls spheres.computeExternalForce()
+  EXPECT_TRUE(spheres.sphere_sphere_collision);  // 2022 calls spheres.collide()
+  EXPECT_EQ(spheres.restitution_cloth, 0.0);     // coefRestitution in collide(Cloth*)
+  EXPECT_EQ(spheres.restitution_sphere, 0.8);    // coefRestitution in collide()
+  EXPECT_EQ(spheres.correction, 0.15);           // the TODO hint's penetration * normal * 0.15
+  EXPECT_FALSE(s.frame_loop.has_value());        // 2022's loop has no per-frame work
 }
 
 TEST(BuiltinSceneValues, Course2024DiffersOnlyWhereTheCourseDoes) {

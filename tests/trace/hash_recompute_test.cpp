@@ -11,10 +11,10 @@
 #include <vector>
 
 #define XXH_INLINE_ALL
-#include <xxhash.h>
-
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <xxhash.h>
+
 #include <nlohmann/json.hpp>
 
 #include "clothref/trace/writer.h"
@@ -24,8 +24,8 @@ namespace {
 
 // nlohmann::json with T as its floating-point type (its lexer then parses with strtof for float).
 template <typename T>
-using JsonIn = nlohmann::basic_json<std::map, std::vector, std::string, bool, std::int64_t,
-                                    std::uint64_t, T>;
+using JsonIn =
+    nlohmann::basic_json<std::map, std::vector, std::string, bool, std::int64_t, std::uint64_t, T>;
 
 struct Recomputed {
   int lines = 0;
@@ -43,7 +43,8 @@ Recomputed recompute(const std::string& trace_text) {
   std::getline(in, line);
   const auto header = JsonIn<T>::parse(line);
   std::vector<std::string> body_names;
-  for (const auto& body : header["bodies"]) body_names.push_back(body["name"].template get<std::string>());
+  for (const auto& body : header["bodies"])
+    body_names.push_back(body["name"].template get<std::string>());
   while (std::getline(in, line)) {
     const auto step = JsonIn<T>::parse(line);
     XXH3_state_t state;
@@ -103,8 +104,12 @@ void checkEveryLine(Precision precision) {
   }
 }
 
-TEST(HashRecompute, FloatTraceHashesFollowFromTheirValues) { checkEveryLine<float>(Precision::Float); }
-TEST(HashRecompute, DoubleTraceHashesFollowFromTheirValues) { checkEveryLine<double>(Precision::Double); }
+TEST(HashRecompute, FloatTraceHashesFollowFromTheirValues) {
+  checkEveryLine<float>(Precision::Float);
+}
+TEST(HashRecompute, DoubleTraceHashesFollowFromTheirValues) {
+  checkEveryLine<double>(Precision::Double);
+}
 
 }  // namespace
 }  // namespace clothref

@@ -619,12 +619,12 @@ namespace {
 
 // Energy on `spring-undamped` (k = 100 N/m, m = 1 kg, omega = 10 rad/s) at dt = 0.02 s, so
 // theta = omega dt = 0.2. The particle stays on the +x side of the anchor, so the motion is the
-// linear oscillator u'' = -omega^2 u (u = length - rest) and in (u, v / omega) every course method's
-// step is a rotation scaled by |R(i theta)|, R its amplification factor: the energy
+// linear oscillator u'' = -omega^2 u (u = length - rest) and in (u, v / omega) every course
+// method's step is a rotation scaled by |R(i theta)|, R its amplification factor: the energy
 // E = 1/2 m v^2 + 1/2 k u^2 is multiplied by exactly |R(i theta)|^2 per step.
-constexpr double kEnergyDt = 0.02;         // seconds
-constexpr int kEnergySteps = 50;           // 1 s: explicit Euler's amplitude stays below the rest length
-constexpr int kSymplecticSteps = 1000;     // 20 s, ~32 periods: bounded, not just slow to grow
+constexpr double kEnergyDt = 0.02;  // seconds
+constexpr int kEnergySteps = 50;    // 1 s: explicit Euler's amplitude stays below the rest length
+constexpr int kSymplecticSteps = 1000;  // 20 s, ~32 periods: bounded, not just slow to grow
 
 // |R(i theta)|^2 of each method's amplification factor on y' = lambda y, at lambda dt = i theta.
 double amplificationSquared(Method method, double theta) {
@@ -657,7 +657,8 @@ std::vector<double> energyRatios(Method method, int steps) {
   const Particles<T>& p = world.cloth->particles;
   auto energy = [&] {
     const double stretch = (xyz(p.position.col(1)) - xyz(p.position.col(0))).norm() - rest;
-    return 0.5 * double(p.mass[1]) * xyz(p.velocity.col(1)).squaredNorm() + 0.5 * k * stretch * stretch;
+    return 0.5 * double(p.mass[1]) * xyz(p.velocity.col(1)).squaredNorm() +
+           0.5 * k * stretch * stretch;
   };
   const double start = energy();
   std::vector<double> ratios{1.0};
