@@ -95,6 +95,15 @@ TEST(FreeCloth, EveryMethodKeepsMomentum) { expectAllPass(freeClothMomentumCheck
 
 TEST(Energy, EveryMethodBehavesAsItsAmplificationFactorSays) { expectAllPass(energyChecks()); }
 
+TEST(CourseFacts, BothCourseScenesHaveEveryFact) {
+  const std::vector<CheckRow> rows = courseFactChecks();
+  expectAllPass(rows);
+  int per_scene[2] = {0, 0};
+  for (const CheckRow& row : rows) per_scene[row.check.rfind("course2024", 0) == 0]++;
+  EXPECT_GE(per_scene[0], 20);
+  EXPECT_GE(per_scene[1], 20);
+}
+
 // The expected values tell the methods apart by far more than the tolerances: explicit grows,
 // implicit decays, midpoint grows slowly, rk4 decays slowly (in double), symplectic is bounded.
 TEST(Energy, ExpectationsSeparateTheMethods) {
