@@ -9,6 +9,7 @@
 
 #include "clothref/core/particles.h"
 #include "clothref/core/world.h"
+#include "clothref/scene/make_world.h"
 #include "test_util.h"
 
 namespace clothref {

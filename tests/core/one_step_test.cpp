@@ -11,6 +11,7 @@
 #include <cmath>
 
 #include "clothref/core/world.h"
+#include "clothref/scene/make_world.h"
 #include "test_util.h"
 
 namespace clothref {

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "clothref/core/world.h"
+#include "clothref/scene/make_world.h"
 #include "clothref/scene/scene.h"
 #include "test_util.h"
 

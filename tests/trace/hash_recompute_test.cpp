@@ -17,7 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "clothref/trace/writer.h"
+#include "clothref/record/record.h"
 
 namespace clothref {
 namespace {

@@ -795,7 +795,7 @@ std::vector<CheckRow> courseFactRows(const CourseFacts& facts) {
       ++count;
       rest_error = std::max(rest_error, std::abs(double(spring.rest_length) - double(rest[t])));
     }
-    const std::string type(springTypeName(types[t]));
+    const std::string type(enumName(kSpringTypeNames, types[t]));
     rows.push_back(factRow(name, type + " springs", f, counts[t], count));
     rows.push_back(factRow(name, type + " rest length, largest |L - L_course| (m)", f, 0,
                            rest_error));
