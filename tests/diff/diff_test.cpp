@@ -211,6 +211,12 @@ TEST_F(DiffTest, ValuesNearZeroAreHandledByTheFloor) {
   EXPECT_EQ(with_floor.verdict, Verdict::WithinTolerance);
   EXPECT_EQ(with_floor.values_beyond, 0);
 
+  // only when BOTH values are below the floor: 0 against 1e-3 is a difference even with a floor
+  write("c.jsonl", withValue(lines, where, "1e-3"));
+  const DiffReport one_side = diff("a.jsonl", "c.jsonl", floored);
+  EXPECT_EQ(one_side.verdict, Verdict::Differ);
+  EXPECT_EQ(one_side.values_beyond, 1);
+
   // combined: the absolute test passes near zero where the relative one cannot
   DiffOptions combined;
   combined.global.mode = ToleranceMode::Combined;

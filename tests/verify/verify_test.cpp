@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -91,6 +92,34 @@ TEST(Convergence, DoubleOrdersMatchTheMethods) {
 }
 
 TEST(FreeCloth, EveryMethodKeepsMomentum) { expectAllPass(freeClothMomentumChecks()); }
+
+TEST(Energy, EveryMethodBehavesAsItsAmplificationFactorSays) { expectAllPass(energyChecks()); }
+
+TEST(CourseFacts, BothCourseScenesHaveEveryFact) {
+  const std::vector<CheckRow> rows = courseFactChecks();
+  expectAllPass(rows);
+  int per_scene[2] = {0, 0};
+  for (const CheckRow& row : rows) per_scene[row.check.rfind("course2024", 0) == 0]++;
+  EXPECT_GE(per_scene[0], 20);
+  EXPECT_GE(per_scene[1], 20);
+}
+
+// The expected values tell the methods apart by far more than the tolerances: explicit grows,
+// implicit decays, midpoint grows slowly, rk4 decays slowly (in double), symplectic is bounded.
+TEST(Energy, ExpectationsSeparateTheMethods) {
+  std::map<std::string, CheckRow> doubles;
+  for (const CheckRow& row : energyChecks())
+    if (row.precision == Precision::Double) doubles[row.method] = row;
+  ASSERT_EQ(doubles.size(), 5u);
+  EXPECT_GT(doubles["explicit"].expected, 5.0);
+  EXPECT_LT(doubles["implicit"].expected, 0.2);
+  EXPECT_GT(doubles["midpoint"].expected - 1, 100 * doubles["midpoint"].tolerance);
+  EXPECT_GT(1 - doubles["rk4"].expected, 100 * doubles["rk4"].tolerance);
+  EXPECT_EQ(doubles["symplectic"].rule, CheckRule::AtMost);
+  EXPECT_LT(doubles["symplectic"].expected, 0.2);
+  // a forward-Euler-like growth would be far outside the symplectic bound
+  EXPECT_GT(std::pow(1.04, 1000) - 1, 10 * doubles["symplectic"].expected);
+}
 
 // Runs the CLI and returns its exit code and standard output.
 std::pair<int, std::string> runCli(const std::string& arguments) {

@@ -38,6 +38,7 @@ constexpr TracePlan kTracePlans[] = {
     {"free-fall", 2000, 20},     // apex at ~0.5 s, back through y = 10 m at ~1 s
     {"two-spheres", 500, 5},     // contact at ~0.25 s
     {"small-cloth", 4000, 200},  // the sphere reaches the cloth at ~0.2 s (2000 steps)
+    {"two-spheres-oblique", 500, 5},  // off-axis contact at ~0.29 s
 };
 
 // Steps of the hash-only runs: every step hashed, so only the hash list is stored.
@@ -50,6 +51,7 @@ constexpr HashPlan kHashPlans[] = {
     {"course2022", 1000, false},     {"course2024", 1000, false}, {"spring", 1000, true},
     {"spring-undamped", 1000, true}, {"free-fall", 1000, true},   {"two-spheres", 1000, true},
     {"small-cloth", 3000, true},  // past first contact at ~2000 steps
+    {"two-spheres-oblique", 1000, true},
 };
 // course2022 for 1 s simulated with every method: contact, rebound, and the spheres' first
 // sphere-sphere contact (step 8142), where the restitution e = 0.8 decides last bits

@@ -115,6 +115,20 @@ Scene twoSpheres() {
   return scene;
 }
 
+// Two spheres of different sizes (125 kg and 27 kg) meeting off-axis with restitution 0.8: at the
+// contact (~0.29 s) the normal has three non-zero components and both velocities have tangential
+// parts, so the impulse's float evaluation order shows in the last bits (e != 0, n not +-1).
+Scene twoSpheresOblique() {
+  Scene scene = twoSpheres();
+  scene.name = "two-spheres-oblique";
+  scene.description =
+      "Two spheres r = 0.5 (125 kg) and r = 0.3 (27 kg) meeting off-axis (contact normal oblique "
+      "to both velocities at ~0.29 s), restitution 0.8; no gravity, no drag";
+  scene.spheres->items = {SphereSpec{{-1, 0.2, -0.1}, 0.5, {2, -0.2, 0.4}, std::nullopt},
+                          SphereSpec{{0.8, -0.15, 0.25}, 0.3, {-1.5, 0.6, -0.2}, std::nullopt}};
+  return scene;
+}
+
 Scene smallCloth() {
   Scene scene = course2022();
   scene.name = "small-cloth";
@@ -142,6 +156,7 @@ const std::vector<Scene>& builtinScenes() {
       freeFall(),
       twoSpheres(),
       smallCloth(),
+      twoSpheresOblique(),
   };
   return scenes;
 }

@@ -77,6 +77,19 @@ std::vector<CheckRow> sphereClothChecks();
 // momentum under every method: the spring forces sum to zero.
 std::vector<CheckRow> freeClothMomentumChecks();
 
+// Energy on spring-undamped at dt = 0.02 s (omega dt = 0.2), every method, float and double:
+// explicit, implicit, midpoint and RK4 multiply the energy by exactly |R(i omega dt)|^2 per step
+// (R the method's amplification factor: explicit grows, implicit decays, midpoint grows slowly,
+// RK4 decays slowly), checked after 50 steps; symplectic Euler stays within its bound
+// |E/E0 - 1| <= (omega dt / 2) / (1 - omega dt / 2) over 1000 steps.
+std::vector<CheckRow> energyChecks();
+
+// The course scenes against the course's facts (2022 and 2024 defaults): every parameter, and the
+// float worlds they build (625 particles, fixed corners, 1200 / 1152 / 1150 springs with the
+// course's rest-length bits, sphere mass 1000 r^3), the spheres' force after one evaluation (2022
+// gravity and drag, 2024 none) and fixed corners that do not move. Exact rows (tolerance 0).
+std::vector<CheckRow> courseFactChecks();
+
 struct VerifyReport {
   std::vector<ConvergenceStudy> studies;
   std::vector<CheckRow> checks;
