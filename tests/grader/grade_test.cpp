@@ -100,11 +100,16 @@ TEST_P(Corpus, LosesPointsExactlyInTheExpectedStubsWithTheExpectedDiagnoses) {
   }
   for (const auto& id : expected["diagnoses"])
     EXPECT_TRUE(shown.count(id.get<std::string>())) << "diagnosis " << id << " not shown";
-  if (expected["kind"] == "correct") EXPECT_DOUBLE_EQ(results["score"].get<double>(), 80.0);
-  if (expected.contains("compile_errors"))
+  if (expected["kind"] == "correct") {
+    EXPECT_DOUBLE_EQ(results["score"].get<double>(), 80.0);
+  }
+  if (expected.contains("compile_errors")) {
     for (const auto& file : expected["compile_errors"])
       for (const auto& used : results["extra_data"]["files"])
-        if (used["name"] == file) EXPECT_FALSE(used["compiled"].get<bool>()) << file;
+        if (used["name"] == file) {
+          EXPECT_FALSE(used["compiled"].get<bool>()) << file;
+        }
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Submissions, Corpus, ::testing::ValuesIn(corpusCases()),

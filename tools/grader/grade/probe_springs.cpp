@@ -172,7 +172,12 @@ std::string causes(const ProbeContext& context, const std::vector<std::string>& 
                    const std::set<std::string>& only) {
   std::string out;
   for (const auto& id : ids)
-    if (only.count(id)) out += "\n" + context.catalogue->cause(id) + "\n";
+    if (only.count(id)) {
+      // appended piecewise: GCC 12 warns (-Wrestrict, a false positive) on "\n" + s + "\n"
+      out += '\n';
+      out += context.catalogue->cause(id);
+      out += '\n';
+    }
   return out;
 }
 
