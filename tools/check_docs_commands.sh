@@ -24,7 +24,8 @@ workdir=$root
 if [ -n "$cli" ]; then
   workdir=$(mktemp -d "${TMPDIR:-/tmp}/clothref-docs.XXXXXX")
   trap 'rm -rf "$workdir"' EXIT
-  mkdir -p "$workdir/build/bin"
+  # the folders the documented commands write into (the README's pictures go to docs/charts)
+  mkdir -p "$workdir/build/bin" "$workdir/docs/charts"
   ln -s "$cli" "$workdir/build/bin/clothref"
 fi
 cd "$workdir"
