@@ -57,13 +57,15 @@ TEST(InitializeSpring, SixPassesInTheCourseOrder) {
   const int n = 25;
   const Cloth<float> cloth = gridCloth<float>(n);
   // first spring of each pass, and its (start, end) offset
-  struct Pass { int first; int start; int end; SpringType type; };
-  const Pass passes[] = {{0, 0, 1, SpringType::Structural},
-                         {600, 0, n, SpringType::Structural},
-                         {1200, 0, n + 1, SpringType::Shear},
-                         {1776, 1, n, SpringType::Shear},
-                         {2352, 0, 2, SpringType::Bend},
-                         {2927, 0, 2 * n, SpringType::Bend}};
+  struct Pass {
+    int first;
+    int start;
+    int end;
+    SpringType type;
+  };
+  const Pass passes[] = {{0, 0, 1, SpringType::Structural},   {600, 0, n, SpringType::Structural},
+                         {1200, 0, n + 1, SpringType::Shear}, {1776, 1, n, SpringType::Shear},
+                         {2352, 0, 2, SpringType::Bend},      {2927, 0, 2 * n, SpringType::Bend}};
   for (const Pass& pass : passes) {
     const auto& spring = cloth.springs[pass.first];
     EXPECT_EQ(spring.start, static_cast<std::uint32_t>(pass.start)) << pass.first;
@@ -114,9 +116,9 @@ TEST(ComputeSpringForce, AccumulatesAndSparesFixedParticles) {
   cloth.particles.acceleration.setConstant(7.0f);
   cloth.particles.acceleration.row(3).setZero();
   computeSpringForce(cloth);
-  EXPECT_EQ(cloth.particles.acceleration(1, 0), 7.0f);  // fixed: invM = 0, untouched
-  EXPECT_LT(cloth.particles.acceleration(1, 6), 7.0f);  // pulled back down, on top of 7
-  EXPECT_EQ(cloth.particles.acceleration(1, 24), 7.0f); // no spring reaches the far corner
+  EXPECT_EQ(cloth.particles.acceleration(1, 0), 7.0f);   // fixed: invM = 0, untouched
+  EXPECT_LT(cloth.particles.acceleration(1, 6), 7.0f);   // pulled back down, on top of 7
+  EXPECT_EQ(cloth.particles.acceleration(1, 24), 7.0f);  // no spring reaches the far corner
 }
 
 }  // namespace

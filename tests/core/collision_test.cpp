@@ -2,8 +2,8 @@
 // called directly on prepared contacts, give the closed-form impact (analytic.h).
 #include <gtest/gtest.h>
 
-#include "clothref/verify/analytic.h"
 #include "clothref/core/spheres.h"
+#include "clothref/verify/analytic.h"
 #include "clothref/verify/verify.h"
 
 namespace clothref {

@@ -6,8 +6,8 @@
 
 #include <gtest/gtest.h>
 
-#include "clothref/scene/make_world.h"
 #include "clothref/core/world.h"
+#include "clothref/scene/make_world.h"
 #include "test_util.h"
 
 namespace clothref {
@@ -25,22 +25,23 @@ struct CourseParticles {
   float inverseMass(int i) { return inverse_mass[i]; }
 };
 
-void courseSpringForce(CourseParticles p, const std::vector<Spring<float>>& springs, float springCoef,
-                       float damperCoef) {
+void courseSpringForce(CourseParticles p, const std::vector<Spring<float>>& springs,
+                       float springCoef, float damperCoef) {
   for (const auto& spring : springs) {
     const int s = spring.start, e = spring.end;
     Eigen::Vector4f d = p.position(s) - p.position(e);
     const float length = d.norm();
     d.normalize();
-    const Eigen::Vector4f force =
-        d * (damperCoef * (p.velocity(s) - p.velocity(e)).dot(d) + springCoef * (length - spring.rest_length));
+    const Eigen::Vector4f force = d * (damperCoef * (p.velocity(s) - p.velocity(e)).dot(d) +
+                                       springCoef * (length - spring.rest_length));
     p.acceleration(s) -= force * p.inverseMass(s);
     p.acceleration(e) += force * p.inverseMass(e);
   }
 }
 
 // The instructor's contact between body `a` (a sphere, index i) and body `b` (index j), as the
-// course writes it: the normal velocity u = n * (v_rel . n) first, then J = (-(1 + e) * u) / (invM_b
+// course writes it: the normal velocity u = n * (v_rel . n) first, then J = (-(1 + e) * u) /
+// (invM_b
 // + invM_a); then always the correction (p * n) * 0.15f.
 void courseContact(CourseParticles a, int i, CourseParticles b, int j, float distance,
                    float coefRestitution) {
@@ -70,7 +71,8 @@ void courseCollide(CourseParticles spheres, const std::vector<float>& radius, Co
 }
 
 // Spheres::collide(): pairs i < j.
-void courseCollide(CourseParticles spheres, const std::vector<float>& radius, float coefRestitution) {
+void courseCollide(CourseParticles spheres, const std::vector<float>& radius,
+                   float coefRestitution) {
   const int count = static_cast<int>(radius.size());
   for (int i = 0; i < count; ++i)
     for (int j = i + 1; j < count; ++j)
@@ -117,7 +119,8 @@ class CourseFidelityClothContact : public ::testing::TestWithParam<float> {};
 TEST_P(CourseFidelityClothContact, HasTheCoursesBits) {
   const float restitution = GetParam();
   World<float> world = scrambledCourseWorld();
-  const Vec4<float> second = world.cloth->particles.position.col(22) + Vec4<float>(-0.03f, 0.2f, 0.01f, 0);
+  const Vec4<float> second =
+      world.cloth->particles.position.col(22) + Vec4<float>(-0.03f, 0.2f, 0.01f, 0);
   addSphere(*world.spheres, second, 0.35f, 1000.0f);
   world.spheres->particles.velocity.col(1) = Vec4<float>(-0.3f, -0.7f, 0.45f, 0);
   Particles<float> cloth_copy = world.cloth->particles;
@@ -195,8 +198,10 @@ TEST_P(CourseFidelityRun, MatchesTheCoursesProgramAt10000Steps) {
   World<float> world = makeWorld<float>(*findBuiltinScene("course2022"), row.method);
   for (int i = 0; i < 10000; ++i) step(world);
   double cloth_sum = 0, sphere_sum = 0;
-  for (int i = 0; i < world.cloth->particles.size(); ++i) cloth_sum += world.cloth->particles.position(1, i);
-  for (int i = 0; i < world.spheres->size(); ++i) sphere_sum += world.spheres->particles.position(1, i);
+  for (int i = 0; i < world.cloth->particles.size(); ++i)
+    cloth_sum += world.cloth->particles.position(1, i);
+  for (int i = 0; i < world.spheres->size(); ++i)
+    sphere_sum += world.spheres->particles.position(1, i);
   // the course's figures are given to six decimals
   EXPECT_NEAR(cloth_sum, row.cloth_y_sum, 5e-7);
   EXPECT_NEAR(sphere_sum, row.sphere_y_sum, 5e-7);

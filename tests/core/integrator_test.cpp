@@ -1,5 +1,5 @@
-#include "clothref/scene/make_world.h"
 #include "clothref/core/integrator.h"
+#include "clothref/scene/make_world.h"
 
 #include <cmath>
 

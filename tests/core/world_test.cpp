@@ -1,5 +1,5 @@
-#include "clothref/scene/make_world.h"
 #include "clothref/core/world.h"
+#include "clothref/scene/make_world.h"
 
 #include <cmath>
 #include <cstdlib>
@@ -143,7 +143,8 @@ TEST(World, FrameLoopActsAtTheStartOfEachFrameOnly) {
     step(world);
     // explicit Euler moves the sphere by the velocity it had when the step began
     const Vec4<double> moved_with = frame_start ? held : sphere_v;
-    EXPECT_EQ(world.spheres->particles.position.col(0), sphere_x + moved_with * 1e-4) << "step " << i;
+    EXPECT_EQ(world.spheres->particles.position.col(0), sphere_x + moved_with * 1e-4)
+        << "step " << i;
     if (i >= 7 && i < 10) EXPECT_EQ(sphere_v, knocked) << "step " << i;
     if (frame_start) EXPECT_EQ(world.cloth->particles.mass[24], 0.0) << "step " << i;
   }

@@ -9,10 +9,10 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include "clothref/scene/make_world.h"
+#include "clothref/core/world.h"
 #include "clothref/golden/golden.h"
 #include "clothref/record/world_views.h"
-#include "clothref/core/world.h"
+#include "clothref/scene/make_world.h"
 
 namespace clothref {
 namespace {

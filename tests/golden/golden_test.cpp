@@ -2,8 +2,8 @@
 // into a temporary directory (stale files swept, others kept), the check passing on what update
 // wrote, a tampered copy failing with exactly the tampered entries named, and the CLI's exit codes.
 // (The full set is checked by the ctest `golden`.)
-#include "clothref/scene/make_world.h"
 #include "clothref/golden/golden.h"
+#include "clothref/scene/make_world.h"
 
 #include <unistd.h>
 
@@ -322,7 +322,8 @@ TEST(GoldenCli, BadInputExitsTwo) {
   writeText(root.path() / "manifest.json", "{\"format\": \"clothref-golden\", \"version\": 1,");
   const test::CommandResult malformed = test::runCli("golden --golden " + root.path().string());
   EXPECT_EQ(malformed.exit_code, 2);
-  EXPECT_NE(malformed.output.find("manifest.json: /version: not valid JSON (line 1, column 44)"), std::string::npos)
+  EXPECT_NE(malformed.output.find("manifest.json: /version: not valid JSON (line 1, column 44)"),
+            std::string::npos)
       << malformed.output;
 
   // --update under a path that is a regular file: one line, exit 2 (was an uncaught
@@ -362,7 +363,8 @@ TEST(GoldenCli, DefaultDirectoryIsTheSourceTreesAndUpdateNeverCreatesASetUnasked
   EXPECT_EQ(alias.exit_code, 2) << alias.output;
   EXPECT_FALSE(std::filesystem::exists(root.file("new")));
 
-  const test::CommandResult create_alone = test::runCli("golden --create --dir " + root.file("new"));
+  const test::CommandResult create_alone =
+      test::runCli("golden --create --dir " + root.file("new"));
   EXPECT_EQ(create_alone.exit_code, 2) << create_alone.output;
   EXPECT_FALSE(std::filesystem::exists(root.file("new")));
 }

@@ -31,7 +31,8 @@ std::string errorOf(auto&& call) {
 TEST(JsonInput, SyntaxErrorNamesSourcePointerLineAndColumn) {
   const std::string message =
       errorOf([] { parseJson("{\n  \"a\": [1,\n  2, x]\n}", "file.json"); });
-  EXPECT_EQ(message.rfind("file.json: /a/2: not valid JSON (line 3, column 6): ", 0), 0u) << message;
+  EXPECT_EQ(message.rfind("file.json: /a/2: not valid JSON (line 3, column 6): ", 0), 0u)
+      << message;
 }
 
 TEST(JsonInput, NumberTooLargeForADoubleIsASyntaxErrorWithItsPlace) {

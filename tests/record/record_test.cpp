@@ -1,5 +1,5 @@
-#include "clothref/scene/make_world.h"
 #include "clothref/record/record.h"
+#include "clothref/scene/make_world.h"
 #include "clothref/trace/format.h"
 
 #include <sstream>
@@ -20,7 +20,8 @@ using json = nlohmann::json;
 
 std::vector<json> traceLines(const Scene& scene, const TraceSettings& settings) {
   std::vector<json> lines;
-  for (const std::string& line : test::traceLines(scene, settings)) lines.push_back(json::parse(line));
+  for (const std::string& line : test::traceLines(scene, settings))
+    lines.push_back(json::parse(line));
   return lines;
 }
 
@@ -53,7 +54,8 @@ TEST(Trace, HeaderCarriesTheFullSceneAndRun) {
 }
 
 TEST(Trace, RecordsStepZeroEveryStrideAndTheLast) {
-  const auto lines = traceLines(*findBuiltinScene("spring"), settings(Method::Rk4, Precision::Float, 25, 10, 1e-3));
+  const auto lines = traceLines(*findBuiltinScene("spring"),
+                                settings(Method::Rk4, Precision::Float, 25, 10, 1e-3));
   std::vector<int> steps;
   for (std::size_t i = 1; i < lines.size(); ++i) steps.push_back(lines[i]["step"]);
   EXPECT_EQ(steps, (std::vector<int>{0, 10, 20, 25}));
@@ -94,8 +96,12 @@ void checkRoundTripAndHash(Precision precision) {
   (void)precision;
 }
 
-TEST(Trace, FloatValuesRoundTripAndHashIsRecomputable) { checkRoundTripAndHash<float>(Precision::Float); }
-TEST(Trace, DoubleValuesRoundTripAndHashIsRecomputable) { checkRoundTripAndHash<double>(Precision::Double); }
+TEST(Trace, FloatValuesRoundTripAndHashIsRecomputable) {
+  checkRoundTripAndHash<float>(Precision::Float);
+}
+TEST(Trace, DoubleValuesRoundTripAndHashIsRecomputable) {
+  checkRoundTripAndHash<double>(Precision::Double);
+}
 
 TEST(Trace, FloatsAreWrittenShortestInFloat) {
   World<float> world = makeWorld<float>(*findBuiltinScene("course2022"), Method::Explicit);

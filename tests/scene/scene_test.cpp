@@ -65,9 +65,9 @@ TEST(Scene, FrameLoopCanBeTurnedOffAndChanged) {
 // Each bad scene: a mutation of a valid document and the one-line message it must produce.
 struct BadCase {
   const char* scene;
-  const char* pointer;     // JSON pointer to change ("" to leave the document alone)
-  const char* value;       // replacement (JSON or "Infinity"), or null to delete the key
-  const char* message;     // expected what()
+  const char* pointer;  // JSON pointer to change ("" to leave the document alone)
+  const char* value;    // replacement (JSON or "Infinity"), or null to delete the key
+  const char* message;  // expected what()
 };
 
 const BadCase kBadCases[] = {
@@ -82,19 +82,25 @@ const BadCase kBadCases[] = {
      "/cloth/grid/particles_per_edge: cloth edge must have >= 2 particles (got 1)"},
     {"course2022", "/cloth/grid/particle_mass", "-1",
      "/cloth/grid/particle_mass: mass must be >= 0 (got -1)"},
-    {"spring", "/cloth/particles/1/mass", "-2", "/cloth/particles/1/mass: mass must be >= 0 (got -2)"},
-    {"two-spheres", "/spheres/items/1/mass", "-5", "/spheres/items/1/mass: mass must be >= 0 (got -5)"},
+    {"spring", "/cloth/particles/1/mass", "-2",
+     "/cloth/particles/1/mass: mass must be >= 0 (got -2)"},
+    {"two-spheres", "/spheres/items/1/mass", "-5",
+     "/spheres/items/1/mass: mass must be >= 0 (got -5)"},
     {"course2022", "/spheres/items/2/radius", "0", "/spheres/items/2/radius: must be > 0 (got 0)"},
     {"course2022", "/spheres/restitution_sphere", "1.5",
      "/spheres/restitution_sphere: must be in [0, 1] (got 1.5)"},
     {"course2022", "/spheres/restitution_cloth", "-0.1",
      "/spheres/restitution_cloth: must be in [0, 1] (got -0.1)"},
-    {"course2022", "/cloth/fixed/3", "625", "/cloth/fixed/3: particle index 625 out of range [0, 625)"},
-    {"spring", "/cloth/springs/0/end", "2", "/cloth/springs/0/end: particle index 2 out of range [0, 2)"},
+    {"course2022", "/cloth/fixed/3", "625",
+     "/cloth/fixed/3: particle index 625 out of range [0, 625)"},
+    {"spring", "/cloth/springs/0/end", "2",
+     "/cloth/springs/0/end: particle index 2 out of range [0, 2)"},
     {"course2022", "/gravity", "[0, -9.8]", "/gravity: expected an array of 3 numbers [x, y, z]"},
-    {"course2022", "/spheres/external_force", "1", "/spheres/external_force: expected true or false, got integer"},
+    {"course2022", "/spheres/external_force", "1",
+     "/spheres/external_force: expected true or false, got integer"},
     {"course2022", "/cloth/spring_coef", nullptr, "/cloth/spring_coef: missing"},
-    {"course2024", "/frame_loop/steps_per_frame", "0", "/frame_loop/steps_per_frame: must be >= 1 (got 0)"},
+    {"course2024", "/frame_loop/steps_per_frame", "0",
+     "/frame_loop/steps_per_frame: must be >= 1 (got 0)"},
     {"course2024", "/frame_loop/sphere_velocity", "[1, 2]",
      "/frame_loop/sphere_velocity: expected an array of 3 numbers [x, y, z]"},
     {"course2024", "/frame_loop/refresh", "60", "/frame_loop/refresh: unknown key"},
@@ -142,14 +148,16 @@ TEST_F(SceneFiles, BadSceneFileIsOneLineExit2AndNoOutput) {
     EXPECT_EQ(result.exit_code, 2) << c.pointer;
     EXPECT_EQ(result.output, "clothref: " + scene + ": " + c.message + "\n");
     EXPECT_FALSE(std::filesystem::exists(out)) << c.pointer;
-    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir_.path()), {}), 1) << "left a file behind";
+    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir_.path()), {}), 1)
+        << "left a file behind";
   }
 }
 
 TEST_F(SceneFiles, MissingFileAndBrokenJson) {
   auto result = test::runCli("trace --scene " + dir_.file("nope.json"));
   EXPECT_EQ(result.exit_code, 2);
-  EXPECT_NE(result.output.find("nope.json: no such scene file or built-in scene"), std::string::npos)
+  EXPECT_NE(result.output.find("nope.json: no such scene file or built-in scene"),
+            std::string::npos)
       << result.output;
   const std::string broken = write("broken.json", "{\n  \"name\": \"x\",\n  \"dt\": NaN\n}\n");
   result = test::runCli("trace --scene " + broken);

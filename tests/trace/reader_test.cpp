@@ -1,8 +1,8 @@
 // trace_reader: a trace written by writeTrace parses back to the exact bits the world held, the
 // non-finite strings come back as NaN / infinity, and every malformed case is rejected with its
 // file and line number.
-#include "clothref/scene/make_world.h"
 #include "clothref/trace/reader.h"
+#include "clothref/scene/make_world.h"
 
 #include <unistd.h>
 

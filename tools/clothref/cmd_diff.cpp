@@ -1,5 +1,5 @@
-// clothref diff A B: compare two traces within tolerances (lib/clothref/diff/diff.h). Prints only what
-// differs (or one line when identical), or one JSON object with --json. Exit 0 when the traces
+// clothref diff A B: compare two traces within tolerances (lib/clothref/diff/diff.h). Prints only
+// what differs (or one line when identical), or one JSON object with --json. Exit 0 when the traces
 // agree within tolerance, 1 when they differ, 2 on bad input.
 #include <cmath>
 #include <iostream>

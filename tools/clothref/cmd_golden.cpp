@@ -10,8 +10,8 @@
 
 #include <fmt/format.h>
 
-#include "clothref/io/error.h"
 #include "clothref/golden/golden.h"
+#include "clothref/io/error.h"
 #include "clothref/io/output_file.h"
 #include "clothref/io/progress.h"
 #include "commands.h"

@@ -10,7 +10,8 @@
 namespace clothref::cli {
 
 Command addScenesCommand(CLI::App& root) {
-  CLI::App* app = root.add_subcommand("scenes", "List the built-in scenes (the first is the default)");
+  CLI::App* app =
+      root.add_subcommand("scenes", "List the built-in scenes (the first is the default)");
   auto json = std::make_shared<bool>(false);
   app->add_flag("--json", *json, "Print every built-in scene as JSON, one per line");
   return {app, [json] {

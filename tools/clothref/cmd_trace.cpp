@@ -11,8 +11,8 @@
 
 #include "clothref/io/error.h"
 #include "clothref/io/limits.h"
-#include "clothref/io/progress.h"
 #include "clothref/io/output_file.h"
+#include "clothref/io/progress.h"
 #include "clothref/record/record.h"
 #include "clothref/trace/hash.h"
 #include "commands.h"
@@ -104,7 +104,8 @@ int runTrace(const TraceOptions& options) {
       hashToHex(summary.final_hash),
       summary.first_nonfinite_step < 0
           ? std::string("stayed finite")
-          : fmt::format("became non-finite (first recorded at step {})", summary.first_nonfinite_step));
+          : fmt::format("became non-finite (first recorded at step {})",
+                        summary.first_nonfinite_step));
   return kExitOk;
 }
 

@@ -1,4 +1,5 @@
-// clothref verify: run every analytic check (lib/clothref/verify/verify.h) and print the table, or with
+// clothref verify: run every analytic check (lib/clothref/verify/verify.h) and print the table, or
+// with
 // --json the same as JSON. Exit 0 when every check passes, 1 when one fails.
 #include <iostream>
 #include <memory>

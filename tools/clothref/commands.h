@@ -36,8 +36,7 @@ inline CLI::Validator atLeast(long long minimum) {
         if (error == std::errc::result_out_of_range) return "too large (got " + text + ")";
         if (error != std::errc() || end != text.data() + text.size())
           return "expected an integer, got '" + text + "'";
-        if (value < minimum)
-          return "must be >= " + std::to_string(minimum) + " (got " + text + ")";
+        if (value < minimum) return "must be >= " + std::to_string(minimum) + " (got " + text + ")";
         return "";
       },
       ">= " + std::to_string(minimum));

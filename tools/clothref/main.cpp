@@ -15,8 +15,9 @@
 
 int main(int argc, char** argv) {
   using namespace clothref::cli;
-  CLI::App root{"clothref: deterministic reference, traces and checks for the cloth-and-spheres "
-                "particle-system assignment"};
+  CLI::App root{
+      "clothref: deterministic reference, traces and checks for the cloth-and-spheres "
+      "particle-system assignment"};
   root.require_subcommand(1);
   clothref::fast::SimdPath simd;
   try {
@@ -25,8 +26,8 @@ int main(int argc, char** argv) {
     std::cerr << "clothref: " << error.what() << '\n';
     return kExitBadInput;
   }
-  root.set_version_flag("--version", std::string(clothref::build_info::kVersion) + " (" +
-                                         "git " + CLOTHREF_GIT_REVISION + ", " +
+  root.set_version_flag("--version", std::string(clothref::build_info::kVersion) + " (" + "git " +
+                                         CLOTHREF_GIT_REVISION + ", " +
                                          clothref::build_info::kCompiler + ", " +
                                          clothref::build_info::kBuildType + ", simd " +
                                          std::string(clothref::fast::simdPathName(simd)) + ")");
@@ -51,11 +52,11 @@ int main(int argc, char** argv) {
       ->check(atLeast(0))
       ->capture_default_str()
       ->group("Input limits");
-  const std::vector<Command> commands = {
-      addTraceCommand(root), addDiffCommand(root), addGoldenCommand(root),
-      addVerifyCommand(root), addScenesCommand(root), addBenchCommand(root),
-      addStabilityCommand(root), addSweepCommand(root), addPlotCommand(root),
-      addGradeCommand(root)};
+  const std::vector<Command> commands = {addTraceCommand(root),     addDiffCommand(root),
+                                         addGoldenCommand(root),    addVerifyCommand(root),
+                                         addScenesCommand(root),    addBenchCommand(root),
+                                         addStabilityCommand(root), addSweepCommand(root),
+                                         addPlotCommand(root),      addGradeCommand(root)};
   for (const Command& command : commands) command.app->fallthrough();
   // name an unknown command instead of CLI11's "A subcommand is required"
   if (argc > 1 && argv[1][0] != '-') {

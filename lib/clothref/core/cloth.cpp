@@ -32,16 +32,16 @@ void initializeSpring(Cloth<T>& cloth, int particles_per_edge) {
 
   const T structural_length = (x.col(0) - x.col(1)).norm();
   for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n - 1; ++j) add(i * n + j, i * n + j + 1, structural_length,
-                                        SpringType::Structural);
+    for (int j = 0; j < n - 1; ++j)
+      add(i * n + j, i * n + j + 1, structural_length, SpringType::Structural);
   for (int i = 0; i < n - 1; ++i)
-    for (int j = 0; j < n; ++j) add(i * n + j, i * n + j + n, structural_length,
-                                    SpringType::Structural);
+    for (int j = 0; j < n; ++j)
+      add(i * n + j, i * n + j + n, structural_length, SpringType::Structural);
 
   const T shear_length = (x.col(0) - x.col(n + 1)).norm();
   for (int i = 0; i < n - 1; ++i)
-    for (int j = 0; j < n - 1; ++j) add(i * n + j, i * n + j + n + 1, shear_length,
-                                        SpringType::Shear);
+    for (int j = 0; j < n - 1; ++j)
+      add(i * n + j, i * n + j + n + 1, shear_length, SpringType::Shear);
   for (int i = 0; i < n - 1; ++i)
     for (int j = 1; j < n; ++j) add(i * n + j, i * n + j + n - 1, shear_length, SpringType::Shear);
 
@@ -66,8 +66,8 @@ void computeSpringForce(Cloth<T>& cloth) {
     Vec4<T> d = p.position.col(s) - p.position.col(e);
     const T length = d.norm();
     d.normalize();
-    const Vec4<T> force =
-        d * (k_d * (p.velocity.col(s) - p.velocity.col(e)).dot(d) + k_s * (length - spring.rest_length));
+    const Vec4<T> force = d * (k_d * (p.velocity.col(s) - p.velocity.col(e)).dot(d) +
+                               k_s * (length - spring.rest_length));
     p.acceleration.col(s) -= force * p.inverse_mass[s];
     p.acceleration.col(e) += force * p.inverse_mass[e];
   }

@@ -118,12 +118,12 @@ void integrate(Method method, Bodies<T> bodies, T dt, FunctionRef<void()> simula
   }
 }
 
-#define CLOTHREF_INSTANTIATE(T)                                                               \
-  template void integrateExplicit(Bodies<T>, T);                                              \
-  template void integrateSymplectic(Bodies<T>, T);                                            \
-  template void integrateImplicit(Bodies<T>, T, FunctionRef<void()>, IntegratorScratch<T>&);  \
-  template void integrateMidpoint(Bodies<T>, T, FunctionRef<void()>, IntegratorScratch<T>&);  \
-  template void integrateRk4(Bodies<T>, T, FunctionRef<void()>, IntegratorScratch<T>&);       \
+#define CLOTHREF_INSTANTIATE(T)                                                              \
+  template void integrateExplicit(Bodies<T>, T);                                             \
+  template void integrateSymplectic(Bodies<T>, T);                                           \
+  template void integrateImplicit(Bodies<T>, T, FunctionRef<void()>, IntegratorScratch<T>&); \
+  template void integrateMidpoint(Bodies<T>, T, FunctionRef<void()>, IntegratorScratch<T>&); \
+  template void integrateRk4(Bodies<T>, T, FunctionRef<void()>, IntegratorScratch<T>&);      \
   template void integrate(Method, Bodies<T>, T, FunctionRef<void()>, IntegratorScratch<T>&);
 CLOTHREF_INSTANTIATE(float)
 CLOTHREF_INSTANTIATE(double)

@@ -19,10 +19,10 @@ enum class MethodOrigin { Course, Textbook };
 
 struct MethodInfo {
   Method method;
-  std::string_view name;         // on the command line, in traces and scene files
-  int order;                     // global order of accuracy the method is built to have
-  int evaluations;               // derivative evaluations per step, counting the step's own
-  bool needs_callback;           // calls simulateOneStep during integrate()
+  std::string_view name;  // on the command line, in traces and scene files
+  int order;              // global order of accuracy the method is built to have
+  int evaluations;        // derivative evaluations per step, counting the step's own
+  bool needs_callback;    // calls simulateOneStep during integrate()
   MethodOrigin origin;
   std::string_view course_name;  // the course's class, or "" for a textbook method
   std::string_view summary;
@@ -58,7 +58,8 @@ inline constexpr auto kAllMethods = [] {
 // The {value, name} table the generic enum functions read.
 inline constexpr auto kMethodNames = [] {
   EnumTable<Method, kMethods.size()> names{};
-  for (std::size_t i = 0; i < kMethods.size(); ++i) names[i] = {kMethods[i].method, kMethods[i].name};
+  for (std::size_t i = 0; i < kMethods.size(); ++i)
+    names[i] = {kMethods[i].method, kMethods[i].name};
   return names;
 }();
 

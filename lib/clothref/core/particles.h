@@ -27,7 +27,8 @@ struct Particles {
 template <typename T>
 Particles<T> makeParticles(int count, T mass);
 
-// Sets the mass of particle i and its inverse (0 for a fixed particle, as the course's inverseMass).
+// Sets the mass of particle i and its inverse (0 for a fixed particle, as the course's
+// inverseMass).
 template <typename T>
 void setMass(Particles<T>& particles, int i, T mass);
 

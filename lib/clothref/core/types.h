@@ -2,7 +2,8 @@
 //
 // State is stored the way the course stores it: one 4-vector column per particle, positions with
 // w = 1 and velocities / accelerations with w = 0. Keeping the course's layout (and Eigen's own
-// 4-wide reductions for norm and dot) is what lets the float build reproduce the course bit for bit.
+// 4-wide reductions for norm and dot) is what lets the float build reproduce the course bit for
+// bit.
 #pragma once
 
 #include <Eigen/Core>

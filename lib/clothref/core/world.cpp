@@ -67,11 +67,10 @@ void simulateOneStep(World<T>& world) {
     if (execution.use_fast) {
       Particles<T>& s = world.spheres->particles;
       Particles<T>& c = world.cloth->particles;
-      const fast::ContactBodies<T> contact{s.position.data(),     s.velocity.data(),
-                                           s.inverse_mass.data(), world.spheres->radius.data(),
-                                           s.size(),              c.position.data(),
-                                           c.velocity.data(),     c.inverse_mass.data(),
-                                           c.size()};
+      const fast::ContactBodies<T> contact{
+          s.position.data(), s.velocity.data(), s.inverse_mass.data(), world.spheres->radius.data(),
+          s.size(),          c.position.data(), c.velocity.data(),     c.inverse_mass.data(),
+          c.size()};
       fast::collideSpheresWithCloth(contact, physics.restitution_cloth, physics.correction,
                                     execution.simd);
     } else {
@@ -106,8 +105,9 @@ void step(World<T>& world) {
     beginFrame(world);
   std::array<Particles<T>*, 2> storage{};
   simulateOneStep(world);
-  integrate(world.method, bodies(world, storage), world.physics.dt,
-            [&world] { simulateOneStep(world); }, world.scratch);
+  integrate(
+      world.method, bodies(world, storage), world.physics.dt, [&world] { simulateOneStep(world); },
+      world.scratch);
   ++world.step;
 }
 
@@ -154,13 +154,13 @@ bool isFinite(const World<T>& world) {
   return finite;
 }
 
-#define CLOTHREF_INSTANTIATE(T)                                                      \
-  template void setExecution(World<T>&, bool, fast::SimdPath, int);                  \
-  template Bodies<T> bodies(World<T>&, std::array<Particles<T>*, 2>&);               \
-  template void simulateOneStep(World<T>&);                                          \
-  template void step(World<T>&);                                                     \
-  template double kineticEnergy(const World<T>&);                                    \
-  template std::array<double, 3> momentum(const World<T>&);                          \
+#define CLOTHREF_INSTANTIATE(T)                                        \
+  template void setExecution(World<T>&, bool, fast::SimdPath, int);    \
+  template Bodies<T> bodies(World<T>&, std::array<Particles<T>*, 2>&); \
+  template void simulateOneStep(World<T>&);                            \
+  template void step(World<T>&);                                       \
+  template double kineticEnergy(const World<T>&);                      \
+  template std::array<double, 3> momentum(const World<T>&);            \
   template bool isFinite(const World<T>&);
 CLOTHREF_INSTANTIATE(float)
 CLOTHREF_INSTANTIATE(double)

@@ -45,13 +45,13 @@ struct FrameLoop {
 // results are the same bits either way; only the speed differs.
 template <typename T>
 struct Execution {
-  bool use_fast = true;              // false: the course-form loops only (the oracle)
+  bool use_fast = true;  // false: the course-form loops only (the oracle)
   fast::SimdPath simd = fast::defaultSimdPath();
-  int threads = 1;                   // spring sweep threads; only grids of N >= 100 use more
-  bool grid = false;                 // the cloth's springs are the course grid's stencils
+  int threads = 1;    // spring sweep threads; only grids of N >= 100 use more
+  bool grid = false;  // the cloth's springs are the course grid's stencils
   fast::GridSpringWorkspace<T> springs;
   std::shared_ptr<fast::ThreadPool> pool;  // when threads > 1 and the grid is big enough
-  bool prepared = false;             // grid detection and buffers done (setExecution)
+  bool prepared = false;                   // grid detection and buffers done (setExecution)
 };
 
 // Cloths with fewer particles per edge keep one thread: below this, waking a thread costs more
@@ -65,9 +65,9 @@ struct World {
   Physics<T> physics;
   FrameLoop<T> frame_loop;
   Method method = Method::Explicit;
-  std::int64_t step = 0;           // steps taken
-  IntegratorScratch<T> scratch;    // integrator backups, reused every step
-  Execution<T> execution;          // fast kernels on, default SIMD path, one thread
+  std::int64_t step = 0;         // steps taken
+  IntegratorScratch<T> scratch;  // integrator backups, reused every step
+  Execution<T> execution;        // fast kernels on, default SIMD path, one thread
 };
 
 // Sets how `world` steps: the fast kernels (`use_fast`) or the course-form loops alone, the

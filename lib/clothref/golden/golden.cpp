@@ -1,5 +1,5 @@
-#include "clothref/scene/make_world.h"
 #include "clothref/golden/golden.h"
+#include "clothref/scene/make_world.h"
 
 #include <unistd.h>
 
@@ -11,13 +11,13 @@
 
 #include <fmt/format.h>
 
-#include "clothref/trace/build_info.h"
+#include "clothref/core/world.h"
 #include "clothref/io/error.h"
 #include "clothref/io/files.h"
 #include "clothref/io/json_input.h"
-#include "clothref/record/world_views.h"
-#include "clothref/core/world.h"
 #include "clothref/io/output_file.h"
+#include "clothref/record/world_views.h"
+#include "clothref/trace/build_info.h"
 
 namespace clothref {
 
@@ -35,9 +35,9 @@ constexpr TracePlan kTracePlans[] = {
     {"course2024", 3000, 500},  // the cloth drapes over the sphere from step 0
     {"spring", 2000, 20},       // ~3 periods (2 pi / 10 s each)
     {"spring-undamped", 2000, 20},
-    {"free-fall", 2000, 20},     // apex at ~0.5 s, back through y = 10 m at ~1 s
-    {"two-spheres", 500, 5},     // contact at ~0.25 s
-    {"small-cloth", 4000, 200},  // the sphere reaches the cloth at ~0.2 s (2000 steps)
+    {"free-fall", 2000, 20},          // apex at ~0.5 s, back through y = 10 m at ~1 s
+    {"two-spheres", 500, 5},          // contact at ~0.25 s
+    {"small-cloth", 4000, 200},       // the sphere reaches the cloth at ~0.2 s (2000 steps)
     {"two-spheres-oblique", 500, 5},  // off-axis contact at ~0.29 s
 };
 
@@ -48,8 +48,8 @@ struct HashPlan {
   bool double_too;  // also in double (the small scenes)
 };
 constexpr HashPlan kHashPlans[] = {
-    {"course2022", 1000, false},     {"course2024", 1000, false}, {"spring", 1000, true},
-    {"spring-undamped", 1000, true}, {"free-fall", 1000, true},   {"two-spheres", 1000, true},
+    {"course2022", 1000, false},         {"course2024", 1000, false}, {"spring", 1000, true},
+    {"spring-undamped", 1000, true},     {"free-fall", 1000, true},   {"two-spheres", 1000, true},
     {"small-cloth", 3000, true},  // past first contact at ~2000 steps
     {"two-spheres-oblique", 1000, true},
 };
@@ -90,7 +90,8 @@ GoldenSet defineGoldenSet() {
     if (!plan.double_too) continue;
     for (Method method : kAllMethods) add_run(plan.scene, method, Precision::Double, plan.steps);
   }
-  for (Method method : kAllMethods) add_run("course2022", method, Precision::Float, kLongCourseSteps);
+  for (Method method : kAllMethods)
+    add_run("course2022", method, Precision::Float, kLongCourseSteps);
   return set;
 }
 
@@ -440,7 +441,7 @@ GoldenUpdateSummary writeGoldenSet(const std::filesystem::path& dir, const Golde
 
   for (const std::string& name : set.scenes) {
     writeFile(dir / "scenes" / (name + ".json"),
-               [&name](std::ostream& out) { out << sceneFileText(builtin(name)); });
+              [&name](std::ostream& out) { out << sceneFileText(builtin(name)); });
     ++summary.scenes;
   }
   for (const GoldenTrace& trace : set.traces) {
@@ -458,7 +459,7 @@ GoldenUpdateSummary writeGoldenSet(const std::filesystem::path& dir, const Golde
   }
   // The manifest last: an interrupted update leaves the old manifest, which the check then flags.
   writeFile(dir / "manifest.json",
-             [&manifest](std::ostream& out) { out << manifestText(manifest); });
+            [&manifest](std::ostream& out) { out << manifestText(manifest); });
 
   // Only the two generated subdirectories are swept, so nothing else in DIR is ever deleted.
   const std::set<std::string> expected = expectedFiles(set);

@@ -17,12 +17,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "clothref/diff/diff.h"
 #include "clothref/base/function_ref.h"
-#include "clothref/core/integrator.h"
-#include "clothref/scene/scene.h"
-#include "clothref/record/record.h"
 #include "clothref/base/precision.h"
+#include "clothref/core/integrator.h"
+#include "clothref/diff/diff.h"
+#include "clothref/record/record.h"
+#include "clothref/scene/scene.h"
 
 namespace clothref {
 

@@ -32,8 +32,7 @@ ScratchDir::ScratchDir(const std::string& prefix) {
   std::string pattern = (std::filesystem::temp_directory_path() / (prefix + "-XXXXXX")).string();
   std::vector<char> name(pattern.begin(), pattern.end());
   name.push_back('\0');
-  if (!::mkdtemp(name.data()))
-    throw InputError(pattern + ": cannot create a temporary directory");
+  if (!::mkdtemp(name.data())) throw InputError(pattern + ": cannot create a temporary directory");
   path_ = name.data();
 }
 

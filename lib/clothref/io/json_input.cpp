@@ -43,7 +43,8 @@ class JsonErrorLocator : public nlohmann::json_sax<json> {
     return true;
   }
   bool end_array() override { return end(); }
-  bool parse_error(std::size_t position, const std::string&, const nlohmann::detail::exception&) override {
+  bool parse_error(std::size_t position, const std::string&,
+                   const nlohmann::detail::exception&) override {
     for (const Frame& frame : frames_)
       pointer_ += "/" + (frame.array ? std::to_string(frame.index) : frame.key);
     // position counts characters read, the failing one included
@@ -82,7 +83,8 @@ class JsonErrorLocator : public nlohmann::json_sax<json> {
   std::size_t line_ = 0, column_ = 0;
 };
 
-// nlohmann's reason without its "[json.exception.parse_error.101] parse error at line 1, column 2: "
+// nlohmann's reason without its "[json.exception.parse_error.101] parse error at line 1, column 2:
+// "
 std::string reasonOf(const json::exception& error) {
   std::string reason = error.what();
   for (const char* prefix : {"] ", ": "}) {

@@ -64,7 +64,7 @@ bool endsWithGz(const std::string& path) {
 bool writesInPlace(const std::filesystem::path& target) {
   std::error_code error;
   const auto status = std::filesystem::status(target, error);  // follows symbolic links
-  if (error) return false;                                       // a new path (or unreadable)
+  if (error) return false;                                     // a new path (or unreadable)
   return std::filesystem::exists(status) && !std::filesystem::is_regular_file(status);
 }
 

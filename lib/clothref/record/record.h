@@ -10,8 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "clothref/core/integrator.h"
 #include "clothref/base/precision.h"
+#include "clothref/core/integrator.h"
 #include "clothref/scene/scene.h"
 
 namespace clothref {
@@ -19,9 +19,9 @@ namespace clothref {
 struct TraceSettings {
   Method method = Method::Explicit;
   Precision precision = Precision::Float;
-  double dt = 0;              // seconds; the scene's dt unless overridden
-  std::int64_t steps = 0;     // steps to take
-  std::int64_t stride = 1;    // record every stride-th step; step 0 and the last are always recorded
+  double dt = 0;            // seconds; the scene's dt unless overridden
+  std::int64_t steps = 0;   // steps to take
+  std::int64_t stride = 1;  // record every stride-th step; step 0 and the last are always recorded
 
   bool operator==(const TraceSettings&) const = default;
 };

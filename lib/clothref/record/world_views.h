@@ -15,8 +15,7 @@ namespace clothref {
 
 // The bodies of `world` in trace order; `storage` holds the views the span points to.
 template <typename T>
-std::span<const BodyView<T>> bodyViews(const World<T>& world,
-                                       std::array<BodyView<T>, 2>& storage) {
+std::span<const BodyView<T>> bodyViews(const World<T>& world, std::array<BodyView<T>, 2>& storage) {
   std::size_t count = 0;
   const auto view = [](std::string_view name, const Particles<T>& p) {
     return BodyView<T>{name, p.position.data(), p.velocity.data(), p.size()};

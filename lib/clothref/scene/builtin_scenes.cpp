@@ -1,5 +1,5 @@
-// The built-in scenes. The two course scenes reproduce docs/course.md §2-3; the small ones model only
-// what they test. `clothref golden --update` writes each to golden/scenes/NAME.json.
+// The built-in scenes. The two course scenes reproduce docs/course.md §2-3; the small ones model
+// only what they test. `clothref golden --update` writes each to golden/scenes/NAME.json.
 #include "clothref/scene/scene.h"
 
 namespace clothref {
@@ -68,7 +68,8 @@ Scene spring(const std::string& name, double damper_coef, const std::string& wha
   scene.gravity = {0, 0, 0};
   scene.viscous_coef = 0;
   ClothSpec cloth;
-  cloth.particles = {ParticleSpec{{0, 0, 0}, {0, 0, 0}, 0}, ParticleSpec{{1.2, 0, 0}, {0, 0, 0}, 1}};
+  cloth.particles = {ParticleSpec{{0, 0, 0}, {0, 0, 0}, 0},
+                     ParticleSpec{{1.2, 0, 0}, {0, 0, 0}, 1}};
   cloth.springs = {SpringSpec{0, 1, 1}};
   cloth.spring_coef = 100;
   cloth.damper_coef = damper_coef;

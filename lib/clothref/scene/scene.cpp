@@ -25,7 +25,8 @@ std::string typeName(const json& value) {
 // Reads one JSON object, tracking its pointer for messages and rejecting keys nobody read.
 class ObjectReader {
  public:
-  ObjectReader(const json& value, std::string pointer) : value_(value), pointer_(std::move(pointer)) {
+  ObjectReader(const json& value, std::string pointer)
+      : value_(value), pointer_(std::move(pointer)) {
     if (!value_.is_object())
       throw SceneError(pointer_, "expected an object, got " + typeName(value_));
   }
@@ -211,7 +212,8 @@ ordered_json vector3ToJson(const Vector3& v) { return ordered_json::array({v[0],
 
 int clothParticleCount(const Scene& scene) {
   if (!scene.cloth) return 0;
-  if (scene.cloth->grid) return scene.cloth->grid->particles_per_edge * scene.cloth->grid->particles_per_edge;
+  if (scene.cloth->grid)
+    return scene.cloth->grid->particles_per_edge * scene.cloth->grid->particles_per_edge;
   return static_cast<int>(scene.cloth->particles.size());
 }
 
@@ -227,7 +229,8 @@ void validateScene(const Scene& scene) {
               fmt::format("cloth edge must have >= 2 particles (got {})", grid.particles_per_edge));
       require(grid.particles_per_edge <= 4096, "/cloth/grid/particles_per_edge",
               fmt::format("must be <= 4096 (got {})", grid.particles_per_edge));
-      require(grid.half_extent > 0, "/cloth/grid/half_extent", "must be > 0" + got(grid.half_extent));
+      require(grid.half_extent > 0, "/cloth/grid/half_extent",
+              "must be > 0" + got(grid.half_extent));
       require(grid.particle_mass >= 0, "/cloth/grid/particle_mass",
               "mass must be >= 0" + got(grid.particle_mass));
     } else {
@@ -259,9 +262,11 @@ void validateScene(const Scene& scene) {
     require(!spheres.items.empty(), "/spheres/items", "needs at least one sphere");
     for (std::size_t i = 0; i < spheres.items.size(); ++i) {
       const SphereSpec& s = spheres.items[i];
-      require(s.radius > 0, fmt::format("/spheres/items/{}/radius", i), "must be > 0" + got(s.radius));
+      require(s.radius > 0, fmt::format("/spheres/items/{}/radius", i),
+              "must be > 0" + got(s.radius));
       if (s.mass)
-        require(*s.mass >= 0, fmt::format("/spheres/items/{}/mass", i), "mass must be >= 0" + got(*s.mass));
+        require(*s.mass >= 0, fmt::format("/spheres/items/{}/mass", i),
+                "mass must be >= 0" + got(*s.mass));
     }
     require(spheres.density > 0, "/spheres/density", "must be > 0" + got(spheres.density));
     require(spheres.restitution_cloth >= 0 && spheres.restitution_cloth <= 1,
@@ -322,7 +327,8 @@ ordered_json sceneToJson(const Scene& scene) {
                                   {"mass", p.mass}});
       c["springs"] = ordered_json::array();
       for (const SpringSpec& s : cloth.springs)
-        c["springs"].push_back({{"start", s.start}, {"end", s.end}, {"rest_length", s.rest_length}});
+        c["springs"].push_back(
+            {{"start", s.start}, {"end", s.end}, {"rest_length", s.rest_length}});
     }
     c["fixed"] = cloth.fixed;
     c["spring_coef"] = cloth.spring_coef;
@@ -367,7 +373,8 @@ Scene loadScene(const std::string& name_or_path) {
   if (!std::filesystem::exists(name_or_path)) {
     std::string names;
     for (const Scene& scene : builtinScenes()) names += (names.empty() ? "" : ", ") + scene.name;
-    throw InputError(name_or_path + ": no such scene file or built-in scene (built-in: " + names + ")");
+    throw InputError(name_or_path + ": no such scene file or built-in scene (built-in: " + names +
+                     ")");
   }
   const json document = readJsonFile(name_or_path, "scene file");
   try {

@@ -47,21 +47,21 @@ struct SpringSpec {
 };
 
 struct ClothSpec {
-  std::optional<GridSpec> grid;          // either a grid ...
-  std::vector<ParticleSpec> particles;   // ... or explicit particles
-  std::vector<SpringSpec> springs;       //     and springs
-  std::vector<int> fixed;                // particle indices given mass 0 (grid corners in the course)
-  double spring_coef = 25000;            // N/m
-  double damper_coef = 750;              // N s/m
+  std::optional<GridSpec> grid;         // either a grid ...
+  std::vector<ParticleSpec> particles;  // ... or explicit particles
+  std::vector<SpringSpec> springs;      //     and springs
+  std::vector<int> fixed;      // particle indices given mass 0 (grid corners in the course)
+  double spring_coef = 25000;  // N/m
+  double damper_coef = 750;    // N s/m
 
   bool operator==(const ClothSpec&) const = default;
 };
 
 struct SphereSpec {
   Vector3 center{};
-  double radius = 0.5;            // metres
-  Vector3 velocity{};             // metres / second
-  std::optional<double> mass;     // kilograms; default density * r^3 (the course's formula)
+  double radius = 0.5;         // metres
+  Vector3 velocity{};          // metres / second
+  std::optional<double> mass;  // kilograms; default density * r^3 (the course's formula)
 
   bool operator==(const SphereSpec&) const = default;
 };
@@ -93,9 +93,9 @@ struct FrameLoopSpec {
 struct Scene {
   std::string name;
   std::string description;
-  double dt = 1e-4;                  // seconds (the course's deltaTime)
-  Vector3 gravity{0, -9.8, 0};       // metres / second^2
-  double viscous_coef = 3.4e-4;      // kg / s, linear drag on every free particle
+  double dt = 1e-4;              // seconds (the course's deltaTime)
+  Vector3 gravity{0, -9.8, 0};   // metres / second^2
+  double viscous_coef = 3.4e-4;  // kg / s, linear drag on every free particle
   std::optional<ClothSpec> cloth;
   std::optional<SpheresSpec> spheres;
   std::optional<FrameLoopSpec> frame_loop;  // absent: no per-frame work (the 2022 loop)

@@ -106,7 +106,7 @@ class TraceReader {
   bool readLine(bool& ended_with_newline);
 
   std::string path_;
-  std::unique_ptr<std::ifstream> owned_;  // set when the reader opened the file itself
+  std::unique_ptr<std::ifstream> owned_;   // set when the reader opened the file itself
   std::unique_ptr<GzipInputBuffer> gzip_;  // set for gzip-compressed input
   std::unique_ptr<std::istream> gzip_stream_;
   std::istream* in_ = nullptr;

@@ -1,5 +1,5 @@
-#include "clothref/scene/make_world.h"
 #include "clothref/verify/verify.h"
+#include "clothref/scene/make_world.h"
 
 #include <fmt/format.h>
 
@@ -10,8 +10,8 @@
 #include <limits>
 #include <random>
 
-#include "clothref/verify/analytic.h"
 #include "clothref/core/world.h"
+#include "clothref/verify/analytic.h"
 
 namespace clothref {
 
@@ -64,7 +64,6 @@ double unitRoundoff(Precision precision) {
   return precision == Precision::Float ? std::numeric_limits<float>::epsilon() / 2
                                        : std::numeric_limits<double>::epsilon() / 2;
 }
-
 
 template <typename Column>
 Eigen::Vector3d xyz(const Column& column) {
@@ -196,8 +195,9 @@ std::vector<CheckRow> closedFormChecks() {
       for (Method method : kAllMethods) {
         const Trajectory trajectory =
             simulateParticle(precision, scene, method, scene.dt, steps, exact.particle);
-        const double tolerance = truncationBound(exact, methodInfo(method).order, trajectory.dt, steps) +
-                                 roundoffBound(exact, precision, trajectory.dt, steps);
+        const double tolerance =
+            truncationBound(exact, methodInfo(method).order, trajectory.dt, steps) +
+            roundoffBound(exact, precision, trajectory.dt, steps);
         rows.push_back(makeRow(
             fmt::format("{}: max |x - x_exact| (m), dt {:g} s, {:g} s", name, scene.dt, kHorizon),
             std::string(methodName(method)), precision, 0, maxError(trajectory, exact), tolerance));
@@ -797,8 +797,8 @@ std::vector<CheckRow> courseFactRows(const CourseFacts& facts) {
     }
     const std::string type(enumName(kSpringTypeNames, types[t]));
     rows.push_back(factRow(name, type + " springs", f, counts[t], count));
-    rows.push_back(factRow(name, type + " rest length, largest |L - L_course| (m)", f, 0,
-                           rest_error));
+    rows.push_back(
+        factRow(name, type + " rest length, largest |L - L_course| (m)", f, 0, rest_error));
   }
   double mass_error = 0;
   const Particles<float>& balls = world.spheres->particles;
@@ -813,8 +813,8 @@ std::vector<CheckRow> courseFactRows(const CourseFacts& facts) {
   simulateOneStep(stepped);
   double sphere_acceleration = 0;
   for (int i = 0; i < stepped.spheres->size(); ++i)
-    sphere_acceleration = std::max(
-        sphere_acceleration, xyz(stepped.spheres->particles.acceleration.col(i)).norm());
+    sphere_acceleration =
+        std::max(sphere_acceleration, xyz(stepped.spheres->particles.acceleration.col(i)).norm());
   if (facts.sphere_force)
     rows.push_back(makeRow(name + " fact: sphere |a| after one evaluation = |g| (m/s^2)", "-", f,
                            9.8, sphere_acceleration, 1e-5));
@@ -827,8 +827,8 @@ std::vector<CheckRow> courseFactRows(const CourseFacts& facts) {
     corner_motion = std::max(corner_motion, (xyz(stepped.cloth->particles.position.col(corner)) -
                                              xyz(cloth.position.col(corner)))
                                                 .norm());
-  rows.push_back(factRow(name, "fixed corners' largest displacement after 10 steps (m)", f, 0,
-                         corner_motion));
+  rows.push_back(
+      factRow(name, "fixed corners' largest displacement after 10 steps (m)", f, 0, corner_motion));
   return rows;
 }
 
@@ -837,8 +837,12 @@ std::vector<CheckRow> courseFactRows(const CourseFacts& facts) {
 std::vector<CheckRow> courseFactChecks() {
   std::vector<CheckRow> rows;
   const CourseFacts editions[] = {
-      {"course2022", 0, 25000,
-       {{-0.75, 1, -0.75}, {0.75, 1, -0.75}, {-0.75, 1, 0.75}, {0.75, 1, 0.75}}, 0.5, true},
+      {"course2022",
+       0,
+       25000,
+       {{-0.75, 1, -0.75}, {0.75, 1, -0.75}, {-0.75, 1, 0.75}, {0.75, 1, 0.75}},
+       0.5,
+       true},
       {"course2024", 1, 20000, {{0, 0, 0}}, 1, false},
   };
   for (const CourseFacts& facts : editions) {

@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "clothref/core/integrator.h"
 #include "clothref/base/precision.h"
+#include "clothref/core/integrator.h"
 
 namespace clothref {
 

@@ -29,7 +29,6 @@ const std::map<std::string, std::vector<std::string>>& stubsOfFile() {
   return stubs;
 }
 
-
 // Lines that hold an Eigen expression in an `auto` variable (e.g. `auto d = p.position(i) -
 // p.position(j);`): it may refer to temporaries that are gone when it is read.
 std::vector<std::string> autoExpressionLines(const std::string& path) {
@@ -179,8 +178,10 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
   if (!options.keep_work.empty()) {
     std::error_code error;
     fs::create_directories(options.keep_work, error);
-    fs::copy(scratch.path(), options.keep_work, fs::copy_options::recursive | fs::copy_options::overwrite_existing, error);
-    if (error) report.notes.push_back("--keep-work: could not copy the scratch folder: " + error.message());
+    fs::copy(scratch.path(), options.keep_work,
+             fs::copy_options::recursive | fs::copy_options::overwrite_existing, error);
+    if (error)
+      report.notes.push_back("--keep-work: could not copy the scratch folder: " + error.message());
   }
   report.seconds["total"] = since(start);
   return report;
