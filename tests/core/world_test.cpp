@@ -145,8 +145,12 @@ TEST(World, FrameLoopActsAtTheStartOfEachFrameOnly) {
     const Vec4<double> moved_with = frame_start ? held : sphere_v;
     EXPECT_EQ(world.spheres->particles.position.col(0), sphere_x + moved_with * 1e-4)
         << "step " << i;
-    if (i >= 7 && i < 10) EXPECT_EQ(sphere_v, knocked) << "step " << i;
-    if (frame_start) EXPECT_EQ(world.cloth->particles.mass[24], 0.0) << "step " << i;
+    if (i >= 7 && i < 10) {
+      EXPECT_EQ(sphere_v, knocked) << "step " << i;
+    }
+    if (frame_start) {
+      EXPECT_EQ(world.cloth->particles.mass[24], 0.0) << "step " << i;
+    }
   }
   EXPECT_EQ(world.cloth->particles.velocity.col(24), Vec4<double>::Zero());
   // without the frame loop the same knock stays

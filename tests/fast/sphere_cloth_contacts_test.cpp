@@ -66,7 +66,9 @@ long expectSameBits(const Spheres<T>& spheres, const Cloth<T>& cloth, T restitut
         << fast::simdPathName(path);
     EXPECT_EQ(differingBits(fast_cloth.particles, oracle_cloth.particles), 0)
         << fast::simdPathName(path);
-    if (tested >= 0) EXPECT_EQ(path_tested, tested) << fast::simdPathName(path);
+    if (tested >= 0) {
+      EXPECT_EQ(path_tested, tested) << fast::simdPathName(path);
+    }
     tested = path_tested;
   }
   return tested;
