@@ -230,7 +230,9 @@ void probeIntegrate(const ProbeMessage& in, ProbeMessage& out) {
     const auto& clothMass = in.f(key("c.mass", k));
     const auto& sphereMass = in.f(key("s.mass", k));
     MiniWorld w{Particles(static_cast<int>(clothMass.size())),
-                Particles(static_cast<int>(sphereMass.size()))};
+                Particles(static_cast<int>(sphereMass.size())),
+                {},
+                {}};
     load(w.cloth.position(), in.f(key("c.pos", k)));
     load(w.cloth.velocity(), in.f(key("c.vel", k)));
     loadMass(w.cloth, clothMass);
@@ -325,6 +327,19 @@ void probeWholeRun(const ProbeMessage& in, ProbeMessage& out) {
   };
   record();
   for (std::int64_t step = 1; step <= steps; ++step) {
+#ifdef CLOTHREF_GRADER_EDITION_2024
+    // the 2024 main loop's per-frame work (docs/course.md §3), every 40 steps (a 60 Hz frame):
+    // re-pin the corners, then spheres.setVelocity(0, 0), as clothref's course2024 does
+    if ((step - 1) % 40 == 0) {
+      constexpr int n = particlesPerEdge;
+      for (int corner : {0, n - 1, n * (n - 1), n * n - 1}) {
+        cloth.particles().mass(corner) = 0.0f;
+        cloth.particles().velocity(corner).setZero();
+        cloth.particles().acceleration(corner).setZero();
+      }
+      spheres.setVelocity(0, Eigen::Vector4f::Zero());
+    }
+#endif
     simulateOneStep();
     integrator.integrate(particles, simulateOneStep);
     if (step % stride == 0 || step == steps) record();
