@@ -1,8 +1,6 @@
 #include "clothref/golden/golden.h"
 #include "clothref/scene/make_world.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <fstream>
 #include <iterator>

@@ -1,8 +1,6 @@
 #include "clothref/record/record.h"
 
 #include <chrono>
-#include <cmath>
-#include <iterator>
 
 #include <fmt/format.h>
 
