@@ -57,6 +57,13 @@ struct GradeReport {
   double score = 0, max_score = 0;
   std::map<std::string, double> stub_score, stub_max;  // per course stub
   std::map<std::string, double> seconds;               // "compile", "link", "probes", "total"
+  // One-word outcome for batch summaries (CSV): "graded" when every probe group answered, else
+  // the worst thing that happened ("compile-error", "link-error", "crashed", "timed-out", ...;
+  // the full list and its order are in docs/grading.md, "Verdicts").
+  std::string verdict = "graded";
+  // Which isolation the student processes had, e.g. "bubblewrap (net, pid, mount namespaces),
+  // uid 65534, rlimits" or "rlimits only" (docs/grading.md, "Sandbox").
+  std::string isolation;
 };
 
 }  // namespace clothref::grader
