@@ -2,6 +2,8 @@
 #include "clothref/scene/make_world.h"
 #include "clothref/trace/format.h"
 
+#include <fstream>
+#include <iterator>
 #include <sstream>
 #include <vector>
 
@@ -130,6 +132,32 @@ TEST(TraceCli, DefaultRunSummarisesOnStderr) {
             std::string::npos)
       << result.output;
   EXPECT_NE(result.output.find("state stayed finite"), std::string::npos);
+}
+
+TEST(TraceCli, ThreadsGiveTheSameBytes) {
+  // a 100 x 100 cloth: big enough that the spring sweeps really are split over the threads
+  Scene scene = *findBuiltinScene("course2022");
+  scene.name = "course2022-100";
+  scene.cloth->grid->particles_per_edge = 100;
+  scene.cloth->fixed = {0, 99};
+  const test::TempDir dir;
+  {
+    std::ofstream file(dir.file("big.json"));
+    file << sceneToJson(scene).dump();
+  }
+  std::string traces[2];
+  for (int threads : {1, 2}) {
+    const std::string out = dir.file("t" + std::to_string(threads) + ".jsonl");
+    const auto result = test::runCli("trace -q --scene " + dir.file("big.json") +
+                                     " --steps 30 --stride 10 --integrator rk4 --threads " +
+                                     std::to_string(threads) + " -o " + out);
+    ASSERT_EQ(result.exit_code, 0) << result.output;
+    std::ifstream in(out);
+    traces[threads - 1].assign(std::istreambuf_iterator<char>(in), {});
+  }
+  EXPECT_GT(traces[0].size(), 100000u);
+  EXPECT_TRUE(traces[0] == traces[1]) << "the 2-thread trace differs from the 1-thread one";
+  EXPECT_EQ(test::runCli("trace --threads 0 -o " + dir.file("x.jsonl")).exit_code, 2);
 }
 
 TEST(TraceCli, BadFlagsExit2WithOneLine) {

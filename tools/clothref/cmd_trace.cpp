@@ -30,6 +30,7 @@ struct TraceOptions {
   std::string precision = "float";
   std::string output = "-";
   bool quiet = false;
+  int threads = 1;
 };
 
 // Passes the trace through to `target` and reports progress from its lines: line 1 is the
@@ -88,7 +89,7 @@ int runTrace(const TraceOptions& options) {
                       progressStyleForStderr(options.quiet), std::cerr);
     ProgressStreambuf counting(output.stream().rdbuf(), settings.stride, progress);
     std::ostream traced(&counting);
-    summary = writeTrace(scene, settings, traced);
+    summary = writeTrace(scene, settings, traced, options.threads);
     traced.flush();
     if (!traced) output.stream().setstate(std::ios::badbit);  // commit() then reports it
   }
@@ -133,6 +134,11 @@ Command addTraceCommand(CLI::App& root) {
       ->check(oneOf(kPrecisionNames))
       ->capture_default_str();
   app->add_option("-o,--output", options->output, "Output file, '-' for stdout")
+      ->capture_default_str();
+  app->add_option("--threads", options->threads,
+                  "Threads for the spring sweeps of cloths with 100 or more particles per edge "
+                  "(the trace is the same bytes at any count)")
+      ->check(CLI::Range(1, 64))
       ->capture_default_str();
   app->add_flag("-q,--quiet", options->quiet,
                 "No progress on stderr (shown for runs over a second: one updating line on a "

@@ -39,9 +39,11 @@ nlohmann::ordered_json traceHeader(const Scene& scene, const TraceSettings& sett
 namespace {
 
 template <typename T>
-TraceSummary run(const Scene& scene, const TraceSettings& settings, std::ostream& out) {
+TraceSummary run(const Scene& scene, const TraceSettings& settings, std::ostream& out,
+                 int threads) {
   const auto start = std::chrono::steady_clock::now();
   World<T> world = makeWorld<T>(scene, settings.method, settings.dt);
+  setExecution(world, world.execution.use_fast, world.execution.simd, threads);
   out << traceHeader(scene, settings).dump() << '\n';
   TraceSummary summary;
   std::string line;
@@ -69,9 +71,10 @@ TraceSummary run(const Scene& scene, const TraceSettings& settings, std::ostream
 
 }  // namespace
 
-TraceSummary writeTrace(const Scene& scene, const TraceSettings& settings, std::ostream& out) {
+TraceSummary writeTrace(const Scene& scene, const TraceSettings& settings, std::ostream& out,
+                        int threads) {
   return withPrecision(settings.precision,
-                       [&]<typename T>() { return run<T>(scene, settings, out); });
+                       [&]<typename T>() { return run<T>(scene, settings, out, threads); });
 }
 
 }  // namespace clothref

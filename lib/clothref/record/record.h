@@ -42,7 +42,10 @@ struct TraceSummary {
 // The header object of a trace.
 nlohmann::ordered_json traceHeader(const Scene& scene, const TraceSettings& settings);
 
-// Runs `scene` with `settings` and writes the whole trace to `out`.
-TraceSummary writeTrace(const Scene& scene, const TraceSettings& settings, std::ostream& out);
+// Runs `scene` with `settings` and writes the whole trace to `out`. `threads` (>= 1) share the
+// spring sweeps of cloths of kThreadedGridEdge or more particles per edge; the trace is the same
+// bytes at any thread count, so it is not a setting of the run and is not in the header.
+TraceSummary writeTrace(const Scene& scene, const TraceSettings& settings, std::ostream& out,
+                        int threads = 1);
 
 }  // namespace clothref
