@@ -36,6 +36,14 @@ inline void writeLines(const std::string& path, const std::vector<std::string>& 
     out << lines[i] << (i + 1 < lines.size() || final_newline ? "\n" : "");
 }
 
+// A method's name as a GoogleTest parameter name (letters, digits and '_' only).
+inline std::string methodTestName(Method method) {
+  std::string name(methodName(method));
+  for (char& c : name)
+    if (c == '-') c = '_';
+  return name;
+}
+
 // A fresh directory named after the running test, removed when this goes out of scope.
 class TempDir {
  public:

@@ -14,10 +14,10 @@
 namespace clothref {
 namespace {
 
-MethodChoice method(const char* name) {
-  MethodChoice m;
-  EXPECT_TRUE(parseMethodChoice(name, m)) << name;
-  return m;
+Method method(const char* name) {
+  const std::optional<Method> m = parseMethod(name);
+  EXPECT_TRUE(m) << name;
+  return m.value_or(Method::Explicit);
 }
 
 TEST(StabilityTheory, TextbookLimitsOnOneMode) {
@@ -58,7 +58,7 @@ class SpringStability : public ::testing::TestWithParam<std::tuple<const char*, 
 TEST_P(SpringStability, MeasuredAgreesWithTheoryWithinOnePercent) {
   const auto [scene_name, method_name] = GetParam();
   const Scene& scene = *findBuiltinScene(scene_name);
-  const MethodChoice m = method(method_name);
+  const Method m = method(method_name);
   const TheoryLimit theory = theoryLimit(m, sceneModes(scene));
   for (Precision precision : {Precision::Float, Precision::Double}) {
     const MeasuredLimit measured =

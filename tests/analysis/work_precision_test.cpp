@@ -16,10 +16,10 @@
 namespace clothref {
 namespace {
 
-MethodChoice method(const char* name) {
-  MethodChoice m;
-  EXPECT_TRUE(parseMethodChoice(name, m)) << name;
-  return m;
+Method method(const char* name) {
+  const std::optional<Method> m = parseMethod(name);
+  EXPECT_TRUE(m) << name;
+  return m.value_or(Method::Explicit);
 }
 
 SweepSettings springSettings(std::vector<int> substeps, int repeats = 1) {
@@ -84,10 +84,10 @@ TEST(WorkPrecision, CountsAndTimingStatisticsAreConsistent) {
   const SweepSettings settings = springSettings({20}, 5);
   const SweepReference reference = sweepReference(scene, settings);
   for (const char* name : {"explicit", "implicit", "rk4", "backward-euler"}) {
-    const MethodChoice m = method(name);
+    const Method m = method(name);
     const SweepPoint p = sweepPoint(scene, m, Precision::Double, 20, settings, reference);
     EXPECT_EQ(p.steps, 200);  // 1 s at 5 ms
-    EXPECT_EQ(p.evaluations, 200 * m.evaluationsPerStep()) << name;
+    EXPECT_EQ(p.evaluations, 200 * methodInfo(m).evaluations) << name;
     EXPECT_EQ(p.runs, 5);
     EXPECT_LE(p.seconds_min, p.seconds_median);
     EXPECT_LE(p.seconds_median, p.seconds_max);
@@ -98,7 +98,7 @@ TEST(WorkPrecision, CountsAndTimingStatisticsAreConsistent) {
     // the final error's size order; both are positive
     EXPECT_GT(*p.error_final, 0.0);
     EXPECT_GT(*p.error_rms, 0.0);
-    EXPECT_EQ(p.cg_iterations.has_value(), m.backward_euler) << name;
+    EXPECT_EQ(p.cg_iterations.has_value(), m == Method::BackwardEuler) << name;
   }
 }
 

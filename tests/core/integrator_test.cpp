@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "clothref/core/world.h"
+#include "test_util.h"
 
 namespace clothref {
 namespace {
@@ -45,6 +46,10 @@ std::array<double, 2> expectedStep(Method method, const Oscillator& o) {
       const double k3x = h * (v + k2v / 2), k3v = h * a(x + k2x / 2);
       const double k4x = h * (v + k3v), k4v = h * a(x + k3x);
       return {x + (k1x + 2 * k2x + 2 * k3x + k4x) / 6, v + (k1v + 2 * k2v + 2 * k3v + k4v) / 6};
+    }
+    case Method::BackwardEuler: {  // v1 = v + h a(x + h v1), solved: the problem is linear
+      const double v1 = (v + h * a(x)) / (1 + h * h * w2);
+      return {x + h * v1, v1};
     }
   }
   return {0, 0};
@@ -97,7 +102,7 @@ TEST_P(EveryMethod, FixedParticlesNeverMoveUnderGravity) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Integrators, EveryMethod, ::testing::ValuesIn(kAllMethods),
-                         [](const auto& info) { return std::string(methodName(info.param)); });
+                         [](const auto& info) { return test::methodTestName(info.param); });
 
 TEST(Method, NamesRoundTrip) {
   for (Method method : kAllMethods) {

@@ -80,6 +80,8 @@ std::array<T, 2> courseStep(Method method, T x0, T v0, T a, T h) {
       return {x0 + (k1x + T(2) * k2x + T(2) * k3x + k4x) / T(6),
               v0 + (k1v + T(2) * k2v + T(2) * k3v + k4v) / T(6)};
     }
+    case Method::BackwardEuler:  // not an integrator stub: its CG is checked in tests/solver
+      break;
   }
   return {T(0), T(0)};
 }
@@ -97,6 +99,8 @@ std::array<long double, 2> exactStep(Method method, long double x0, long double 
     case Method::Midpoint:
     case Method::Rk4:
       return {x0 + v0 * h + a * h * h / 2, v1};
+    case Method::BackwardEuler:
+      break;
   }
   return {0, 0};
 }
@@ -152,8 +156,9 @@ TEST(OneStepSetUp, TheMethodsAreDistinguishable) {
   EXPECT_GT(std::fabs(double(symplectic_x - exact_x)), 1e-4);
 }
 
-INSTANTIATE_TEST_SUITE_P(EveryMethod, OneStep, ::testing::ValuesIn(kAllMethods),
-                         [](const auto& info) { return std::string(methodName(info.param)); });
+// the integrator stubs' arithmetic; backward Euler's CG is checked in tests/solver
+INSTANTIATE_TEST_SUITE_P(EveryMethod, OneStep, ::testing::ValuesIn(kIntegratorMethods),
+                         [](const auto& info) { return test::methodTestName(info.param); });
 
 }  // namespace
 }  // namespace clothref

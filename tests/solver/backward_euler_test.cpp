@@ -13,8 +13,9 @@
 #include <new>
 #include <vector>
 
-#include "clothref/analysis/simulation.h"
 #include "clothref/analysis/stability.h"
+#include "clothref/scene/make_world.h"
+#include "clothref/solver/backward_euler.h"
 #include "clothref/verify/analytic.h"
 #include "clothref/verify/verify.h"
 
@@ -47,26 +48,24 @@ TEST(BackwardEuler, OneStepOnALinearSpringIsTheImplicitSolve) {
   const double kappa = problem.oscillator.stiffness / problem.oscillator.mass;
   const double delta = problem.oscillator.damping / problem.oscillator.mass;
   for (double h : {1e-3, 0.05, 0.5}) {
-    Simulation<double> sim =
-        makeSimulation<double>(spring, MethodChoice{Method::Explicit, true}, h);
+    World<double> sim = makeWorld<double>(spring, Method::BackwardEuler, h);
     const double x_eq = problem.rest_length;
     double x = 1.2, v = 0;
     for (int s = 0; s < 5; ++s) {
-      sim.advance();
+      step(sim);
       v = (v - h * kappa * (x - x_eq)) / (1 + h * delta + h * h * kappa);
       x = x + h * v;
-      EXPECT_NEAR(sim.world.cloth->particles.position(0, 1), x, 1e-12 * (1 + std::abs(x))) << h;
-      EXPECT_NEAR(sim.world.cloth->particles.velocity(0, 1), v, 1e-12 * (1 + std::abs(v))) << h;
+      EXPECT_NEAR(sim.cloth->particles.position(0, 1), x, 1e-12 * (1 + std::abs(x))) << h;
+      EXPECT_NEAR(sim.cloth->particles.velocity(0, 1), v, 1e-12 * (1 + std::abs(v))) << h;
     }
   }
 }
 
 template <typename T>
 void expectAgreesWithEigen(double tolerance) {
-  Simulation<T> sim =
-      makeSimulation<T>(scene("course2022"), MethodChoice{Method::Explicit, true}, 2e-3);
-  for (int s = 0; s < 3; ++s) sim.advance();  // a sagging, moving cloth
-  const BackwardEulerSolver<T>& solver = sim.solver;
+  World<T> sim = makeWorld<T>(scene("course2022"), Method::BackwardEuler, 2e-3);
+  for (int s = 0; s < 3; ++s) step(sim);  // a sagging, moving cloth
+  const BackwardEulerSolver<T>& solver = *backwardEulerSolver(sim);
   Eigen::ConjugateGradient<Eigen::SparseMatrix<T, Eigen::RowMajor>, Eigen::Lower | Eigen::Upper,
                            Eigen::DiagonalPreconditioner<T>>
       eigen;
@@ -89,16 +88,15 @@ TEST(BackwardEuler, ConjugateGradientAgreesWithEigens) {
 }
 
 TEST(BackwardEuler, FixedParticlesStayPut) {
-  Simulation<float> sim =
-      makeSimulation<float>(scene("course2022"), MethodChoice{Method::Explicit, true}, 4e-3);
-  const Mat4X<float> start = sim.world.cloth->particles.position;
-  for (int s = 0; s < 50; ++s) sim.advance();  // 0.2 s: before the spheres arrive
+  World<float> sim = makeWorld<float>(scene("course2022"), Method::BackwardEuler, 4e-3);
+  const Mat4X<float> start = sim.cloth->particles.position;
+  for (int s = 0; s < 50; ++s) step(sim);  // 0.2 s: before the spheres arrive
   for (int corner : {0, 24, 600, 624}) {
-    EXPECT_EQ(sim.world.cloth->particles.velocity.col(corner).norm(), 0.0f);
-    EXPECT_EQ(sim.world.cloth->particles.position.col(corner), start.col(corner));
+    EXPECT_EQ(sim.cloth->particles.velocity.col(corner).norm(), 0.0f);
+    EXPECT_EQ(sim.cloth->particles.position.col(corner), start.col(corner));
   }
   // while the free cloth fell
-  EXPECT_LT(sim.world.cloth->particles.position(1, 312), -0.01f);
+  EXPECT_LT(sim.cloth->particles.position(1, 312), -0.01f);
 }
 
 TEST(BackwardEuler, IsFirstOrderOnTheDampedSpring) {
@@ -106,14 +104,13 @@ TEST(BackwardEuler, IsFirstOrderOnTheDampedSpring) {
   const SpringProblem problem = springProblem(spring);
   std::vector<double> dts, errors;
   for (double dt : {1e-2, 5e-3, 2.5e-3, 1.25e-3, 6.25e-4}) {
-    Simulation<double> sim =
-        makeSimulation<double>(spring, MethodChoice{Method::Explicit, true}, dt);
+    World<double> sim = makeWorld<double>(spring, Method::BackwardEuler, dt);
     const int steps = static_cast<int>(std::lround(1.0 / dt));
     double worst = 0;
     for (int s = 1; s <= steps; ++s) {
-      sim.advance();
+      step(sim);
       const double exact = springState(problem, s * dt).position[0];
-      worst = std::max(worst, std::abs(sim.world.cloth->particles.position(0, 1) - exact));
+      worst = std::max(worst, std::abs(sim.cloth->particles.position(0, 1) - exact));
     }
     dts.push_back(dt);
     errors.push_back(worst);
@@ -127,22 +124,19 @@ TEST(BackwardEuler, StaysStableOnCourse2022AtTenTimesTheExplicitLimit) {
   const StabilityCriterion criterion = stabilityCriterion(course);
   // the largest limit of the explicit-type methods (RK4's, about 3.7e-4 s) times 10, rounded up
   const double dt = 4e-3;
-  EXPECT_TRUE(
-      runIsStable(course, MethodChoice{Method::Explicit, true}, Precision::Float, dt, criterion));
-  EXPECT_TRUE(
-      runIsStable(course, MethodChoice{Method::Explicit, true}, Precision::Double, dt, criterion));
+  EXPECT_TRUE(runIsStable(course, Method::BackwardEuler, Precision::Float, dt, criterion));
+  EXPECT_TRUE(runIsStable(course, Method::BackwardEuler, Precision::Double, dt, criterion));
   // the criterion can fail: the explicit methods blow up there
-  EXPECT_FALSE(
-      runIsStable(course, MethodChoice{Method::Rk4, false}, Precision::Float, dt, criterion));
+  EXPECT_FALSE(runIsStable(course, Method::Rk4, Precision::Float, dt, criterion));
 }
 
 template <typename T>
 long allocationsPerSteps(const char* name, int steps) {
-  Simulation<T> sim = makeSimulation<T>(scene(name), MethodChoice{Method::Explicit, true}, 2e-3);
-  sim.advance();
-  sim.advance();
+  World<T> sim = makeWorld<T>(scene(name), Method::BackwardEuler, 2e-3);
+  step(sim);
+  step(sim);
   const long before = g_allocations.load();
-  for (int s = 0; s < steps; ++s) sim.advance();
+  for (int s = 0; s < steps; ++s) step(sim);
   return g_allocations.load() - before;
 }
 
@@ -152,7 +146,7 @@ TEST(BackwardEuler, AllocatesNothingPerStepOnceSized) {
   EXPECT_EQ(allocationsPerSteps<double>("spring", 20), 0);
   // the counter counts: building a world allocates
   const long before = g_allocations.load();
-  makeSimulation<float>(scene("spring"), MethodChoice{Method::Explicit, true});
+  makeWorld<float>(scene("spring"), Method::BackwardEuler);
   EXPECT_GT(g_allocations.load() - before, 0);
 }
 

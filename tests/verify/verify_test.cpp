@@ -51,8 +51,8 @@ TEST(FitOrder, RecoversThePowerOfAnExactPowerLaw) {
 
 TEST(ClosedForm, EveryMethodSceneAndPrecisionIsWithinItsBound) {
   const std::vector<CheckRow> rows = closedFormChecks();
-  // 3 scenes x 2 precisions x 5 methods
-  EXPECT_EQ(rows.size(), 30u);
+  // 3 scenes x 2 precisions x every method
+  EXPECT_EQ(rows.size(), 3 * 2 * kAllMethods.size());
   expectAllPass(rows);
   // the bounds are not vacuous: every error is a measurable fraction of its bound in double
   for (const CheckRow& row : rows) {
@@ -64,7 +64,7 @@ TEST(ClosedForm, EveryMethodSceneAndPrecisionIsWithinItsBound) {
 
 TEST(Convergence, DoubleOrdersMatchTheMethods) {
   const std::vector<ConvergenceStudy> studies = convergenceStudies();
-  ASSERT_EQ(studies.size(), 10u);
+  ASSERT_EQ(studies.size(), 2 * kAllMethods.size());
   for (const ConvergenceStudy& study : studies) {
     SCOPED_TRACE(std::string(methodName(study.method)) + " " +
                  std::string(precisionName(study.precision)));
@@ -105,18 +105,23 @@ TEST(CourseFacts, BothCourseScenesHaveEveryFact) {
 }
 
 // The expected values tell the methods apart by far more than the tolerances: explicit grows,
-// implicit decays, midpoint grows slowly, rk4 decays slowly (in double), symplectic is bounded.
+// implicit decays, midpoint grows slowly, rk4 decays slowly (in double), symplectic is bounded,
+// backward Euler decays as 1 / (1 + theta^2) per step: close to the course's implicit
+// (1 - theta^2 + theta^4) but theta^6 per step apart.
 TEST(Energy, ExpectationsSeparateTheMethods) {
   std::map<std::string, CheckRow> doubles;
   for (const CheckRow& row : energyChecks())
     if (row.precision == Precision::Double) doubles[row.method] = row;
-  ASSERT_EQ(doubles.size(), 5u);
+  ASSERT_EQ(doubles.size(), kAllMethods.size());
   EXPECT_GT(doubles["explicit"].expected, 5.0);
   EXPECT_LT(doubles["implicit"].expected, 0.2);
   EXPECT_GT(doubles["midpoint"].expected - 1, 100 * doubles["midpoint"].tolerance);
   EXPECT_GT(1 - doubles["rk4"].expected, 100 * doubles["rk4"].tolerance);
   EXPECT_EQ(doubles["symplectic"].rule, CheckRule::AtMost);
   EXPECT_LT(doubles["symplectic"].expected, 0.2);
+  EXPECT_LT(doubles["backward-euler"].expected, doubles["implicit"].expected);
+  EXPECT_GT(doubles["implicit"].expected - doubles["backward-euler"].expected,
+            100 * doubles["implicit"].tolerance);
   // a forward-Euler-like growth would be far outside the symplectic bound
   EXPECT_GT(std::pow(1.04, 1000) - 1, 10 * doubles["symplectic"].expected);
 }

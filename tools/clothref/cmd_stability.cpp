@@ -8,6 +8,7 @@
 #include <memory>
 #include <optional>
 
+#include "analysis_options.h"
 #include "clothref/analysis/stability.h"
 #include "clothref/io/error.h"
 #include "commands.h"
@@ -17,39 +18,17 @@ namespace clothref::cli {
 namespace {
 
 struct StabilityOptions {
-  std::vector<std::string> scenes;
-  std::vector<std::string> methods;
-  std::string precision = "both";
+  AnalysisSelection selection;
   std::optional<double> high;
   bool json = false;
   bool quiet = false;
 };
 
 int runStability(const StabilityOptions& options) {
-  std::vector<Scene> scenes;
-  const std::vector<std::string> names =
-      options.scenes.empty() ? std::vector<std::string>{"spring", "spring-undamped", "course2022"}
-                             : options.scenes;
-  for (const std::string& name : names) scenes.push_back(loadScene(name));
-  std::vector<MethodChoice> methods;
-  if (options.methods.empty()) methods = analysisMethods();
-  for (const std::string& name : options.methods) {
-    MethodChoice method;
-    if (!parseMethodChoice(name, method))
-      throw InputError("--method: unknown method '" + name +
-                       "' (explicit, implicit, midpoint, rk4, symplectic, backward-euler)");
-    methods.push_back(method);
-  }
-  std::vector<Precision> precisions;
-  if (options.precision == "both") {
-    precisions = {Precision::Float, Precision::Double};
-  } else {
-    const std::optional<Precision> precision = parseEnum(kPrecisionNames, options.precision);
-    if (!precision)
-      throw InputError("--precision: must be float, double or both, got '" + options.precision +
-                       "'");
-    precisions = {*precision};
-  }
+  const std::vector<Scene> scenes =
+      selectedScenes(options.selection, {"spring", "spring-undamped", "course2022"});
+  const std::vector<Method> methods = selectedMethods(options.selection);
+  const std::vector<Precision> precisions = selectedPrecisions(options.selection);
   const auto progress = [&options](const std::string& line) {
     if (!options.quiet) std::cerr << line << '\n';
   };
@@ -72,12 +51,7 @@ Command addStabilityCommand(CLI::App& root) {
       "Largest stable dt per method and scene: measured by bisection, predicted from each "
       "method's amplification on the scene's linear modes (docs/methods.md)");
   auto options = std::make_shared<StabilityOptions>();
-  app->add_option("--scene", options->scenes,
-                  "Scene name or file, repeatable (default: spring, spring-undamped, course2022)");
-  app->add_option("--method", options->methods,
-                  "Method, repeatable (default: all six, backward-euler included)");
-  app->add_option("--precision", options->precision, "float | double | both")
-      ->capture_default_str();
+  addAnalysisSelection(app, options->selection, "spring, spring-undamped, course2022");
   app->add_option("--high", options->high,
                   "Upper end of the dt search (s), instead of the scene's (1 s for the spring "
                   "scenes, 0.02 s otherwise)");

@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 
+#include "analysis_options.h"
 #include "clothref/analysis/work_precision.h"
 #include "clothref/io/error.h"
 #include "clothref/io/output_file.h"
@@ -17,9 +18,7 @@ namespace clothref::cli {
 namespace {
 
 struct SweepOptions {
-  std::vector<std::string> scenes;
-  std::vector<std::string> methods;
-  std::string precision = "both";
+  AnalysisSelection selection;
   int repeats = 5;
   std::vector<int> substeps;
   std::string csv;
@@ -28,29 +27,9 @@ struct SweepOptions {
 };
 
 int runSweep(const SweepOptions& options) {
-  std::vector<Scene> scenes;
-  const std::vector<std::string> names =
-      options.scenes.empty() ? std::vector<std::string>{"spring", "course2022"} : options.scenes;
-  for (const std::string& name : names) scenes.push_back(loadScene(name));
-  std::vector<MethodChoice> methods;
-  if (options.methods.empty()) methods = analysisMethods();
-  for (const std::string& name : options.methods) {
-    MethodChoice method;
-    if (!parseMethodChoice(name, method))
-      throw InputError("--method: unknown method '" + name +
-                       "' (explicit, implicit, midpoint, rk4, symplectic, backward-euler)");
-    methods.push_back(method);
-  }
-  std::vector<Precision> precisions;
-  if (options.precision == "both") {
-    precisions = {Precision::Float, Precision::Double};
-  } else {
-    const std::optional<Precision> precision = parseEnum(kPrecisionNames, options.precision);
-    if (!precision)
-      throw InputError("--precision: must be float, double or both, got '" + options.precision +
-                       "'");
-    precisions = {*precision};
-  }
+  const std::vector<Scene> scenes = selectedScenes(options.selection, {"spring", "course2022"});
+  const std::vector<Method> methods = selectedMethods(options.selection);
+  const std::vector<Precision> precisions = selectedPrecisions(options.selection);
   if (options.repeats < 1)
     throw InputError(fmt::format("--repeats: must be >= 1 (got {})", options.repeats));
   for (int s : options.substeps)
@@ -95,11 +74,7 @@ Command addSweepCommand(CLI::App& root) {
       "Work-precision data: error, time per simulated second (median/min/max of --repeats runs), "
       "evaluations and stability for every method, precision and dt (docs/methods.md)");
   auto options = std::make_shared<SweepOptions>();
-  app->add_option("--scene", options->scenes,
-                  "Scene name or file, repeatable (default: spring, course2022)");
-  app->add_option("--method", options->methods, "Method, repeatable (default: all six)");
-  app->add_option("--precision", options->precision, "float | double | both")
-      ->capture_default_str();
+  addAnalysisSelection(app, options->selection, "spring, course2022");
   app->add_option("--repeats", options->repeats, "Timed runs per point (>= 5 for the charts)")
       ->capture_default_str();
   app->add_option("--substeps", options->substeps,

@@ -23,9 +23,10 @@ std::array<Complex, 2> modeEigenvalues(const Mode& mode) {
   return {(-mode.delta + root) / 2.0, (-mode.delta - root) / 2.0};
 }
 
-Complex amplification(const MethodChoice& method, Complex mu) {
-  if (method.backward_euler) return 1.0 / (1.0 - mu);
-  switch (method.core) {
+Complex amplification(Method method, Complex mu) {
+  switch (method) {
+    case Method::BackwardEuler:
+      return 1.0 / (1.0 - mu);
     case Method::Explicit:
       return 1.0 + mu;
     case Method::Implicit:
@@ -49,7 +50,7 @@ struct ModeLimit {
   double dt = 0;
 };
 
-ModeLimit modeLimit(const MethodChoice& method, const Mode& mode) {
+ModeLimit modeLimit(Method method, const Mode& mode) {
   const double scale = std::max(std::sqrt(mode.kappa), mode.delta);
   if (!(scale > 0)) return {TheoryKind::AlwaysStable, 0};  // a free, undamped direction: R = 1
   const auto unstable = [&](double h) {
@@ -86,14 +87,14 @@ bool finiteAndBounded(const Particles<T>& p, double speed_bound, double position
 }
 
 template <typename T>
-bool clothRunIsStable(const Scene& scene, const MethodChoice& method, double dt,
+bool clothRunIsStable(const Scene& scene, Method method, double dt,
                       const StabilityCriterion& criterion, CgStats* cg) {
-  Simulation<T> simulation = makeSimulation<T>(scene, method, dt);
+  World<T> simulation = makeWorld<T>(scene, method, dt);
   const auto steps = std::max<std::int64_t>(
       criterion.min_steps, static_cast<std::int64_t>(std::ceil(criterion.horizon / dt - 1e-9)));
   for (std::int64_t s = 0; s < steps; ++s) {
-    simulation.advance();
-    const World<T>& world = simulation.world;
+    step(simulation);
+    const World<T>& world = simulation;
     if (world.cloth &&
         !finiteAndBounded(world.cloth->particles, criterion.speed_bound, criterion.position_bound))
       return false;
@@ -101,21 +102,22 @@ bool clothRunIsStable(const Scene& scene, const MethodChoice& method, double dt,
                                            criterion.position_bound))
       return false;
   }
-  if (cg) *cg = simulation.solver.stats;
+  if (const BackwardEulerSolver<T>* solver = backwardEulerSolver(simulation); cg && solver)
+    *cg = solver->stats;
   return true;
 }
 
 template <typename T>
-bool oscillatorRunIsStable(const Scene& scene, const MethodChoice& method, double dt,
+bool oscillatorRunIsStable(const Scene& scene, Method method, double dt,
                            const StabilityCriterion& criterion, CgStats* cg) {
   const SpringProblem problem = springProblem(scene);
   const double omega = naturalFrequency(problem.oscillator);
   const Eigen::Vector3d equilibrium = problem.anchor + problem.rest_length * problem.axis;
-  Simulation<T> simulation = makeSimulation<T>(scene, method, dt);
+  World<T> simulation = makeWorld<T>(scene, method, dt);
   // start in the spring's linear range: the scene's displacement and velocity scaled down, so
   // growth is measured before the particle can swing through its anchor (where the 1-D spring
   // turns nonlinear and the amplitude saturates)
-  Particles<T>& start = simulation.world.cloth->particles;
+  Particles<T>& start = simulation.cloth->particles;
   for (int k = 0; k < 3; ++k) {
     const double offset = double(start.position(k, problem.particle)) - equilibrium[k];
     start.position(k, problem.particle) = T(equilibrium[k] + criterion.initial_scale * offset);
@@ -134,8 +136,8 @@ bool oscillatorRunIsStable(const Scene& scene, const MethodChoice& method, doubl
   }
   double first = 0, last = 0;
   for (int s = 1; s <= criterion.steps; ++s) {
-    simulation.advance();
-    const Particles<T>& p = simulation.world.cloth->particles;
+    step(simulation);
+    const Particles<T>& p = simulation.cloth->particles;
     Eigen::Vector3d x, v;
     for (int k = 0; k < 3; ++k) {
       x[k] = double(p.position(k, problem.particle));
@@ -149,7 +151,8 @@ bool oscillatorRunIsStable(const Scene& scene, const MethodChoice& method, doubl
     // still linear, but far beyond what a stable method reaches
     if (amplitude > criterion.amplitude_bound * initial) return false;
   }
-  if (cg) *cg = simulation.solver.stats;
+  if (const BackwardEulerSolver<T>* solver = backwardEulerSolver(simulation); cg && solver)
+    *cg = solver->stats;
   return !(last > first * (1 + criterion.growth));
 }
 
@@ -164,8 +167,8 @@ bool isSpringScene(const Scene& scene) {
 
 }  // namespace
 
-double stepSpectralRadius(const MethodChoice& method, const Mode& mode, double h) {
-  if (!method.backward_euler && method.core == Method::Symplectic) {
+double stepSpectralRadius(Method method, const Mode& mode, double h) {
+  if (method == Method::Symplectic) {
     // v1 = v0 + h (-kappa x0 - delta v0), x1 = x0 + h v1
     const double a = 1 - h * h * mode.kappa, b = h * (1 - h * mode.delta);
     const double c = -h * mode.kappa, d = 1 - h * mode.delta;
@@ -181,7 +184,7 @@ double stepSpectralRadius(const MethodChoice& method, const Mode& mode, double h
   return radius;
 }
 
-TheoryLimit theoryLimit(const MethodChoice& method, const std::vector<Mode>& modes) {
+TheoryLimit theoryLimit(Method method, const std::vector<Mode>& modes) {
   TheoryLimit result{TheoryKind::AlwaysStable, 0};
   for (const Mode& mode : modes) {
     const ModeLimit limit = modeLimit(method, mode);
@@ -271,7 +274,7 @@ StabilityCriterion stabilityCriterion(const Scene& scene) {
   return criterion;
 }
 
-bool runIsStable(const Scene& scene, const MethodChoice& method, Precision precision, double dt,
+bool runIsStable(const Scene& scene, Method method, Precision precision, double dt,
                  const StabilityCriterion& criterion, CgStats* cg) {
   if (criterion.kind == StabilityCriterion::Kind::Oscillator)
     return precision == Precision::Float
@@ -286,7 +289,7 @@ SearchRange searchRange(const Scene& scene) {
   return {3e-5, 2e-2, 1e-2};
 }
 
-MeasuredLimit measureLimit(const Scene& scene, const MethodChoice& method, Precision precision,
+MeasuredLimit measureLimit(const Scene& scene, Method method, Precision precision,
                            const StabilityCriterion& criterion, const SearchRange& range) {
   MeasuredLimit result;
   const auto stable = [&](double dt) {
@@ -294,7 +297,7 @@ MeasuredLimit measureLimit(const Scene& scene, const MethodChoice& method, Preci
     CgStats cg;
     const bool stable = runIsStable(scene, method, precision, dt, criterion, &cg);
     // the CG effort of the largest dt found stable so far (the bisection only moves it up)
-    if (stable && method.backward_euler && cg.solves > 0) {
+    if (stable && method == Method::BackwardEuler && cg.solves > 0) {
       result.cg_iterations = cg.meanIterations();
       result.cg_max_iterations = cg.max_iterations_seen;
     }
@@ -320,7 +323,7 @@ MeasuredLimit measureLimit(const Scene& scene, const MethodChoice& method, Preci
 }
 
 std::vector<StabilityResult> stabilityStudy(const std::vector<Scene>& scenes,
-                                            const std::vector<MethodChoice>& methods,
+                                            const std::vector<Method>& methods,
                                             const std::vector<Precision>& precisions,
                                             const std::function<void(const std::string&)>& progress,
                                             std::optional<double> high) {
@@ -332,13 +335,13 @@ std::vector<StabilityResult> stabilityStudy(const std::vector<Scene>& scenes,
     const StabilityCriterion criterion = stabilityCriterion(scene);
     SearchRange range = searchRange(scene);
     if (high) range.high = *high;
-    for (const MethodChoice& method : methods) {
+    for (Method method : methods) {
       const TheoryLimit theory = theoryLimit(method, modes);
       for (Precision precision : precisions) {
         const auto start = std::chrono::steady_clock::now();
         StabilityResult result;
         result.scene = scene.name;
-        result.method = std::string(method.name());
+        result.method = std::string(methodName(method));
         result.precision = precision;
         result.theory = theory;
         result.measured = measureLimit(scene, method, precision, criterion, range);

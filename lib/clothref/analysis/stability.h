@@ -27,10 +27,11 @@
 #include <string>
 #include <vector>
 
-#include "clothref/analysis/simulation.h"
 #include "clothref/base/precision.h"
 #include "clothref/core/types.h"
+#include "clothref/scene/make_world.h"
 #include "clothref/scene/scene.h"
+#include "clothref/solver/backward_euler.h"
 
 namespace clothref {
 
@@ -41,7 +42,7 @@ struct Mode {
 };
 
 // Spectral radius of one step of `method` at step h (s) on `mode`.
-double stepSpectralRadius(const MethodChoice& method, const Mode& mode, double h);
+double stepSpectralRadius(Method method, const Mode& mode, double h);
 
 // Why a theoretical limit is what it is.
 enum class TheoryKind {
@@ -56,7 +57,7 @@ struct TheoryLimit {
 };
 
 // The largest h (s) for which the radius stays <= 1 on every mode (relative accuracy 1e-10).
-TheoryLimit theoryLimit(const MethodChoice& method, const std::vector<Mode>& modes);
+TheoryLimit theoryLimit(Method method, const std::vector<Mode>& modes);
 
 // The linear modes of a scene: the spring scenes' one mode, or the cloth's modes at rest.
 // Throws InputError for a scene that is neither.
@@ -81,7 +82,7 @@ StabilityCriterion stabilityCriterion(const Scene& scene);
 
 // True when a run of `scene` with `method` at `dt` stays stable by `criterion`.
 // With `cg`, a backward-Euler run's CG statistics are written there.
-bool runIsStable(const Scene& scene, const MethodChoice& method, Precision precision, double dt,
+bool runIsStable(const Scene& scene, Method method, Precision precision, double dt,
                  const StabilityCriterion& criterion, CgStats* cg = nullptr);
 
 struct SearchRange {
@@ -108,7 +109,7 @@ struct MeasuredLimit {
   int cg_max_iterations = 0;
 };
 
-MeasuredLimit measureLimit(const Scene& scene, const MethodChoice& method, Precision precision,
+MeasuredLimit measureLimit(const Scene& scene, Method method, Precision precision,
                            const StabilityCriterion& criterion, const SearchRange& range);
 
 struct StabilityResult {
@@ -126,7 +127,7 @@ struct StabilityResult {
 // Every (scene, method, precision) asked for. `progress` (may be empty) gets one line per result.
 // `high`, when given, replaces the search range's upper end (s) for every scene.
 std::vector<StabilityResult> stabilityStudy(const std::vector<Scene>& scenes,
-                                            const std::vector<MethodChoice>& methods,
+                                            const std::vector<Method>& methods,
                                             const std::vector<Precision>& precisions,
                                             const std::function<void(const std::string&)>& progress,
                                             std::optional<double> high = std::nullopt);

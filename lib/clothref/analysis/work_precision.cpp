@@ -86,9 +86,9 @@ struct RunOutcome {
 };
 
 template <typename T>
-RunOutcome runOnce(const Scene& scene, const MethodChoice& method, double dt, int substeps,
+RunOutcome runOnce(const Scene& scene, Method method, double dt, int substeps,
                    const SweepSettings& settings, const SweepReference* reference) {
-  Simulation<T> simulation = makeSimulation<T>(scene, method, dt);
+  World<T> simulation = makeWorld<T>(scene, method, dt);
   const int count = samples(settings);
   RunOutcome outcome;
   double sum_squares = 0;
@@ -97,16 +97,15 @@ RunOutcome runOnce(const Scene& scene, const MethodChoice& method, double dt, in
   std::int64_t steps = 0;
   for (int m = 1; m <= count && outcome.stable; ++m) {
     for (int s = 0; s < substeps; ++s) {
-      simulation.advance();
+      step(simulation);
       ++steps;
     }
-    if (!withinBounds(simulation.world)) {
+    if (!withinBounds(simulation)) {
       outcome.stable = false;
       break;
     }
     if (reference) {
-      const double error =
-          maxParticleError(positions(simulation.world), reference->positions[m - 1]);
+      const double error = maxParticleError(positions(simulation), reference->positions[m - 1]);
       sum_squares += error * error;
       if (m == count) outcome.error_final = error;
     }
@@ -115,8 +114,8 @@ RunOutcome runOnce(const Scene& scene, const MethodChoice& method, double dt, in
   outcome.cpu_seconds = threadCpuSeconds() - cpu_start;
   outcome.simulated = double(steps) * dt;
   outcome.error_rms = std::sqrt(sum_squares / count);
-  if (method.backward_euler && simulation.solver.stats.solves > 0)
-    outcome.cg_iterations = simulation.solver.stats.meanIterations();
+  if (method == Method::BackwardEuler && backwardEulerSolver(simulation)->stats.solves > 0)
+    outcome.cg_iterations = backwardEulerSolver(simulation)->stats.meanIterations();
   return outcome;
 }
 
@@ -180,28 +179,26 @@ SweepReference sweepReference(const Scene& scene, const SweepSettings& settings)
     return reference;
   }
   const double dt = settings.sample_interval / settings.reference_substeps;
-  Simulation<double> simulation =
-      makeSimulation<double>(scene, MethodChoice{Method::Rk4, false}, dt);
+  World<double> simulation = makeWorld<double>(scene, Method::Rk4, dt);
   for (int m = 1; m <= count; ++m) {
-    for (int s = 0; s < settings.reference_substeps; ++s) simulation.advance();
-    if (!withinBounds(simulation.world))
+    for (int s = 0; s < settings.reference_substeps; ++s) step(simulation);
+    if (!withinBounds(simulation))
       throw InputError("scene '" + scene.name + "': the double RK4 reference is not stable");
-    reference.positions.push_back(positions(simulation.world));
+    reference.positions.push_back(positions(simulation));
   }
   reference.description = fmt::format("{}: double RK4 at dt = {:g} s", scene.name, dt);
   return reference;
 }
 
-SweepPoint sweepPoint(const Scene& scene, const MethodChoice& method, Precision precision,
-                      int substeps, const SweepSettings& settings,
-                      const SweepReference& reference) {
+SweepPoint sweepPoint(const Scene& scene, Method method, Precision precision, int substeps,
+                      const SweepSettings& settings, const SweepReference& reference) {
   SweepPoint point;
   point.scene = scene.name;
-  point.method = std::string(method.name());
+  point.method = std::string(methodName(method));
   point.precision = precision;
   point.dt = settings.sample_interval / substeps;
   point.steps = std::int64_t(samples(settings)) * substeps;
-  point.evaluations = point.steps * method.evaluationsPerStep();
+  point.evaluations = point.steps * methodInfo(method).evaluations;
   const auto run = [&](const SweepReference* ref) {
     return precision == Precision::Float
                ? runOnce<float>(scene, method, point.dt, substeps, settings, ref)
@@ -235,7 +232,7 @@ SweepPoint sweepPoint(const Scene& scene, const MethodChoice& method, Precision 
   return point;
 }
 
-SweepResult sweep(const std::vector<Scene>& scenes, const std::vector<MethodChoice>& methods,
+SweepResult sweep(const std::vector<Scene>& scenes, const std::vector<Method>& methods,
                   const std::vector<Precision>& precisions,
                   const std::function<SweepSettings(const Scene&)>& settings_for,
                   const std::function<void(const std::string&)>& progress) {
@@ -245,14 +242,14 @@ SweepResult sweep(const std::vector<Scene>& scenes, const std::vector<MethodChoi
     if (progress) progress(fmt::format("sweep: {}: computing the reference", scene.name));
     const SweepReference reference = sweepReference(scene, settings);
     result.references.push_back(reference.description);
-    const auto ladder = [&settings](const MethodChoice& method) -> const std::vector<int>& {
-      return method.backward_euler && !settings.backward_euler_substeps.empty()
+    const auto ladder = [&settings](Method method) -> const std::vector<int>& {
+      return method == Method::BackwardEuler && !settings.backward_euler_substeps.empty()
                  ? settings.backward_euler_substeps
                  : settings.substeps;
     };
     std::size_t total = 0, done = 0;
-    for (const MethodChoice& method : methods) total += precisions.size() * ladder(method).size();
-    for (const MethodChoice& method : methods) {
+    for (Method method : methods) total += precisions.size() * ladder(method).size();
+    for (Method method : methods) {
       for (Precision precision : precisions) {
         for (int substeps : ladder(method)) {
           const SweepPoint point =

@@ -24,10 +24,11 @@
 #include <string>
 #include <vector>
 
-#include "clothref/analysis/simulation.h"
 #include "clothref/base/precision.h"
 #include "clothref/core/types.h"
+#include "clothref/scene/make_world.h"
 #include "clothref/scene/scene.h"
+#include "clothref/solver/backward_euler.h"
 
 namespace clothref {
 
@@ -75,8 +76,8 @@ struct SweepReference {
 SweepReference sweepReference(const Scene& scene, const SweepSettings& settings);
 
 // One point.
-SweepPoint sweepPoint(const Scene& scene, const MethodChoice& method, Precision precision,
-                      int substeps, const SweepSettings& settings, const SweepReference& reference);
+SweepPoint sweepPoint(const Scene& scene, Method method, Precision precision, int substeps,
+                      const SweepSettings& settings, const SweepReference& reference);
 
 struct SweepResult {
   std::vector<SweepPoint> points;
@@ -84,7 +85,7 @@ struct SweepResult {
 };
 
 // Every scene x method x precision x dt; `progress` (may be empty) gets one line per point.
-SweepResult sweep(const std::vector<Scene>& scenes, const std::vector<MethodChoice>& methods,
+SweepResult sweep(const std::vector<Scene>& scenes, const std::vector<Method>& methods,
                   const std::vector<Precision>& precisions,
                   const std::function<SweepSettings(const Scene&)>& settings_for,
                   const std::function<void(const std::string&)>& progress);

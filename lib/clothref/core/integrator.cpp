@@ -115,6 +115,8 @@ void integrate(Method method, Bodies<T> bodies, T dt, FunctionRef<void()> simula
       return integrateMidpoint(bodies, dt, simulateOneStep, scratch);
     case Method::Rk4:
       return integrateRk4(bodies, dt, simulateOneStep, scratch);
+    case Method::BackwardEuler:  // stepped by World::stepper (clothref/solver), never from here
+      return;
   }
 }
 

@@ -59,7 +59,8 @@ template <typename T>
 void integrateRk4(Bodies<T> bodies, T dt, FunctionRef<void()> simulateOneStep,
                   IntegratorScratch<T>& scratch);
 
-// Dispatches to one of the above.
+// Dispatches to one of the above (a method stepped by the solver is not stepped here: World::step
+// calls its MethodStepper).
 template <typename T>
 void integrate(Method method, Bodies<T> bodies, T dt, FunctionRef<void()> simulateOneStep,
                IntegratorScratch<T>& scratch);

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace clothref {
@@ -103,11 +105,18 @@ template <typename T>
 void step(World<T>& world) {
   if (world.frame_loop.steps_per_frame > 0 && world.step % world.frame_loop.steps_per_frame == 0)
     beginFrame(world);
-  std::array<Particles<T>*, 2> storage{};
-  simulateOneStep(world);
-  integrate(
-      world.method, bodies(world, storage), world.physics.dt, [&world] { simulateOneStep(world); },
-      world.scratch);
+  if (methodInfo(world.method).stepped_by_solver) {
+    if (!world.stepper)
+      throw std::logic_error(std::string(methodName(world.method)) +
+                             " needs its solver: build the world with makeWorld");
+    world.stepper->integrate(world);
+  } else {
+    std::array<Particles<T>*, 2> storage{};
+    simulateOneStep(world);
+    integrate(
+        world.method, bodies(world, storage), world.physics.dt,
+        [&world] { simulateOneStep(world); }, world.scratch);
+  }
   ++world.step;
 }
 

@@ -59,6 +59,20 @@ struct Execution {
 inline constexpr int kThreadedGridEdge = 100;
 
 template <typename T>
+struct World;
+
+// How a world steps a method the core does not implement (a method-table row with
+// `stepped_by_solver`, e.g. backward Euler in clothref/solver). The area that implements the method
+// installs one in the world; step() calls it in place of integrate().
+template <typename T>
+struct MethodStepper {
+  virtual ~MethodStepper() = default;
+  // Calls simulateOneStep(world) as often as the method needs and advances every body by one
+  // dt; step() does the frame's work before and counts the step after.
+  virtual void integrate(World<T>& world) = 0;
+};
+
+template <typename T>
 struct World {
   std::optional<Cloth<T>> cloth;
   std::optional<Spheres<T>> spheres;
@@ -68,6 +82,9 @@ struct World {
   std::int64_t step = 0;         // steps taken
   IntegratorScratch<T> scratch;  // integrator backups, reused every step
   Execution<T> execution;        // fast kernels on, default SIMD path, one thread
+  // For a method stepped by the solver (see MethodStepper). Copies of a world share it: it holds
+  // only work buffers rebuilt every step (and running statistics), never state.
+  std::shared_ptr<MethodStepper<T>> stepper;
 };
 
 // Sets how `world` steps: the fast kernels (`use_fast`) or the course-form loops alone, the
@@ -87,7 +104,8 @@ template <typename T>
 void simulateOneStep(World<T>& world);
 
 // One step of the main loop: the frame's work when a frame begins (frame_loop), simulateOneStep,
-// then the integrator. Allocates nothing once the first step has sized the integrator scratch.
+// then the integrator (or, for a method stepped by the solver, world.stepper, which throws
+// std::logic_error when missing). Allocates nothing once the first step has sized the scratch.
 template <typename T>
 void step(World<T>& world);
 

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "clothref/solver/backward_euler.h"
+
 namespace clothref {
 
 namespace {
@@ -88,6 +90,8 @@ World<T> makeWorld(const Scene& scene, Method method, std::optional<double> dt) 
     world.frame_loop.sphere_velocity = direction<T>(scene.frame_loop->sphere_velocity);
     if (scene.cloth) world.frame_loop.pinned = scene.cloth->fixed;
   }
+  // methods the core cannot step get their stepper here, so every caller can simply step()
+  if (method == Method::BackwardEuler) installBackwardEuler(world);
   return world;
 }
 

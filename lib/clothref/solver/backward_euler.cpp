@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 namespace clothref {
 
@@ -145,7 +146,7 @@ int solveConjugateGradient(const Eigen::SparseMatrix<T, Eigen::RowMajor>& matrix
 }
 
 template <typename T>
-void stepBackwardEuler(World<T>& world, BackwardEulerSolver<T>& solver) {
+void integrateBackwardEuler(World<T>& world, BackwardEulerSolver<T>& solver) {
   simulateOneStep(world);
   const Physics<T>& physics = world.physics;
   const T h = physics.dt;
@@ -212,13 +213,39 @@ void stepBackwardEuler(World<T>& world, BackwardEulerSolver<T>& solver) {
     }
     p.position += p.velocity * h;
   }
-  ++world.step;
+}
+
+template <typename T>
+void BackwardEulerSolver<T>::integrate(World<T>& world) {
+  integrateBackwardEuler(world, *this);
+}
+
+template <typename T>
+void installBackwardEuler(World<T>& world) {
+  auto solver = std::make_shared<BackwardEulerSolver<T>>();
+  if (world.cloth) prepareBackwardEuler(*world.cloth, *solver);
+  world.method = Method::BackwardEuler;
+  world.stepper = std::move(solver);
+}
+
+template <typename T>
+BackwardEulerSolver<T>* backwardEulerSolver(World<T>& world) {
+  return dynamic_cast<BackwardEulerSolver<T>*>(world.stepper.get());
+}
+
+template <typename T>
+const BackwardEulerSolver<T>* backwardEulerSolver(const World<T>& world) {
+  return dynamic_cast<const BackwardEulerSolver<T>*>(world.stepper.get());
 }
 
 #define CLOTHREF_INSTANTIATE(T)                                                       \
   template double cgTolerance<T>(const CgSettings&);                                  \
   template void prepareBackwardEuler(const Cloth<T>&, BackwardEulerSolver<T>&);       \
-  template void stepBackwardEuler(World<T>&, BackwardEulerSolver<T>&);                \
+  template struct BackwardEulerSolver<T>;                                             \
+  template void integrateBackwardEuler(World<T>&, BackwardEulerSolver<T>&);           \
+  template void installBackwardEuler(World<T>&);                                      \
+  template BackwardEulerSolver<T>* backwardEulerSolver(World<T>&);                    \
+  template const BackwardEulerSolver<T>* backwardEulerSolver(const World<T>&);        \
   template int solveConjugateGradient(const Eigen::SparseMatrix<T, Eigen::RowMajor>&, \
                                       const VecX<T>&, VecX<T>&, BackwardEulerSolver<T>&);
 CLOTHREF_INSTANTIATE(float)

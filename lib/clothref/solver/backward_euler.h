@@ -48,8 +48,9 @@ struct CgStats {
 };
 
 // Everything a backward-Euler step needs, sized on the first step for the world it is used with.
+// It is the world's MethodStepper for Method::BackwardEuler (installBackwardEuler).
 template <typename T>
-struct BackwardEulerSolver {
+struct BackwardEulerSolver final : MethodStepper<T> {
   CgSettings settings;
   CgStats stats;
 
@@ -64,15 +65,30 @@ struct BackwardEulerSolver {
 
   // CG work vectors, 3N
   VecX<T> rhs, dv, residual, direction, z, product, inverse_diagonal;
+
+  void integrate(World<T>& world) override;
 };
 
 // Builds the pattern for `cloth` (done by the first step; call again if the topology changes).
 template <typename T>
 void prepareBackwardEuler(const Cloth<T>& cloth, BackwardEulerSolver<T>& solver);
 
-// One backward-Euler step of `world` (its `method` is ignored).
+// Makes `world` step by backward Euler: sets its method and installs a solver as its stepper
+// (pattern built now when the world has a cloth). makeWorld does this for Method::BackwardEuler.
 template <typename T>
-void stepBackwardEuler(World<T>& world, BackwardEulerSolver<T>& solver);
+void installBackwardEuler(World<T>& world);
+
+// The backward-Euler solver installed in `world`, or nullptr (for its CG statistics).
+template <typename T>
+BackwardEulerSolver<T>* backwardEulerSolver(World<T>& world);
+template <typename T>
+const BackwardEulerSolver<T>* backwardEulerSolver(const World<T>& world);
+
+// The body of one backward-Euler step (steps 1-3 above): simulateOneStep and the update of every
+// body. World::step calls it through the stepper, with the frame's work before and the step count
+// after.
+template <typename T>
+void integrateBackwardEuler(World<T>& world, BackwardEulerSolver<T>& solver);
 
 // Solves A x = b with the Jacobi-preconditioned CG above, starting from x = 0. `solver` supplies
 // the work vectors (sized to b). Returns the iterations; updates solver.stats.
