@@ -285,19 +285,13 @@ Tolerance toleranceFromJson(const json& value, const std::string& source,
   }
   if (value.contains("mode")) {
     const json& mode = value["mode"];
-    const std::string name = mode.is_string() ? mode.get<std::string>() : "";
-    if (name == "ulps")
-      tolerance.mode = ToleranceMode::Ulps;
-    else if (name == "absolute")
-      tolerance.mode = ToleranceMode::Absolute;
-    else if (name == "relative")
-      tolerance.mode = ToleranceMode::Relative;
-    else if (name == "combined")
-      tolerance.mode = ToleranceMode::Combined;
-    else
-      toleranceError(source, pointer + "/mode",
-                     "expected \"ulps\", \"absolute\", \"relative\" or \"combined\", got " +
-                         excerpt(mode.dump()));
+    const std::optional<ToleranceMode> parsed =
+        mode.is_string() ? parseEnum(kToleranceModeNames, mode.get<std::string>()) : std::nullopt;
+    if (!parsed)
+      toleranceError(
+          source, pointer + "/mode",
+          "expected one of " + enumNames(kToleranceModeNames) + ", got " + excerpt(mode.dump()));
+    tolerance.mode = *parsed;
   } else if (value.contains("abs") && value.contains("rel")) {
     tolerance.mode = ToleranceMode::Combined;
   } else if (value.contains("abs")) {
@@ -328,18 +322,6 @@ ordered_json jsonNumber(double value) {
 
 ordered_json jsonUlps(std::uint64_t ulps) {
   return ulps == kInfiniteUlps ? ordered_json("Infinity") : ordered_json(ulps);
-}
-
-std::string verdictName(Verdict verdict) {
-  switch (verdict) {
-    case Verdict::Identical:
-      return "identical";
-    case Verdict::WithinTolerance:
-      return "within_tolerance";
-    case Verdict::Differ:
-      return "differ";
-  }
-  return "differ";
 }
 
 std::string describeTolerance(const Tolerance& t) {
@@ -399,38 +381,13 @@ std::string describeHeaderValue(const ordered_json& value) {
 }
 
 std::string fieldLabel(const FieldStats& stats) {
-  return stats.field == Field::Time ? "time" : stats.body + " " + fieldName(stats.field);
+  return stats.field == Field::Time ? "time"
+                                    : stats.body + " " + std::string(fieldName(stats.field));
 }
 
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------
-
-std::string fieldName(Field field) {
-  switch (field) {
-    case Field::Position:
-      return "position";
-    case Field::Velocity:
-      return "velocity";
-    case Field::Time:
-      return "time";
-  }
-  return "?";
-}
-
-std::string toleranceModeName(ToleranceMode mode) {
-  switch (mode) {
-    case ToleranceMode::Ulps:
-      return "ulps";
-    case ToleranceMode::Absolute:
-      return "absolute";
-    case ToleranceMode::Relative:
-      return "relative";
-    case ToleranceMode::Combined:
-      return "combined";
-  }
-  return "?";
-}
 
 Tolerance toleranceFor(const DiffOptions& options, const std::string& body, Field field) {
   if (field == Field::Time) return options.time.value_or(options.global);
@@ -695,7 +652,7 @@ std::string formatReport(const DiffReport& r) {
 
 ordered_json reportToJson(const DiffReport& r) {
   ordered_json out;
-  out["verdict"] = verdictName(r.verdict);
+  out["verdict"] = enumName(kVerdictNames, r.verdict);
   out["a"] = r.path_a;
   out["b"] = r.path_b;
   out["precision"] = std::string(precisionName(r.precision));
@@ -778,7 +735,7 @@ nlohmann::ordered_json observedTolerances(const DiffReport& r) {
     if (s.field == Field::Time)
       out["time"] = toleranceToJson(t);
     else
-      bodies[s.body][fieldName(s.field)] = toleranceToJson(t);
+      bodies[s.body][std::string(fieldName(s.field))] = toleranceToJson(t);
   }
   out["bodies"] = bodies;
   return out;

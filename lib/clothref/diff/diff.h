@@ -25,11 +25,19 @@
 
 #include <nlohmann/json.hpp>
 
+#include "clothref/base/enum_table.h"
 #include "clothref/base/precision.h"
 
 namespace clothref {
 
 enum class ToleranceMode { Ulps, Absolute, Relative, Combined };
+// Names in tolerance files and reports.
+inline constexpr EnumTable<ToleranceMode, 4> kToleranceModeNames{{
+    {ToleranceMode::Ulps, "ulps"},
+    {ToleranceMode::Absolute, "absolute"},
+    {ToleranceMode::Relative, "relative"},
+    {ToleranceMode::Combined, "combined"},
+}};
 
 struct Tolerance {
   ToleranceMode mode = ToleranceMode::Ulps;
@@ -41,6 +49,12 @@ struct Tolerance {
 
 // The compared fields. Time has no body.
 enum class Field { Position, Velocity, Time };
+// Names in reports (and, for position and velocity, in tolerance files).
+inline constexpr EnumTable<Field, 3> kFieldNames{{
+    {Field::Position, "position"},
+    {Field::Velocity, "velocity"},
+    {Field::Time, "time"},
+}};
 
 struct BodyTolerances {
   std::optional<Tolerance> position;
@@ -113,6 +127,12 @@ enum class Verdict {
   WithinTolerance,  // some values differ, all within tolerance
   Differ            // a significant header difference or a value beyond tolerance
 };
+// Names in the JSON report.
+inline constexpr EnumTable<Verdict, 3> kVerdictNames{{
+    {Verdict::Identical, "identical"},
+    {Verdict::WithinTolerance, "within_tolerance"},
+    {Verdict::Differ, "differ"},
+}};
 
 struct DiffReport {
   std::string path_a, path_b;
@@ -151,7 +171,9 @@ nlohmann::ordered_json reportToJson(const DiffReport& report);
 nlohmann::ordered_json observedTolerances(const DiffReport& report);
 
 nlohmann::ordered_json toleranceToJson(const Tolerance& tolerance);
-std::string fieldName(Field field);
-std::string toleranceModeName(ToleranceMode mode);
+constexpr std::string_view fieldName(Field field) { return enumName(kFieldNames, field); }
+constexpr std::string_view toleranceModeName(ToleranceMode mode) {
+  return enumName(kToleranceModeNames, mode);
+}
 
 }  // namespace clothref
