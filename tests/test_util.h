@@ -12,6 +12,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -72,18 +73,40 @@ class TempDir {
   std::filesystem::path path_;
 };
 
+// The bytes of the file at `path` ("" when it cannot be read).
+inline std::string readText(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// Replaces the file at `path` with `text`.
+inline void writeText(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+}
+
+// True when `path` is a FIFO (not followed if it is a link).
+inline bool isFifo(const std::string& path) {
+  struct stat info {};
+  return ::lstat(path.c_str(), &info) == 0 && S_ISFIFO(info.st_mode);
+}
+
 inline std::uint32_t bits(float value) { return std::bit_cast<std::uint32_t>(value); }
 inline std::uint64_t bits(double value) { return std::bit_cast<std::uint64_t>(value); }
 
 struct CommandResult {
   int exit_code = -1;
-  std::string output;  // stdout and stderr, interleaved
+  std::string output;  // stdout and stderr, interleaved (stdout only when asked)
 };
 
+enum class Capture { StdoutAndStderr, StdoutOnly };
+
 // Runs `clothref ARGS` (ARGS is shell syntax) and captures its output and exit code.
-inline CommandResult runCli(const std::string& args) {
+inline CommandResult runCli(const std::string& args, Capture capture = Capture::StdoutAndStderr) {
   CommandResult result;
-  const std::string command = std::string(CLOTHREF_BIN) + " " + args + " 2>&1";
+  const std::string command =
+      std::string(CLOTHREF_BIN) + " " + args + (capture == Capture::StdoutAndStderr ? " 2>&1" : "");
   FILE* pipe = ::popen(command.c_str(), "r");
   if (!pipe) return result;
   std::array<char, 4096> buffer;

@@ -23,17 +23,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string readText(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-void writeText(const fs::path& path, const std::string& text) {
-  std::ofstream(path, std::ios::binary) << text;
-}
-
 bool hasRun(const GoldenSet& set, const std::string& scene, Method method, Precision precision,
             std::int64_t steps) {
   return std::any_of(set.hash_runs.begin(), set.hash_runs.end(), [&](const HashRun& run) {
@@ -148,7 +137,7 @@ TEST(Manifest, BadFieldsAreNamed) {
 
 // Replaces the first velocity value of the trace line for `step` with `value`.
 void tamperTrace(const fs::path& file, int step, const std::string& value) {
-  std::istringstream in(readText(file));
+  std::istringstream in(test::readText(file));
   std::string out, line;
   const std::string prefix = fmt::format("{{\"step\":{},", step);
   while (std::getline(in, line)) {
@@ -158,7 +147,7 @@ void tamperTrace(const fs::path& file, int step, const std::string& value) {
     }
     out += line + '\n';
   }
-  writeText(file, out);
+  test::writeText(file, out);
 }
 
 // The line (1-based) of the first occurrence of `text` in `file_text`.
@@ -205,8 +194,8 @@ TEST(GoldenDirectory, UpdateThenCheckThenTamper) {
   const fs::path dir = root.path() / "golden";
   fs::create_directories(dir / "traces");
   // A stale trace (to be swept) and a file outside the generated subdirectories (to be kept).
-  writeText(dir / "traces" / "retired.rk4.jsonl", "{}\n");
-  writeText(dir / "NOTES.txt", "kept\n");
+  test::writeText(dir / "traces" / "retired.rk4.jsonl", "{}\n");
+  test::writeText(dir / "NOTES.txt", "kept\n");
   const GoldenSet set = smallSet();
   const GoldenUpdateSummary update = updateGolden(dir, set);
 
@@ -216,12 +205,12 @@ TEST(GoldenDirectory, UpdateThenCheckThenTamper) {
     EXPECT_EQ(update.traces, int(set.traces.size()));
     EXPECT_EQ(update.hash_runs, int(set.hash_runs.size()));
     for (const std::string& scene : set.scenes)
-      EXPECT_EQ(readText(dir / "scenes" / (scene + ".json")),
+      EXPECT_EQ(test::readText(dir / "scenes" / (scene + ".json")),
                 sceneFileText(*findBuiltinScene(scene)));
     for (const GoldenTrace& trace : set.traces) EXPECT_TRUE(fs::is_regular_file(dir / trace.file));
     EXPECT_FALSE(fs::exists(dir / "traces" / "retired.rk4.jsonl"));
     EXPECT_EQ(update.removed, std::vector<fs::path>{dir / "traces" / "retired.rk4.jsonl"});
-    EXPECT_EQ(readText(dir / "NOTES.txt"), "kept\n");
+    EXPECT_EQ(test::readText(dir / "NOTES.txt"), "kept\n");
     const GoldenSet manifest = readManifest(dir / "manifest.json");
     EXPECT_EQ(manifest.traces.size(), set.traces.size());
     ASSERT_EQ(manifest.hash_runs.size(), set.hash_runs.size());
@@ -245,19 +234,20 @@ TEST(GoldenDirectory, UpdateThenCheckThenTamper) {
     if (run.scene == "two-spheres" && run.method == Method::Midpoint &&
         run.precision == Precision::Double)
       run.hashes[300] = "0000000000000000";
-  writeText(copy / "manifest.json", manifestText(manifest));
+  test::writeText(copy / "manifest.json", manifestText(manifest));
   // 2. one velocity value of one trace, 3. a scene parameter, 4. a stray file, 5. a missing trace
   tamperTrace(copy / "traces" / "spring.rk4.jsonl", 1000, "-12.5");
-  const std::string scene = readText(copy / "scenes" / "free-fall.json");
+  const std::string scene = test::readText(copy / "scenes" / "free-fall.json");
   const std::string drag = "\"viscous_coef\": 0.5";
-  writeText(copy / "scenes" / "free-fall.json",
-            std::string(scene).replace(scene.find(drag), drag.size(), "\"viscous_coef\": 0.25"));
-  writeText(copy / "scenes" / "extra.json", "{}\n");
+  test::writeText(
+      copy / "scenes" / "free-fall.json",
+      std::string(scene).replace(scene.find(drag), drag.size(), "\"viscous_coef\": 0.25"));
+  test::writeText(copy / "scenes" / "extra.json", "{}\n");
   fs::remove(copy / "traces" / "two-spheres.symplectic.jsonl");
   // 6. a truncated trace: that entry's mismatch, not an abort of the whole check
-  const std::string explicit_trace = readText(copy / "traces" / "spring.explicit.jsonl");
-  writeText(copy / "traces" / "spring.explicit.jsonl",
-            explicit_trace.substr(0, explicit_trace.size() / 2));
+  const std::string explicit_trace = test::readText(copy / "traces" / "spring.explicit.jsonl");
+  test::writeText(copy / "traces" / "spring.explicit.jsonl",
+                  explicit_trace.substr(0, explicit_trace.size() / 2));
 
   CheckRun tampered = check(copy, set);
   const std::string truncated =
@@ -291,7 +281,7 @@ TEST(GoldenDirectory, UpdateThenCheckThenTamper) {
 // every entry of the golden set a mismatch without simulating anything.
 TEST(GoldenCli, MismatchExitsOneAndPrintsEachEntry) {
   const test::TempDir root;
-  writeText(root.path() / "manifest.json", manifestText(GoldenSet{}));
+  test::writeText(root.path() / "manifest.json", manifestText(GoldenSet{}));
   const test::CommandResult result = test::runCli("golden --golden " + root.path().string());
   EXPECT_EQ(result.exit_code, 1) << result.output;
   const std::string& out = result.output;
@@ -319,7 +309,8 @@ TEST(GoldenCli, BadInputExitsTwo) {
   EXPECT_EQ(missing.exit_code, 2);
   EXPECT_NE(missing.output.find("golden directory not found"), std::string::npos) << missing.output;
 
-  writeText(root.path() / "manifest.json", "{\"format\": \"clothref-golden\", \"version\": 1,");
+  test::writeText(root.path() / "manifest.json",
+                  "{\"format\": \"clothref-golden\", \"version\": 1,");
   const test::CommandResult malformed = test::runCli("golden --golden " + root.path().string());
   EXPECT_EQ(malformed.exit_code, 2);
   EXPECT_NE(malformed.output.find("manifest.json: /version: not valid JSON (line 1, column 44)"),
@@ -328,7 +319,7 @@ TEST(GoldenCli, BadInputExitsTwo) {
 
   // --update under a path that is a regular file: one line, exit 2 (was an uncaught
   // filesystem_error, so an abort)
-  writeText(root.path() / "plain-file", "x");
+  test::writeText(root.path() / "plain-file", "x");
   const test::CommandResult under_file =
       test::runCli("golden --update --golden " + root.file("plain-file") + "/golden");
   EXPECT_EQ(under_file.exit_code, 2) << under_file.output;
@@ -338,7 +329,7 @@ TEST(GoldenCli, BadInputExitsTwo) {
       << under_file.output;
 
   // a number too large for a double in the tolerance file
-  writeText(root.path() / "tolerances.json", "{\"default\": {\"abs\": 1e400}}");
+  test::writeText(root.path() / "tolerances.json", "{\"default\": {\"abs\": 1e400}}");
   const test::CommandResult huge = test::runCli("golden --golden " + root.file("none") +
                                                 " --tolerances " + root.file("tolerances.json"));
   EXPECT_EQ(huge.exit_code, 2) << huge.output;

@@ -21,16 +21,6 @@
 namespace clothref {
 namespace {
 
-std::string readAll(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-bool isFifo(const std::string& path) {
-  struct stat info {};
-  return ::lstat(path.c_str(), &info) == 0 && S_ISFIFO(info.st_mode);
-}
-
 TEST(OutputFile, NewPathAppearsOnlyOnCommit) {
   const test::TempDir dir;
   const std::string path = dir.file("out.txt");
@@ -40,7 +30,7 @@ TEST(OutputFile, NewPathAppearsOnlyOnCommit) {
     EXPECT_FALSE(std::filesystem::exists(path));
     output.commit();
   }
-  EXPECT_EQ(readAll(path), "hello");
+  EXPECT_EQ(test::readText(path), "hello");
 }
 
 TEST(OutputFile, UncommittedOutputLeavesTheOldFileAndNoTemporary) {
@@ -51,7 +41,7 @@ TEST(OutputFile, UncommittedOutputLeavesTheOldFileAndNoTemporary) {
     OutputFile output(path);
     output.stream() << "new";
   }
-  EXPECT_EQ(readAll(path), "old\n");
+  EXPECT_EQ(test::readText(path), "old\n");
   EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), {}), 1);
 }
 
@@ -65,7 +55,7 @@ TEST(OutputFile, SymbolicLinkKeepsTheLinkAndReplacesItsTarget) {
     output.commit();
   }
   EXPECT_TRUE(std::filesystem::is_symlink(dir.file("link.txt")));
-  EXPECT_EQ(readAll(dir.file("target.txt")), "new");
+  EXPECT_EQ(test::readText(dir.file("target.txt")), "new");
 }
 
 // A FIFO stands for every node that is not a regular file (devices, sockets): it must be written
@@ -74,14 +64,14 @@ TEST(OutputFile, FifoIsWrittenInPlaceNotReplaced) {
   const test::TempDir dir;
   const std::string path = dir.file("pipe");
   ASSERT_EQ(::mkfifo(path.c_str(), 0600), 0);
-  auto reader = std::async(std::launch::async, [&] { return readAll(path); });
+  auto reader = std::async(std::launch::async, [&] { return test::readText(path); });
   {
     OutputFile output(path);
     output.stream() << "through the pipe";
     output.commit();
   }
   EXPECT_EQ(reader.get(), "through the pipe");
-  EXPECT_TRUE(isFifo(path));
+  EXPECT_TRUE(test::isFifo(path));
   EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), {}), 1);
 }
 
@@ -89,12 +79,12 @@ TEST(OutputFileCli, TraceIntoAFifoKeepsTheFifo) {
   const test::TempDir dir;
   const std::string path = dir.file("pipe");
   ASSERT_EQ(::mkfifo(path.c_str(), 0600), 0);
-  auto reader = std::async(std::launch::async, [&] { return readAll(path); });
+  auto reader = std::async(std::launch::async, [&] { return test::readText(path); });
   const auto result = test::runCli("trace --scene free-fall --steps 3 -o " + path);
   EXPECT_EQ(result.exit_code, 0) << result.output;
   const std::string text = reader.get();
   EXPECT_EQ(text.rfind("{\"format\":\"clothref-trace\"", 0), 0u) << text.substr(0, 80);
-  EXPECT_TRUE(isFifo(path));
+  EXPECT_TRUE(test::isFifo(path));
 }
 
 // A ".gz" path is written gzip-compressed, atomically like any other.
@@ -106,14 +96,14 @@ TEST(OutputFile, GzPathIsCompressed) {
     for (int i = 0; i < 10000; ++i) out.stream() << "line " << i << '\n';
     out.commit();
   }
-  const std::string bytes = readAll(path);
+  const std::string bytes = test::readText(path);
   ASSERT_GE(bytes.size(), 2u);
   EXPECT_EQ(static_cast<unsigned char>(bytes[0]), 0x1f);
   EXPECT_EQ(static_cast<unsigned char>(bytes[1]), 0x8b);
   EXPECT_LT(bytes.size(), 30000u);  // 10000 lines of ~9 bytes, compressed
   const std::string command = "gzip -dc " + path + " | tail -n 1 > " + dir.file("last.txt");
   ASSERT_EQ(std::system(command.c_str()), 0);
-  EXPECT_EQ(readAll(dir.file("last.txt")), "line 9999\n");
+  EXPECT_EQ(test::readText(dir.file("last.txt")), "line 9999\n");
 }
 
 // SIGINT, SIGTERM and SIGHUP during `trace -o`: the temporary file is removed, one line says so,
@@ -147,7 +137,7 @@ TEST(OutputFileCli, SignalRemovesTheTemporaryFile) {
     }
     EXPECT_FALSE(std::filesystem::exists(temporary)) << signal;
     EXPECT_FALSE(std::filesystem::exists(output)) << signal;
-    EXPECT_EQ(readAll(errors),
+    EXPECT_EQ(test::readText(errors),
               "clothref: stopped by a signal; removed the unfinished output " + temporary + "\n");
   }
 }

@@ -13,6 +13,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "test_util.h"
+
 namespace clothref {
 namespace {
 
@@ -126,21 +128,8 @@ TEST(Energy, ExpectationsSeparateTheMethods) {
   EXPECT_GT(std::pow(1.04, 1000) - 1, 10 * doubles["symplectic"].expected);
 }
 
-// Runs the CLI and returns its exit code and standard output.
-std::pair<int, std::string> runCli(const std::string& arguments) {
-  const std::string command = std::string(CLOTHREF_BIN) + " " + arguments;
-  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(command.c_str(), "r"), pclose);
-  std::string output;
-  std::array<char, 4096> buffer{};
-  std::size_t n = 0;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe.get())) > 0)
-    output.append(buffer.data(), n);
-  const int status = pclose(pipe.release());
-  return {WEXITSTATUS(status), output};
-}
-
 TEST(VerifyCommand, JsonHasOrdersAndChecksAndExitsZero) {
-  const auto [code, output] = runCli("verify --json");
+  const auto [code, output] = test::runCli("verify --json", test::Capture::StdoutOnly);
   EXPECT_EQ(code, 0);
   const nlohmann::json report = nlohmann::json::parse(output);
   for (const char* method : {"explicit", "implicit", "midpoint", "rk4", "symplectic"}) {
@@ -163,7 +152,7 @@ TEST(VerifyCommand, JsonHasOrdersAndChecksAndExitsZero) {
 }
 
 TEST(VerifyCommand, TablePrintsTheColumnsAndASummary) {
-  const auto [code, output] = runCli("verify");
+  const auto [code, output] = test::runCli("verify", test::Capture::StdoutOnly);
   EXPECT_EQ(code, 0);
   EXPECT_EQ(output.rfind("check", 0), 0u);
   for (const char* column : {"method", "prec", "expected", "observed", "tolerance", "pass"})
