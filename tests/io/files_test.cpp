@@ -42,18 +42,5 @@ TEST(Files, ScratchDirIsFreshAndRemovedWithItsContents) {
   EXPECT_FALSE(std::filesystem::exists(kept));
 }
 
-// --scene /dev/zero used to grow to gigabytes: the file limit stops it, and the --max-* flags
-// work before or after the command name.
-TEST(FilesCli, EndlessInputStopsAtTheLimitSetByFlag) {
-  for (const char* args : {"--max-file-bytes 100000 trace --scene /dev/zero",
-                           "trace --scene /dev/zero --max-file-bytes 100000"}) {
-    const test::CommandResult run = test::runCli(args);
-    EXPECT_EQ(run.exit_code, 2) << run.output;
-    EXPECT_EQ(run.output,
-              "clothref: /dev/zero: larger than 100000 bytes (raise the limit with "
-              "--max-file-bytes)\n");
-  }
-}
-
 }  // namespace
 }  // namespace clothref

@@ -75,18 +75,6 @@ TEST(OutputFile, FifoIsWrittenInPlaceNotReplaced) {
   EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), {}), 1);
 }
 
-TEST(OutputFileCli, TraceIntoAFifoKeepsTheFifo) {
-  const test::TempDir dir;
-  const std::string path = dir.file("pipe");
-  ASSERT_EQ(::mkfifo(path.c_str(), 0600), 0);
-  auto reader = std::async(std::launch::async, [&] { return test::readText(path); });
-  const auto result = test::runCli("trace --scene free-fall --steps 3 -o " + path);
-  EXPECT_EQ(result.exit_code, 0) << result.output;
-  const std::string text = reader.get();
-  EXPECT_EQ(text.rfind("{\"format\":\"clothref-trace\"", 0), 0u) << text.substr(0, 80);
-  EXPECT_TRUE(test::isFifo(path));
-}
-
 // A ".gz" path is written gzip-compressed, atomically like any other.
 TEST(OutputFile, GzPathIsCompressed) {
   const test::TempDir dir;
@@ -104,42 +92,6 @@ TEST(OutputFile, GzPathIsCompressed) {
   const std::string command = "gzip -dc " + path + " | tail -n 1 > " + dir.file("last.txt");
   ASSERT_EQ(std::system(command.c_str()), 0);
   EXPECT_EQ(test::readText(dir.file("last.txt")), "line 9999\n");
-}
-
-// SIGINT, SIGTERM and SIGHUP during `trace -o`: the temporary file is removed, one line says so,
-// and the process ends by the signal (a shell reports 128 + N).
-TEST(OutputFileCli, SignalRemovesTheTemporaryFile) {
-  for (int signal : {SIGINT, SIGTERM, SIGHUP}) {
-    const test::TempDir dir;
-    const std::string output = dir.file("out.jsonl");
-    const std::string errors = dir.file("err.txt");
-    const pid_t child = ::fork();
-    ASSERT_GE(child, 0);
-    if (child == 0) {
-      const int fd = ::open(errors.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-      ::dup2(fd, 2);
-      ::execl(CLOTHREF_BIN, CLOTHREF_BIN, "trace", "--scene", "small-cloth", "--steps", "100000000",
-              "--stride", "1", "-o", output.c_str(), static_cast<char*>(nullptr));
-      ::_exit(127);
-    }
-    const std::string temporary = output + ".tmp" + std::to_string(child);
-    for (int i = 0; i < 3000 && !(std::filesystem::exists(temporary) &&
-                                  std::filesystem::file_size(temporary) > 0);
-         ++i)
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    ASSERT_TRUE(std::filesystem::exists(temporary)) << signal;
-    ::kill(child, signal);
-    int status = 0;
-    ASSERT_EQ(::waitpid(child, &status, 0), child);
-    EXPECT_TRUE(WIFSIGNALED(status)) << signal;
-    if (WIFSIGNALED(status)) {
-      EXPECT_EQ(WTERMSIG(status), signal);
-    }
-    EXPECT_FALSE(std::filesystem::exists(temporary)) << signal;
-    EXPECT_FALSE(std::filesystem::exists(output)) << signal;
-    EXPECT_EQ(test::readText(errors),
-              "clothref: stopped by a signal; removed the unfinished output " + temporary + "\n");
-  }
 }
 
 }  // namespace

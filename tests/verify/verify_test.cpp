@@ -128,38 +128,5 @@ TEST(Energy, ExpectationsSeparateTheMethods) {
   EXPECT_GT(std::pow(1.04, 1000) - 1, 10 * doubles["symplectic"].expected);
 }
 
-TEST(VerifyCommand, JsonHasOrdersAndChecksAndExitsZero) {
-  const auto [code, output] = test::runCli("verify --json", test::Capture::StdoutOnly);
-  EXPECT_EQ(code, 0);
-  const nlohmann::json report = nlohmann::json::parse(output);
-  for (const char* method : {"explicit", "implicit", "midpoint", "rk4", "symplectic"}) {
-    ASSERT_TRUE(report["orders"].contains(method)) << method;
-    EXPECT_TRUE(report["orders"][method]["double"].is_number()) << method;
-    const nlohmann::json& single = report["orders"][method]["float"];
-    EXPECT_TRUE(single.is_number() || single.is_null()) << method;
-    EXPECT_TRUE(report["float_floor"][method].is_number()) << method;
-  }
-  EXPECT_NEAR(report["orders"]["rk4"]["double"].get<double>(), 4, 0.2);
-  ASSERT_TRUE(report["checks"].is_array());
-  EXPECT_GT(report["checks"].size(), 50u);
-  for (const nlohmann::json& row : report["checks"]) {
-    for (const char* key :
-         {"check", "method", "precision", "expected", "observed", "tolerance", "pass"})
-      EXPECT_TRUE(row.contains(key)) << key;
-    EXPECT_TRUE(row["pass"].get<bool>()) << row.dump();
-  }
-  EXPECT_TRUE(report["passed"].get<bool>());
-}
-
-TEST(VerifyCommand, TablePrintsTheColumnsAndASummary) {
-  const auto [code, output] = test::runCli("verify", test::Capture::StdoutOnly);
-  EXPECT_EQ(code, 0);
-  EXPECT_EQ(output.rfind("check", 0), 0u);
-  for (const char* column : {"method", "prec", "expected", "observed", "tolerance", "pass"})
-    EXPECT_NE(output.find(column), std::string::npos) << column;
-  EXPECT_NE(output.find(" checks, 0 failed"), std::string::npos);
-  EXPECT_EQ(output.find(" NO\n"), std::string::npos);
-}
-
 }  // namespace
 }  // namespace clothref

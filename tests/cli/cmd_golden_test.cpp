@@ -1,0 +1,99 @@
+// `clothref golden`: exit codes, the per-entry report, where the golden set is found, and that
+// --update never creates a set unasked (tools/clothref/cmd_golden.cpp).
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "clothref/golden/golden.h"
+#include "test_util.h"
+
+namespace clothref {
+namespace {
+
+// The CLI prints each mismatch and a count line and exits 1. A manifest that lists nothing makes
+// every entry of the golden set a mismatch without simulating anything.
+TEST(GoldenCli, MismatchExitsOneAndPrintsEachEntry) {
+  const test::TempDir root;
+  test::writeText(root.path() / "manifest.json", manifestText(GoldenSet{}));
+  const test::CommandResult result = test::runCli("golden --golden " + root.path().string());
+  EXPECT_EQ(result.exit_code, 1) << result.output;
+  const std::string& out = result.output;
+  auto has = [&out](const std::string& text) { return out.find(text) != std::string::npos; };
+  EXPECT_TRUE(has("MISMATCH scene  scenes/course2022.json: golden scene file missing")) << out;
+  EXPECT_TRUE(
+      has("MISMATCH trace  traces/course2022.rk4.jsonl (course2022 rk4 float dt=0.0001 "
+          "5000 steps stride 500): in the golden set this code defines but not in the "
+          "manifest (run --update)"))
+      << out;
+  EXPECT_TRUE(
+      has("MISMATCH hashes course2022 explicit float dt=0.0001 10000 steps: in the golden "
+          "set this code defines but not in the manifest"))
+      << out;
+  const GoldenSet& set = goldenSet();
+  const int entries = int(set.scenes.size() + set.traces.size() + set.hash_runs.size());
+  EXPECT_TRUE(
+      has(fmt::format("clothref golden: 0 of {} entries match, {} mismatch", entries, entries)))
+      << out;
+}
+
+TEST(GoldenCli, BadInputExitsTwo) {
+  const test::TempDir root;
+  const test::CommandResult missing = test::runCli("golden --golden " + root.file("none"));
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.output.find("golden directory not found"), std::string::npos) << missing.output;
+
+  test::writeText(root.path() / "manifest.json",
+                  "{\"format\": \"clothref-golden\", \"version\": 1,");
+  const test::CommandResult malformed = test::runCli("golden --golden " + root.path().string());
+  EXPECT_EQ(malformed.exit_code, 2);
+  EXPECT_NE(malformed.output.find("manifest.json: /version: not valid JSON (line 1, column 44)"),
+            std::string::npos)
+      << malformed.output;
+
+  // --update under a path that is a regular file: one line, exit 2 (was an uncaught
+  // filesystem_error, so an abort)
+  test::writeText(root.path() / "plain-file", "x");
+  const test::CommandResult under_file =
+      test::runCli("golden --update --golden " + root.file("plain-file") + "/golden");
+  EXPECT_EQ(under_file.exit_code, 2) << under_file.output;
+  EXPECT_EQ(under_file.output.rfind("clothref: " + root.file("plain-file"), 0), 0u)
+      << under_file.output;
+  EXPECT_EQ(std::count(under_file.output.begin(), under_file.output.end(), '\n'), 1)
+      << under_file.output;
+
+  // a number too large for a double in the tolerance file
+  test::writeText(root.path() / "tolerances.json", "{\"default\": {\"abs\": 1e400}}");
+  const test::CommandResult huge = test::runCli("golden --golden " + root.file("none") +
+                                                " --tolerances " + root.file("tolerances.json"));
+  EXPECT_EQ(huge.exit_code, 2) << huge.output;
+  EXPECT_NE(huge.output.find("tolerances.json: /default/abs: not valid JSON"), std::string::npos)
+      << huge.output;
+}
+
+// The golden directory defaults to the source tree's (recorded at configure time), so a run from
+// any working directory checks the real data; --update never makes a new set without --create.
+TEST(GoldenCli, DefaultDirectoryIsTheSourceTreesAndUpdateNeverCreatesASetUnasked) {
+  const test::CommandResult help = test::runCli("golden --help");
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_NE(help.output.find(std::string(CLOTHREF_SOURCE_DIR) + "/golden"), std::string::npos)
+      << help.output;
+
+  const test::TempDir root;
+  const test::CommandResult update = test::runCli("golden --update --dir " + root.file("new"));
+  EXPECT_EQ(update.exit_code, 2) << update.output;
+  EXPECT_NE(update.output.find("--update --create"), std::string::npos) << update.output;
+  EXPECT_FALSE(std::filesystem::exists(root.file("new")));
+  const test::CommandResult alias = test::runCli("golden --update --golden " + root.file("new"));
+  EXPECT_EQ(alias.exit_code, 2) << alias.output;
+  EXPECT_FALSE(std::filesystem::exists(root.file("new")));
+
+  const test::CommandResult create_alone =
+      test::runCli("golden --create --dir " + root.file("new"));
+  EXPECT_EQ(create_alone.exit_code, 2) << create_alone.output;
+  EXPECT_FALSE(std::filesystem::exists(root.file("new")));
+}
+
+}  // namespace
+}  // namespace clothref
