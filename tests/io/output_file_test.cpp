@@ -1,20 +1,13 @@
 // OutputFile: atomic replacement of regular files and new paths; direct writes to anything else.
 #include "clothref/io/output_file.h"
 
-#include <fstream>
 #include <future>
 #include <iterator>
 #include <string>
 
-#include <fcntl.h>
 #include <gtest/gtest.h>
-#include <signal.h>
 #include <sys/stat.h>
-#include <sys/wait.h>
 #include <unistd.h>
-
-#include <chrono>
-#include <thread>
 
 #include "test_util.h"
 

@@ -2,9 +2,6 @@
 #include "clothref/scene/make_world.h"
 #include "clothref/trace/format.h"
 
-#include <fstream>
-#include <iterator>
-#include <sstream>
 #include <vector>
 
 #define XXH_STATIC_LINKING_ONLY

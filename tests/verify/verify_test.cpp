@@ -6,10 +6,8 @@
 
 #include <array>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <map>
-#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 
