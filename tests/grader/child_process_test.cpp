@@ -31,6 +31,40 @@ TEST(RunChild, Verdicts) {
   EXPECT_EQ(runShell(temp, "echo oops >&2; exit 1").stderr_head, "oops\n");
 }
 
+TEST(RunChild, OneWordVerdicts) {
+  test::TempDir temp;
+  EXPECT_EQ(runShell(temp, "exit 3").verdict(), "exited-non-zero");
+  EXPECT_EQ(runShell(temp, "kill -SEGV $$").verdict(), "crashed");
+  EXPECT_EQ(runShell(temp, "kill -XCPU $$").verdict(), "timed-out");
+  EXPECT_EQ(runShell(temp, "kill -XFSZ $$").verdict(), "output-limit");
+  EXPECT_EQ(runShell(temp, "echo \"terminate called after throwing an instance of "
+                           "'std::bad_alloc'\" >&2; kill -ABRT $$")
+                .verdict(),
+            "memory-limit");
+  EXPECT_EQ(runShell(temp, "true").verdict(), "no-answer");
+  EXPECT_EQ(runShell(temp, "sleep 30", 0.3).verdict(), "timed-out");
+}
+
+TEST(RunChild, LimitsBite) {
+  test::TempDir temp;
+  // 64 MiB of output: the file-size limit stops it (SIGXFSZ), the grader's disk is safe.
+  const ChildRun flood = runShell(temp, "yes flood-flood-flood-flood-flood");
+  EXPECT_EQ(flood.verdict(), "output-limit") << flood.describe();
+  EXPECT_LE(std::filesystem::file_size(temp.file("child.stdout")), 64u << 20);
+  std::ofstream(temp.file("in"), std::ios::trunc) << "";
+  ChildLimits limits;
+  limits.address_space_bytes = 1ull << 30;
+  limits.log = std::make_shared<RunLog>();
+  // The address-space limit reaches the child; the log records each run's verdict.
+  runChild({"/bin/sh", "-c", "ulimit -v >&2; exit 1"}, temp.path(), temp.file("in"), limits, true,
+           42);
+  std::string line;
+  std::getline(std::ifstream(temp.file("child.stderr")), line);
+  EXPECT_EQ(line, "1048576");  // KiB
+  ASSERT_EQ(limits.log->verdicts.size(), 1u);
+  EXPECT_EQ(limits.log->verdicts[0], "exited-non-zero");
+}
+
 TEST(RunChild, PrintingAFrameOnStdoutIsNotAnAnswer) {
   test::TempDir temp;
   probe::ProbeMessage fake;

@@ -118,7 +118,7 @@ fs::path precompiledHeader(const CourseToolchain& t, const fs::path& work_dir) {
   command.insert(command.end(), {"-isystem", t.eigen_include.string(), "-x", "c++-header",
                                  (temporary / "course_pch.h").string(), "-o",
                                  (temporary / "course_pch.h.gch").string()});
-  const bool built = runTools({command}, work_dir, 1, t.compile_seconds).front().ok;
+  const bool built = runTools({command}, work_dir, 1, t.compile_seconds, &t.isolation).front().ok;
   if (built) fs::rename(temporary, dir, error);  // another grader may have won: use theirs
   fs::remove_all(temporary, error);
   return fs::exists(dir / "course_pch.h.gch", error) ? header : fs::path();
@@ -148,7 +148,8 @@ std::vector<ToolRun> compileAll(const CourseToolchain& t,
     to_run.push_back(c);
     index.push_back(k);
   }
-  const std::vector<ToolRun> runs = runTools(to_run, work_dir, t.jobs, t.compile_seconds);
+  const std::vector<ToolRun> runs =
+      runTools(to_run, work_dir, t.jobs, t.compile_seconds, &t.isolation);
   for (std::size_t r = 0; r < runs.size(); ++r) {
     const std::size_t k = index[r];
     results[k] = runs[r];
@@ -289,7 +290,8 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseTo
     std::vector<std::string> command = {toolchain.compiler, "-o", out.string()};
     for (const auto& o : objects) command.push_back(o.string());
     command.push_back(driver_lib.string());
-    return runTools({command}, work_dir, 1, toolchain.compile_seconds).front();
+    return runTools({command}, work_dir, 1, toolchain.compile_seconds, &toolchain.isolation)
+        .front();
   };
   std::vector<fs::path> objects = {work_dir / "cloth.o", work_dir / "sphere.o",
                                    work_dir / "integrator.o"};

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "results.h"
+#include "sandbox.h"
 #include "submission.h"
 
 namespace clothref::grader {
@@ -26,6 +27,7 @@ struct CourseToolchain {
   int jobs = 2;                          // compiles at once
   std::filesystem::path cache_dir;       // object cache keyed by source bytes + flags; empty = off
   double compile_seconds = 120;          // per compile
+  Isolation isolation;  // Bubblewrap: compiles and links see only /usr and the paths they name
 };
 
 // The built-in locations (set by CMake) with environment overrides CLOTHREF_GRADER_COURSE_DIR,

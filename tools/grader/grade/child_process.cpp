@@ -1,9 +1,12 @@
 #include "child_process.h"
 
 #include <fcntl.h>
+#include <grp.h>
 #include <poll.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/resource.h>
+#include <sys/syscall.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -78,8 +81,17 @@ struct ExecArgs {
   }
 };
 
+// bubblewrap reports the sandbox's pid on this descriptor (the one after the answer's).
+constexpr int kInfoFd = probe::kResultFd + 1;
+
+struct ExecLimits {
+  const ChildLimits* limits = nullptr;  // nullptr: tool limits below
+  double tool_seconds = 0;
+  int uid = -1;
+};
+
 [[noreturn]] void execChild(const ExecArgs& exec, int stdin_fd, int stdout_fd, int stderr_fd,
-                            int answer_fd, const ChildLimits* limits) {
+                            int answer_fd, int info_fd, const ExecLimits& how) {
   setpgid(0, 0);
   dup2(stdin_fd, 0);
   dup2(stdout_fd, 1);
@@ -90,15 +102,32 @@ struct ExecArgs {
     int devnull = open("/dev/null", O_RDONLY);
     if (devnull >= 0) dup2(devnull, probe::kResultFd);
   }
-  for (int fd = probe::kResultFd + 1; fd < 1024; ++fd) close(fd);
+  int first_closed = probe::kResultFd + 1;
+  if (info_fd >= 0) {
+    dup2(info_fd, kInfoFd);
+    first_closed = kInfoFd + 1;
+  }
+  for (int fd = first_closed; fd < 1024; ++fd) close(fd);
   if (chdir(exec.dir.c_str()) != 0) _exit(126);
-  if (limits) {
+  if (const ChildLimits* limits = how.limits) {
     setLimit(RLIMIT_CPU, limits->cpu_seconds);
     setLimit(RLIMIT_AS, limits->address_space_bytes);
     setLimit(RLIMIT_FSIZE, limits->file_size_bytes);
     setLimit(RLIMIT_NOFILE, limits->open_files);
-    setLimit(RLIMIT_CORE, 0);
+    setLimit(RLIMIT_NPROC, limits->processes);
+  } else {
+    setLimit(RLIMIT_CPU, static_cast<std::uint64_t>(how.tool_seconds) + 1);
+    setLimit(RLIMIT_AS, kToolAddressSpace);
+    setLimit(RLIMIT_FSIZE, kToolFileSize);
   }
+  setLimit(RLIMIT_CORE, 0);
+  if (how.uid >= 0) {
+    // Groups first, then gid, then uid: after setresuid we could not change the others.
+    const auto id = static_cast<uid_t>(how.uid);
+    if (setgroups(0, nullptr) != 0 || setresgid(id, id, id) != 0 || setresuid(id, id, id) != 0)
+      _exit(125);
+  }
+  prctl(PR_SET_NO_NEW_PRIVS, 1, 0, 0, 0);  // no set-uid program gives the privileges back
   // A clean environment: nothing of the grader's leaks into student code.
   char path_env[] = "PATH=/usr/local/bin:/usr/bin:/bin";
   char lang_env[] = "LC_ALL=C";
@@ -106,6 +135,44 @@ struct ExecArgs {
   execve(exec.argv[0], exec.argv.data(), env);
   if (errno == ENOENT) execvpe(exec.argv[0], exec.argv.data(), env);
   _exit(127);
+}
+
+// The sandbox's first process (bubblewrap's pid 1 of the new pid namespace), pinned by a pidfd,
+// once bubblewrap has reported it and only if it really is in the reported namespace.
+struct SandboxInit {
+  int pidfd = -1;
+  void pin(const std::string& info_json) {
+    if (pidfd >= 0) return;
+    const BubblewrapInfo info = parseBubblewrapInfo(info_json);
+    if (info.child_pid <= 0) return;
+    const int fd = static_cast<int>(syscall(SYS_pidfd_open, info.child_pid, 0));
+    if (fd < 0) return;
+    // The pid could have been reused by the time we opened it: check its pid namespace.
+    char link[64] = {};
+    const std::string ns_path = "/proc/" + std::to_string(info.child_pid) + "/ns/pid";
+    const ssize_t n = readlink(ns_path.c_str(), link, sizeof link - 1);
+    if (n > 0 && std::string(link) == "pid:[" + std::to_string(info.pid_namespace) + "]")
+      pidfd = fd;
+    else
+      close(fd);
+  }
+  // Kills the namespace's init (the kernel then kills every process in the namespace) and waits
+  // until it has exited, which happens only after all of them are gone.
+  void killAndWait() {
+    if (pidfd < 0) return;
+    syscall(SYS_pidfd_send_signal, pidfd, SIGKILL, nullptr, 0);
+    pollfd fd{pidfd, POLLIN, 0};
+    for (int k = 0; k < 100 && poll(&fd, 1, 100) == 0; ++k) {
+    }
+    close(pidfd);
+    pidfd = -1;
+  }
+};
+
+void readAvailable(int fd, std::string& into) {
+  char buffer[4096];
+  for (ssize_t n; (n = read(fd, buffer, sizeof buffer)) > 0;)
+    into.append(buffer, static_cast<std::size_t>(n));
 }
 
 }  // namespace
@@ -117,7 +184,14 @@ std::string ChildRun::describe() const {
       out << "finished";
       break;
     case ChildStatus::Crashed:
-      out << "crashed (" << signalName(signal) << ")";
+      if (verdict() == "memory-limit")
+        out << "ran out of memory (address-space limit; std::bad_alloc, then abort)";
+      else if (verdict() == "output-limit")
+        out << "was stopped for writing too much output (file-size limit, SIGXFSZ)";
+      else if (verdict() == "timed-out")
+        out << "was stopped at the CPU time limit (SIGXCPU)";
+      else
+        out << "crashed (" << signalName(signal) << ")";
       break;
     case ChildStatus::TimedOut:
       out << "timed out after " << static_cast<int>(seconds + 0.5) << " s";
@@ -132,40 +206,89 @@ std::string ChildRun::describe() const {
   return out.str();
 }
 
+std::string ChildRun::verdict() const {
+  switch (status) {
+    case ChildStatus::Ok:
+      return "ok";
+    case ChildStatus::TimedOut:
+      return "timed-out";
+    case ChildStatus::ExitedNonZero:
+      return "exited-non-zero";
+    case ChildStatus::NoAnswer:
+      return "no-answer";
+    case ChildStatus::Crashed:
+      break;
+  }
+  if (signal == SIGXCPU) return "timed-out";
+  if (signal == SIGXFSZ) return "output-limit";
+  // The C++ runtime's last words when `new` fails under RLIMIT_AS (the student could print them
+  // too: that only changes this word, never a score).
+  if (signal == SIGABRT && stderr_head.find("std::bad_alloc") != std::string::npos)
+    return "memory-limit";
+  return "crashed";
+}
+
 ChildRun runChild(const std::vector<std::string>& command, const std::filesystem::path& work_dir,
                   const std::filesystem::path& stdin_file, const ChildLimits& limits,
                   bool expect_answer, std::uint64_t request_nonce) {
   ChildRun run;
   const auto start = Clock::now();
+  const Isolation& isolation = limits.isolation;
+  const bool boxed = isolation.kind == IsolationKind::Bubblewrap;
+  // The student's own folder: the only place it may write (its owner is the uid it runs as).
+  std::filesystem::path run_dir = work_dir;
+  if (isolation.kind != IsolationKind::None) {
+    run_dir = work_dir / "sandbox";
+    std::error_code error;
+    std::filesystem::create_directories(run_dir, error);
+    chmod(run_dir.c_str(), 0700);
+    if (isolation.uid >= 0 && chown(run_dir.c_str(), static_cast<uid_t>(isolation.uid),
+                                    static_cast<gid_t>(isolation.uid)) != 0) {
+      run.status = ChildStatus::ExitedNonZero;
+      run.exit_code = -1;
+      run.stderr_head = "grader: cannot hand the child's folder to uid " +
+                        std::to_string(isolation.uid);
+      return run;
+    }
+  }
   std::vector<std::string> argv = limits.launcher;
-  argv.insert(argv.end(), command.begin(), command.end());
+  const std::vector<std::string> inner =
+      boxed ? bubblewrapArgv(isolation, command, run_dir, kInfoFd) : command;
+  argv.insert(argv.end(), inner.begin(), inner.end());
   const auto out_path = work_dir / "child.stdout";
   const auto err_path = work_dir / "child.stderr";
   int in_fd = open(stdin_file.c_str(), O_RDONLY | O_CLOEXEC);
   int out_fd = open(out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   int err_fd = open(err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   int pipe_fds[2] = {-1, -1};
-  if (in_fd < 0 || out_fd < 0 || err_fd < 0 || pipe2(pipe_fds, O_CLOEXEC) != 0) {
-    for (int fd : {in_fd, out_fd, err_fd, pipe_fds[0], pipe_fds[1]})
+  int info_fds[2] = {-1, -1};
+  if (in_fd < 0 || out_fd < 0 || err_fd < 0 || pipe2(pipe_fds, O_CLOEXEC) != 0 ||
+      (boxed && pipe2(info_fds, O_CLOEXEC | O_NONBLOCK) != 0)) {
+    for (int fd : {in_fd, out_fd, err_fd, pipe_fds[0], pipe_fds[1], info_fds[0], info_fds[1]})
       if (fd >= 0) close(fd);
     run.status = ChildStatus::ExitedNonZero;
     run.exit_code = -1;
     run.stderr_head = "grader: cannot set up the child's files or pipe";
     return run;
   }
-  const ExecArgs exec(argv, work_dir);
+  const ExecArgs exec(argv, run_dir);
+  const ExecLimits how{&limits, 0, isolation.uid};
   const pid_t pid = fork();
-  if (pid == 0) execChild(exec, in_fd, out_fd, err_fd, expect_answer ? pipe_fds[1] : -1, &limits);
-  close(in_fd);
-  close(out_fd);
-  close(err_fd);
-  close(pipe_fds[1]);
+  if (pid == 0)
+    execChild(exec, in_fd, out_fd, err_fd, expect_answer ? pipe_fds[1] : -1, info_fds[1], how);
+  for (int fd : {in_fd, out_fd, err_fd, pipe_fds[1], info_fds[1]})
+    if (fd >= 0) close(fd);
   setpgid(pid, pid);  // also done in the child; whichever runs first wins the race harmlessly
 
-  std::string answer;
+  std::string answer, info;
+  SandboxInit sandbox;
   bool timed_out = false;
   const std::size_t max_answer = 512u << 20;
   for (bool open_pipe = true; open_pipe;) {
+    if (boxed) {
+      readAvailable(info_fds[0], info);
+      sandbox.pin(info);
+    }
     const double left = limits.wall_seconds - secondsSince(start);
     if (left <= 0) {
       timed_out = true;
@@ -194,14 +317,25 @@ ChildRun runChild(const std::vector<std::string>& command, const std::filesystem
     }
     usleep(2000);
   }
+  if (boxed) {
+    readAvailable(info_fds[0], info);
+    close(info_fds[0]);
+    if (timed_out) sandbox.pin(info);  // bubblewrap is still alive: its child cannot be reused
+  }
   if (timed_out) {
+    sandbox.killAndWait();
     kill(-pid, SIGKILL);
     kill(pid, SIGKILL);
     waitpid(pid, &status, 0);
     run.status = ChildStatus::TimedOut;
   } else {
-    kill(-pid, SIGKILL);  // any grandchildren left behind
-    if (WIFSIGNALED(status)) {
+    sandbox.killAndWait();  // normally gone already: bubblewrap exits after its sandbox
+    kill(-pid, SIGKILL);    // any grandchildren left behind
+    // bubblewrap reports a child killed by signal S as exit code 128 + S.
+    if (boxed && WIFEXITED(status) && WEXITSTATUS(status) > 128 && WEXITSTATUS(status) < 160) {
+      run.status = ChildStatus::Crashed;
+      run.signal = WEXITSTATUS(status) - 128;
+    } else if (WIFSIGNALED(status)) {
       run.status = ChildStatus::Crashed;
       run.signal = WTERMSIG(status);
     } else if (WEXITSTATUS(status) != 0) {
@@ -217,6 +351,10 @@ ChildRun runChild(const std::vector<std::string>& command, const std::filesystem
   }
   run.seconds = secondsSince(start);
   run.stderr_head = readHead(err_path, 2000, 12);
+  if (limits.log) {
+    std::lock_guard<std::mutex> lock(limits.log->mutex);
+    limits.log->verdicts.push_back(run.verdict());
+  }
   return run;
 }
 
@@ -235,7 +373,7 @@ ChildRun runProbe(const std::filesystem::path& executable, probe::ProbeMessage r
 
 std::vector<ToolRun> runTools(const std::vector<std::vector<std::string>>& commands,
                               const std::filesystem::path& work_dir, int jobs,
-                              double wall_seconds) {
+                              double wall_seconds, const Isolation* isolation) {
   struct Running {
     pid_t pid;
     std::size_t index;
@@ -253,9 +391,13 @@ std::vector<ToolRun> runTools(const std::vector<std::vector<std::string>>& comma
       const auto log = log_path(next);
       int in_fd = open(null_in.c_str(), O_RDONLY | O_CLOEXEC);
       int log_fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-      const ExecArgs exec(commands[next], work_dir);
+      const bool boxed = isolation && isolation->kind == IsolationKind::Bubblewrap;
+      const ExecArgs exec(boxed ? bubblewrapToolArgv(*isolation, commands[next], work_dir)
+                                : commands[next],
+                          work_dir);
+      const ExecLimits how{nullptr, wall_seconds, -1};
       const pid_t pid = fork();
-      if (pid == 0) execChild(exec, in_fd, log_fd, log_fd, -1, nullptr);
+      if (pid == 0) execChild(exec, in_fd, log_fd, log_fd, -1, -1, how);
       close(in_fd);
       close(log_fd);
       setpgid(pid, pid);

@@ -2,18 +2,29 @@
 // and a wall-clock timeout. The probe answer comes back on fd 3 (bridge/probe_protocol.h); stdout
 // and stderr go to files in the child's work directory and are only quoted, never trusted.
 //
-// The sandbox issue adds namespaces and an unprivileged uid here: `ChildLimits` and the
-// `launcher` prefix (e.g. a bubblewrap command line) are the slots it fills.
+// `ChildLimits::isolation` (sandbox.h) adds an unprivileged uid, a private working directory and,
+// where it works, a bubblewrap sandbox; a wall timeout then kills the sandbox's whole pid
+// namespace and waits until it is gone, so no process of the run outlives runChild.
 #pragma once
 #include <cstdint>
 #include <filesystem>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "../bridge/probe_protocol.h"
+#include "sandbox.h"
 
 namespace clothref::grader {
+
+// The verdicts of every run made with one ChildLimits (its copies share the log), so a grade can
+// name the worst thing that happened to a submission.
+struct RunLog {
+  std::mutex mutex;
+  std::vector<std::string> verdicts;  // ChildRun::verdict() of each run, in completion order
+};
 
 struct ChildLimits {
   double wall_seconds = 20;                        // killed (whole process group) after this
@@ -21,7 +32,10 @@ struct ChildLimits {
   std::uint64_t address_space_bytes = 4ull << 30;  // RLIMIT_AS
   std::uint64_t file_size_bytes = 64ull << 20;     // RLIMIT_FSIZE (stdout/stderr floods)
   std::uint64_t open_files = 64;                   // RLIMIT_NOFILE
-  std::vector<std::string> launcher;               // argv prefix, empty = run directly
+  std::uint64_t processes = 64;  // RLIMIT_NPROC (counts the uid's processes; not for root)
+  Isolation isolation;           // uid drop, private folder, bubblewrap (default: none)
+  std::vector<std::string> launcher;  // extra argv prefix, empty = none
+  std::shared_ptr<RunLog> log;        // when set, every run's verdict is appended
 };
 
 enum class ChildStatus {
@@ -41,6 +55,10 @@ struct ChildRun {
   std::optional<probe::ProbeMessage> answer;
   // One line for a report: "crashed (SIGSEGV)", "timed out after 20 s", ...
   std::string describe() const;
+  // One word (docs/grading.md, "Verdicts"): "ok", "timed-out" (wall or CPU limit),
+  // "memory-limit" (std::bad_alloc under the address-space limit), "output-limit" (file size),
+  // "crashed", "exited-non-zero", "no-answer".
+  std::string verdict() const;
 };
 
 // Runs `command` (argv; argv[0] a path) in `work_dir` with `stdin_file` as stdin, a clean
@@ -62,7 +80,13 @@ struct ToolRun {
   double seconds = 0;
 };
 // Runs several tool commands at once (at most `jobs` in parallel); results in command order.
+// With an `isolation` of kind Bubblewrap each command runs in bubblewrap seeing only /usr, the
+// work dir and the paths it names (sandbox.h); every run has CPU (wall + 1 s), address-space
+// (kToolAddressSpace) and file-size (kToolFileSize) limits.
 std::vector<ToolRun> runTools(const std::vector<std::vector<std::string>>& commands,
-                              const std::filesystem::path& work_dir, int jobs, double wall_seconds);
+                              const std::filesystem::path& work_dir, int jobs, double wall_seconds,
+                              const Isolation* isolation = nullptr);
+inline constexpr std::uint64_t kToolAddressSpace = 8ull << 30;  // a 10 GB constexpr stops here
+inline constexpr std::uint64_t kToolFileSize = 1ull << 30;
 
 }  // namespace clothref::grader

@@ -8,6 +8,7 @@
 #include <future>
 #include <random>
 #include <regex>
+#include <set>
 
 #include "clothref/io/error.h"
 #include "clothref/io/files.h"
@@ -46,6 +47,29 @@ std::vector<std::string> autoExpressionLines(const std::string& path) {
   return lines;
 }
 
+// The submission's one word: the first of these that happened (docs/grading.md, "Verdicts").
+std::string submissionVerdict(const GradeReport& report,
+                              const std::vector<std::string>& run_verdicts) {
+  std::set<std::string> happened(run_verdicts.begin(), run_verdicts.end());
+  for (const UsedFile& used : report.files) {
+    if (used.compiled) continue;
+    if (used.problem == "missing")
+      happened.insert("missing-file");
+    else if (used.problem.rfind("link error", 0) == 0)
+      happened.insert("link-error");
+    else
+      happened.insert("compile-error");
+  }
+  for (const TestResult& t : report.tests)
+    for (const std::string& id : t.diagnoses)
+      if (id == "non-finite") happened.insert(id);
+  for (const char* verdict : {"compile-error", "link-error", "missing-file", "timed-out",
+                              "memory-limit", "output-limit", "crashed", "exited-non-zero",
+                              "no-answer", "non-finite"})
+    if (happened.count(verdict)) return verdict;
+  return "graded";
+}
+
 double since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -80,7 +104,18 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
       loadCatalogue(options.toolchain.course_dir.parent_path() / "diagnoses.json");
 
   ScratchDir scratch("clothref-grade");
-  const ProbeBuild build = buildProbes(files, report.edition, options.toolchain, scratch.path());
+  // Student processes see none of our files: the course side, the reference, our build, scratch.
+  Isolation isolation = detectIsolation();
+  isolation.hidden = {options.toolchain.course_dir.parent_path(), options.toolchain.reference_dir,
+                      options.toolchain.driver_lib_dir, scratch.path()};
+  report.isolation = isolation.describe();
+  // The unprivileged uid must pass through the scratch folder (not list it) to reach its own.
+  if (isolation.uid >= 0)
+    fs::permissions(scratch.path(), fs::perms::owner_all | fs::perms::group_exec |
+                                        fs::perms::others_exec);
+  CourseToolchain toolchain = options.toolchain;
+  toolchain.isolation = isolation;
+  const ProbeBuild build = buildProbes(files, report.edition, toolchain, scratch.path());
   report.files = build.files;
   report.seconds["compile"] = build.compile_seconds;
   report.seconds["link"] = build.link_seconds;
@@ -95,6 +130,8 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
   context.small_problem = build.small_problem;
   context.work_dir = scratch.path() / "probes";
   context.limits = options.limits;
+  context.limits.isolation = isolation;
+  context.limits.log = std::make_shared<RunLog>();
   context.seed = options.seed;
 
   // Stubs whose file is not the student's: every planned test gets the compile verdict.
@@ -175,6 +212,7 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
                      return rank(a.stub) < rank(b.stub);
                    });
   applyRubric(rubric, report);
+  report.verdict = submissionVerdict(report, context.limits.log->verdicts);
   if (!options.keep_work.empty()) {
     std::error_code error;
     fs::create_directories(options.keep_work, error);

@@ -67,7 +67,8 @@ nlohmann::ordered_json resultsJson(const GradeReport& report) {
   out["execution_time"] = rounded(report.seconds.count("total") ? report.seconds.at("total") : 0);
   std::string summary = "Edition " + std::to_string(report.edition) + " (" + report.edition_source +
                         "). Code score " + number(report.score) + " / " + number(report.max_score) +
-                        ".\n\n" + filesSection(report);
+                        ". Verdict: " + report.verdict + ".\n\n" + filesSection(report);
+  if (!report.isolation.empty()) summary += "\nStudent code ran with: " + report.isolation + ".\n";
   for (const auto& note : report.notes) summary += "\n- " + note;
   out["output"] = summary;
   out["output_format"] = "md";
@@ -91,6 +92,8 @@ nlohmann::ordered_json resultsJson(const GradeReport& report) {
   out["tests"] = tests;
   nlohmann::ordered_json extra;
   extra["edition"] = report.edition;
+  extra["verdict"] = report.verdict;
+  extra["isolation"] = report.isolation;
   nlohmann::ordered_json files = nlohmann::ordered_json::array();
   for (const UsedFile& f : report.files)
     files.push_back(
@@ -114,7 +117,10 @@ std::string junitXml(const GradeReport& report) {
       << report.tests.size() << "\" failures=\"" << failures << "\">\n";
   out << "    <properties><property name=\"score\" value=\"" << number(report.score)
       << "\"/><property name=\"max_score\" value=\"" << number(report.max_score)
-      << "\"/><property name=\"edition\" value=\"" << report.edition << "\"/></properties>\n";
+      << "\"/><property name=\"edition\" value=\"" << report.edition
+      << "\"/><property name=\"verdict\" value=\"" << xmlEscape(report.verdict)
+      << "\"/><property name=\"isolation\" value=\"" << xmlEscape(report.isolation)
+      << "\"/></properties>\n";
   for (const TestResult& t : report.tests) {
     out << "    <testcase classname=\"" << xmlEscape(t.stub) << "\" name=\"" << xmlEscape(t.check)
         << "\">";
@@ -133,7 +139,9 @@ std::string markdownReport(const GradeReport& report) {
   std::ostringstream out;
   out << "# Grading report: " << report.submission << "\n\n";
   out << "Edition " << report.edition << " (" << report.edition_source << "). **Code score "
-      << number(report.score) << " / " << number(report.max_score) << "**.\n\n";
+      << number(report.score) << " / " << number(report.max_score) << "**. Verdict: **"
+      << report.verdict << "**.\n\n";
+  if (!report.isolation.empty()) out << "Student code ran with: " << report.isolation << ".\n\n";
   out << "| stub | score |\n|---|---|\n";
   for (const auto& stub : stubNames())
     if (report.stub_max.count(stub))

@@ -1,0 +1,156 @@
+// The adversarial suite (tests/grader/adversarial): every hostile or broken submission is graded
+// (exit 0) with its expected one-word verdict, under bubblewrap and under the rlimits fallback
+// (CLOTHREF_GRADER_ISOLATION=rlimits), and its attack fails: no process named by the case is
+// alive after the grade, a results file next to ours is untouched and no forged one appears, a
+// secret the compiler was asked to include is not quoted, and a submission that tried to read the
+// reference still gets full marks (it aborts when the read succeeds).
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <thread>
+
+#include "test_util.h"
+
+namespace clothref::test {
+namespace {
+
+namespace fs = std::filesystem;
+const fs::path kSuite = fs::path(CLOTHREF_SOURCE_DIR) / "tests" / "grader" / "adversarial";
+const fs::path kCorpus = fs::path(CLOTHREF_SOURCE_DIR) / "tests" / "grader" / "submissions";
+const char* kFiles[] = {"cloth.cpp", "sphere.cpp", "integrator.cpp"};
+
+std::string readText(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream out;
+  out << in.rdbuf();
+  return out.str();
+}
+
+void replaceAll(std::string& text, const std::string& from, const std::string& to) {
+  for (std::size_t at = 0; (at = text.find(from, at)) != std::string::npos; at += to.size())
+    text.replace(at, from.size(), to);
+}
+
+// Processes whose name is `marker` and that are not zombies (a zombie runs nothing).
+int liveProcessesNamed(const std::string& marker) {
+  int count = 0;
+  for (const auto& entry : fs::directory_iterator("/proc")) {
+    const std::string stat = readText(entry.path() / "stat");
+    const auto open = stat.find('('), close = stat.rfind(')');
+    if (open == std::string::npos || close == std::string::npos || close + 2 >= stat.size())
+      continue;
+    if (stat.substr(open + 1, close - open - 1) == marker && stat[close + 2] != 'Z') ++count;
+  }
+  return count;
+}
+
+struct Case {
+  std::string name;
+  std::string isolation;  // "auto" (bubblewrap here) or "rlimits"
+};
+
+std::vector<Case> suiteCases() {
+  std::vector<Case> cases;
+  std::error_code error;
+  for (const auto& entry : fs::directory_iterator(kSuite, error))
+    if (fs::exists(entry.path() / "expected.json"))
+      for (const char* isolation : {"auto", "rlimits"})
+        cases.push_back({entry.path().filename().string(), isolation});
+  std::sort(cases.begin(), cases.end(),
+            [](const Case& a, const Case& b) { return a.name + a.isolation < b.name + b.isolation; });
+  return cases;
+}
+
+class Adversarial : public ::testing::TestWithParam<Case> {};
+
+TEST_P(Adversarial, GetsItsVerdictAndTheAttackFails) {
+  const Case& c = GetParam();
+  if (c.isolation == "rlimits" && geteuid() != 0)
+    GTEST_SKIP() << "the fallback's expectations are for a grader running as root (uid drop)";
+  TempDir temp;
+  const fs::path case_dir = kSuite / c.name;
+  const nlohmann::json expected = nlohmann::json::parse(readText(case_dir / "expected.json"));
+  // A name of at most 15 characters (the kernel's limit), unique per case and isolation.
+  std::string marker = "adv-" + c.name.substr(0, 8) + (c.isolation == "auto" ? "-b" : "-r");
+  const fs::path results_dir = temp.path() / "results";
+  fs::create_directories(results_dir);
+  std::ofstream(results_dir / "previous.json") << "{\"score\": 12}\n";
+
+  // The base submission with the case's changed file, placeholders filled in.
+  const fs::path submission = temp.path() / "submission" / "src";
+  fs::create_directories(submission);
+  for (const char* name : kFiles) {
+    const fs::path own = case_dir / name;
+    std::string text = readText(fs::exists(own) ? own
+                                                : kCorpus / expected["base"].get<std::string>() /
+                                                      "src" / name);
+    replaceAll(text, "@MARKER@", marker);
+    replaceAll(text, "@SOURCE_DIR@", CLOTHREF_SOURCE_DIR);
+    replaceAll(text, "@RESULTS_DIR@", results_dir.string());
+    std::ofstream(submission / name, std::ios::binary) << text;
+  }
+
+  setenv("CLOTHREF_GRADER_ISOLATION", c.isolation.c_str(), 1);
+  const CommandResult run =
+      runCli("grade '" + submission.parent_path().string() +
+             "' --no-whole-run --timeout 3 --cache-dir '" + std::string(CLOTHREF_GRADER_CACHE) +
+             "' --results '" + (results_dir / "results.json").string() + "' --report '" +
+             (results_dir / "report.md").string() + "'");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const nlohmann::json results = nlohmann::json::parse(readText(results_dir / "results.json"));
+  const std::string isolation = results["extra_data"]["isolation"];
+  const bool boxed = isolation.rfind("bubblewrap", 0) == 0;
+  if (c.isolation == "auto" && !boxed) GTEST_SKIP() << "bubblewrap does not work here: " << isolation;
+  EXPECT_EQ(boxed, c.isolation == "auto") << isolation;
+
+  const std::string want = c.isolation == "rlimits" && expected.contains("verdict_rlimits")
+                               ? expected["verdict_rlimits"]
+                               : expected["verdict"];
+  EXPECT_EQ(results["extra_data"]["verdict"], want) << results["output"];
+  for (const auto& stub : expected.value("loses", nlohmann::json::array()))
+    EXPECT_LT(results["extra_data"]["stub_scores"][stub.get<std::string>()].get<double>(),
+              results["extra_data"]["stub_max"][stub.get<std::string>()].get<double>())
+        << stub;
+  if (expected.value("full_marks", false) && want == expected["verdict"])
+    EXPECT_DOUBLE_EQ(results["score"].get<double>(), 80.0) << results.dump(1).substr(0, 3000);
+
+  // Contained: nothing of the run is alive. The grader waits for a sandbox's pid namespace to
+  // be gone; in the fallback the killed process group may still be on its way out, so poll.
+  if (expected.value("marker", false)) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(2);
+    int alive = liveProcessesNamed(marker);
+    while (alive > 0 && !boxed && std::chrono::steady_clock::now() < deadline) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      alive = liveProcessesNamed(marker);
+    }
+    EXPECT_EQ(alive, 0) << "processes named " << marker << " survived the grade";
+  }
+  EXPECT_EQ(readText(results_dir / "previous.json"), "{\"score\": 12}\n");
+  EXPECT_FALSE(fs::exists(results_dir / "forged.json"));
+  if (expected.contains("secret_file") && boxed) {
+    std::string secret;
+    std::getline(std::ifstream(expected["secret_file"].get<std::string>()), secret);
+    if (!secret.empty()) {
+      EXPECT_EQ(readText(results_dir / "results.json").find(secret), std::string::npos);
+      EXPECT_EQ(readText(results_dir / "report.md").find(secret), std::string::npos);
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Suite, Adversarial, ::testing::ValuesIn(suiteCases()),
+                         [](const auto& info) {
+                           std::string name = info.param.name + "_" + info.param.isolation;
+                           for (char& c : name)
+                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return name;
+                         });
+
+}  // namespace
+}  // namespace clothref::test

@@ -1,0 +1,171 @@
+// The sandbox: the bubblewrap command line shows the student only /usr, its program and its own
+// folder; a child in the fallback runs as uid 65534 with a process limit in a private folder; in
+// bubblewrap it has no network, its own pid namespace, and a timeout leaves nothing alive.
+#include "grader/grade/sandbox.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <fstream>
+
+#include "clothref/io/error.h"
+#include "grader/grade/child_process.h"
+#include "test_util.h"
+
+namespace clothref::grader {
+namespace {
+
+namespace fs = std::filesystem;
+
+bool contains(const std::vector<std::string>& argv, const std::vector<std::string>& run) {
+  return std::search(argv.begin(), argv.end(), run.begin(), run.end()) != argv.end();
+}
+
+std::string readText(const fs::path& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+TEST(BubblewrapArgv, ShowsOnlyUsrTheProgramAndItsFolder) {
+  Isolation isolation;
+  isolation.kind = IsolationKind::Bubblewrap;
+  isolation.bwrap = "/usr/bin/bwrap";
+  isolation.hidden = {"/usr/share/clothref", "/work/clothref"};
+  const auto argv =
+      bubblewrapArgv(isolation, {"/tmp/x/probe", "--flag"}, "/tmp/x/probes/g/sandbox", 4);
+  EXPECT_EQ(argv.front(), "/usr/bin/bwrap");
+  EXPECT_TRUE(contains(argv, {"--unshare-all"}));
+  EXPECT_TRUE(contains(argv, {"--die-with-parent"}));
+  EXPECT_TRUE(contains(argv, {"--ro-bind", "/usr", "/usr"}));
+  EXPECT_FALSE(contains(argv, {"--ro-bind", "/", "/"}));  // an allow-list, not the whole disk
+  EXPECT_TRUE(contains(argv, {"--ro-bind", "/tmp/x/probe", "/sandbox/bin/probe"}));
+  EXPECT_TRUE(contains(argv, {"--bind", "/tmp/x/probes/g/sandbox", "/sandbox/work"}));
+  EXPECT_TRUE(contains(argv, {"--tmpfs", "/usr/share/clothref"}) ||
+              !fs::is_directory("/usr/share/clothref"));
+  EXPECT_FALSE(contains(argv, {"--tmpfs", "/work/clothref"}));  // not visible anyway
+  EXPECT_TRUE(contains(argv, {"--info-fd", "4"}));
+  EXPECT_TRUE(contains(argv, {"--", "/sandbox/bin/probe", "--flag"}));
+  EXPECT_EQ(argv.back(), "--flag");
+}
+
+TEST(BubblewrapToolArgv, BindsTheNamedPathsAndTheWorkDirOnly) {
+  test::TempDir temp;
+  fs::create_directories(temp.path() / "include");
+  std::ofstream(temp.file("source.cpp")) << "int x;\n";
+  Isolation isolation;
+  isolation.kind = IsolationKind::Bubblewrap;
+  isolation.bwrap = "bwrap";
+  const fs::path work = temp.path() / "work";
+  fs::create_directories(work);
+  const auto argv = bubblewrapToolArgv(
+      isolation,
+      {"g++", "-I" + temp.file("include"), "-c", temp.file("source.cpp"), "-o",
+       (work / "a.o").string()},
+      work);
+  EXPECT_TRUE(contains(argv, {"--bind", work.string(), work.string()}));
+  EXPECT_TRUE(contains(argv, {"--ro-bind", temp.file("include"), temp.file("include")}));
+  // A file's folder (a precompiled header sits next to its header).
+  EXPECT_TRUE(contains(argv, {"--ro-bind", temp.path().string(), temp.path().string()}));
+  EXPECT_FALSE(contains(argv, {"--ro-bind", "/", "/"}));
+  EXPECT_EQ(argv.back(), (work / "a.o").string());
+}
+
+TEST(BubblewrapInfo, ReadsThePidAndNamespace) {
+  const auto info = parseBubblewrapInfo(
+      "{\n    \"child-pid\": 23401,\n    \"cgroup-namespace\": 4026532182,\n"
+      "    \"pid-namespace\": 4026532181\n}\n");
+  EXPECT_EQ(info.child_pid, 23401);
+  EXPECT_EQ(info.pid_namespace, 4026532181ull);
+  EXPECT_EQ(parseBubblewrapInfo("garbage").child_pid, 0);
+}
+
+TEST(Isolation, DescriptionsSayWhatRan) {
+  Isolation isolation;
+  isolation.kind = IsolationKind::Rlimits;
+  isolation.uid = 65534;
+  isolation.why_not_bubblewrap = "bwrap not installed";
+  EXPECT_EQ(isolation.describe(),
+            "rlimits, uid 65534, private working directory; no namespaces (bwrap not installed)");
+  isolation.kind = IsolationKind::Bubblewrap;
+  EXPECT_EQ(isolation.describe().rfind("bubblewrap (new user, net, pid, mount", 0), 0u);
+}
+
+// Each TEST runs in its own process under ctest, so the cached detection sees this variable.
+TEST(DetectIsolation, TheVariableForcesTheFallback) {
+  setenv("CLOTHREF_GRADER_ISOLATION", "rlimits", 1);
+  const Isolation isolation = detectIsolation();
+  EXPECT_EQ(isolation.kind, IsolationKind::Rlimits);
+  EXPECT_EQ(isolation.uid, geteuid() == 0 ? kNobodyUid : -1);
+  EXPECT_NE(isolation.describe().find("CLOTHREF_GRADER_ISOLATION=rlimits"), std::string::npos);
+}
+
+TEST(DetectIsolation, AnUnknownValueIsRefused) {
+  setenv("CLOTHREF_GRADER_ISOLATION", "chroot", 1);
+  EXPECT_THROW(detectIsolation(), InputError);
+}
+
+ChildRun runIsolated(const test::TempDir& temp, IsolationKind kind, const std::string& script,
+                     double wall = 5) {
+  std::ofstream(temp.file("in"), std::ios::trunc) << "";
+  ChildLimits limits;
+  limits.wall_seconds = wall;
+  limits.isolation.kind = kind;
+  limits.isolation.uid = geteuid() == 0 ? kNobodyUid : -1;
+  if (kind == IsolationKind::Bubblewrap) {
+    setenv("CLOTHREF_GRADER_ISOLATION", "auto", 1);
+    limits.isolation = detectIsolation();
+  }
+  // The unprivileged uid must pass through the folder to reach its own.
+  fs::permissions(temp.path(), fs::perms::owner_all | fs::perms::others_exec);
+  return runChild({"/bin/sh", "-c", script}, temp.path(), temp.file("in"), limits, false, 0);
+}
+
+TEST(Fallback, RunsAsNobodyInItsOwnFolderWithAProcessLimit) {
+  if (geteuid() != 0) GTEST_SKIP() << "the uid drop needs root";
+  test::TempDir temp;
+  const ChildRun run = runIsolated(temp, IsolationKind::Rlimits,
+                                   "id -u; pwd; ulimit -u; echo x > ../outside || echo denied");
+  ASSERT_EQ(run.status, ChildStatus::Ok) << run.stderr_head;
+  EXPECT_EQ(readText(temp.path() / "child.stdout"),
+            "65534\n" + (temp.path() / "sandbox").string() + "\n64\ndenied\n");
+  EXPECT_FALSE(fs::exists(temp.path() / "outside"));
+}
+
+TEST(Bubblewrap, NoNetworkOwnPidsAndNothingButUsr) {
+  test::TempDir temp;
+  setenv("CLOTHREF_GRADER_ISOLATION", "auto", 1);
+  if (detectIsolation().kind != IsolationKind::Bubblewrap)
+    GTEST_SKIP() << "bubblewrap does not work here: " << detectIsolation().describe();
+  const ChildRun run = runIsolated(
+      temp, IsolationKind::Bubblewrap,
+      "id -u; pwd; echo $$; ls /; tail -n +3 /proc/net/dev | cut -d: -f1 | tr -d ' '; "
+      "test -e " + std::string(CLOTHREF_SOURCE_DIR) + " || echo no-source; echo x > /usr/x || "
+      "echo read-only");
+  ASSERT_EQ(run.status, ChildStatus::Ok) << run.stderr_head;
+  const std::string uid = geteuid() == 0 ? "65534" : std::to_string(geteuid());
+  EXPECT_EQ(readText(temp.path() / "child.stdout"),
+            uid + "\n/sandbox/work\n2\nbin\ndev\nlib\nlib64\nproc\nsandbox\nsbin\ntmp\nusr\nlo\n"
+                  "no-source\nread-only\n");
+}
+
+TEST(Bubblewrap, ATimeoutLeavesNoProcessAlive) {
+  test::TempDir temp;
+  setenv("CLOTHREF_GRADER_ISOLATION", "auto", 1);
+  if (detectIsolation().kind != IsolationKind::Bubblewrap)
+    GTEST_SKIP() << "bubblewrap does not work here: " << detectIsolation().describe();
+  // A detached grandchild in its own session escapes a process-group kill, not the namespace.
+  const ChildRun run = runIsolated(
+      temp, IsolationKind::Bubblewrap,
+      "setsid sh -c 'sleep 31.4159' & sleep 31.4159", 0.5);
+  EXPECT_EQ(run.status, ChildStatus::TimedOut);
+  int alive = 0;
+  for (const auto& entry : fs::directory_iterator("/proc")) {
+    const std::string cmdline = readText(entry.path() / "cmdline");
+    if (cmdline.find("31.4159") != std::string::npos) ++alive;
+  }
+  EXPECT_EQ(alive, 0);
+}
+
+}  // namespace
+}  // namespace clothref::grader

@@ -1,0 +1,181 @@
+#include "sandbox.h"
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <mutex>
+#include <optional>
+#include <regex>
+
+#include "child_process.h"
+#include "clothref/io/error.h"
+#include "clothref/io/files.h"
+
+namespace clothref::grader {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string findOnPath(const std::string& name) {
+  for (const char* dir : {"/usr/bin", "/bin", "/usr/local/bin", "/usr/sbin"}) {
+    const fs::path candidate = fs::path(dir) / name;
+    if (access(candidate.c_str(), X_OK) == 0) return candidate.string();
+  }
+  return {};
+}
+
+bool isUnder(const fs::path& path, const fs::path& root) {
+  const auto p = path.lexically_normal().string(), r = root.lexically_normal().string();
+  return p == r || (p.size() > r.size() && p.compare(0, r.size(), r) == 0 && p[r.size()] == '/');
+}
+
+// The host trees every sandbox sees (read-only): the system's programs and libraries. Merged-/usr
+// systems have /lib, /bin... as symlinks into /usr: they become the same symlinks in the box.
+void addSystemTrees(std::vector<std::string>& argv) {
+  argv.insert(argv.end(), {"--ro-bind", "/usr", "/usr"});
+  for (const char* top : {"/bin", "/sbin", "/lib", "/lib32", "/lib64", "/libx32"}) {
+    std::error_code error;
+    const fs::path path(top);
+    if (fs::is_symlink(path, error))
+      argv.insert(argv.end(), {"--symlink", fs::read_symlink(path, error).string(), top});
+    else if (fs::is_directory(path, error))
+      argv.insert(argv.end(), {"--ro-bind", top, top});
+  }
+  argv.insert(argv.end(), {"--ro-bind-try", "/etc/ld.so.cache", "/etc/ld.so.cache"});
+}
+
+void addHidden(const Isolation& isolation, std::vector<std::string>& argv) {
+  for (const fs::path& hidden : isolation.hidden) {
+    std::error_code error;
+    if (isUnder(hidden, "/usr") && fs::is_directory(hidden, error))
+      argv.insert(argv.end(), {"--tmpfs", hidden.string()});
+  }
+}
+
+Isolation detect() {
+  const char* forced_env = std::getenv("CLOTHREF_GRADER_ISOLATION");
+  const std::string forced = forced_env && *forced_env ? forced_env : "auto";
+  if (forced != "auto" && forced != "bubblewrap" && forced != "rlimits")
+    throw InputError("CLOTHREF_GRADER_ISOLATION: unknown value '" + forced +
+                     "' (expected auto, bubblewrap or rlimits)");
+  Isolation isolation;
+  isolation.kind = IsolationKind::Rlimits;
+  isolation.uid = geteuid() == 0 ? kNobodyUid : -1;
+  if (forced == "rlimits") {
+    isolation.why_not_bubblewrap = "CLOTHREF_GRADER_ISOLATION=rlimits";
+    return isolation;
+  }
+  const std::string bwrap = findOnPath("bwrap");
+  if (bwrap.empty()) {
+    isolation.why_not_bubblewrap = "bwrap not installed";
+  } else {
+    // The same uid drop, flags and launch path as a real probe run, with /bin/true as the probe.
+    Isolation candidate = isolation;
+    candidate.kind = IsolationKind::Bubblewrap;
+    candidate.bwrap = bwrap;
+    ScratchDir scratch("clothref-sandbox-check");
+    fs::permissions(scratch.path(), fs::perms::owner_all | fs::perms::group_exec |
+                                        fs::perms::others_exec);
+    ChildLimits limits;
+    limits.wall_seconds = 10;
+    limits.isolation = candidate;
+    std::error_code error;
+    const fs::path true_program = fs::canonical("/bin/true", error);
+    const ChildRun run = runChild({true_program.string()}, scratch.path(), "/dev/null", limits,
+                                  false, 0);
+    if (run.status == ChildStatus::Ok) return candidate;
+    std::string reason = run.stderr_head.substr(0, run.stderr_head.find('\n'));
+    isolation.why_not_bubblewrap = "bwrap fails here: " + (reason.empty() ? run.describe() : reason);
+  }
+  if (forced == "bubblewrap")
+    throw InputError("CLOTHREF_GRADER_ISOLATION=bubblewrap: " + isolation.why_not_bubblewrap);
+  return isolation;
+}
+
+}  // namespace
+
+std::string Isolation::describe() const {
+  const std::string user = uid >= 0 ? "uid " + std::to_string(uid) : "grader's uid (not root)";
+  switch (kind) {
+    case IsolationKind::Bubblewrap:
+      return "bubblewrap (new user, net, pid, mount, ipc, uts namespaces; only /usr visible), " +
+             user + ", rlimits";
+    case IsolationKind::Rlimits:
+      return "rlimits, " + user + ", private working directory; no namespaces (" +
+             why_not_bubblewrap + ")";
+    case IsolationKind::None:
+      break;
+  }
+  return "rlimits only";
+}
+
+Isolation detectIsolation() {
+  // Once per grader process: every submission of a batch gets the same isolation.
+  static std::mutex mutex;
+  static std::optional<Isolation> cached;
+  std::lock_guard<std::mutex> lock(mutex);
+  if (!cached) cached = detect();
+  return *cached;
+}
+
+std::vector<std::string> bubblewrapArgv(const Isolation& isolation,
+                                        const std::vector<std::string>& command,
+                                        const fs::path& private_dir, int info_fd) {
+  std::vector<std::string> argv = {isolation.bwrap, "--unshare-all", "--die-with-parent",
+                                   "--new-session", "--cap-drop", "ALL"};
+  addSystemTrees(argv);
+  argv.insert(argv.end(), {"--proc", "/proc", "--dev", "/dev", "--tmpfs", "/tmp"});
+  addHidden(isolation, argv);
+  const std::string program = "/sandbox/bin/" + fs::path(command.front()).filename().string();
+  argv.insert(argv.end(), {"--ro-bind", command.front(), program, "--bind", private_dir.string(),
+                           "/sandbox/work", "--chdir", "/sandbox/work"});
+  if (info_fd >= 0) argv.insert(argv.end(), {"--info-fd", std::to_string(info_fd)});
+  argv.push_back("--");
+  argv.push_back(program);
+  argv.insert(argv.end(), command.begin() + 1, command.end());
+  return argv;
+}
+
+std::vector<std::string> bubblewrapToolArgv(const Isolation& isolation,
+                                            const std::vector<std::string>& command,
+                                            const fs::path& work_dir) {
+  std::vector<std::string> argv = {isolation.bwrap, "--unshare-all", "--die-with-parent",
+                                   "--new-session", "--cap-drop", "ALL"};
+  addSystemTrees(argv);
+  argv.insert(argv.end(), {"--proc", "/proc", "--dev", "/dev", "--tmpfs", "/tmp"});
+  addHidden(isolation, argv);
+  argv.insert(argv.end(), {"--bind", work_dir.string(), work_dir.string()});
+  std::vector<std::string> outputs;
+  for (std::size_t k = 1; k < command.size(); ++k) {
+    std::string arg = command[k];
+    if (arg.rfind("-I", 0) == 0) arg = arg.substr(2);
+    const fs::path path(arg);
+    if (!path.is_absolute() || isUnder(path, "/usr") || isUnder(path, work_dir)) continue;
+    std::error_code error;
+    // A file's whole folder: gcc looks for a precompiled header next to the `-include` file.
+    if (fs::is_directory(path, error))
+      argv.insert(argv.end(), {"--ro-bind", arg, arg});
+    else if (fs::exists(path, error))
+      argv.insert(argv.end(),
+                  {"--ro-bind", path.parent_path().string(), path.parent_path().string()});
+    else if (fs::is_directory(path.parent_path(), error))
+      outputs.push_back(path.parent_path().string());
+  }
+  for (const std::string& dir : outputs) argv.insert(argv.end(), {"--bind", dir, dir});
+  argv.insert(argv.end(), {"--chdir", work_dir.string(), "--"});
+  argv.insert(argv.end(), command.begin(), command.end());
+  return argv;
+}
+
+BubblewrapInfo parseBubblewrapInfo(const std::string& json) {
+  BubblewrapInfo info;
+  std::smatch match;
+  static const std::regex pid(R"re("child-pid"\s*:\s*(\d+))re");
+  static const std::regex ns(R"re("pid-namespace"\s*:\s*(\d+))re");
+  if (std::regex_search(json, match, pid)) info.child_pid = std::stol(match[1]);
+  if (std::regex_search(json, match, ns)) info.pid_namespace = std::stoull(match[1]);
+  return info;
+}
+
+}  // namespace clothref::grader

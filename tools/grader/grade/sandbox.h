@@ -1,0 +1,59 @@
+// The isolation a student process gets on top of its rlimits: an unprivileged uid (65534 when the
+// grader runs as root) and, where it works, a bubblewrap sandbox (new network, pid, mount, ipc and
+// uts namespaces; only /usr and the probe executable visible, read-only; a private writable
+// folder as its working directory). Detected once per grader process; the environment variable
+// CLOTHREF_GRADER_ISOLATION (auto | bubblewrap | rlimits) forces a layer, so tests cover both.
+#pragma once
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace clothref::grader {
+
+enum class IsolationKind {
+  None,       // rlimits only, the grader's uid, the caller's working directory (unit tests)
+  Rlimits,    // rlimits + uid drop (when root) + a private working directory
+  Bubblewrap  // all of Rlimits, inside bubblewrap
+};
+
+struct Isolation {
+  IsolationKind kind = IsolationKind::None;
+  int uid = -1;                       // uid and gid to run as (65534 when root); -1 = unchanged
+  std::string bwrap;                  // bubblewrap executable (Bubblewrap only)
+  std::string why_not_bubblewrap;     // why the detection fell back, for the description
+  std::vector<std::filesystem::path> hidden;  // covered with an empty tmpfs if visible in the box
+  // Short exact description for GradeReport::isolation, e.g. "bubblewrap (new net, pid, mount,
+  // ipc, uts namespaces; only /usr visible), uid 65534, rlimits".
+  std::string describe() const;
+};
+
+inline constexpr int kNobodyUid = 65534;
+
+// The isolation for this grader process: probes bubblewrap once (same uid drop and flags as a
+// real run, command /bin/true) and caches the answer. Throws InputError for an unknown
+// CLOTHREF_GRADER_ISOLATION value or when `bubblewrap` is forced but does not work.
+Isolation detectIsolation();
+
+// The argv that runs `command` (argv[0] an absolute path) inside bubblewrap: `private_dir`
+// becomes the writable working directory /sandbox/work; argv[0] is bound read-only at
+// /sandbox/bin/<name>; `info_fd` is the descriptor bubblewrap reports the sandbox's pid on.
+std::vector<std::string> bubblewrapArgv(const Isolation& isolation,
+                                        const std::vector<std::string>& command,
+                                        const std::filesystem::path& private_dir, int info_fd);
+
+// The argv that runs a compiler or linker `command` inside bubblewrap with the grader's uid:
+// /usr, `work_dir` (read-write) and the absolute paths the command names (read-only; the folder
+// of an output that does not exist yet read-write) are all it sees, so `#include "/etc/shadow"`
+// or an include of the reference finds nothing.
+std::vector<std::string> bubblewrapToolArgv(const Isolation& isolation,
+                                            const std::vector<std::string>& command,
+                                            const std::filesystem::path& work_dir);
+
+// The "child-pid" and "pid-namespace" fields of bubblewrap's --info-fd JSON (0 when absent).
+struct BubblewrapInfo {
+  long child_pid = 0;
+  unsigned long long pid_namespace = 0;
+};
+BubblewrapInfo parseBubblewrapInfo(const std::string& json);
+
+}  // namespace clothref::grader
