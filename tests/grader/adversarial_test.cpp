@@ -56,6 +56,8 @@ struct Case {
   std::string isolation;  // "auto" (bubblewrap here) or "rlimits"
 };
 
+void PrintTo(const Case& c, std::ostream* out) { *out << c.name << " (" << c.isolation << ")"; }
+
 std::vector<Case> suiteCases() {
   std::vector<Case> cases;
   std::error_code error;

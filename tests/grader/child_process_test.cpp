@@ -48,7 +48,7 @@ TEST(RunChild, OneWordVerdicts) {
 TEST(RunChild, LimitsBite) {
   test::TempDir temp;
   // 64 MiB of output: the file-size limit stops it (SIGXFSZ), the grader's disk is safe.
-  const ChildRun flood = runShell(temp, "yes flood-flood-flood-flood-flood");
+  const ChildRun flood = runShell(temp, "exec yes flood-flood-flood-flood-flood");
   EXPECT_EQ(flood.verdict(), "output-limit") << flood.describe();
   EXPECT_LE(std::filesystem::file_size(temp.file("child.stdout")), 64u << 20);
   std::ofstream(temp.file("in"), std::ios::trunc) << "";

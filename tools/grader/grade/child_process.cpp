@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cmath>
 #include <chrono>
 #include <cstring>
 #include <fstream>
@@ -134,6 +135,11 @@ struct ExecLimits {
   char* env[] = {path_env, lang_env, nullptr};
   execve(exec.argv[0], exec.argv.data(), env);
   if (errno == ENOENT) execvpe(exec.argv[0], exec.argv.data(), env);
+  // The uid's process slots are taken (another run's fork bomb): the caller retries.
+  if (errno == EAGAIN) {
+    const char busy[] = "clothref-grader: cannot start: no process slot for the uid\n";
+    [[maybe_unused]] const ssize_t n = write(2, busy, sizeof busy - 1);
+  }
   _exit(127);
 }
 
@@ -209,6 +215,11 @@ std::string ChildRun::describe() const {
 std::string ChildRun::verdict() const {
   switch (status) {
     case ChildStatus::Ok:
+      // An answer with NaN or infinity: the run worked, the numbers did not.
+      if (answer)
+        for (const auto& [key, values] : answer->floats)
+          for (float value : values)
+            if (!std::isfinite(value)) return "non-finite";
       return "ok";
     case ChildStatus::TimedOut:
       return "timed-out";
@@ -228,11 +239,14 @@ std::string ChildRun::verdict() const {
   return "crashed";
 }
 
-ChildRun runChild(const std::vector<std::string>& command, const std::filesystem::path& work_dir,
-                  const std::filesystem::path& stdin_file, const ChildLimits& limits,
-                  bool expect_answer, std::uint64_t request_nonce) {
+namespace {
+
+// One attempt; `start` is when the first attempt began (the wall limit covers all of them).
+ChildRun runChildOnce(const std::vector<std::string>& command,
+                      const std::filesystem::path& work_dir,
+                      const std::filesystem::path& stdin_file, const ChildLimits& limits,
+                      bool expect_answer, std::uint64_t request_nonce, Clock::time_point start) {
   ChildRun run;
-  const auto start = Clock::now();
   const Isolation& isolation = limits.isolation;
   const bool boxed = isolation.kind == IsolationKind::Bubblewrap;
   // The student's own folder: the only place it may write (its owner is the uid it runs as).
@@ -351,6 +365,33 @@ ChildRun runChild(const std::vector<std::string>& command, const std::filesystem
   }
   run.seconds = secondsSince(start);
   run.stderr_head = readHead(err_path, 2000, 12);
+  return run;
+}
+
+// The child could not start because the uid's process slots (RLIMIT_NPROC counts every process
+// of the uid, all runs together) are held by another run, e.g. a fork bomb waiting for its
+// timeout: bubblewrap cannot clone, or our execve after the uid drop fails with EAGAIN.
+bool couldNotStart(const ChildRun& run) {
+  if (run.status != ChildStatus::ExitedNonZero || (run.exit_code != 1 && run.exit_code != 127))
+    return false;
+  return run.stderr_head.rfind("clothref-grader: cannot start", 0) == 0 ||
+         (run.stderr_head.rfind("bwrap: ", 0) == 0 &&
+          run.stderr_head.find("Resource temporarily unavailable") != std::string::npos);
+}
+
+}  // namespace
+
+ChildRun runChild(const std::vector<std::string>& command, const std::filesystem::path& work_dir,
+                  const std::filesystem::path& stdin_file, const ChildLimits& limits,
+                  bool expect_answer, std::uint64_t request_nonce) {
+  const auto start = Clock::now();
+  ChildRun run;
+  // Retried until the wall limit: a run is delayed by another's fork bomb, never failed by it.
+  for (;;) {
+    run = runChildOnce(command, work_dir, stdin_file, limits, expect_answer, request_nonce, start);
+    if (!couldNotStart(run) || secondsSince(start) + 0.05 >= limits.wall_seconds) break;
+    usleep(50000);
+  }
   if (limits.log) {
     std::lock_guard<std::mutex> lock(limits.log->mutex);
     limits.log->verdicts.push_back(run.verdict());
