@@ -47,8 +47,8 @@ CASES = {
         expected={"verdict": "compile-error", "loses": ["ExplicitEuler::integrate"]}),
     "compile-include-secret": dict(
         file="integrator.cpp",
-        description='#include "/etc/shadow": the compiler must not see it, its first line must '
-                    "not be quoted (bubblewrap; the rlimits fallback compiles as the grader's uid)",
+        description='#include "/etc/shadow": bubblewrap hides it from the compiler; the rlimits '
+                    "fallback compiles as the grader's uid, so the file is read but never quoted",
         edits=[(INCLUDES, INCLUDES + '#include "/etc/shadow"\n')],
         expected={"verdict": "compile-error", "secret_file": "/etc/shadow",
                   "loses": ["ExplicitEuler::integrate"]}),

@@ -138,11 +138,15 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
   std::map<std::string, std::string> unavailable;  // stub -> verdict text
   for (const UsedFile& used : build.files) {
     if (used.compiled) continue;
+    const bool link_error = used.problem.rfind("link error", 0) == 0;
     const std::string text =
         used.problem == "missing"
             ? used.name + " was not found in the submission; its stubs get no points."
-            : used.name + " does not compile against the course's headers:\n\n```\n" +
-                  used.problem + "```\n\n" + catalogue.cause("compile-error");
+        : link_error ? used.name + " compiles but does not link (a function it must define is "
+                                   "missing or defined twice):\n\n```\n" +
+                           used.problem + "```\n\n" + catalogue.cause("compile-error")
+                     : used.name + " does not compile against the course's headers:\n\n```\n" +
+                           used.problem + "```\n\n" + catalogue.cause("compile-error");
     for (const auto& stub : stubsOfFile().at(used.name)) unavailable[stub] = text;
   }
 
