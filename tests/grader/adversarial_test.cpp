@@ -65,8 +65,9 @@ std::vector<Case> suiteCases() {
     if (fs::exists(entry.path() / "expected.json"))
       for (const char* isolation : {"auto", "rlimits"})
         cases.push_back({entry.path().filename().string(), isolation});
-  std::sort(cases.begin(), cases.end(),
-            [](const Case& a, const Case& b) { return a.name + a.isolation < b.name + b.isolation; });
+  std::sort(cases.begin(), cases.end(), [](const Case& a, const Case& b) {
+    return a.name + a.isolation < b.name + b.isolation;
+  });
   return cases;
 }
 
@@ -90,9 +91,8 @@ TEST_P(Adversarial, GetsItsVerdictAndTheAttackFails) {
   fs::create_directories(submission);
   for (const char* name : kFiles) {
     const fs::path own = case_dir / name;
-    std::string text = readText(fs::exists(own) ? own
-                                                : kCorpus / expected["base"].get<std::string>() /
-                                                      "src" / name);
+    std::string text = readText(
+        fs::exists(own) ? own : kCorpus / expected["base"].get<std::string>() / "src" / name);
     replaceAll(text, "@MARKER@", marker);
     replaceAll(text, "@SOURCE_DIR@", CLOTHREF_SOURCE_DIR);
     replaceAll(text, "@RESULTS_DIR@", results_dir.string());
@@ -109,7 +109,8 @@ TEST_P(Adversarial, GetsItsVerdictAndTheAttackFails) {
   const nlohmann::json results = nlohmann::json::parse(readText(results_dir / "results.json"));
   const std::string isolation = results["extra_data"]["isolation"];
   const bool boxed = isolation.rfind("bubblewrap", 0) == 0;
-  if (c.isolation == "auto" && !boxed) GTEST_SKIP() << "bubblewrap does not work here: " << isolation;
+  if (c.isolation == "auto" && !boxed)
+    GTEST_SKIP() << "bubblewrap does not work here: " << isolation;
   EXPECT_EQ(boxed, c.isolation == "auto") << isolation;
 
   const std::string want = c.isolation == "rlimits" && expected.contains("verdict_rlimits")

@@ -37,8 +37,9 @@ TEST(RunChild, OneWordVerdicts) {
   EXPECT_EQ(runShell(temp, "kill -SEGV $$").verdict(), "crashed");
   EXPECT_EQ(runShell(temp, "kill -XCPU $$").verdict(), "timed-out");
   EXPECT_EQ(runShell(temp, "kill -XFSZ $$").verdict(), "output-limit");
-  EXPECT_EQ(runShell(temp, "echo \"terminate called after throwing an instance of "
-                           "'std::bad_alloc'\" >&2; kill -ABRT $$")
+  EXPECT_EQ(runShell(temp,
+                     "echo \"terminate called after throwing an instance of "
+                     "'std::bad_alloc'\" >&2; kill -ABRT $$")
                 .verdict(),
             "memory-limit");
   EXPECT_EQ(runShell(temp, "true").verdict(), "no-answer");

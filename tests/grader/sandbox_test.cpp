@@ -60,11 +60,10 @@ TEST(BubblewrapToolArgv, BindsTheNamedPathsAndTheWorkDirOnly) {
   isolation.bwrap = "bwrap";
   const fs::path work = temp.path() / "work";
   fs::create_directories(work);
-  const auto argv = bubblewrapToolArgv(
-      isolation,
-      {"g++", "-I" + temp.file("include"), "-c", temp.file("source.cpp"), "-o",
-       (work / "a.o").string()},
-      work);
+  const auto argv = bubblewrapToolArgv(isolation,
+                                       {"g++", "-I" + temp.file("include"), "-c",
+                                        temp.file("source.cpp"), "-o", (work / "a.o").string()},
+                                       work);
   EXPECT_TRUE(contains(argv, {"--bind", work.string(), work.string()}));
   EXPECT_TRUE(contains(argv, {"--ro-bind", temp.file("include"), temp.file("include")}));
   // A file's folder (a precompiled header sits next to its header).
@@ -126,9 +125,10 @@ ChildRun runIsolated(const test::TempDir& temp, IsolationKind kind, const std::s
 TEST(Fallback, RunsAsNobodyInItsOwnFolderWithAProcessLimit) {
   if (geteuid() != 0) GTEST_SKIP() << "the uid drop needs root";
   test::TempDir temp;
-  const ChildRun run = runIsolated(temp, IsolationKind::Rlimits,
-                                   "id -u; pwd; grep 'Max processes' /proc/self/limits | tr -s ' ' | cut -d' ' -f3; "
-                                   "echo x > ../outside || echo denied");
+  const ChildRun run =
+      runIsolated(temp, IsolationKind::Rlimits,
+                  "id -u; pwd; grep 'Max processes' /proc/self/limits | tr -s ' ' | cut -d' ' -f3; "
+                  "echo x > ../outside || echo denied");
   ASSERT_EQ(run.status, ChildStatus::Ok) << run.stderr_head;
   EXPECT_EQ(readText(temp.path() / "child.stdout"),
             "65534\n" + (temp.path() / "sandbox").string() + "\n64\ndenied\n");
@@ -158,8 +158,8 @@ TEST(Bubblewrap, NoNetworkOwnPidsAndNothingButUsr) {
   EXPECT_EQ(lines[4], "no-source");
   EXPECT_EQ(lines[5], "read-only");
   // The root holds only the system trees and the sandbox's own folders; /etc only ld.so.cache.
-  const std::set<std::string> allowed = {"/:",    "bin",    "dev",  "etc",   "lib",  "lib32",
-                                         "lib64", "libx32", "proc", "sandbox", "sbin", "tmp",
+  const std::set<std::string> allowed = {"/:",    "bin",    "dev",   "etc",        "lib",  "lib32",
+                                         "lib64", "libx32", "proc",  "sandbox",    "sbin", "tmp",
                                          "usr",   "",       "/etc:", "ld.so.cache"};
   for (std::size_t k = 6; k < lines.size(); ++k) EXPECT_TRUE(allowed.count(lines[k])) << lines[k];
 }
@@ -170,9 +170,8 @@ TEST(Bubblewrap, ATimeoutLeavesNoProcessAlive) {
   if (detectIsolation().kind != IsolationKind::Bubblewrap)
     GTEST_SKIP() << "bubblewrap does not work here: " << detectIsolation().describe();
   // A detached grandchild in its own session escapes a process-group kill, not the namespace.
-  const ChildRun run = runIsolated(
-      temp, IsolationKind::Bubblewrap,
-      "setsid sh -c 'sleep 31.4159' & sleep 31.4159", 0.5);
+  const ChildRun run = runIsolated(temp, IsolationKind::Bubblewrap,
+                                   "setsid sh -c 'sleep 31.4159' & sleep 31.4159", 0.5);
   EXPECT_EQ(run.status, ChildStatus::TimedOut);
   int alive = 0;
   for (const auto& entry : fs::directory_iterator("/proc")) {

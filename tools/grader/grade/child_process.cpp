@@ -6,14 +6,14 @@
 #include <signal.h>
 #include <sys/prctl.h>
 #include <sys/resource.h>
-#include <sys/syscall.h>
 #include <sys/stat.h>
+#include <sys/syscall.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
-#include <cmath>
 #include <chrono>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <random>
@@ -260,8 +260,8 @@ ChildRun runChildOnce(const std::vector<std::string>& command,
                                     static_cast<gid_t>(isolation.uid)) != 0) {
       run.status = ChildStatus::ExitedNonZero;
       run.exit_code = -1;
-      run.stderr_head = "grader: cannot hand the child's folder to uid " +
-                        std::to_string(isolation.uid);
+      run.stderr_head =
+          "grader: cannot hand the child's folder to uid " + std::to_string(isolation.uid);
       return run;
     }
   }
@@ -413,8 +413,8 @@ ChildRun runProbe(const std::filesystem::path& executable, probe::ProbeMessage r
 }
 
 std::vector<ToolRun> runTools(const std::vector<std::vector<std::string>>& commands,
-                              const std::filesystem::path& work_dir, int jobs,
-                              double wall_seconds, const Isolation* isolation) {
+                              const std::filesystem::path& work_dir, int jobs, double wall_seconds,
+                              const Isolation* isolation) {
   struct Running {
     pid_t pid;
     std::size_t index;
@@ -433,9 +433,9 @@ std::vector<ToolRun> runTools(const std::vector<std::vector<std::string>>& comma
       int in_fd = open(null_in.c_str(), O_RDONLY | O_CLOEXEC);
       int log_fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
       const bool boxed = isolation && isolation->kind == IsolationKind::Bubblewrap;
-      const ExecArgs exec(boxed ? bubblewrapToolArgv(*isolation, commands[next], work_dir)
-                                : commands[next],
-                          work_dir);
+      const ExecArgs exec(
+          boxed ? bubblewrapToolArgv(*isolation, commands[next], work_dir) : commands[next],
+          work_dir);
       const ExecLimits how{nullptr, wall_seconds, -1};
       const pid_t pid = fork();
       if (pid == 0) execChild(exec, in_fd, log_fd, log_fd, -1, -1, how);

@@ -32,8 +32,8 @@ struct ChildLimits {
   std::uint64_t address_space_bytes = 4ull << 30;  // RLIMIT_AS
   std::uint64_t file_size_bytes = 64ull << 20;     // RLIMIT_FSIZE (stdout/stderr floods)
   std::uint64_t open_files = 64;                   // RLIMIT_NOFILE
-  std::uint64_t processes = 64;  // RLIMIT_NPROC (counts the uid's processes; not for root)
-  Isolation isolation;           // uid drop, private folder, bubblewrap (default: none)
+  std::uint64_t processes = 64;       // RLIMIT_NPROC (counts the uid's processes; not for root)
+  Isolation isolation;                // uid drop, private folder, bubblewrap (default: none)
   std::vector<std::string> launcher;  // extra argv prefix, empty = none
   std::shared_ptr<RunLog> log;        // when set, every run's verdict is appended
 };

@@ -63,9 +63,9 @@ std::string submissionVerdict(const GradeReport& report,
   for (const TestResult& t : report.tests)
     for (const std::string& id : t.diagnoses)
       if (id == "non-finite") happened.insert(id);
-  for (const char* verdict : {"compile-error", "link-error", "missing-file", "timed-out",
-                              "memory-limit", "output-limit", "crashed", "exited-non-zero",
-                              "no-answer", "non-finite"})
+  for (const char* verdict :
+       {"compile-error", "link-error", "missing-file", "timed-out", "memory-limit", "output-limit",
+        "crashed", "exited-non-zero", "no-answer", "non-finite"})
     if (happened.count(verdict)) return verdict;
   return "graded";
 }
@@ -111,8 +111,8 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
   report.isolation = isolation.describe();
   // The unprivileged uid must pass through the scratch folder (not list it) to reach its own.
   if (isolation.uid >= 0)
-    fs::permissions(scratch.path(), fs::perms::owner_all | fs::perms::group_exec |
-                                        fs::perms::others_exec);
+    fs::permissions(scratch.path(),
+                    fs::perms::owner_all | fs::perms::group_exec | fs::perms::others_exec);
   CourseToolchain toolchain = options.toolchain;
   toolchain.isolation = isolation;
   const ProbeBuild build = buildProbes(files, report.edition, toolchain, scratch.path());
@@ -142,8 +142,9 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
     const std::string text =
         used.problem == "missing"
             ? used.name + " was not found in the submission; its stubs get no points."
-        : link_error ? used.name + " compiles but does not link (a function it must define is "
-                                   "missing or defined twice):\n\n```\n" +
+        : link_error ? used.name +
+                           " compiles but does not link (a function it must define is "
+                           "missing or defined twice):\n\n```\n" +
                            used.problem + "```\n\n" + catalogue.cause("compile-error")
                      : used.name + " does not compile against the course's headers:\n\n```\n" +
                            used.problem + "```\n\n" + catalogue.cause("compile-error");

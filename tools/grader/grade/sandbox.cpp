@@ -75,18 +75,19 @@ Isolation detect() {
     candidate.kind = IsolationKind::Bubblewrap;
     candidate.bwrap = bwrap;
     ScratchDir scratch("clothref-sandbox-check");
-    fs::permissions(scratch.path(), fs::perms::owner_all | fs::perms::group_exec |
-                                        fs::perms::others_exec);
+    fs::permissions(scratch.path(),
+                    fs::perms::owner_all | fs::perms::group_exec | fs::perms::others_exec);
     ChildLimits limits;
     limits.wall_seconds = 10;
     limits.isolation = candidate;
     std::error_code error;
     const fs::path true_program = fs::canonical("/bin/true", error);
-    const ChildRun run = runChild({true_program.string()}, scratch.path(), "/dev/null", limits,
-                                  false, 0);
+    const ChildRun run =
+        runChild({true_program.string()}, scratch.path(), "/dev/null", limits, false, 0);
     if (run.status == ChildStatus::Ok) return candidate;
     std::string reason = run.stderr_head.substr(0, run.stderr_head.find('\n'));
-    isolation.why_not_bubblewrap = "bwrap fails here: " + (reason.empty() ? run.describe() : reason);
+    isolation.why_not_bubblewrap =
+        "bwrap fails here: " + (reason.empty() ? run.describe() : reason);
   }
   if (forced == "bubblewrap")
     throw InputError("CLOTHREF_GRADER_ISOLATION=bubblewrap: " + isolation.why_not_bubblewrap);
@@ -123,7 +124,7 @@ std::vector<std::string> bubblewrapArgv(const Isolation& isolation,
                                         const std::vector<std::string>& command,
                                         const fs::path& private_dir, int info_fd) {
   std::vector<std::string> argv = {isolation.bwrap, "--unshare-all", "--die-with-parent",
-                                   "--new-session", "--cap-drop", "ALL"};
+                                   "--new-session", "--cap-drop",    "ALL"};
   addSystemTrees(argv);
   argv.insert(argv.end(), {"--proc", "/proc", "--dev", "/dev", "--tmpfs", "/tmp"});
   addHidden(isolation, argv);
@@ -141,7 +142,7 @@ std::vector<std::string> bubblewrapToolArgv(const Isolation& isolation,
                                             const std::vector<std::string>& command,
                                             const fs::path& work_dir) {
   std::vector<std::string> argv = {isolation.bwrap, "--unshare-all", "--die-with-parent",
-                                   "--new-session", "--cap-drop", "ALL"};
+                                   "--new-session", "--cap-drop",    "ALL"};
   addSystemTrees(argv);
   argv.insert(argv.end(), {"--proc", "/proc", "--dev", "/dev", "--tmpfs", "/tmp"});
   addHidden(isolation, argv);

@@ -18,9 +18,9 @@ enum class IsolationKind {
 
 struct Isolation {
   IsolationKind kind = IsolationKind::None;
-  int uid = -1;                       // uid and gid to run as (65534 when root); -1 = unchanged
-  std::string bwrap;                  // bubblewrap executable (Bubblewrap only)
-  std::string why_not_bubblewrap;     // why the detection fell back, for the description
+  int uid = -1;                    // uid and gid to run as (65534 when root); -1 = unchanged
+  std::string bwrap;               // bubblewrap executable (Bubblewrap only)
+  std::string why_not_bubblewrap;  // why the detection fell back, for the description
   std::vector<std::filesystem::path> hidden;  // covered with an empty tmpfs if visible in the box
   // Short exact description for GradeReport::isolation, e.g. "bubblewrap (new net, pid, mount,
   // ipc, uts namespaces; only /usr visible), uid 65534, rlimits".
