@@ -147,6 +147,12 @@ std::vector<std::string> bubblewrapToolArgv(const Isolation& isolation,
   argv.insert(argv.end(), {"--proc", "/proc", "--dev", "/dev", "--tmpfs", "/tmp"});
   addHidden(isolation, argv);
   argv.insert(argv.end(), {"--bind", work_dir.string(), work_dir.string()});
+  // A compiler installed outside /usr (CLOTHREF_GRADER_CXX=/opt/gcc-13/bin/g++): its whole prefix.
+  const fs::path program(command.front());
+  if (program.is_absolute() && !isUnder(program, "/usr")) {
+    const std::string prefix = program.parent_path().parent_path().string();
+    argv.insert(argv.end(), {"--ro-bind", prefix, prefix});
+  }
   std::vector<std::string> outputs;
   for (std::size_t k = 1; k < command.size(); ++k) {
     std::string arg = command[k];
