@@ -117,12 +117,14 @@ TEST_P(Adversarial, GetsItsVerdictAndTheAttackFails) {
                                ? expected["verdict_rlimits"]
                                : expected["verdict"];
   EXPECT_EQ(results["extra_data"]["verdict"], want) << results["output"];
-  for (const auto& stub : expected.value("loses", nlohmann::json::array()))
+  for (const auto& stub : expected.value("loses", nlohmann::json::array())) {
     EXPECT_LT(results["extra_data"]["stub_scores"][stub.get<std::string>()].get<double>(),
               results["extra_data"]["stub_max"][stub.get<std::string>()].get<double>())
         << stub;
-  if (expected.value("full_marks", false) && want == expected["verdict"])
+  }
+  if (expected.value("full_marks", false) && want == expected["verdict"]) {
     EXPECT_DOUBLE_EQ(results["score"].get<double>(), 80.0) << results.dump(1).substr(0, 3000);
+  }
 
   // Contained: nothing of the run is alive. The grader waits for a sandbox's pid namespace to
   // be gone; in the fallback the killed process group may still be on its way out, so poll.
