@@ -384,12 +384,15 @@ bool couldNotStart(const ChildRun& run) {
 ChildRun runChild(const std::vector<std::string>& command, const std::filesystem::path& work_dir,
                   const std::filesystem::path& stdin_file, const ChildLimits& limits,
                   bool expect_answer, std::uint64_t request_nonce) {
-  const auto start = Clock::now();
+  const auto first = Clock::now();
   ChildRun run;
-  // Retried until the wall limit: a run is delayed by another's fork bomb, never failed by it.
+  // Retried while the slots are taken, for up to one more wall limit (by then the run holding
+  // them has been killed), and the wall limit counts from the attempt that starts: a run is
+  // delayed by another's fork bomb, not failed by it.
   for (;;) {
-    run = runChildOnce(command, work_dir, stdin_file, limits, expect_answer, request_nonce, start);
-    if (!couldNotStart(run) || secondsSince(start) + 0.05 >= limits.wall_seconds) break;
+    run = runChildOnce(command, work_dir, stdin_file, limits, expect_answer, request_nonce,
+                       Clock::now());
+    if (!couldNotStart(run) || secondsSince(first) >= 2 * limits.wall_seconds + 1) break;
     usleep(50000);
   }
   if (limits.log) {
