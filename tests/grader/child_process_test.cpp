@@ -93,5 +93,18 @@ TEST(RunTools, ResultsInCommandOrder) {
   EXPECT_FALSE(runs[1].ok);
 }
 
+// A compile bomb (a 10 GB constexpr table, `#include "/dev/zero"`) meets these limits.
+TEST(RunTools, CompilesHaveTimeAndMemoryLimits) {
+  test::TempDir temp;
+  const auto runs =
+      runTools({{"/bin/sh", "-c", "ulimit -v; ulimit -t; ulimit -f"}}, temp.path(), 1, 30);
+  ASSERT_TRUE(runs[0].ok) << runs[0].output;
+  EXPECT_EQ(runs[0].output, std::to_string(kToolAddressSpace >> 10) + "\n31\n" +
+                                std::to_string(kToolFileSize >> 9) + "\n");  // KiB, s, blocks
+  const auto slow = runTools({{"/bin/sh", "-c", "sleep 30"}}, temp.path(), 1, 0.3);
+  EXPECT_FALSE(slow[0].ok);
+  EXPECT_NE(slow[0].output.find("stopped after"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace clothref::grader
