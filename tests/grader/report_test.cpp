@@ -55,5 +55,22 @@ TEST(MarkdownReport, FailedChecksComeWithTheirFeedback) {
       << md;
 }
 
+TEST(AllWriters, StateTheVerdictAndTheIsolation) {
+  GradeReport report = sampleReport();
+  report.verdict = "timed-out";
+  report.isolation = "rlimits, uid 65534 <x>";
+  const auto json = resultsJson(report);
+  EXPECT_EQ(json["extra_data"]["verdict"], "timed-out");
+  EXPECT_EQ(json["extra_data"]["isolation"], "rlimits, uid 65534 <x>");
+  EXPECT_NE(json["output"].get<std::string>().find("Verdict: timed-out"), std::string::npos);
+  const std::string xml = junitXml(report);
+  EXPECT_NE(xml.find("<property name=\"verdict\" value=\"timed-out\"/>"), std::string::npos);
+  EXPECT_NE(xml.find("<property name=\"isolation\" value=\"rlimits, uid 65534 &lt;x&gt;\"/>"),
+            std::string::npos);
+  const std::string markdown = markdownReport(report);
+  EXPECT_NE(markdown.find("Verdict: **timed-out**"), std::string::npos);
+  EXPECT_NE(markdown.find("Student code ran with: rlimits, uid 65534 <x>."), std::string::npos);
+}
+
 }  // namespace
 }  // namespace clothref::grader
