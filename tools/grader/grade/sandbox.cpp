@@ -158,7 +158,8 @@ std::vector<std::string> bubblewrapToolArgv(const Isolation& isolation,
     std::string arg = command[k];
     if (arg.rfind("-I", 0) == 0) arg = arg.substr(2);
     const fs::path path(arg);
-    if (!path.is_absolute() || isUnder(path, "/usr") || isUnder(path, work_dir)) continue;
+    // Paths under /usr are bound again too: they may lie under a hidden (tmpfs) folder.
+    if (!path.is_absolute() || isUnder(path, work_dir)) continue;
     std::error_code error;
     // A file's whole folder: gcc looks for a precompiled header next to the `-include` file.
     if (fs::is_directory(path, error))
