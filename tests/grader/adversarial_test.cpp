@@ -26,13 +26,6 @@ const fs::path kSuite = fs::path(CLOTHREF_SOURCE_DIR) / "tests" / "grader" / "ad
 const fs::path kCorpus = fs::path(CLOTHREF_SOURCE_DIR) / "tests" / "grader" / "submissions";
 const char* kFiles[] = {"cloth.cpp", "sphere.cpp", "integrator.cpp"};
 
-std::string readText(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream out;
-  out << in.rdbuf();
-  return out.str();
-}
-
 void replaceAll(std::string& text, const std::string& from, const std::string& to) {
   for (std::size_t at = 0; (at = text.find(from, at)) != std::string::npos; at += to.size())
     text.replace(at, from.size(), to);
@@ -84,7 +77,7 @@ TEST_P(Adversarial, GetsItsVerdictAndTheAttackFails) {
   std::string marker = "adv-" + c.name.substr(0, 8) + (c.isolation == "auto" ? "-b" : "-r");
   const fs::path results_dir = temp.path() / "results";
   fs::create_directories(results_dir);
-  std::ofstream(results_dir / "previous.json") << "{\"score\": 12}\n";
+  writeText(results_dir / "previous.json", "{\"score\": 12}\n");
 
   // The base submission with the case's changed file, placeholders filled in.
   const fs::path submission = temp.path() / "submission" / "src";
@@ -96,7 +89,7 @@ TEST_P(Adversarial, GetsItsVerdictAndTheAttackFails) {
     replaceAll(text, "@MARKER@", marker);
     replaceAll(text, "@SOURCE_DIR@", CLOTHREF_SOURCE_DIR);
     replaceAll(text, "@RESULTS_DIR@", results_dir.string());
-    std::ofstream(submission / name, std::ios::binary) << text;
+    writeText(submission / name, text);
   }
 
   setenv("CLOTHREF_GRADER_ISOLATION", c.isolation.c_str(), 1);

@@ -24,11 +24,6 @@ bool contains(const std::vector<std::string>& argv, const std::vector<std::strin
   return std::search(argv.begin(), argv.end(), run.begin(), run.end()) != argv.end();
 }
 
-std::string readText(const fs::path& path) {
-  std::ifstream in(path);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
 TEST(BubblewrapArgv, ShowsOnlyUsrTheProgramAndItsFolder) {
   Isolation isolation;
   isolation.kind = IsolationKind::Bubblewrap;
@@ -54,7 +49,7 @@ TEST(BubblewrapArgv, ShowsOnlyUsrTheProgramAndItsFolder) {
 TEST(BubblewrapToolArgv, BindsTheNamedPathsAndTheWorkDirOnly) {
   test::TempDir temp;
   fs::create_directories(temp.path() / "include");
-  std::ofstream(temp.file("source.cpp")) << "int x;\n";
+  test::writeText(temp.file("source.cpp"), "int x;\n");
   Isolation isolation;
   isolation.kind = IsolationKind::Bubblewrap;
   isolation.bwrap = "bwrap";
@@ -108,7 +103,7 @@ TEST(DetectIsolation, AnUnknownValueIsRefused) {
 
 ChildRun runIsolated(const test::TempDir& temp, IsolationKind kind, const std::string& script,
                      double wall = 5) {
-  std::ofstream(temp.file("in"), std::ios::trunc) << "";
+  test::writeText(temp.file("in"), "");
   ChildLimits limits;
   limits.wall_seconds = wall;
   limits.isolation.kind = kind;
@@ -130,7 +125,7 @@ TEST(Fallback, RunsAsNobodyInItsOwnFolderWithAProcessLimit) {
                   "id -u; pwd; grep 'Max processes' /proc/self/limits | tr -s ' ' | cut -d' ' -f3; "
                   "echo x > ../outside || echo denied");
   ASSERT_EQ(run.status, ChildStatus::Ok) << run.stderr_head;
-  EXPECT_EQ(readText(temp.path() / "child.stdout"),
+  EXPECT_EQ(test::readText(temp.path() / "child.stdout"),
             "65534\n" + (temp.path() / "sandbox").string() + "\n64\ndenied\n");
   EXPECT_FALSE(fs::exists(temp.path() / "outside"));
 }
@@ -147,7 +142,7 @@ TEST(Bubblewrap, NoNetworkOwnPidsAndNothingButUsr) {
           " || echo no-source; echo x > /usr/x || echo read-only; ls / /etc");
   ASSERT_EQ(run.status, ChildStatus::Ok) << run.stderr_head;
   const std::string uid = geteuid() == 0 ? "65534" : std::to_string(geteuid());
-  std::istringstream out(readText(temp.path() / "child.stdout"));
+  std::istringstream out(test::readText(temp.path() / "child.stdout"));
   std::vector<std::string> lines;
   for (std::string line; std::getline(out, line);) lines.push_back(line);
   ASSERT_GE(lines.size(), 7u);
@@ -175,7 +170,7 @@ TEST(Bubblewrap, ATimeoutLeavesNoProcessAlive) {
   EXPECT_EQ(run.status, ChildStatus::TimedOut);
   int alive = 0;
   for (const auto& entry : fs::directory_iterator("/proc")) {
-    const std::string cmdline = readText(entry.path() / "cmdline");
+    const std::string cmdline = test::readText(entry.path() / "cmdline");
     if (cmdline.find("31.4159") != std::string::npos) ++alive;
   }
   EXPECT_EQ(alive, 0);
