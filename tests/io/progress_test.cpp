@@ -72,6 +72,18 @@ TEST(Progress, SilentStyleZeroTotalAndTheDelayWriteNothing) {
   EXPECT_EQ(early.str(), "");
 }
 
+TEST(Progress, NoteFollowsTheCountAndTheLatestNoteIsShown) {
+  std::ostringstream out;
+  {
+    Progress progress("clothref grade", 2, "submissions", ProgressStyle::Lines, out, 0);
+    progress.update(1, "0 failed, ETA 5s");
+    progress.update(2, "1 failed, ETA 0s");
+  }
+  EXPECT_EQ(out.str(),
+            "clothref grade: 50% (1 of 2 submissions), 0 failed, ETA 5s\n"
+            "clothref grade: 100% (2 of 2 submissions), 1 failed, ETA 0s\n");
+}
+
 TEST(Progress, QuietAlwaysSilent) {
   EXPECT_EQ(progressStyleForStderr(true), ProgressStyle::Silent);
   EXPECT_NE(progressStyleForStderr(false), ProgressStyle::Silent);

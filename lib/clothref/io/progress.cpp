@@ -32,6 +32,11 @@ bool Progress::due() {
   return true;
 }
 
+void Progress::update(std::int64_t done, const std::string& note) {
+  note_ = note;
+  update(done);
+}
+
 void Progress::update(std::int64_t done) {
   if (style_ == ProgressStyle::Silent || finished_) return;
   done = std::clamp<std::int64_t>(done, 0, total_);
@@ -42,10 +47,12 @@ void Progress::update(std::int64_t done) {
   shown_ = shown;
   if (style_ == ProgressStyle::Lines) {
     if (shown == 0) return;  // "0 %" says nothing in a log
-    out_ << fmt::format("{}: {}% ({} of {} {})\n", label_, shown * 10, done, total_, unit_);
+    out_ << fmt::format("{}: {}% ({} of {} {}){}\n", label_, shown * 10, done, total_, unit_,
+                        note_.empty() ? "" : ", " + note_);
   } else {
     // \x1b[K clears what a longer earlier line left behind
-    out_ << fmt::format("\r{}: {}% ({} of {} {})\x1b[K", label_, percent, done, total_, unit_);
+    out_ << fmt::format("\r{}: {}% ({} of {} {}){}\x1b[K", label_, percent, done, total_, unit_,
+                        note_.empty() ? "" : ", " + note_);
     line_open_ = true;
   }
   out_.flush();

@@ -30,6 +30,8 @@ class Progress {
   // Cheap when nothing changes: writes only when the shown percentage (Terminal) or tenth (Lines)
   // moves. `done` is clamped to [0, total].
   void update(std::int64_t done);
+  // The same, with `note` appended to the line ("..., 2 failed, ETA 1m05s").
+  void update(std::int64_t done, const std::string& note);
   // Terminal: clears the line, so the command's summary takes its place. Called by the destructor.
   void finish();
 
@@ -39,6 +41,7 @@ class Progress {
   std::string label_;
   std::int64_t total_;
   std::string unit_;
+  std::string note_;  // shown after the count when not empty
   ProgressStyle style_;
   std::ostream& out_;
   std::chrono::steady_clock::time_point start_;

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -35,7 +36,24 @@ std::string fromEnv(const char* name, const char* fallback) {
 }
 
 std::vector<std::string> baseFlags(const CourseToolchain& t) {
+  if (t.sanitize)
+    return {t.compiler,       "-std=c++20", "-O1",           "-g", "-fno-omit-frame-pointer",
+            kSanitizeFlag,    "-ffp-contract=off",           "-fno-fast-math"};
   return {t.compiler, "-std=c++20", t.optimisation, "-ffp-contract=off", "-fno-fast-math"};
+}
+
+// Sanitizer defaults compiled into a sanitized probe (the child's environment is clean, so no
+// ASAN_OPTIONS): no leak check at exit (a leak is not the crash we look for, and LeakSanitizer
+// needs ptrace, which a sandbox may refuse).
+constexpr const char* kSanitizerOptionsSource =
+    "extern \"C\" const char* __asan_default_options() { return \"detect_leaks=0\"; }\n"
+    "extern \"C\" const char* __ubsan_default_options() { return \"print_stacktrace=1\"; }\n";
+
+// Unique among the threads of this process (a batch grades several submissions at once): the
+// cache's temporary files carry it beside the pid.
+std::string uniqueSuffix() {
+  static std::atomic<unsigned long> counter{0};
+  return std::to_string(getpid()) + "-" + std::to_string(counter++);
 }
 
 std::vector<std::string> compileCommand(const CourseToolchain& t, int edition,
@@ -109,7 +127,7 @@ fs::path precompiledHeader(const CourseToolchain& t, const fs::path& work_dir) {
   const fs::path header = dir / "course_pch.h";
   std::error_code error;
   if (fs::exists(dir / "course_pch.h.gch", error)) return header;
-  const fs::path temporary = t.cache_dir / (std::string(name) + ".tmp" + std::to_string(getpid()));
+  const fs::path temporary = t.cache_dir / (std::string(name) + ".tmp" + uniqueSuffix());
   fs::create_directories(temporary, error);
   std::ofstream(temporary / "course_pch.h")
       << "#include <filesystem>\n#include <functional>\n#include <stdexcept>\n#include <string>\n"
@@ -158,8 +176,7 @@ std::vector<ToolRun> compileAll(const CourseToolchain& t,
     const fs::path object = *(std::find(c.begin(), c.end(), "-o") + 1);
     std::error_code error;
     fs::create_directories(t.cache_dir, error);
-    const fs::path temporary =
-        cached[k].string() + ".tmp" + std::to_string(getpid()) + "-" + std::to_string(k);
+    const fs::path temporary = cached[k].string() + ".tmp" + uniqueSuffix();
     if (fs::copy_file(object, temporary, fs::copy_options::overwrite_existing, error))
       fs::rename(temporary, cached[k], error);  // atomic: concurrent graders never see half a file
   }
@@ -295,8 +312,21 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseTo
   // the file the linker complains about, one file at a time.
   const auto link_start = std::chrono::steady_clock::now();
   const fs::path driver_lib = toolchain.driver_lib_dir / ("libclothref_grader_course_" + ed + ".a");
+  fs::path sanitizer_options;
+  if (toolchain.sanitize) {
+    std::ofstream(work_dir / "sanitizer_options.cpp") << kSanitizerOptionsSource;
+    sanitizer_options = work_dir / "sanitizer_options.o";
+    const ToolRun built =
+        runTools({{toolchain.compiler, "-c", (work_dir / "sanitizer_options.cpp").string(), "-o",
+                   sanitizer_options.string()}},
+                 work_dir, 1, toolchain.compile_seconds, &toolchain.isolation)
+            .front();
+    if (!built.ok) sanitizer_options.clear();
+  }
   const auto link = [&](const std::vector<fs::path>& objects, const fs::path& out) {
     std::vector<std::string> command = {toolchain.compiler, "-o", out.string()};
+    if (toolchain.sanitize) command.push_back(kSanitizeFlag);
+    if (!sanitizer_options.empty()) command.push_back(sanitizer_options.string());
     for (const auto& o : objects) command.push_back(o.string());
     command.push_back(driver_lib.string());
     return runTools({command}, work_dir, 1, toolchain.compile_seconds, &toolchain.isolation)

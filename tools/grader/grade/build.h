@@ -28,7 +28,14 @@ struct CourseToolchain {
   std::filesystem::path cache_dir;       // object cache keyed by source bytes + flags; empty = off
   double compile_seconds = 120;          // per compile
   Isolation isolation;  // Bubblewrap: compiles and links see only /usr and the paths they name
+  // Diagnostic build (--sanitize): -fsanitize=address,undefined -g -O1 -fno-omit-frame-pointer
+  // instead of `optimisation`, linked by g++ with the same -fsanitize (which brings the runtimes;
+  // the driver library itself is built without sanitizers).
+  bool sanitize = false;
 };
+
+// The flags a sanitized build adds (compile and link).
+inline constexpr const char* kSanitizeFlag = "-fsanitize=address,undefined";
 
 // The built-in locations (set by CMake) with environment overrides CLOTHREF_GRADER_COURSE_DIR,
 // CLOTHREF_GRADER_REFERENCE_DIR and CLOTHREF_GRADER_LIB_DIR.

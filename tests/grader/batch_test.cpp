@@ -1,0 +1,365 @@
+// Batch grading (grader/grade/batch.h, `clothref grade DIR... --out BATCHDIR`): names, shards and
+// the CSV as functions; then real batches through the CLI: a row per submission with the right
+// verdicts, resume after a lost marker and after kill -9, shards that concatenate to the batch.
+#include "grader/grade/batch.h"
+
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <thread>
+
+#include "clothref/io/error.h"
+#include "test_util.h"
+
+extern char** environ;
+
+namespace clothref::grader {
+namespace {
+
+namespace fs = std::filesystem;
+using test::runCli;
+using test::TempDir;
+
+const fs::path kCorpus = fs::path(CLOTHREF_SOURCE_DIR) / "tests" / "grader" / "submissions";
+const char* kFiles[] = {"cloth.cpp", "sphere.cpp", "integrator.cpp"};
+
+std::string readText(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+std::vector<std::string> lines(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) out.push_back(line);
+  return out;
+}
+
+// A corpus case as a full submission in `target`: a mutant that holds only its changed files is
+// laid over its base (as grade_test does).
+fs::path materialise(const std::string& name, const fs::path& target) {
+  const fs::path case_dir = kCorpus / name;
+  std::ifstream in(case_dir / "expected.json");
+  const nlohmann::json expected = nlohmann::json::parse(in);
+  const fs::path base = kCorpus / expected.value("base", name);
+  fs::create_directories(target);
+  for (const char* file : kFiles) {
+    const fs::path own = case_dir / file;
+    fs::copy_file(fs::exists(own) ? own : base / file, target / file);
+  }
+  return target;
+}
+
+// Runs the CLI batch of `dirs` into `out` with the test's quick settings and `extra` arguments.
+test::CommandResult batch(const std::vector<fs::path>& dirs, const fs::path& out,
+                          const std::string& extra = "") {
+  std::string args = "grade";
+  for (const fs::path& dir : dirs) args += " '" + dir.string() + "'";
+  args += " --out '" + out.string() + "' --no-whole-run --timeout 10 --cache-dir '" +
+          std::string(CLOTHREF_GRADER_CACHE) + "' " + extra;
+  return runCli(args);
+}
+
+// CSV cells of each data line, by submission name (no field of these tests needs quoting).
+std::map<std::string, std::vector<std::string>> csvRows(const std::string& csv) {
+  std::map<std::string, std::vector<std::string>> rows;
+  for (const std::string& line : lines(csv)) {
+    std::vector<std::string> cells;
+    std::string cell;
+    std::istringstream in(line);
+    while (std::getline(in, cell, ',')) cells.push_back(cell);
+    if (line.back() == ',') cells.push_back("");
+    if (!cells.empty() && cells[0] != "submission") rows[cells[0]] = cells;
+  }
+  return rows;
+}
+
+std::size_t column(const std::string& csv, const std::string& name) {
+  const std::string header = lines(csv).front();
+  std::size_t index = 0;
+  for (std::size_t at = 0; at < header.size(); ++index) {
+    std::size_t comma = header.find(',', at);
+    if (comma == std::string::npos) comma = header.size();
+    if (header.substr(at, comma - at) == name) return index;
+    at = comma + 1;
+  }
+  ADD_FAILURE() << "no column " << name << " in " << header;
+  return 0;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Functions
+
+TEST(Shard, ParsesKOfNAndRefusesEverythingElse) {
+  const Shard shard = parseShard("2/3");
+  EXPECT_EQ(shard.index, 2);
+  EXPECT_EQ(shard.count, 3);
+  EXPECT_EQ(parseShard("1/1").count, 1);
+  for (const char* bad : {"0/3", "4/3", "3", "1/0", "-1/3", "a/b", "1/3x", "1//3", "", "/3",
+                          "99999999999/99999999999"}) {
+    try {
+      parseShard(bad);
+      ADD_FAILURE() << "accepted '" << bad << "'";
+    } catch (const InputError& error) {
+      EXPECT_NE(std::string(error.what()).find("--shard"), std::string::npos) << error.what();
+    }
+  }
+}
+
+TEST(Shard, SlicesAreDisjointCoverEverythingAndConcatenateInOrder) {
+  for (int n_entries = 0; n_entries <= 11; ++n_entries) {
+    std::vector<BatchEntry> entries;
+    for (int i = 0; i < n_entries; ++i)
+      entries.push_back({"s" + std::to_string(100 + i), "/x/" + std::to_string(i)});
+    for (int count = 1; count <= 5; ++count) {
+      std::vector<std::string> joined;
+      for (int k = 1; k <= count; ++k)
+        for (const BatchEntry& e : shardEntries(entries, {k, count})) joined.push_back(e.name);
+      std::vector<std::string> all;
+      for (const BatchEntry& e : entries) all.push_back(e.name);
+      EXPECT_EQ(joined, all) << n_entries << " entries, " << count << " shards";
+    }
+  }
+}
+
+TEST(Names, LastComponentThenParentsWhenTheyCollideSortedAndDeduplicated) {
+  TempDir temp;
+  for (const char* dir : {"2022/reference", "2024/reference", "b/alice smith", "a/bob", "c"})
+    fs::create_directories(temp.path() / dir);
+  const std::vector<BatchEntry> entries =
+      batchEntries({temp.path() / "2024/reference", temp.path() / "b/alice smith",
+                    temp.path() / "2022/reference", temp.path() / "a/bob",
+                    temp.path() / "a/../a/bob", temp.path() / "c"});
+  std::vector<std::string> names;
+  for (const BatchEntry& e : entries) names.push_back(e.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"2022-reference", "2024-reference", "alice_smith",
+                                             "bob", "c"}));
+  EXPECT_EQ(entries[0].dir, temp.path() / "2022/reference");
+}
+
+TEST(Names, NamesThatStayEqualAreBadInput) {
+  TempDir temp;
+  fs::create_directories(temp.path() / "a b");
+  fs::create_directories(temp.path() / "a_b");
+  EXPECT_THROW(batchEntries({temp.path() / "a b", temp.path() / "a_b"}), InputError);
+}
+
+TEST(Csv, HeaderHasEveryStubRowsQuoteAndMissingStubsAreEmpty) {
+  BatchRow row;
+  row.name = "alice";
+  row.dir = "/x/alice";
+  row.edition = 2024;
+  row.stub_score = {{"Cloth::initializeSpring", 7.5}, {"RungeKuttaFourth::integrate", 15}};
+  row.stub_max = {{"Cloth::initializeSpring", 10}, {"RungeKuttaFourth::integrate", 15}};
+  row.score = 22.5;
+  row.max_score = 25;
+  row.verdict = "graded";
+  row.isolation = "bubblewrap (net, pid), rlimits";
+  row.seconds = 12.34;
+  BatchRow refused;
+  refused.name = "bob";
+  refused.verdict = "not-gradable";
+  refused.problem = "no file";
+  const std::string csv = batchCsv({row, refused}, true);
+  const auto written = lines(csv);
+  ASSERT_EQ(written.size(), 3u) << csv;
+  std::string header = "submission,edition";
+  for (const std::string& stub : stubNames()) header += "," + stub;
+  EXPECT_EQ(written[0], header + ",total,max,verdict,isolation,seconds");
+  EXPECT_EQ(written[1],
+            "alice,2024,7.5,,,,,,,15,22.5,25,graded,\"bubblewrap (net, pid), rlimits\",12.3");
+  EXPECT_EQ(written[2], "bob,,,,,,,,,,0,0,not-gradable,,0.0");
+  EXPECT_EQ(batchCsv({row}, false), written[1] + "\n");
+}
+
+TEST(Csv, RowJsonRoundTripsAndRefusesAStranger) {
+  BatchRow row;
+  row.name = "carol";
+  row.dir = "/x/carol";
+  row.edition = 2022;
+  row.stub_score = {{"Spheres::collide()", 4}};
+  row.stub_max = {{"Spheres::collide()", 10}};
+  row.score = 4;
+  row.max_score = 10;
+  row.verdict = "crashed";
+  row.isolation = "rlimits only";
+  row.seconds = 3.5;
+  const BatchRow back = rowFromJson(nlohmann::json::parse(rowJson(row).dump()), "row.json");
+  EXPECT_EQ(batchCsv({back}, true), batchCsv({row}, true));
+  EXPECT_THROW(rowFromJson(nlohmann::json{{"submission", "x"}}, "row.json"), InputError);
+}
+
+TEST(Jobs, SubmissionsShareTheCoresWithoutOversubscribing) {
+  EXPECT_EQ(perSubmissionJobs(1, 2), 2);
+  EXPECT_EQ(perSubmissionJobs(2, 2), 1);
+  EXPECT_EQ(perSubmissionJobs(2, 8), 4);
+  EXPECT_EQ(perSubmissionJobs(16, 8), 1);  // never 0
+  for (int jobs = 1; jobs <= 8; ++jobs) EXPECT_LE(jobs * perSubmissionJobs(jobs, 8), 8);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The CLI
+
+TEST(Cli, BadShardOrBatchOptionsWithoutOutAreOneLineExitTwoAndWriteNothing) {
+  TempDir temp;
+  const fs::path submission = kCorpus / "2022" / "reference";
+  for (const char* shard : {"0/2", "3/2", "x"}) {
+    const auto run = batch({submission}, temp.path() / "out", std::string("--shard ") + shard);
+    EXPECT_EQ(run.exit_code, 2) << run.output;
+    EXPECT_EQ(lines(run.output).size(), 1u) << run.output;
+    EXPECT_NE(run.output.find("--shard"), std::string::npos) << run.output;
+    EXPECT_FALSE(fs::exists(temp.path() / "out"));
+  }
+  const auto run = runCli("grade '" + submission.string() + "' --jobs 2");
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  EXPECT_NE(run.output.find("--out"), std::string::npos) << run.output;
+}
+
+// A batch: the reference, a mutant, a folder without student files. Every one gets a row with its
+// verdict; then resume, shards and --regrade on the same submissions.
+class Batch : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dirs_ = {materialise("2022/reference", temp_.path() / "in" / "reference"),
+             materialise("2022/force-assign", temp_.path() / "in" / "force-assign"),
+             temp_.path() / "in" / "nothing-here"};
+    fs::create_directories(dirs_.back());
+    std::ofstream(dirs_.back() / "README.txt") << "forgot to upload\n";
+  }
+  TempDir temp_;
+  std::vector<fs::path> dirs_;
+};
+
+TEST_F(Batch, RowPerSubmissionRightVerdictsResumeSkipsGradedAndRegradesHalfGraded) {
+  const fs::path out = temp_.path() / "out";
+  const auto first = batch(dirs_, out, "--jobs 2");
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  const std::string csv = readText(out / "grades.csv");
+  const auto rows = csvRows(csv);
+  ASSERT_EQ(rows.size(), 3u) << csv;
+  const std::size_t verdict = column(csv, "verdict"), total = column(csv, "total"),
+                    max = column(csv, "max"), forces = column(csv, "Cloth::computeSpringForce"),
+                    springs = column(csv, "Cloth::initializeSpring");
+  EXPECT_EQ(rows.at("reference")[verdict], "graded");
+  EXPECT_EQ(rows.at("reference")[total], rows.at("reference")[max]);
+  EXPECT_EQ(rows.at("reference")[max], "80");
+  EXPECT_EQ(rows.at("force-assign")[verdict], "graded");
+  EXPECT_LT(std::stod(rows.at("force-assign")[forces]), 20.0);
+  EXPECT_EQ(rows.at("force-assign")[springs], "15");
+  EXPECT_EQ(rows.at("nothing-here")[verdict], "not-gradable");
+  EXPECT_EQ(rows.at("nothing-here")[total], "0");
+  // Rows sorted by name, every submission with its folder.
+  std::vector<std::string> order;
+  for (const auto& line : lines(csv)) order.push_back(line.substr(0, line.find(',')));
+  EXPECT_EQ(order, (std::vector<std::string>{"submission", "force-assign", "nothing-here",
+                                             "reference"}));
+  for (const char* name : {"reference", "force-assign", "nothing-here"})
+    for (const char* file : {"results.json", "report.md", "row.json"})
+      EXPECT_TRUE(fs::exists(out / name / file)) << name << "/" << file;
+  EXPECT_NE(readText(out / "nothing-here" / "report.md").find("none of cloth.cpp"),
+            std::string::npos);
+
+  // Resume: the mutant lost its marker (as if killed between its results and its row); the
+  // others keep theirs untouched.
+  const auto reference_time = fs::last_write_time(out / "reference" / "row.json");
+  const std::string reference_row = readText(out / "reference" / "row.json");
+  const auto results_time = fs::last_write_time(out / "force-assign" / "results.json");
+  fs::remove(out / "force-assign" / "row.json");
+  fs::remove(out / "grades.csv");
+  const auto second = batch(dirs_, out, "--jobs 2");
+  ASSERT_EQ(second.exit_code, 0) << second.output;
+  EXPECT_NE(second.output.find("1 graded now, 2 already graded"), std::string::npos)
+      << second.output;
+  EXPECT_EQ(fs::last_write_time(out / "reference" / "row.json"), reference_time);
+  EXPECT_EQ(readText(out / "reference" / "row.json"), reference_row);
+  EXPECT_TRUE(fs::exists(out / "force-assign" / "row.json"));
+  EXPECT_NE(fs::last_write_time(out / "force-assign" / "results.json"), results_time);
+  const auto resumed = csvRows(readText(out / "grades.csv"));
+  ASSERT_EQ(resumed.size(), 3u);
+  EXPECT_EQ(resumed.at("force-assign")[forces], rows.at("force-assign")[forces]);
+  EXPECT_EQ(resumed.at("reference"), rows.at("reference"));
+
+  // --regrade: every marker is written again.
+  const auto third = batch(dirs_, out, "--regrade --quiet");
+  ASSERT_EQ(third.exit_code, 0) << third.output;
+  EXPECT_EQ(third.output, "");  // --quiet
+  EXPECT_NE(fs::last_write_time(out / "reference" / "row.json"), reference_time);
+}
+
+TEST_F(Batch, ShardsAreDisjointAndTheirCsvsConcatenateToTheWholeBatch) {
+  const fs::path whole = temp_.path() / "whole", sharded = temp_.path() / "sharded";
+  ASSERT_EQ(batch(dirs_, whole, "--jobs 2").exit_code, 0);
+  std::string joined;
+  std::set<std::string> seen;
+  for (int k = 1; k <= 3; ++k) {
+    const std::string shard = std::to_string(k) + "/3";
+    const auto run =
+        batch(dirs_, sharded, "--shard " + shard + (k > 1 ? " --csv-no-header" : ""));
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    EXPECT_NE(run.output.find("1 graded now, 0 already graded"), std::string::npos)
+        << shard << ": " << run.output;  // each shard grades only its own third
+    const std::string csv = readText(sharded / ("grades-" + std::to_string(k) + "-of-3.csv"));
+    for (const auto& [name, cells] : csvRows(csv)) EXPECT_TRUE(seen.insert(name).second) << name;
+    joined += csv;
+  }
+  // Same rows, same order; only the wall time may differ between the two gradings.
+  const auto strip_seconds = [](const std::string& csv) {
+    std::string out;
+    for (const std::string& line : lines(csv)) out += line.substr(0, line.rfind(',')) + "\n";
+    return out;
+  };
+  EXPECT_EQ(strip_seconds(joined), strip_seconds(readText(whole / "grades.csv")));
+}
+
+// kill -9 in the middle of a batch: a rerun skips what was finished and grades the rest.
+TEST_F(Batch, RerunAfterKillNineSkipsFinishedSubmissions) {
+  const fs::path out = temp_.path() / "out";
+  std::vector<std::string> args = {CLOTHREF_BIN, "grade"};
+  for (const fs::path& dir : dirs_) args.push_back(dir.string());
+  for (const std::string a : {"--out", out.string(), "--no-whole-run", "--timeout", "10",
+                              "--cache-dir", std::string(CLOTHREF_GRADER_CACHE), "--quiet"})
+    args.push_back(a);
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  ASSERT_EQ(posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), environ), 0);
+  // Sorted order with one job: force-assign first. Wait for its marker, then kill.
+  const fs::path first_marker = out / "force-assign" / "row.json";
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(5);
+  int status = 0;
+  bool exited = false;
+  while (!fs::exists(first_marker) && std::chrono::steady_clock::now() < deadline) {
+    if (waitpid(pid, &status, WNOHANG) == pid) {
+      exited = true;
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  ASSERT_TRUE(fs::exists(first_marker));
+  if (!exited) {
+    kill(pid, SIGKILL);
+    waitpid(pid, &status, 0);
+  }
+  const auto marker_time = fs::last_write_time(first_marker);
+  const bool finished_before_kill = fs::exists(out / "grades.csv");
+
+  const auto rerun = batch(dirs_, out);
+  ASSERT_EQ(rerun.exit_code, 0) << rerun.output;
+  EXPECT_EQ(fs::last_write_time(first_marker), marker_time);
+  EXPECT_EQ(csvRows(readText(out / "grades.csv")).size(), 3u);
+  if (!finished_before_kill)
+    EXPECT_NE(rerun.output.find("already graded"), std::string::npos) << rerun.output;
+}
+
+}  // namespace
+}  // namespace clothref::grader

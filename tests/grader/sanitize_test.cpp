@@ -1,0 +1,112 @@
+// --sanitize (grader/grade/sanitize.h): finding and cleaning the first sanitizer report, and the
+// corpus mutant whose `auto` Eigen expression dangles, rebuilt with ASan, quoted in its report.
+#include "grader/grade/sanitize.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "test_util.h"
+
+namespace clothref::grader {
+namespace {
+
+namespace fs = std::filesystem;
+using test::runCli;
+using test::TempDir;
+
+const fs::path kCorpus = fs::path(CLOTHREF_SOURCE_DIR) / "tests" / "grader" / "submissions";
+
+std::string readText(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+int countLines(const std::string& text) {
+  return static_cast<int>(std::count(text.begin(), text.end(), '\n'));
+}
+
+TEST(FirstReport, StartsAtTheErrorLineCutsPathsAndPidsAndStopsAtTheLimit) {
+  // The shape of an ASan report, with a scratch path and a process id that must not be quoted.
+  std::string log = "probe: starting\n";
+  log += "=================================================================\n";
+  log += "==4242==ERROR: AddressSanitizer: stack-use-after-scope on address 0x7ffc00 at pc 0x55\n";
+  log += "READ of size 16 at 0x7ffc00 thread T0\n";
+  for (int k = 0; k < 20; ++k)
+    log += "    #" + std::to_string(k) +
+           " 0x55 in Cloth::computeSpringForce() /tmp/clothref-grade-Xy12/src-cloth/cloth.cpp:" +
+           std::to_string(180 + k) + "\n";
+  const std::string quote = firstSanitizerReport(log, 6);
+  EXPECT_EQ(countLines(quote), 6) << quote;
+  EXPECT_EQ(quote.rfind("==ERROR: AddressSanitizer: stack-use-after-scope", 0), 0u) << quote;
+  EXPECT_NE(quote.find("in Cloth::computeSpringForce() cloth.cpp:180\n"), std::string::npos)
+      << quote;
+  EXPECT_EQ(quote.find("/tmp/"), std::string::npos) << quote;
+  EXPECT_EQ(quote.find("4242"), std::string::npos) << quote;
+  EXPECT_EQ(quote.find("probe: starting"), std::string::npos) << quote;
+}
+
+TEST(FirstReport, FindsUndefinedBehaviourAndNothingInCleanOutput) {
+  const std::string ubsan =
+      "hello\n/tmp/clothref-grade-ab/src-integrator/integrator.cpp:12:9: runtime error: signed "
+      "integer overflow: 2147483647 + 1 cannot be represented in type 'int'\n";
+  EXPECT_EQ(firstSanitizerReport(ubsan),
+            "integrator.cpp:12:9: runtime error: signed integer overflow: 2147483647 + 1 cannot be "
+            "represented in type 'int'\n");
+  EXPECT_EQ(firstSanitizerReport("all tests passed\nSegmentation fault\n"), "");
+}
+
+TEST(Finding, GoesIntoNotesAndTheCrashedStubsTests) {
+  GradeReport report;
+  TestResult crashed = makeTest("Cloth::computeSpringForce", "random perturbed state", 1);
+  crashed.diagnoses = {"crashed"};
+  TestResult other = makeTest("ExplicitEuler::integrate", "one step on a random state", 2);
+  report.tests = {crashed, other};
+  EXPECT_TRUE(hasCrash(report));
+  addSanitizerFinding(report, SanitizerFinding{"forces", "Cloth::computeSpringForce",
+                                               "==ERROR: AddressSanitizer: x\n"});
+  EXPECT_NE(report.tests[0].output.find("AddressSanitizer"), std::string::npos);
+  EXPECT_EQ(report.tests[1].output.find("AddressSanitizer"), std::string::npos);
+  ASSERT_EQ(report.notes.size(), 1u);
+  EXPECT_NE(report.notes[0].find("`forces`"), std::string::npos);
+  GradeReport clean;
+  clean.tests = {other};
+  EXPECT_FALSE(hasCrash(clean));
+}
+
+// The corpus mutant force-dangling-auto crashes at -O2; --sanitize names the error and the line.
+TEST(Sanitize, DanglingAutoExpressionIsQuotedFromAddressSanitizer) {
+  TempDir temp;
+  const fs::path submission = temp.path() / "submission";
+  fs::create_directories(submission);
+  const fs::path mutant = kCorpus / "2022" / "force-dangling-auto";
+  std::ifstream in(mutant / "expected.json");
+  const fs::path base = kCorpus / nlohmann::json::parse(in)["base"].get<std::string>();
+  for (const char* file : {"cloth.cpp", "sphere.cpp", "integrator.cpp"})
+    fs::copy_file(fs::exists(mutant / file) ? mutant / file : base / file, submission / file);
+  const auto run = runCli("grade '" + submission.string() +
+                          "' --sanitize --no-whole-run --timeout 20 --cache-dir '" +
+                          std::string(CLOTHREF_GRADER_CACHE) + "' --report '" +
+                          temp.file("report.md") + "' --results '" + temp.file("results.json") +
+                          "'");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::string report = readText(temp.file("report.md"));
+  EXPECT_NE(report.find("ERROR: AddressSanitizer: stack-use-after-scope"), std::string::npos)
+      << report;
+  EXPECT_NE(report.find("cloth.cpp:"), std::string::npos) << report;
+  EXPECT_EQ(report.find("/src-cloth/"), std::string::npos) << report;
+  // In the failed tests of the stub that crashed, where the student reads.
+  std::ifstream results_in(temp.file("results.json"));
+  const nlohmann::json results = nlohmann::json::parse(results_in);
+  bool quoted = false;
+  for (const auto& test : results["tests"])
+    if (test["tags"][0] == "Cloth::computeSpringForce" && test["status"] == "failed")
+      quoted = quoted ||
+               test["output"].get<std::string>().find("AddressSanitizer") != std::string::npos;
+  EXPECT_TRUE(quoted);
+}
+
+}  // namespace
+}  // namespace clothref::grader
