@@ -18,6 +18,7 @@
 #include <thread>
 
 #include "clothref/io/error.h"
+#include "corpus.h"
 #include "test_util.h"
 
 extern char** environ;
@@ -29,8 +30,7 @@ namespace fs = std::filesystem;
 using test::runCli;
 using test::TempDir;
 
-const fs::path kCorpus = fs::path(CLOTHREF_SOURCE_DIR) / "tests" / "grader" / "submissions";
-const char* kFiles[] = {"cloth.cpp", "sphere.cpp", "integrator.cpp"};
+const fs::path kCorpus = test::corpusDir();
 
 std::string readText(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -44,19 +44,8 @@ std::vector<std::string> lines(const std::string& text) {
   return out;
 }
 
-// A corpus case as a full submission in `target`: a mutant that holds only its changed files is
-// laid over its base (as grade_test does).
 fs::path materialise(const std::string& name, const fs::path& target) {
-  const fs::path case_dir = kCorpus / name;
-  std::ifstream in(case_dir / "expected.json");
-  const nlohmann::json expected = nlohmann::json::parse(in);
-  const fs::path base = kCorpus / expected.value("base", name);
-  fs::create_directories(target);
-  for (const char* file : kFiles) {
-    const fs::path own = case_dir / file;
-    fs::copy_file(fs::exists(own) ? own : base / file, target / file);
-  }
-  return target;
+  return test::materialiseCase(name, target);
 }
 
 // Runs the CLI batch of `dirs` into `out` with the test's quick settings and `extra` arguments.
@@ -64,8 +53,9 @@ test::CommandResult batch(const std::vector<fs::path>& dirs, const fs::path& out
                           const std::string& extra = "") {
   std::string args = "grade";
   for (const fs::path& dir : dirs) args += " '" + dir.string() + "'";
-  args += " --out '" + out.string() + "' --no-whole-run --timeout 10 --cache-dir '" +
+  args += " --out '" + out.string() + "' --no-whole-run --cache-dir '" +
           std::string(CLOTHREF_GRADER_CACHE) + "' " + extra;
+  if (extra.find("--timeout") == std::string::npos) args += " --timeout 10";
   return runCli(args);
 }
 
@@ -320,13 +310,26 @@ TEST_F(Batch, ShardsAreDisjointAndTheirCsvsConcatenateToTheWholeBatch) {
   EXPECT_EQ(strip_seconds(joined), strip_seconds(readText(whole / "grades.csv")));
 }
 
-// kill -9 in the middle of a batch: a rerun skips what was finished and grades the rest.
+// kill -9 in the middle of a batch: a rerun skips what was finished and grades the rest. The
+// last submission spins in computeSpringForce until the probe's time limit, so the batch is
+// certainly still running when the first marker appears.
 TEST_F(Batch, RerunAfterKillNineSkipsFinishedSubmissions) {
   const fs::path out = temp_.path() / "out";
+  const fs::path spins = materialise("2022/reference", temp_.path() / "in" / "zz-spins");
+  std::string cloth = readText(spins / "cloth.cpp");
+  const std::string function = "void Cloth::computeSpringForce() {";
+  ASSERT_NE(cloth.find(function), std::string::npos);
+  cloth.insert(cloth.find(function) + function.size(),
+               "\n  for (volatile int spin = 1; spin;) {\n  }\n");
+  std::ofstream(spins / "cloth.cpp", std::ios::trunc) << cloth;
+  std::vector<fs::path> dirs = dirs_;
+  dirs.push_back(spins);
+  const std::string timeout = "3";
   std::vector<std::string> args = {CLOTHREF_BIN, "grade"};
-  for (const fs::path& dir : dirs_) args.push_back(dir.string());
-  for (const std::string a : {"--out", out.string(), "--no-whole-run", "--timeout", "10",
-                              "--cache-dir", std::string(CLOTHREF_GRADER_CACHE), "--quiet"})
+  for (const fs::path& dir : dirs) args.push_back(dir.string());
+  for (const std::string& a :
+       std::vector<std::string>{"--out", out.string(), "--no-whole-run", "--timeout", timeout,
+                                "--cache-dir", CLOTHREF_GRADER_CACHE, "--quiet"})
     args.push_back(a);
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
@@ -346,19 +349,21 @@ TEST_F(Batch, RerunAfterKillNineSkipsFinishedSubmissions) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   ASSERT_TRUE(fs::exists(first_marker));
-  if (!exited) {
-    kill(pid, SIGKILL);
-    waitpid(pid, &status, 0);
-  }
+  ASSERT_FALSE(exited);
+  kill(pid, SIGKILL);
+  waitpid(pid, &status, 0);
   const auto marker_time = fs::last_write_time(first_marker);
-  const bool finished_before_kill = fs::exists(out / "grades.csv");
+  EXPECT_FALSE(fs::exists(out / "grades.csv"));  // killed before the end
+  EXPECT_FALSE(fs::exists(out / "zz-spins" / "row.json"));
 
-  const auto rerun = batch(dirs_, out);
+  const auto rerun = batch(dirs, out, "--timeout " + timeout);
   ASSERT_EQ(rerun.exit_code, 0) << rerun.output;
   EXPECT_EQ(fs::last_write_time(first_marker), marker_time);
-  EXPECT_EQ(csvRows(readText(out / "grades.csv")).size(), 3u);
-  if (!finished_before_kill)
-    EXPECT_NE(rerun.output.find("already graded"), std::string::npos) << rerun.output;
+  const auto rows = csvRows(readText(out / "grades.csv"));
+  EXPECT_EQ(rows.size(), 4u);
+  EXPECT_TRUE(rows.count("zz-spins"));
+  EXPECT_NE(rerun.output.find("already graded"), std::string::npos) << rerun.output;
+  EXPECT_EQ(rerun.output.find(", 0 already graded"), std::string::npos) << rerun.output;
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "corpus.h"
 #include "test_util.h"
 
 namespace clothref::grader {
@@ -16,8 +17,6 @@ namespace {
 namespace fs = std::filesystem;
 using test::runCli;
 using test::TempDir;
-
-const fs::path kCorpus = fs::path(CLOTHREF_SOURCE_DIR) / "tests" / "grader" / "submissions";
 
 std::string readText(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -46,6 +45,25 @@ TEST(FirstReport, StartsAtTheErrorLineCutsPathsAndPidsAndStopsAtTheLimit) {
   EXPECT_EQ(quote.find("/tmp/"), std::string::npos) << quote;
   EXPECT_EQ(quote.find("4242"), std::string::npos) << quote;
   EXPECT_EQ(quote.find("probe: starting"), std::string::npos) << quote;
+}
+
+TEST(FirstReport, FramesOutsideTheStudentsFilesAndTheFramesObjectsAreSummarised) {
+  std::string log = "==7==ERROR: AddressSanitizer: heap-use-after-free on address 0x6020\n";
+  log += "READ of size 4 at 0x6020 thread T0\n";
+  for (int k = 0; k < 3; ++k)
+    log += "    #" + std::to_string(k) + " 0x55 in Eigen::f() /usr/include/eigen3/Eigen/x.h:1\n";
+  log += "    #3 0x55 in Spheres::collide() /tmp/clothref-grade-q/src-sphere/sphere.cpp:40\n";
+  log += "    #4 0x55 in main (/tmp/clothref-grade-q/probe+0x1)\n\n";
+  log += "  This frame has 3 object(s):\n    [32, 48) 'a'\n";
+  log += "    [64, 80) 'b' <== Memory access at offset 64 is inside this variable\n";
+  EXPECT_EQ(firstSanitizerReport(log),
+            "==ERROR: AddressSanitizer: heap-use-after-free on address 0x6020\n"
+            "READ of size 4 at 0x6020 thread T0\n"
+            "    ... (3 frames outside the student's files)\n"
+            "    #3 0x55 in Spheres::collide() sphere.cpp:40\n"
+            "    ... (1 frame outside the student's files)\n"
+            "  This frame has 3 object(s):\n"
+            "    [64, 80) 'b' <== Memory access at offset 64 is inside this variable\n");
 }
 
 TEST(FirstReport, FindsUndefinedBehaviourAndNothingInCleanOutput) {
@@ -79,13 +97,8 @@ TEST(Finding, GoesIntoNotesAndTheCrashedStubsTests) {
 // The corpus mutant force-dangling-auto crashes at -O2; --sanitize names the error and the line.
 TEST(Sanitize, DanglingAutoExpressionIsQuotedFromAddressSanitizer) {
   TempDir temp;
-  const fs::path submission = temp.path() / "submission";
-  fs::create_directories(submission);
-  const fs::path mutant = kCorpus / "2022" / "force-dangling-auto";
-  std::ifstream in(mutant / "expected.json");
-  const fs::path base = kCorpus / nlohmann::json::parse(in)["base"].get<std::string>();
-  for (const char* file : {"cloth.cpp", "sphere.cpp", "integrator.cpp"})
-    fs::copy_file(fs::exists(mutant / file) ? mutant / file : base / file, submission / file);
+  const fs::path submission =
+      test::materialiseCase("2022/force-dangling-auto", temp.path() / "submission");
   const auto run = runCli("grade '" + submission.string() +
                           "' --sanitize --no-whole-run --timeout 20 --cache-dir '" +
                           std::string(CLOTHREF_GRADER_CACHE) + "' --report '" +
