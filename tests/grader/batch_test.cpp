@@ -366,5 +366,72 @@ TEST_F(Batch, RerunAfterKillNineSkipsFinishedSubmissions) {
   EXPECT_EQ(rerun.output.find(", 0 already graded"), std::string::npos) << rerun.output;
 }
 
+// The adversarial suite (tests/grader/adversarial, its expected.json per case) in one batch with
+// the reference: the reference scores 100 %, every case gets its verdict and loses points where
+// its file says, and none of them stops the batch.
+TEST(AdversarialBatch, ReferenceAtFullMarksEveryCaseWithItsVerdict) {
+  TempDir temp;
+  const fs::path suite = fs::path(CLOTHREF_SOURCE_DIR) / "tests" / "grader" / "adversarial";
+  const fs::path results_dir = temp.path() / "student-results";  // what write-results attacks
+  fs::create_directories(results_dir);
+  std::map<std::string, nlohmann::json> expected;
+  std::vector<fs::path> dirs = {materialise("2022/reference", temp.path() / "in" / "reference")};
+  for (const auto& entry : fs::directory_iterator(suite)) {
+    if (!fs::exists(entry.path() / "expected.json")) continue;
+    const std::string name = entry.path().filename().string();
+    std::ifstream in(entry.path() / "expected.json");
+    expected[name] = nlohmann::json::parse(in);
+    const fs::path dir = temp.path() / "in" / name;
+    fs::create_directories(dir);
+    const fs::path base = kCorpus / expected[name]["base"].get<std::string>();
+    for (const char* file : {"cloth.cpp", "sphere.cpp", "integrator.cpp"}) {
+      const fs::path own = entry.path() / file;
+      std::string text = readText(fs::exists(own) ? own : test::corpusFile(base, file));
+      // The suite's placeholders (adversarial_test.cpp fills them the same way).
+      const std::map<std::string, std::string> fill = {
+          {"@MARKER@", "bat-" + name.substr(0, 10)},
+          {"@SOURCE_DIR@", CLOTHREF_SOURCE_DIR},
+          {"@RESULTS_DIR@", results_dir.string()}};
+      for (const auto& [from, to] : fill)
+        for (std::size_t at = 0; (at = text.find(from, at)) != std::string::npos;)
+          text.replace(at, from.size(), to);
+      std::ofstream(dir / file, std::ios::binary) << text;
+    }
+    dirs.push_back(dir);
+  }
+  ASSERT_GE(expected.size(), 10u) << "the adversarial suite is missing";
+
+  const fs::path out = temp.path() / "out";
+  const auto run = batch(dirs, out, "--jobs 2 --timeout 3");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::string csv = readText(out / "grades.csv");
+  const auto rows = csvRows(csv);
+  ASSERT_EQ(rows.size(), expected.size() + 1) << csv;
+  const std::size_t verdict = column(csv, "verdict"), total = column(csv, "total"),
+                    max = column(csv, "max");
+  EXPECT_EQ(rows.at("reference")[verdict], "graded");
+  EXPECT_EQ(rows.at("reference")[total], rows.at("reference")[max]);
+  EXPECT_EQ(rows.at("reference")[max], "80");
+  for (const auto& [name, want] : expected) {
+    SCOPED_TRACE(name);
+    const auto& row = rows.at(name);
+    std::ifstream in(out / name / "results.json");
+    const nlohmann::json results = nlohmann::json::parse(in);
+    const bool boxed =
+        results["extra_data"]["isolation"].get<std::string>().rfind("bubblewrap", 0) == 0;
+    const std::string verdict_wanted = !boxed && want.contains("verdict_rlimits")
+                                           ? want["verdict_rlimits"].get<std::string>()
+                                           : want["verdict"].get<std::string>();
+    EXPECT_EQ(row[verdict], verdict_wanted);
+    for (const auto& stub : want.value("loses", nlohmann::json::array()))
+      EXPECT_LT(results["extra_data"]["stub_scores"][stub.get<std::string>()].get<double>(),
+                results["extra_data"]["stub_max"][stub.get<std::string>()].get<double>())
+          << stub;
+    if (want.value("full_marks", false) && verdict_wanted == want["verdict"])
+      EXPECT_EQ(row[total], "80");
+  }
+  EXPECT_FALSE(fs::exists(results_dir / "forged.json"));
+}
+
 }  // namespace
 }  // namespace clothref::grader
