@@ -123,16 +123,17 @@ TEST(Shard, SlicesAreDisjointCoverEverythingAndConcatenateInOrder) {
 
 TEST(Names, LastComponentThenParentsWhenTheyCollideSortedAndDeduplicated) {
   TempDir temp;
-  for (const char* dir : {"2022/reference", "2024/reference", "b/alice smith", "a/bob", "c"})
+  for (const char* dir :
+       {"2022/reference", "2024/reference", "b/alice smith", "a/bob", "c", "d/.cache"})
     fs::create_directories(temp.path() / dir);
   const std::vector<BatchEntry> entries =
       batchEntries({temp.path() / "2024/reference", temp.path() / "b/alice smith",
                     temp.path() / "2022/reference", temp.path() / "a/bob",
-                    temp.path() / "a/../a/bob", temp.path() / "c"});
+                    temp.path() / "a/../a/bob", temp.path() / "c/", temp.path() / "d/.cache"});
   std::vector<std::string> names;
   for (const BatchEntry& e : entries) names.push_back(e.name);
-  EXPECT_EQ(names, (std::vector<std::string>{"2022-reference", "2024-reference", "alice_smith",
-                                             "bob", "c"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"2022-reference", "2024-reference", "_.cache",
+                                             "alice_smith", "bob", "c"}));
   EXPECT_EQ(entries[0].dir, temp.path() / "2022/reference");
 }
 
@@ -250,8 +251,8 @@ TEST_F(Batch, RowPerSubmissionRightVerdictsResumeSkipsGradedAndRegradesHalfGrade
   // Rows sorted by name, every submission with its folder.
   std::vector<std::string> order;
   for (const auto& line : lines(csv)) order.push_back(line.substr(0, line.find(',')));
-  EXPECT_EQ(order, (std::vector<std::string>{"submission", "force-assign", "nothing-here",
-                                             "reference"}));
+  EXPECT_EQ(order,
+            (std::vector<std::string>{"submission", "force-assign", "nothing-here", "reference"}));
   for (const char* name : {"reference", "force-assign", "nothing-here"})
     for (const char* file : {"results.json", "report.md", "row.json"})
       EXPECT_TRUE(fs::exists(out / name / file)) << name << "/" << file;
@@ -292,8 +293,7 @@ TEST_F(Batch, ShardsAreDisjointAndTheirCsvsConcatenateToTheWholeBatch) {
   std::set<std::string> seen;
   for (int k = 1; k <= 3; ++k) {
     const std::string shard = std::to_string(k) + "/3";
-    const auto run =
-        batch(dirs_, sharded, "--shard " + shard + (k > 1 ? " --csv-no-header" : ""));
+    const auto run = batch(dirs_, sharded, "--shard " + shard + (k > 1 ? " --csv-no-header" : ""));
     ASSERT_EQ(run.exit_code, 0) << run.output;
     EXPECT_NE(run.output.find("1 graded now, 0 already graded"), std::string::npos)
         << shard << ": " << run.output;  // each shard grades only its own third
@@ -388,10 +388,9 @@ TEST(AdversarialBatch, ReferenceAtFullMarksEveryCaseWithItsVerdict) {
       const fs::path own = entry.path() / file;
       std::string text = readText(fs::exists(own) ? own : test::corpusFile(base, file));
       // The suite's placeholders (adversarial_test.cpp fills them the same way).
-      const std::map<std::string, std::string> fill = {
-          {"@MARKER@", "bat-" + name.substr(0, 10)},
-          {"@SOURCE_DIR@", CLOTHREF_SOURCE_DIR},
-          {"@RESULTS_DIR@", results_dir.string()}};
+      const std::map<std::string, std::string> fill = {{"@MARKER@", "bat-" + name.substr(0, 10)},
+                                                       {"@SOURCE_DIR@", CLOTHREF_SOURCE_DIR},
+                                                       {"@RESULTS_DIR@", results_dir.string()}};
       for (const auto& [from, to] : fill)
         for (std::size_t at = 0; (at = text.find(from, at)) != std::string::npos;)
           text.replace(at, from.size(), to);

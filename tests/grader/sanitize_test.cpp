@@ -99,11 +99,10 @@ TEST(Sanitize, DanglingAutoExpressionIsQuotedFromAddressSanitizer) {
   TempDir temp;
   const fs::path submission =
       test::materialiseCase("2022/force-dangling-auto", temp.path() / "submission");
-  const auto run = runCli("grade '" + submission.string() +
-                          "' --sanitize --no-whole-run --timeout 20 --cache-dir '" +
-                          std::string(CLOTHREF_GRADER_CACHE) + "' --report '" +
-                          temp.file("report.md") + "' --results '" + temp.file("results.json") +
-                          "'");
+  const auto run = runCli(
+      "grade '" + submission.string() + "' --sanitize --no-whole-run --timeout 20 --cache-dir '" +
+      std::string(CLOTHREF_GRADER_CACHE) + "' --report '" + temp.file("report.md") +
+      "' --results '" + temp.file("results.json") + "'");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const std::string report = readText(temp.file("report.md"));
   EXPECT_NE(report.find("ERROR: AddressSanitizer: stack-use-after-scope"), std::string::npos)
@@ -116,8 +115,8 @@ TEST(Sanitize, DanglingAutoExpressionIsQuotedFromAddressSanitizer) {
   bool quoted = false;
   for (const auto& test : results["tests"])
     if (test["tags"][0] == "Cloth::computeSpringForce" && test["status"] == "failed")
-      quoted = quoted ||
-               test["output"].get<std::string>().find("AddressSanitizer") != std::string::npos;
+      quoted =
+          quoted || test["output"].get<std::string>().find("AddressSanitizer") != std::string::npos;
   EXPECT_TRUE(quoted);
 }
 

@@ -49,8 +49,9 @@ Command addGradeCommand(CLI::App& root) {
   app->add_option("--keep-work", options->keep_work,
                   "copy the scratch folder (objects, probe I/O, child output) to this directory");
   app->add_flag("--no-whole-run", options->no_whole_run, "skip the information-only whole run");
-  app->add_flag("--sanitize", options->sanitize,
-                "rebuild a crashing submission with ASan/UBSan (-g -O1) and quote the first report");
+  app->add_flag(
+      "--sanitize", options->sanitize,
+      "rebuild a crashing submission with ASan/UBSan (-g -O1) and quote the first report");
   app->add_option("--out", options->out,
                   "batch: grade every DIR into this folder (BATCHDIR/<name>/results.json, "
                   "report.md; BATCHDIR/grades.csv)");
@@ -78,8 +79,9 @@ Command addGradeCommand(CLI::App& root) {
                               std::to_string(options->dirs.size()));
             if (!batch && (options->jobs != 1 || !options->shard.empty() || options->regrade ||
                            !options->csv.empty() || options->csv_no_header))
-              throw InputError("--jobs, --shard, --regrade, --csv and --csv-no-header need --out "
-                               "BATCHDIR (batch grading)");
+              throw InputError(
+                  "--jobs, --shard, --regrade, --csv and --csv-no-header need --out "
+                  "BATCHDIR (batch grading)");
             grader::GradeOptions grade;
             grade.edition = options->edition;
             if (!options->rubric.empty()) grade.rubric_path = options->rubric;
@@ -95,8 +97,7 @@ Command addGradeCommand(CLI::App& root) {
               batch_options.csv = options->csv;
               batch_options.csv_header = !options->csv_no_header;
               batch_options.jobs = options->jobs;
-              if (!options->shard.empty())
-                batch_options.shard = grader::parseShard(options->shard);
+              if (!options->shard.empty()) batch_options.shard = grader::parseShard(options->shard);
               batch_options.regrade = options->regrade;
               batch_options.sanitize = options->sanitize;
               batch_options.quiet = options->quiet;

@@ -26,18 +26,19 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr const char* kRowFile = "row.json";
+constexpr const char* kCacheDir = ".cache";  // no submission name starts with a dot
 
 double since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 // A path component as a folder name: letters, digits, '.', '_' and '-' kept, the rest '_'; never
-// "." or "..".
+// starting with a dot (so never "." or "..", nor BATCHDIR/.cache).
 std::string safeComponent(const std::string& text) {
   std::string out = text;
   for (char& c : out)
     if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '_' && c != '-') c = '_';
-  if (out.empty() || out == "." || out == "..") out = "_" + out;
+  if (out.empty() || out.front() == '.') out = "_" + out;
   return out;
 }
 
@@ -107,8 +108,8 @@ Outputs notGradable(const BatchEntry& entry, const std::string& verdict,
   results["visibility"] = "visible";
   results["tests"] = nlohmann::ordered_json::array();
   out.results_json = results.dump(2) + "\n";
-  out.report_md = "# Grading report: " + entry.dir.string() + "\n\n**" + verdict + "**. " + text +
-                  "\n";
+  out.report_md =
+      "# Grading report: " + entry.dir.string() + "\n\n**" + verdict + "**. " + text + "\n";
   return out;
 }
 
@@ -295,11 +296,11 @@ BatchSummary runBatch(const std::vector<fs::path>& dirs, const BatchOptions& opt
   BatchSummary summary;
   summary.csv = options.csv;
   if (summary.csv.empty())
-    summary.csv = options.out_dir / (options.shard.count == 1
-                                         ? std::string("grades.csv")
-                                         : "grades-" + std::to_string(options.shard.index) +
-                                               "-of-" + std::to_string(options.shard.count) +
-                                               ".csv");
+    summary.csv =
+        options.out_dir / (options.shard.count == 1
+                               ? std::string("grades.csv")
+                               : "grades-" + std::to_string(options.shard.index) + "-of-" +
+                                     std::to_string(options.shard.count) + ".csv");
 
   std::vector<const BatchEntry*> pending;
   for (const BatchEntry& entry : selected) {
@@ -318,6 +319,9 @@ BatchSummary runBatch(const std::vector<fs::path>& dirs, const BatchOptions& opt
                         : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   GradeOptions grade = options.grade;
   grade.probe_jobs = grade.toolchain.jobs = perSubmissionJobs(options.jobs, cores);
+  // Without --cache-dir a batch still shares compiled objects and the precompiled header
+  // between its submissions (and with its own reruns): in BATCHDIR/cache.
+  if (grade.toolchain.cache_dir.empty()) grade.toolchain.cache_dir = options.out_dir / kCacheDir;
 
   Progress progress("clothref grade", static_cast<std::int64_t>(pending.size()), "submissions",
                     progressStyleForStderr(options.quiet), progress_out);

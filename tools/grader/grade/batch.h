@@ -4,7 +4,8 @@
 // batch splits across machines.
 //
 // BATCHDIR/<name>/ holds results.json, report.md and, written last and atomically, row.json: the
-// submission's CSV row. row.json is the "graded" marker a rerun skips on.
+// submission's CSV row. row.json is the "graded" marker a rerun skips on. BATCHDIR/.cache holds
+// the compiled objects the submissions share when no --cache-dir is given.
 #pragma once
 #include <filesystem>
 #include <iosfwd>
@@ -32,9 +33,10 @@ struct BatchEntry {
 };
 
 // Names for `dirs`, sorted by name: the last path component, made safe for a folder name
-// (characters other than letters, digits, '.', '_', '-' become '_'); when two submissions would get
-// the same name, both take their parent folder's name too ("2022-reference"), and so on. The same
-// directory given twice counts once. Throws InputError when names cannot be made unique.
+// (characters other than letters, digits, '.', '_', '-' become '_'; a leading '.' gets a '_'
+// before it); when two submissions would get the same name, both take their parent folder's name
+// too ("2022-reference"), and so on. The same directory given twice counts once. Throws
+// InputError when names cannot be made unique.
 std::vector<BatchEntry> batchEntries(const std::vector<std::filesystem::path>& dirs);
 
 // The entries of `shard`: of N sorted entries, indices [(k-1)N/n, kN/n). Shards are disjoint,
@@ -44,8 +46,8 @@ std::vector<BatchEntry> shardEntries(const std::vector<BatchEntry>& entries, con
 // One CSV row: a submission's points per stub and its outcome.
 struct BatchRow {
   std::string name;
-  std::string dir;  // the directory graded (as given)
-  int edition = 0;  // 0 when not gradable
+  std::string dir;                                     // the directory graded (as given)
+  int edition = 0;                                     // 0 when not gradable
   std::map<std::string, double> stub_score, stub_max;  // per course stub (stubNames())
   double score = 0, max_score = 0;
   // GradeReport::verdict, or "not-gradable" (the grader refused the directory: no student file,

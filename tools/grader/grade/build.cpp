@@ -37,8 +37,8 @@ std::string fromEnv(const char* name, const char* fallback) {
 
 std::vector<std::string> baseFlags(const CourseToolchain& t) {
   if (t.sanitize)
-    return {t.compiler,       "-std=c++20", "-O1",           "-g", "-fno-omit-frame-pointer",
-            kSanitizeFlag,    "-ffp-contract=off",           "-fno-fast-math"};
+    return {t.compiler,    "-std=c++20",        "-O1",           "-g", "-fno-omit-frame-pointer",
+            kSanitizeFlag, "-ffp-contract=off", "-fno-fast-math"};
   return {t.compiler, "-std=c++20", t.optimisation, "-ffp-contract=off", "-fno-fast-math"};
 }
 

@@ -16,16 +16,11 @@ namespace {
 // and the stub each grades.
 const std::vector<std::pair<std::string, std::string>>& groupStubs() {
   static const std::vector<std::pair<std::string, std::string>> groups = {
-      {"springs", "Cloth::initializeSpring"},
-      {"springs-small", "Cloth::initializeSpring"},
-      {"forces", "Cloth::computeSpringForce"},
-      {"collide-cloth", "Spheres::collide(Cloth*)"},
-      {"collide-spheres", "Spheres::collide()"},
-      {"integrate-0", "ExplicitEuler::integrate"},
-      {"integrate-1", "ImplicitEuler::integrate"},
-      {"integrate-2", "MidpointEuler::integrate"},
-      {"integrate-3", "RungeKuttaFourth::integrate"},
-      {"whole-run", ""}};
+      {"springs", "Cloth::initializeSpring"},         {"springs-small", "Cloth::initializeSpring"},
+      {"forces", "Cloth::computeSpringForce"},        {"collide-cloth", "Spheres::collide(Cloth*)"},
+      {"collide-spheres", "Spheres::collide()"},      {"integrate-0", "ExplicitEuler::integrate"},
+      {"integrate-1", "ImplicitEuler::integrate"},    {"integrate-2", "MidpointEuler::integrate"},
+      {"integrate-3", "RungeKuttaFourth::integrate"}, {"whole-run", ""}};
   return groups;
 }
 
@@ -116,10 +111,10 @@ std::optional<SanitizerFinding> sanitizerFinding(const fs::path& dir, const Grad
     const std::string quote = firstSanitizerReport(text);
     if (quote.empty()) continue;
     SanitizerFinding finding{group, stub, quote};
-    const bool crashed_here = std::any_of(
-        report.tests.begin(), report.tests.end(), [&](const TestResult& t) {
-          return t.stub == stub && std::find(t.diagnoses.begin(), t.diagnoses.end(), "crashed") !=
-                                       t.diagnoses.end();
+    const bool crashed_here =
+        std::any_of(report.tests.begin(), report.tests.end(), [&](const TestResult& t) {
+          return t.stub == stub &&
+                 std::find(t.diagnoses.begin(), t.diagnoses.end(), "crashed") != t.diagnoses.end();
         });
     if (crashed_here) return finding;
     if (!first) first = finding;
