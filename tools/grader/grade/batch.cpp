@@ -320,7 +320,7 @@ BatchSummary runBatch(const std::vector<fs::path>& dirs, const BatchOptions& opt
   GradeOptions grade = options.grade;
   grade.probe_jobs = grade.toolchain.jobs = perSubmissionJobs(options.jobs, cores);
   // Without --cache-dir a batch still shares compiled objects and the precompiled header
-  // between its submissions (and with its own reruns): in BATCHDIR/cache.
+  // between its submissions (and with its own reruns): in BATCHDIR/.cache.
   if (grade.toolchain.cache_dir.empty()) grade.toolchain.cache_dir = options.out_dir / kCacheDir;
 
   Progress progress("clothref grade", static_cast<std::int64_t>(pending.size()), "submissions",
