@@ -27,15 +27,11 @@ namespace clothref::grader {
 namespace {
 
 namespace fs = std::filesystem;
+using test::readText;
 using test::runCli;
 using test::TempDir;
 
 const fs::path kCorpus = test::corpusDir();
-
-std::string readText(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
 
 std::vector<std::string> lines(const std::string& text) {
   std::vector<std::string> out;
@@ -224,7 +220,7 @@ class Batch : public ::testing::Test {
              materialise("2022/force-assign", temp_.path() / "in" / "force-assign"),
              temp_.path() / "in" / "nothing-here"};
     fs::create_directories(dirs_.back());
-    std::ofstream(dirs_.back() / "README.txt") << "forgot to upload\n";
+    test::writeText(dirs_.back() / "README.txt", "forgot to upload\n");
   }
   TempDir temp_;
   std::vector<fs::path> dirs_;
@@ -321,7 +317,7 @@ TEST_F(Batch, RerunAfterKillNineSkipsFinishedSubmissions) {
   ASSERT_NE(cloth.find(function), std::string::npos);
   cloth.insert(cloth.find(function) + function.size(),
                "\n  for (volatile int spin = 1; spin;) {\n  }\n");
-  std::ofstream(spins / "cloth.cpp", std::ios::trunc) << cloth;
+  test::writeText(spins / "cloth.cpp", cloth);
   std::vector<fs::path> dirs = dirs_;
   dirs.push_back(spins);
   const std::string timeout = "3";
@@ -394,7 +390,7 @@ TEST(AdversarialBatch, ReferenceAtFullMarksEveryCaseWithItsVerdict) {
       for (const auto& [from, to] : fill)
         for (std::size_t at = 0; (at = text.find(from, at)) != std::string::npos;)
           text.replace(at, from.size(), to);
-      std::ofstream(dir / file, std::ios::binary) << text;
+      test::writeText(dir / file, text);
     }
     dirs.push_back(dir);
   }

@@ -15,13 +15,9 @@ namespace clothref::grader {
 namespace {
 
 namespace fs = std::filesystem;
+using test::readText;
 using test::runCli;
 using test::TempDir;
-
-std::string readText(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
 
 int countLines(const std::string& text) {
   return static_cast<int>(std::count(text.begin(), text.end(), '\n'));
