@@ -62,8 +62,10 @@ TEST(OutputFileCli, SignalRemovesTheTemporaryFile) {
     }
     EXPECT_FALSE(std::filesystem::exists(temporary)) << signal;
     EXPECT_FALSE(std::filesystem::exists(output)) << signal;
-    EXPECT_EQ(test::readText(errors),
-              "clothref: stopped by a signal; removed the unfinished output " + temporary + "\n");
+    // the line names the command, the signal and what was removed
+    const char* name = signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : "SIGHUP";
+    EXPECT_EQ(test::readText(errors), std::string("clothref trace: interrupted (") + name +
+                                          "); removed the partial output " + temporary + "\n");
   }
 }
 

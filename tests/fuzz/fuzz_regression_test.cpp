@@ -30,6 +30,7 @@ const Target kTargets[] = {
     {"toleranceFile", fuzz::toleranceFile},
     {"goldenManifest", fuzz::goldenManifest},
     {"diffTwo", fuzz::diffTwo},
+    {"rubric", fuzz::rubric},
 };
 
 std::vector<fs::path> inputsOf(const std::string& kind, const std::string& target) {

@@ -17,6 +17,7 @@
 #include "clothref/io/json_input.h"
 #include "clothref/scene/scene.h"
 #include "clothref/trace/reader.h"
+#include "grader/grade/rubric.h"
 
 namespace clothref::fuzz {
 
@@ -54,6 +55,12 @@ inline void toleranceFile(std::string_view input) {
 
 inline void goldenManifest(std::string_view input) {
   manifestFromJson(parseJson(input, "manifest.json"), "manifest.json");
+}
+
+// The grader's rubric file, over the 2022 defaults (the edition with every stub).
+inline void rubric(std::string_view input) {
+  grader::rubricFromJson(parseJson(input, "rubric.json"), "rubric.json",
+                         grader::defaultRubric(2022));
 }
 
 // Two traces separated by a line "----": diff them both ways and render every report.

@@ -57,6 +57,50 @@ TEST(Rubric, BadFilesNameTheField) {
   expectError("{", "not valid JSON");
 }
 
+// The rubric reads through the library's one JSON reader, so its errors say what every format's
+// do: "<file>: <JSON pointer>: <problem>", with line and column for a syntax error, the bad
+// value quoted, and user text (keys) cut short.
+TEST(Rubric, ErrorsGiveFilePointerLineAndColumnLikeEveryFormat) {
+  test::TempDir temp;
+  const std::string path = temp.file("rubric.json");
+  const auto errorOf = [&](const std::string& text) -> std::string {
+    std::ofstream(path, std::ios::trunc) << text;
+    try {
+      loadRubric(path, defaultRubric(2022));
+    } catch (const InputError& error) {
+      return error.what();
+    }
+    return "accepted: " + text;
+  };
+  EXPECT_EQ(
+      errorOf("{\"stubs\": {\n  \"Cloth::initializeSpring\": 1e400}}")
+          .rfind(path + ": /stubs/Cloth::initializeSpring: not valid JSON (line 2, column ", 0),
+      0u);
+  EXPECT_EQ(errorOf(R"({"stubs": {"Cloth::initializeSpring": "ten"}})"),
+            path + R"(: /stubs/Cloth::initializeSpring: expected a number >= 0, got "ten")");
+  EXPECT_EQ(errorOf(R"({"tolerances": []})"), path + ": /tolerances: expected an object, got []");
+  EXPECT_EQ(errorOf("[1]"), path + ": /: expected an object, got [1]");
+  EXPECT_EQ(errorOf(R"({"accepted_variants": {"explicit-as-symplectic": 1}})"),
+            path + ": /accepted_variants/explicit-as-symplectic: expected true or false, got 1");
+  const std::string error = errorOf(R"({"tests": {")" + std::string(100000, 'x') + R"(": -1}})");
+  EXPECT_EQ(error.rfind(path + ": /tests/xxx", 0), 0u) << error.substr(0, 200);
+  EXPECT_LT(error.size(), path.size() + 200) << error.substr(0, 200);
+}
+
+// The fuzz target's entry: a parsed document gives the same rubric as the file.
+TEST(Rubric, FromJsonMatchesTheFile) {
+  test::TempDir temp;
+  const std::string text =
+      R"({"stubs": {"ExplicitEuler::integrate": 7}, "tolerances": {"order": 0.5}})";
+  std::ofstream(temp.file("rubric.json")) << text;
+  const Rubric from_file = loadRubric(temp.file("rubric.json"), defaultRubric(2024));
+  const Rubric from_json =
+      rubricFromJson(nlohmann::json::parse(text), "rubric.json", defaultRubric(2024));
+  EXPECT_EQ(from_json.stub_points, from_file.stub_points);
+  EXPECT_DOUBLE_EQ(from_json.tolerances.order, 0.5);
+  EXPECT_DOUBLE_EQ(from_json.stub_points.at("ExplicitEuler::integrate"), 7);
+}
+
 TEST(Rubric, PointsSplitByWeightAndPartialCredit) {
   GradeReport report;
   report.tests.push_back(makeTest("Cloth::initializeSpring", "a", 3));

@@ -3,6 +3,7 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstring>
 #include <iostream>
 #include <system_error>
@@ -14,31 +15,63 @@ namespace clothref {
 
 namespace {
 
-// The temporary file a signal must remove, and the line saying so, composed beforehand: a signal
-// handler may only call async-signal-safe functions (unlink, write, raise), never allocate.
+// The temporary file a signal must remove, and the line saying so, composed beforehand around
+// the signal's name: a signal handler may only call async-signal-safe functions (unlink, write,
+// raise), never allocate or format.
 char g_temporary[4096];
-char g_message[4352];
+char g_message_head[256];   // "clothref trace: interrupted ("
+char g_message_tail[4352];  // "); removed the partial output PATH\n"
 volatile sig_atomic_t g_has_temporary = 0;
+
+std::string& commandName() {
+  static std::string name = "clothref";
+  return name;
+}
+
+const char* signalName(int signal) {
+  switch (signal) {
+    case SIGINT:
+      return "SIGINT";
+    case SIGTERM:
+      return "SIGTERM";
+    case SIGHUP:
+      return "SIGHUP";
+    default:
+      return "a signal";
+  }
+}
+
+void writeAll(const char* text) {
+  [[maybe_unused]] const ssize_t written = ::write(2, text, std::strlen(text));
+}
 
 void onSignal(int signal) {
   if (g_has_temporary) {
     ::unlink(g_temporary);
-    [[maybe_unused]] const ssize_t written = ::write(2, g_message, std::strlen(g_message));
+    writeAll(g_message_head);
+    writeAll(signalName(signal));
+    writeAll(g_message_tail);
   }
   // the default action ends the process with the conventional status (128 + N in a shell)
   ::signal(signal, SIG_DFL);
   ::raise(signal);
 }
 
+// Copies `text` into `buffer`, cut to fit, always terminated.
+template <std::size_t N>
+void copyInto(char (&buffer)[N], const std::string& text) {
+  const std::size_t size = std::min(text.size(), N - 1);
+  std::memcpy(buffer, text.data(), size);
+  buffer[size] = '\0';
+}
+
 void registerTemporary(const std::filesystem::path& temporary) {
   const std::string path = temporary.string();
   if (path.size() >= sizeof g_temporary) return;  // too long to remove from a handler
   g_has_temporary = 0;
-  std::memcpy(g_temporary, path.c_str(), path.size() + 1);
-  const std::string message =
-      "clothref: stopped by a signal; removed the unfinished output " + path + "\n";
-  std::memcpy(g_message, message.c_str(), std::min(message.size() + 1, sizeof g_message - 1));
-  g_message[sizeof g_message - 1] = '\0';
+  copyInto(g_temporary, path);
+  copyInto(g_message_head, commandName() + ": interrupted (");
+  copyInto(g_message_tail, "); removed the partial output " + path + "\n");
   static bool installed = false;
   if (!installed) {
     struct sigaction action {};
@@ -69,6 +102,8 @@ bool writesInPlace(const std::filesystem::path& target) {
 }
 
 }  // namespace
+
+void setOutputCommandName(const std::string& name) { commandName() = name; }
 
 OutputFile::OutputFile(const std::string& path) : path_(path) {
   if (path_ == "-") return;

@@ -3,7 +3,8 @@
 // Anything else that exists (a character device such as /dev/null, a FIFO, a socket) is written
 // directly, never replaced. "-" means standard output. A path ending in ".gz" is written
 // gzip-compressed. While a temporary file exists, SIGINT, SIGTERM and SIGHUP remove it, say so in
-// one line on stderr and end the process with the signal's conventional status (128 + N).
+// one line on stderr ("clothref trace: interrupted (SIGINT); removed the partial output
+// out.jsonl.tmp<pid>") and end the process with the signal's conventional status (128 + N).
 #pragma once
 
 #include <filesystem>
@@ -15,6 +16,10 @@
 namespace clothref {
 
 class GzipOutputBuffer;
+
+// The command the signal message names ("clothref trace"; "clothref" until set). Called once by
+// the CLI with the subcommand it runs, before any OutputFile opens.
+void setOutputCommandName(const std::string& name);
 
 class OutputFile {
  public:

@@ -1,10 +1,10 @@
 #include "rubric.h"
 
-#include <fstream>
-#include <nlohmann/json.hpp>
+#include <utility>
 
 #include "clothref/io/error.h"
 #include "clothref/io/json_input.h"
+#include "clothref/io/limits.h"
 
 namespace clothref::grader {
 
@@ -23,31 +23,57 @@ Rubric defaultRubric(int edition) {
   return rubric;
 }
 
-Rubric loadRubric(const std::string& path, Rubric rubric) {
-  const nlohmann::json document = readJsonFile(path, "rubric");
-  const auto number = [&](const nlohmann::json& value, const std::string& field) {
-    if (!value.is_number() || value.get<double>() < 0)
-      throw InputError(path + ": " + field + " must be a number >= 0");
-    return value.get<double>();
-  };
-  if (!document.is_object()) throw InputError(path + ": the rubric must be a JSON object");
+namespace {
+
+[[noreturn]] void rubricError(const std::string& source, const std::string& pointer,
+                              const std::string& problem) {
+  throw InputError(source + ": " + pointer + ": " + problem);
+}
+
+// "/" + the key, cut short: a key is user text and may be megabytes long
+std::string child(const std::string& pointer, const std::string& key) {
+  return pointer + "/" + excerpt(key);
+}
+
+void requireObject(const nlohmann::json& value, const std::string& source,
+                   const std::string& pointer) {
+  if (!value.is_object())
+    rubricError(source, pointer, "expected an object, got " + excerpt(value.dump()));
+}
+
+double nonNegative(const nlohmann::json& value, const std::string& source,
+                   const std::string& pointer) {
+  if (!value.is_number() || !(value.get<double>() >= 0))
+    rubricError(source, pointer, "expected a number >= 0, got " + excerpt(value.dump()));
+  return value.get<double>();
+}
+
+}  // namespace
+
+Rubric loadRubric(const std::string& path, Rubric base) {
+  return rubricFromJson(readJsonFile(path, "rubric"), path, std::move(base));
+}
+
+Rubric rubricFromJson(const nlohmann::json& document, const std::string& source, Rubric rubric) {
+  requireObject(document, source, "/");
   for (const auto& [key, value] : document.items()) {
+    const std::string pointer = child("", key);
     if (key == "stubs") {
-      if (!value.is_object()) throw InputError(path + ": /stubs must be an object");
+      requireObject(value, source, pointer);
       for (const auto& [stub, points] : value.items()) {
         bool known = false;
         for (const auto& name : stubNames()) known = known || name == stub;
-        if (!known) throw InputError(path + ": /stubs/" + stub + ": unknown stub");
-        rubric.stub_points[stub] = number(points, "/stubs/" + stub);
+        if (!known) rubricError(source, child(pointer, stub), "unknown stub");
+        rubric.stub_points[stub] = nonNegative(points, source, child(pointer, stub));
       }
     } else if (key == "tests") {
-      if (!value.is_object()) throw InputError(path + ": /tests must be an object");
+      requireObject(value, source, pointer);
       for (const auto& [test, weight] : value.items())
-        rubric.test_weights[test] = number(weight, "/tests/" + test);
+        rubric.test_weights[test] = nonNegative(weight, source, child(pointer, test));
     } else if (key == "tolerances") {
-      if (!value.is_object()) throw InputError(path + ": /tolerances must be an object");
+      requireObject(value, source, pointer);
       for (const auto& [name, tolerance] : value.items()) {
-        const double t = number(tolerance, "/tolerances/" + name);
+        const double t = nonNegative(tolerance, source, child(pointer, name));
         if (name == "force_rel")
           rubric.tolerances.force_rel = t;
         else if (name == "collide_rel")
@@ -59,19 +85,20 @@ Rubric loadRubric(const std::string& path, Rubric rubric) {
         else if (name == "order")
           rubric.tolerances.order = t;
         else
-          throw InputError(path + ": /tolerances/" + name + ": unknown tolerance");
+          rubricError(source, child(pointer, name), "unknown tolerance");
       }
     } else if (key == "accepted_variants") {
-      if (!value.is_object()) throw InputError(path + ": /accepted_variants must be an object");
+      requireObject(value, source, pointer);
       for (const auto& [name, on] : value.items()) {
         if (name != "explicit-as-symplectic" && name != "implicit-corrector-v-new")
-          throw InputError(path + ": /accepted_variants/" + name + ": unknown variant");
+          rubricError(source, child(pointer, name), "unknown variant");
         if (!on.is_boolean())
-          throw InputError(path + ": /accepted_variants/" + name + " must be true or false");
+          rubricError(source, child(pointer, name),
+                      "expected true or false, got " + excerpt(on.dump()));
         rubric.accepted_variants[name] = on.get<bool>();
       }
     } else {
-      throw InputError(path + ": /" + key + ": unknown field");
+      rubricError(source, pointer, "unknown field");
     }
   }
   return rubric;

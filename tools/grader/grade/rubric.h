@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "results.h"
 
 namespace clothref::grader {
@@ -39,9 +41,14 @@ struct Rubric {
 // integrators), both accepted variants on.
 Rubric defaultRubric(int edition);
 
-// `base` with the overrides of the JSON file at `path`. Throws InputError naming the file and
-// the field for a malformed file or an unknown stub or variant.
+// `base` with the overrides of the JSON file at `path`, read by the library's one JSON reader
+// (io/json_input.h). Throws InputError "<path>: <JSON pointer>: <problem>" for a malformed file
+// (with line and column for a syntax error), a value of the wrong type or an unknown stub,
+// tolerance, variant or field.
 Rubric loadRubric(const std::string& path, Rubric base);
+
+// The same from a parsed document; `source` names it in messages.
+Rubric rubricFromJson(const nlohmann::json& document, const std::string& source, Rubric base);
 
 // Splits each stub's points over its scored tests by weight and fills score / max_score; fills
 // the report's totals.
