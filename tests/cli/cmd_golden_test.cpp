@@ -52,13 +52,16 @@ TEST(GoldenCli, BadInputExitsTwo) {
             std::string::npos)
       << malformed.output;
 
-  // --update under a path that is a regular file: one line, exit 2 (was an uncaught
-  // filesystem_error, so an abort)
+  // --update --create under a path that is a regular file: one line, exit 2 (was an uncaught
+  // filesystem_error, so an abort). --create: without it the missing set is refused before any
+  // write, and the case would not reach the filesystem at all.
   test::writeText(root.path() / "plain-file", "x");
   const test::CommandResult under_file =
-      test::runCli("golden --update --golden " + root.file("plain-file") + "/golden");
+      test::runCli("golden --update --create --golden " + root.file("plain-file") + "/golden");
   EXPECT_EQ(under_file.exit_code, 2) << under_file.output;
   EXPECT_EQ(under_file.output.rfind("clothref: " + root.file("plain-file"), 0), 0u)
+      << under_file.output;
+  EXPECT_NE(under_file.output.find("cannot update the golden set"), std::string::npos)
       << under_file.output;
   EXPECT_EQ(std::count(under_file.output.begin(), under_file.output.end(), '\n'), 1)
       << under_file.output;
