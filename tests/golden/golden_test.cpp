@@ -247,6 +247,11 @@ TEST(GoldenDirectory, UpdateThenCheckThenTamper) {
   const std::string explicit_trace = test::readText(copy / "traces" / "spring.explicit.jsonl");
   test::writeText(copy / "traces" / "spring.explicit.jsonl",
                   explicit_trace.substr(0, explicit_trace.size() / 2));
+  // 7. a number too large for a double in a trace's header: that entry's mismatch too (it used
+  // to abort the whole check)
+  std::string midpoint_trace = test::readText(copy / "traces" / "spring.midpoint.jsonl");
+  midpoint_trace.replace(midpoint_trace.find("\"dt\":0.001"), 11, "\"dt\":1e400");
+  test::writeText(copy / "traces" / "spring.midpoint.jsonl", midpoint_trace);
 
   CheckRun tampered = check(copy, set);
   const std::string truncated =
@@ -255,6 +260,16 @@ TEST(GoldenDirectory, UpdateThenCheckThenTamper) {
       (copy / "traces" / "spring.explicit.jsonl").string() + ":";
   EXPECT_EQ(std::erase_if(tampered.mismatches,
                           [&](const std::string& line) { return line.rfind(truncated, 0) == 0; }),
+            1u);
+  const std::string huge_dt =
+      "trace traces/spring.midpoint.jsonl: spring midpoint float dt=0.001 2000 steps stride 20: "
+      "cannot compare: " +
+      (copy / "traces" / "spring.midpoint.jsonl").string() + ":1: header: ";
+  EXPECT_EQ(std::erase_if(tampered.mismatches,
+                          [&](const std::string& line) {
+                            return line.rfind(huge_dt, 0) == 0 &&
+                                   line.find("not valid JSON") != std::string::npos;
+                          }),
             1u);
   const std::vector<std::string> expected = {
       fmt::format("scene scenes/free-fall.json: differs from the built-in scene at line {}: "
@@ -270,7 +285,7 @@ TEST(GoldenDirectory, UpdateThenCheckThenTamper) {
       "file scenes/extra.json: stray file: not produced by the golden set (run --update)"};
   EXPECT_EQ(tampered.mismatches, expected);
   EXPECT_EQ(tampered.summary.checked, entries + 1);
-  EXPECT_EQ(tampered.summary.mismatched, 6);
+  EXPECT_EQ(tampered.summary.mismatched, 7);
   // The diff report of the tampered trace names the step and shows the value.
   EXPECT_NE(tampered.reports.find("step 1000"), std::string::npos) << tampered.reports;
   EXPECT_NE(tampered.reports.find("-12.5"), std::string::npos) << tampered.reports;
