@@ -1,5 +1,6 @@
 // The grader corpus (tests/grader/submissions) for tests that grade whole submissions: a case
-// laid out as a complete submission folder. grade_test.cpp does the same for its own cases.
+// laid out as a complete submission folder, and where its files are (grade_test.cpp grades the
+// cases in their own layout, src/ folders and stray copies included, and shares corpusFile).
 #pragma once
 
 #include <algorithm>

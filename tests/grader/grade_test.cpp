@@ -10,13 +10,14 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "corpus.h"
 #include "test_util.h"
 
 namespace clothref::test {
 namespace {
 
 namespace fs = std::filesystem;
-const fs::path kCorpus = fs::path(CLOTHREF_SOURCE_DIR) / "tests" / "grader" / "submissions";
+const fs::path kCorpus = corpusDir();
 const char* kFiles[] = {"cloth.cpp", "sphere.cpp", "integrator.cpp"};
 
 std::vector<std::string> corpusCases() {
@@ -36,18 +37,6 @@ nlohmann::json readJson(const fs::path& path) {
   return nlohmann::json::parse(in);
 }
 
-// The file `name` below `dir`, preferring a src/ folder (as the grader does).
-fs::path findFile(const fs::path& dir, const std::string& name) {
-  std::vector<fs::path> found;
-  for (const auto& entry : fs::recursive_directory_iterator(dir))
-    if (entry.path().filename() == name) found.push_back(entry.path());
-  std::sort(found.begin(), found.end(), [](const fs::path& a, const fs::path& b) {
-    const bool sa = a.parent_path().filename() == "src", sb = b.parent_path().filename() == "src";
-    return sa != sb ? sa : a < b;
-  });
-  return found.empty() ? fs::path() : found.front();
-}
-
 // A mutant with a "base" holds only its changed files: the submission is the base overlaid.
 fs::path materialise(const fs::path& case_dir, const nlohmann::json& expected,
                      const fs::path& scratch) {
@@ -56,8 +45,8 @@ fs::path materialise(const fs::path& case_dir, const nlohmann::json& expected,
   const fs::path target = scratch / "submission" / "src";
   fs::create_directories(target);
   for (const char* name : kFiles) {
-    fs::path own = findFile(case_dir, name);
-    fs::copy_file(own.empty() ? findFile(base, name) : own, target / name);
+    fs::path own = corpusFile(case_dir, name);
+    fs::copy_file(own.empty() ? corpusFile(base, name) : own, target / name);
   }
   return target.parent_path();
 }
