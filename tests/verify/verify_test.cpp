@@ -95,6 +95,15 @@ TEST(FreeCloth, EveryMethodKeepsMomentum) { expectAllPass(freeClothMomentumCheck
 
 TEST(Energy, EveryMethodBehavesAsItsAmplificationFactorSays) { expectAllPass(energyChecks()); }
 
+// The fast kernels give the course-form stubs' bits on both course scenes, every method (so a bug
+// in a stub that the fast paths shadow still fails verify).
+TEST(CourseForm, FastKernelsMatchTheCourseFormStubs) {
+  const std::vector<CheckRow> rows = courseFormChecks();
+  EXPECT_EQ(rows.size(), 2 * kAllMethods.size());
+  expectAllPass(rows);
+  for (const CheckRow& row : rows) EXPECT_EQ(row.tolerance, 0.0) << row.check;
+}
+
 TEST(CourseFacts, BothCourseScenesHaveEveryFact) {
   const std::vector<CheckRow> rows = courseFactChecks();
   expectAllPass(rows);

@@ -863,6 +863,51 @@ std::vector<CheckRow> courseFactChecks() {
   return rows;
 }
 
+namespace {
+
+// Largest |a - b| over positions and velocities (x, y, z); NaN when any difference is NaN.
+template <typename T>
+double largestDifference(const Particles<T>& a, const Particles<T>& b) {
+  double worst = 0;
+  for (int i = 0; i < a.size(); ++i) {
+    for (int k = 0; k < 3; ++k) {
+      for (const double d : {std::abs(double(a.position(k, i)) - double(b.position(k, i))),
+                             std::abs(double(a.velocity(k, i)) - double(b.velocity(k, i)))})
+        if (!(d <= worst)) worst = d;  // a NaN difference sticks
+    }
+  }
+  return worst;
+}
+
+}  // namespace
+
+std::vector<CheckRow> courseFormChecks() {
+  std::vector<CheckRow> rows;
+  for (const char* name : {"course2022", "course2024"}) {
+    const Scene& scene = *findBuiltinScene(name);
+    for (Method method : kAllMethods) {
+      World<float> fast = makeWorld<float>(scene, method);
+      World<float> course = makeWorld<float>(scene, method);
+      setExecution(course, false, course.execution.simd, 1);
+      for (int s = 0; s < kCourseFormSteps; ++s) {
+        step(fast);
+        step(course);
+      }
+      double worst = largestDifference(fast.cloth->particles, course.cloth->particles);
+      if (fast.spheres) {
+        const double spheres =
+            largestDifference(fast.spheres->particles, course.spheres->particles);
+        if (!(spheres <= worst)) worst = spheres;
+      }
+      rows.push_back(makeRow(
+          fmt::format("{}: fast kernels vs the course-form stubs, max |dx|, |dv| after {} steps",
+                      name, kCourseFormSteps),
+          std::string(methodName(method)), Precision::Float, 0, worst, 0));
+    }
+  }
+  return rows;
+}
+
 VerifyReport runVerification() {
   VerifyReport report;
   report.studies = convergenceStudies();
@@ -876,6 +921,7 @@ VerifyReport runVerification() {
   append(freeClothMomentumChecks());
   append(energyChecks());
   append(courseFactChecks());
+  append(courseFormChecks());
   return report;
 }
 

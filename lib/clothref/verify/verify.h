@@ -90,6 +90,14 @@ std::vector<CheckRow> energyChecks();
 // gravity and drag, 2024 none) and fixed corners that do not move. Exact rows (tolerance 0).
 std::vector<CheckRow> courseFactChecks();
 
+// The fast kernels (clothref/fast) against the course-form loops, the course's stubs as written
+// (setExecution with use_fast = false): course2022 (springs) and course2024 (the cloth on the
+// sphere from the first step: contacts) with every method, kCourseFormSteps steps in float.
+// Exact rows: the largest |difference| of any position or velocity must be 0. This is what makes
+// verify see a bug in the course-form stubs, which the fast paths otherwise shadow.
+inline constexpr int kCourseFormSteps = 300;
+std::vector<CheckRow> courseFormChecks();
+
 struct VerifyReport {
   std::vector<ConvergenceStudy> studies;
   std::vector<CheckRow> checks;
