@@ -15,16 +15,19 @@
 namespace clothref::cli {
 
 struct AnalysisSelection {
-  std::vector<std::string> scenes;   // names or files; empty = the command's defaults
-  std::vector<std::string> methods;  // empty = every row of the method table
-  std::string precision = "both";    // float | double | both
+  std::vector<std::string> default_scenes;  // the command's, when --scene is not given
+  std::vector<std::string> scenes;          // names or files
+  std::vector<std::string> methods;         // empty = every row of the method table
+  std::string precision = "both";           // float | double | both
 };
 
-// Adds --scene, --method and --precision to `app`; `default_scenes` is said in the help.
-inline void addAnalysisSelection(CLI::App* app, AnalysisSelection& selection,
-                                 const std::string& default_scenes) {
+// Adds --scene, --method and --precision to `app` (the help names selection.default_scenes).
+inline void addAnalysisSelection(CLI::App* app, AnalysisSelection& selection) {
+  std::string defaults;
+  for (const std::string& name : selection.default_scenes)
+    defaults += (defaults.empty() ? "" : ", ") + name;
   app->add_option("--scene", selection.scenes,
-                  "Scene name or file, repeatable (default: " + default_scenes + ")");
+                  "Scene name or file, repeatable (default: " + defaults + ")");
   app->add_option("--method", selection.methods,
                   "Method, repeatable (default: every method, backward-euler included)")
       ->check(oneOf(kMethodNames));
@@ -33,11 +36,11 @@ inline void addAnalysisSelection(CLI::App* app, AnalysisSelection& selection,
       ->capture_default_str();
 }
 
-// The scenes chosen, or `defaults` when none was given (loadScene: a name or a file).
-inline std::vector<Scene> selectedScenes(const AnalysisSelection& selection,
-                                         const std::vector<std::string>& defaults) {
+// The scenes chosen, or the defaults when none was given (loadScene: a name or a file).
+inline std::vector<Scene> selectedScenes(const AnalysisSelection& selection) {
   std::vector<Scene> scenes;
-  for (const std::string& name : selection.scenes.empty() ? defaults : selection.scenes)
+  for (const std::string& name :
+       selection.scenes.empty() ? selection.default_scenes : selection.scenes)
     scenes.push_back(loadScene(name));
   return scenes;
 }

@@ -25,8 +25,7 @@ struct StabilityOptions {
 };
 
 int runStability(const StabilityOptions& options) {
-  const std::vector<Scene> scenes =
-      selectedScenes(options.selection, {"spring", "spring-undamped", "course2022"});
+  const std::vector<Scene> scenes = selectedScenes(options.selection);
   const std::vector<Method> methods = selectedMethods(options.selection);
   const std::vector<Precision> precisions = selectedPrecisions(options.selection);
   const auto progress = [&options](const std::string& line) {
@@ -51,7 +50,8 @@ Command addStabilityCommand(CLI::App& root) {
       "Largest stable dt per method and scene: measured by bisection, predicted from each "
       "method's amplification on the scene's linear modes (docs/methods.md)");
   auto options = std::make_shared<StabilityOptions>();
-  addAnalysisSelection(app, options->selection, "spring, spring-undamped, course2022");
+  options->selection.default_scenes = {"spring", "spring-undamped", "course2022"};
+  addAnalysisSelection(app, options->selection);
   app->add_option("--high", options->high,
                   "Upper end of the dt search (s), instead of the scene's (1 s for the spring "
                   "scenes, 0.02 s otherwise)");

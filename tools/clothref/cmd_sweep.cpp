@@ -27,7 +27,7 @@ struct SweepOptions {
 };
 
 int runSweep(const SweepOptions& options) {
-  const std::vector<Scene> scenes = selectedScenes(options.selection, {"spring", "course2022"});
+  const std::vector<Scene> scenes = selectedScenes(options.selection);
   const std::vector<Method> methods = selectedMethods(options.selection);
   const std::vector<Precision> precisions = selectedPrecisions(options.selection);
   if (options.repeats < 1)
@@ -74,7 +74,8 @@ Command addSweepCommand(CLI::App& root) {
       "Work-precision data: error, time per simulated second (median/min/max of --repeats runs), "
       "evaluations and stability for every method, precision and dt (docs/methods.md)");
   auto options = std::make_shared<SweepOptions>();
-  addAnalysisSelection(app, options->selection, "spring, course2022");
+  options->selection.default_scenes = {"spring", "course2022"};
+  addAnalysisSelection(app, options->selection);
   app->add_option("--repeats", options->repeats, "Timed runs per point (>= 5 for the charts)")
       ->capture_default_str();
   app->add_option("--substeps", options->substeps,

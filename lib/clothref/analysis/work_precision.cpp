@@ -114,8 +114,9 @@ RunOutcome runOnce(const Scene& scene, Method method, double dt, int substeps,
   outcome.cpu_seconds = threadCpuSeconds() - cpu_start;
   outcome.simulated = double(steps) * dt;
   outcome.error_rms = std::sqrt(sum_squares / count);
-  if (method == Method::BackwardEuler && backwardEulerSolver(simulation)->stats.solves > 0)
-    outcome.cg_iterations = backwardEulerSolver(simulation)->stats.meanIterations();
+  if (const BackwardEulerSolver<T>* solver = backwardEulerSolver(simulation);
+      solver && solver->stats.solves > 0)
+    outcome.cg_iterations = solver->stats.meanIterations();
   return outcome;
 }
 
