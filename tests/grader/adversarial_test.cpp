@@ -3,15 +3,22 @@
 // (CLOTHREF_GRADER_ISOLATION=rlimits), and its attack fails: no process named by the case is
 // alive after the grade, a results file next to ours is untouched and no forged one appears, a
 // secret the compiler was asked to include is not quoted, and a submission that tried to read the
-// reference still gets full marks (it aborts when the read succeeds).
+// reference still gets full marks and never gets what it read into any output. Whether that read
+// succeeds depends on the host (a checkout under mode-700 /root is unreadable to uid 65534; the
+// rlimits fallback on a world-readable checkout can read it): the test says which, and asserts the
+// same outcome either way.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <thread>
@@ -42,6 +49,22 @@ int liveProcessesNamed(const std::string& marker) {
     if (stat.substr(open + 1, close - open - 1) == marker && stat[close + 2] != 'Z') ++count;
   }
   return count;
+}
+
+// Whether uid 65534 (the uid student code runs as) can open `path` for reading on this host:
+// tried in a forked child that drops to it when we are root.
+bool readableByNobody(const fs::path& path) {
+  const pid_t pid = fork();
+  if (pid < 0) return false;
+  if (pid == 0) {
+    if (geteuid() == 0 && (setgid(65534) != 0 || setuid(65534) != 0)) _exit(2);
+    const int fd = open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    _exit(fd >= 0 ? 0 : 1);
+  }
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  return WIFEXITED(status) && WEXITSTATUS(status) == 0;
 }
 
 struct Case {
@@ -135,6 +158,21 @@ TEST_P(Adversarial, GetsItsVerdictAndTheAttackFails) {
   }
   EXPECT_EQ(readText(results_dir / "previous.json"), "{\"score\": 12}\n");
   EXPECT_FALSE(fs::exists(results_dir / "forged.json"));
+  if (expected.contains("secret_text")) {
+    const std::string secret = expected["secret_text"];
+    ASSERT_FALSE(secret.empty());
+    EXPECT_EQ(readText(results_dir / "results.json").find(secret), std::string::npos);
+    EXPECT_EQ(report.find(secret), std::string::npos);
+  }
+  if (expected.contains("reports_readable")) {
+    std::string path = expected["reports_readable"];
+    replaceAll(path, "@SOURCE_DIR@", CLOTHREF_SOURCE_DIR);
+    // Informational: the assertions above hold whatever this says.
+    const bool readable = !boxed && readableByNobody(path);
+    RecordProperty("student_could_read_reference", readable ? "yes" : "no");
+    std::cout << "[ info     ] the student process " << (readable ? "could" : "could not")
+              << " read " << path << " (" << isolation << ")\n";
+  }
   if (expected.contains("secret_file")) {
     std::string secret;
     std::getline(std::ifstream(expected["secret_file"].get<std::string>()), secret);

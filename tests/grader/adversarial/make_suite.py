@@ -13,7 +13,9 @@ writes its results to).
 expected.json: "verdict" is GradeReport::verdict under bubblewrap (the default here);
 "verdict_rlimits" under CLOTHREF_GRADER_ISOLATION=rlimits as root when it differs; "marker":
 the case names its processes @MARKER@ and none may be alive after the grade; "secret_file": the
-first line of that file must not appear in any output; "full_marks": the score must be the
+first line of that file must not appear in any output; "secret_text": nor that text (a line of
+the golden manifest); "reports_readable": the test says whether uid 65534 could read that file
+(the outcome varies with the host and must not change the score); "full_marks": the score must be the
 maximum (the attack failed and the code then did the right thing); "loses": stubs that must lose
 points.
 """
@@ -108,17 +110,27 @@ CASES = {
         expected={"verdict": "graded", "loses": ["ExplicitEuler::integrate"]}),
     "read-reference": dict(
         file="integrator.cpp",
-        description="tries to read clothref's reference and golden data (its path is known) and "
-                    "aborts when it can; integrates correctly otherwise",
+        description="tries to read clothref's reference and golden data (its path is known) and, "
+                    "when it can, prints what it read; integrates correctly either way. Whether "
+                    "the read succeeds depends on the host (mode 700 /root, bubblewrap's view); "
+                    "the score and the answers must not",
         edits=explicit_prefix(
+            "  static bool tried = false;  // once per process: the probe calls this every step\n"
             "  for (const char *path : {\"@SOURCE_DIR@/tools/grader/reference/2022/integrator.cpp\",\n"
             "                           \"@SOURCE_DIR@/golden/manifest.json\"}) {\n"
-            "    if (std::FILE *file = std::fopen(path, \"rb\")) {\n"
-            "      std::fprintf(stderr, \"read %s\\n\", path);\n"
-            "      std::abort();\n"
+            "    std::FILE *file = tried ? nullptr : std::fopen(path, \"rb\");\n"
+            "    if (file) {\n"
+            "      char line[512];\n"
+            "      for (int n = 0; n < 4 && std::fgets(line, sizeof line, file); ++n) {\n"
+            "        std::fputs(line, stdout);\n"
+            "        std::fputs(line, stderr);\n"
+            "      }\n"
+            "      std::fclose(file);\n"
             "    }\n"
-            "  }\n"),
-        expected={"verdict": "graded", "verdict_rlimits": "crashed", "full_marks": True}),
+            "  }\n"
+            "  tried = true;\n"),
+        expected={"verdict": "graded", "full_marks": True,
+                  "secret_text": '"format": "clothref-golden"', "reports_readable": "@SOURCE_DIR@/golden/manifest.json"}),
     "write-results": dict(
         file="integrator.cpp",
         description="tries to overwrite a results file next to the grade's and to create a forged "
