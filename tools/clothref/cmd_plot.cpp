@@ -5,7 +5,6 @@
 //   clothref plot --sweep SWEEP.json -o PREFIX     work-precision charts (clothref sweep)
 //   clothref plot --stability STAB.json -o PREFIX  stability limits (clothref stability --json)
 #include <fmt/format.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdlib>
@@ -16,6 +15,7 @@
 
 #include "clothref/io/error.h"
 #include "commands.h"
+#include "run_program.h"
 
 #ifndef CLOTHREF_PYTHON
 #define CLOTHREF_PYTHON "/usr/bin/python3"
@@ -47,28 +47,16 @@ int runPython(const std::vector<std::string>& args) {
                      "' (tools/setup.sh installs python3-matplotlib; reconfigure after)");
   std::vector<std::string> argv = {python, "-m", "clothref.plot"};
   argv.insert(argv.end(), args.begin(), args.end());
-  std::vector<char*> raw;
-  for (std::string& a : argv) raw.push_back(a.data());
-  raw.push_back(nullptr);
-  const pid_t child = ::fork();
-  if (child < 0) throw InputError("plot: cannot start python3");
-  if (child == 0) {
-    const char* old = std::getenv("PYTHONPATH");
-    const std::string path =
-        std::string(CLOTHREF_PYTHON_DIR) + (old && *old ? std::string(":") + old : "");
-    ::setenv("PYTHONPATH", path.c_str(), 1);
-    ::setenv("PYTHONDONTWRITEBYTECODE", "1", 1);  // nothing written into the source tree
-    ::setenv("MPLBACKEND", "Agg", 1);
-    ::execv(raw[0], raw.data());
-    std::cerr << "clothref: plot: cannot run " << python << '\n';
-    std::_Exit(kExitBadInput);
-  }
-  int status = 0;
-  while (::waitpid(child, &status, 0) < 0) {
-  }
-  if (WIFEXITED(status)) return WEXITSTATUS(status) == 0 ? kExitOk : kExitBadInput;
-  std::cerr << "clothref: plot: python3 ended by a signal\n";
-  return kExitBadInput;
+  const char* old = std::getenv("PYTHONPATH");
+  const std::string path =
+      std::string(CLOTHREF_PYTHON_DIR) + (old && *old ? std::string(":") + old : "");
+  return runProgram(argv,
+                    {{"PYTHONPATH", path},
+                     {"PYTHONDONTWRITEBYTECODE", "1"},  // nothing written into the source tree
+                     {"MPLBACKEND", "Agg"}},
+                    "plot") == 0
+             ? kExitOk
+             : kExitBadInput;
 }
 
 int runPlot(const PlotOptions& options) {
