@@ -72,5 +72,6 @@ Command addStabilityCommand(CLI::App& root);
 Command addSweepCommand(CLI::App& root);
 Command addPlotCommand(CLI::App& root);
 Command addGradeCommand(CLI::App& root);
+Command addViewCommand(CLI::App& root);
 
 }  // namespace clothref::cli

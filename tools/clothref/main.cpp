@@ -53,11 +53,11 @@ int main(int argc, char** argv) {
       ->check(atLeast(0))
       ->capture_default_str()
       ->group("Input limits");
-  const std::vector<Command> commands = {addTraceCommand(root),     addDiffCommand(root),
-                                         addGoldenCommand(root),    addVerifyCommand(root),
-                                         addScenesCommand(root),    addBenchCommand(root),
-                                         addStabilityCommand(root), addSweepCommand(root),
-                                         addPlotCommand(root),      addGradeCommand(root)};
+  const std::vector<Command> commands = {
+      addTraceCommand(root),     addDiffCommand(root),   addGoldenCommand(root),
+      addVerifyCommand(root),    addScenesCommand(root), addBenchCommand(root),
+      addStabilityCommand(root), addSweepCommand(root),  addPlotCommand(root),
+      addGradeCommand(root),     addViewCommand(root)};
   for (const Command& command : commands) command.app->fallthrough();
   // name an unknown command instead of CLI11's "A subcommand is required"
   if (argc > 1 && argv[1][0] != '-') {
