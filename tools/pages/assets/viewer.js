@@ -70,7 +70,7 @@ function mountViewer(root, data) {
     const info = element('p', 'cv-info');
     const dt = Number(t.dt).toPrecision(3);
     info.textContent = `${t.label}: ${t.scene || 'scene'}, ${t.integrator}, ${t.precision}, ` +
-                       `dt ${dt} s, ${t.steps} steps (every ${t.stride}th recorded)`;
+                       `dt ${dt} s, ${t.steps} steps, stride ${t.stride}`;
     root.appendChild(info);
   }
   const canvas = element('canvas', 'cv-canvas');
@@ -119,7 +119,7 @@ function mountViewer(root, data) {
   root.appendChild(controls);
   const shown = frames < data.recorded
                     ? `Showing ${frames} of ${data.recorded} recorded steps, evenly spread ` +
-                      `(about every ${Math.round((data.recorded - 1) / Math.max(1, frames - 1))}th)` +
+                      `(about one in ${Math.round((data.recorded - 1) / Math.max(1, frames - 1))})` +
                       (two ? '; the first differing step is always shown.' : '.')
                     : `Showing all ${frames} recorded steps.`;
   root.appendChild(element('p', 'cv-note cv-decimation', shown));
@@ -235,7 +235,8 @@ function mountViewer(root, data) {
         let colour = traceColours[trace];
         if (colourByDistance) {
           const o = frame * cloth.count;
-          colour = colourOf((distance[o + a] + distance[o + b] + distance[o + c]) / 3);
+          // the largest of its corners: a single particle that left shows as a spot
+          colour = colourOf(Math.max(distance[o + a], distance[o + b], distance[o + c]));
         }
         items.push({z: (sa[2] + sb[2] + sc[2]) / 3, kind: 0, pts: [sa, sb, sc], colour, shade});
       }
