@@ -17,6 +17,7 @@
 #include "clothref/io/json_input.h"
 #include "clothref/io/output_file.h"
 #include "clothref/io/progress.h"
+#include "html_report.h"
 #include "report.h"
 #include "sanitize.h"
 
@@ -377,6 +378,12 @@ BatchSummary runBatch(const std::vector<fs::path>& dirs, const BatchOptions& opt
     summary.rows.push_back(std::move(row));
   }
   writeText(summary.csv, batchCsv(summary.rows, options.csv_header));
+  // the class overview, from the same markers (html_report.h), beside the CSV
+  writeText(options.out_dir / (options.shard.count == 1
+                                   ? std::string("index.html")
+                                   : "index-" + std::to_string(options.shard.index) + "-of-" +
+                                         std::to_string(options.shard.count) + ".html"),
+            batchIndexHtml(options.out_dir, summary.rows));
   return summary;
 }
 
