@@ -6,7 +6,10 @@
 
 var clothrefViewers = [];  // one handle per mounted viewer, for the browser tests
 
-function mountViewer(root, data) {
+// options: {layout: 'overlay' | 'side' (two traces; default overlay), stills: N (a row of N small
+// pictures at evenly spread times above the player, both traces side by side in each)}
+function mountViewer(root, data, options) {
+  options = options || {};
   const started = performance.now();
   const two = data.traces.length === 2;
 
@@ -98,7 +101,7 @@ function mountViewer(root, data) {
   }
   const timeLabel = element('span', 'cv-time');
   controls.append(playButton, backButton, nextButton, sliderBox, timeLabel);
-  let layout = 'overlay';
+  let layout = two && options.layout === 'side' ? 'side' : 'overlay';
   if (two) {
     const select = element('select', 'cv-layout');
     for (const [value, text] of [['overlay', 'overlaid'], ['side', 'side by side']]) {
@@ -106,6 +109,7 @@ function mountViewer(root, data) {
       option.value = value;
       select.appendChild(option);
     }
+    select.value = layout;
     select.addEventListener('change', () => {
       layout = select.value;
       draw();
@@ -531,6 +535,40 @@ function mountViewer(root, data) {
     });
   window.addEventListener('resize', resize);
   resize();
+
+  // stills: the run at a few times, both traces side by side in each (the grade report's strip)
+  if (options.stills > 0 && frames > 0) {
+    const strip = element('div', 'cv-stills');
+    const count = Math.min(options.stills, frames);
+    const s = devicePixelRatio || 1;
+    for (let k = 0; k < count; ++k) {
+      const frame = count > 1 ? Math.round((k * (frames - 1)) / (count - 1)) : 0;
+      const figure = element('figure', 'cv-still');
+      const still = element('canvas');
+      still.width = Math.round(260 * s);
+      still.height = Math.round(150 * s);
+      figure.appendChild(still);
+      const t = frameT[frame];
+      figure.appendChild(element('figcaption', null,
+          `t = ${isFinite(t) ? t.toFixed(4) : t} s (step ${data.frame_steps[frame]})` +
+          (two ? `: ${data.traces[0].label} | ${data.traces[1].label}` : '')));
+      const ctx = still.getContext('2d');
+      ctx.fillStyle = '#f4f6f8';
+      ctx.fillRect(0, 0, still.width, still.height);
+      const parts = two ? 2 : 1;
+      for (let r = 0; r < parts; ++r) {
+        ctx.save();
+        ctx.beginPath();
+        ctx.rect((r * still.width) / parts, 0, still.width / parts, still.height);
+        ctx.clip();
+        drawScene(ctx, (r * still.width) / parts, 0, still.width / parts, still.height, frame, r,
+                  {wire: false});
+        ctx.restore();
+      }
+      strip.appendChild(figure);
+    }
+    root.insertBefore(strip, canvas);
+  }
 
   const handle = {root, setFrame, frames, firstFrame, loadMs: performance.now() - started};
   clothrefViewers.push(handle);
