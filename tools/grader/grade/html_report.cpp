@@ -244,7 +244,9 @@ std::string studentReportHtml(const GradeReport& report,
                                        : "\xE2\x9C\x98";
     body += std::string("<details class=\"gr-check\"") + (t.passed() ? "" : " open") +
             "><summary class=\"" + state + "\">" + mark + " " + e(t.check) +
-            (t.informational ? " (information only)"
+            (t.informational ? std::string(t.check.find("information only") == std::string::npos
+                                               ? " (information only)"
+                                               : "")
                              : " \xE2\x80\x94 " + number(t.score) + " / " + number(t.max_score));
     for (const std::string& cause : t.diagnoses)
       body += "<span class=\"gr-cause\">" + e(cause) + "</span>";
