@@ -4,6 +4,7 @@ python3-selenium (Debian packages chromium, chromium-driver, python3-selenium; t
 A test exits 77 (ctest SKIP_RETURN_CODE) with one line saying what is missing only when Chromium,
 chromedriver or selenium is genuinely absent; anything else that goes wrong is a failure.
 """
+import argparse
 import io
 import json
 import os
@@ -27,6 +28,17 @@ def skip_unless_available():
         print(f'SKIP: {", ".join(missing)} not installed (tools/setup.sh installs chromium, '
               'chromium-driver, python3-selenium, python3-pil)')
         sys.exit(SKIP)
+
+
+def start(*extra_options):
+    """A test's start: its options (--cli, --screenshots and `extra_options`, all required), the
+    skip when the browser is absent, and an empty Checks."""
+    parser = argparse.ArgumentParser()
+    for option in ('--cli', '--screenshots', *extra_options):
+        parser.add_argument(option, required=True)
+    options = parser.parse_args()
+    skip_unless_available()
+    return options, Checks()
 
 
 class Checks:
@@ -110,6 +122,15 @@ class Browser:
     def save_screenshot(self, path):
         os.makedirs(os.path.dirname(path), exist_ok=True)
         self.driver.save_screenshot(path)
+
+
+def check_quiet(b, checks, page_url, name):
+    """No console message and no network request since the last look (the page's own file and
+    data: URLs aside)."""
+    problems = b.console_problems()
+    checks.check(not problems, f'{name}: no console messages {problems}')
+    requests = b.requests(page_url)
+    checks.check(not requests, f'{name}: no network request {requests}')
 
 
 def changed_fraction(a, b):

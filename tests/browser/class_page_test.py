@@ -10,7 +10,6 @@ network request, 30 rows, sorting by total (both ways) and by name, filtering by
 verdict, the histogram counts all 30, the cause table counts and links the right reports, a
 check's pass rate, the page opens in under 2 s. Screenshot: class-index.png.
 """
-import argparse
 import json
 import os
 import subprocess
@@ -68,12 +67,7 @@ def shown_names(b):
 
 
 def main():
-    parser = argparse.ArgumentParser()
-    parser.add_argument('--cli', required=True)
-    parser.add_argument('--screenshots', required=True)
-    options = parser.parse_args()
-    browser.skip_unless_available()
-    checks = browser.Checks()
+    options, checks = browser.start()
     with tempfile.TemporaryDirectory(prefix='clothref-class-test-') as tmp:
         batch, subs = os.path.join(tmp, 'batch'), os.path.join(tmp, 'subs')
         expected = fixture(batch, subs)
@@ -134,10 +128,7 @@ def main():
                         "return tr ? tr.cells[1].textContent : null")
             passed = sum(1 for n in names if expected[n][3])
             checks.check(rate == f'{round(100 * passed / 30)} %', f'check pass rate {rate}')
-            problems = b.console_problems()
-            checks.check(not problems, f'no console messages {problems}')
-            requests = b.requests(url)
-            checks.check(not requests, f'no network request {requests}')
+            browser.check_quiet(b, checks, url, 'class')
         finally:
             b.close()
     checks.finish()

@@ -10,7 +10,6 @@ cause, the whole run's viewer mounted side by side with four stills that are not
 results.json's top-level output is HTML while its tests stay Markdown. Screenshots: report.png,
 report-whole-run.png.
 """
-import argparse
 import glob
 import json
 import os
@@ -24,14 +23,7 @@ import browser  # noqa: E402
 
 
 def main():
-    parser = argparse.ArgumentParser()
-    parser.add_argument('--cli', required=True)
-    parser.add_argument('--source', required=True)
-    parser.add_argument('--cache', required=True)
-    parser.add_argument('--screenshots', required=True)
-    options = parser.parse_args()
-    browser.skip_unless_available()
-    checks = browser.Checks()
+    options, checks = browser.start('--source', '--cache')
     corpus = os.path.join(options.source, 'tests', 'grader', 'submissions', '2022')
     with tempfile.TemporaryDirectory(prefix='clothref-report-test-') as tmp:
         sub = os.path.join(tmp, 'normal-reversed')
@@ -83,10 +75,7 @@ def main():
                          'every still shows the cloth and spheres (' +
                          ', '.join(f'{d:.0%}' for d in drawn) + ' drawn)')
             b.save_screenshot(os.path.join(options.screenshots, 'report-whole-run.png'))
-            problems = b.console_problems()
-            checks.check(not problems, f'no console messages {problems}')
-            requests = b.requests(url)
-            checks.check(not requests, f'no network request {requests}')
+            browser.check_quiet(b, checks, url, 'report')
         finally:
             b.close()
     checks.finish()

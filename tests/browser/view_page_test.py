@@ -10,7 +10,6 @@ advances, the marker and the text name step 1500, the cloth is coloured by dista
 and not before, side by side differs from overlaid, the page opens in under 2 s. Screenshots of
 each page go to --screenshots.
 """
-import argparse
 import gzip
 import json
 import os
@@ -73,12 +72,7 @@ def open_page(b, checks, path, name):
 
 
 def main():
-    parser = argparse.ArgumentParser()
-    parser.add_argument('--cli', required=True)
-    parser.add_argument('--screenshots', required=True)
-    options = parser.parse_args()
-    browser.skip_unless_available()
-    checks = browser.Checks()
+    options, checks = browser.start()
     with tempfile.TemporaryDirectory(prefix='clothref-view-test-') as tmp:
         one = os.path.join(tmp, 'one.jsonl.gz')
         run(options.cli, 'trace', '-q', '--steps', '3000', '--stride', '10', '-o', one)
@@ -117,10 +111,7 @@ def main():
             time.sleep(0.6)
             frame = int(b.js("return document.getElementById('viewer').dataset.frame"))
             checks.check(frame > 42, f'play advances (frame {frame} after 0.6 s)')
-            problems = b.console_problems()
-            checks.check(not problems, f'one trace: no console messages {problems}')
-            requests = b.requests(url)
-            checks.check(not requests, f'one trace: no network request {requests}')
+            browser.check_quiet(b, checks, url, 'one trace')
 
             # ---- the pair
             url = open_page(b, checks, pair_html, 'pair')
@@ -156,10 +147,7 @@ def main():
             plot = b.element_image('.cv-plot')
             checks.check(browser.non_background_fraction(plot) > 0.01,
                          'the difference plot is drawn')
-            problems = b.console_problems()
-            checks.check(not problems, f'pair: no console messages {problems}')
-            requests = b.requests(url)
-            checks.check(not requests, f'pair: no network request {requests}')
+            browser.check_quiet(b, checks, url, 'pair')
         finally:
             b.close()
     checks.finish()

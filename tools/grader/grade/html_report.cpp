@@ -57,6 +57,17 @@ std::string inlineMarkdown(const std::string& escaped) {
   return out;
 }
 
+// Checks of `stub` that count for points, and how many of them passed.
+std::pair<int, int> checksPassed(const GradeReport& report, const std::string& stub) {
+  int passed = 0, total = 0;
+  for (const TestResult& t : report.tests)
+    if (t.stub == stub && !t.informational) {
+      ++total;
+      passed += t.passed();
+    }
+  return {passed, total};
+}
+
 const char* kReportStyle = R"(
 .gr-table { border-collapse: collapse; margin: 6px 0; font-size: 0.92em; }
 .gr-table th, .gr-table td { border: 1px solid #ddd; padding: 2px 8px; text-align: left;
@@ -168,12 +179,7 @@ nlohmann::ordered_json withHtmlSummary(nlohmann::ordered_json results, const Gra
                     "<th>points</th><th>checks passed</th></tr>\n";
   for (const std::string& stub : stubNames()) {
     if (!report.stub_max.count(stub)) continue;
-    int passed = 0, total = 0;
-    for (const TestResult& t : report.tests)
-      if (t.stub == stub && !t.informational) {
-        ++total;
-        passed += t.passed();
-      }
+    const auto [passed, total] = checksPassed(report, stub);
     out += "<tr><td>" + pages::escapeHtml(stub) + "</td><td>" +
            number(report.stub_score.count(stub) ? report.stub_score.at(stub) : 0) + " / " +
            number(report.stub_max.at(stub)) + "</td><td>" + std::to_string(passed) + " of " +
@@ -219,12 +225,7 @@ std::string studentReportHtml(const GradeReport& report,
       "<th>checks passed</th></tr>\n";
   for (const std::string& stub : stubNames()) {
     if (!report.stub_max.count(stub)) continue;
-    int passed = 0, total = 0;
-    for (const TestResult& t : report.tests)
-      if (t.stub == stub && !t.informational) {
-        ++total;
-        passed += t.passed();
-      }
+    const auto [passed, total] = checksPassed(report, stub);
     body += "<tr><td><a href=\"#" + e(stub) + "\">" + e(stub) + "</a></td><td>" +
             number(report.stub_score.count(stub) ? report.stub_score.at(stub) : 0) + " / " +
             number(report.stub_max.at(stub)) + "</td><td class=\"" +
@@ -280,16 +281,9 @@ std::string batchIndexHtml(const fs::path& batch_dir, const std::vector<BatchRow
   std::map<std::string, std::size_t> index;  // check name -> position in `checks`
   nlohmann::ordered_json submissions = nlohmann::ordered_json::array();
   for (const BatchRow& row : rows) {
-    nlohmann::ordered_json s;
-    s["name"] = row.name;
-    s["edition"] = row.edition;
-    s["stub_scores"] = row.stub_score;
-    s["stub_max"] = row.stub_max;
-    s["total"] = row.score;
-    s["max"] = row.max_score;
-    s["verdict"] = row.verdict;
-    s["problem"] = row.problem;
-    s["seconds"] = row.seconds;
+    nlohmann::ordered_json s = rowJson(row);  // the marker's fields, then the page's own
+    s.erase("dir");                           // where it was graded: not for the page
+    s.erase("isolation");
     std::error_code error;
     s["report"] =
         row.name +

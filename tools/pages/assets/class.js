@@ -13,7 +13,7 @@ function mountClass(root, data) {
   }
   const fmt = (v) => (Math.round(v * 100) / 100).toString();
   const link = (s) => {
-    const a = element('a', null, s.name);
+    const a = element('a', null, s.submission);
     a.href = s.report.split('/').map(encodeURIComponent).join('/');
     return a;
   };
@@ -75,7 +75,7 @@ function mountClass(root, data) {
   const shownCount = element('span', 'cl-shown');
   root.append(filter, ' ', shownCount);
   const columns = [
-    {title: 'submission', value: (s) => s.name, cell: (s) => link(s)},
+    {title: 'submission', value: (s) => s.submission, cell: (s) => link(s)},
     ...stubs.map((stub) => ({
       title: stub,
       value: (s) => (stub in s.stub_scores ? s.stub_scores[stub] : -1),
@@ -93,17 +93,17 @@ function mountClass(root, data) {
   function render() {
     const needle = filter.value.trim().toLowerCase();
     const rows = subs.filter((s) => !needle ||
-        [s.name, s.verdict, ...s.causes].some((text) => text.toLowerCase().includes(needle)));
+        [s.submission, s.verdict, ...s.causes].some((text) => text.toLowerCase().includes(needle)));
     const value = columns[sortColumn].value;
     rows.sort((a, b) => {
       const x = value(a), y = value(b);
       const order = typeof x === 'number' ? x - y : String(x).localeCompare(String(y));
-      return (sortUp ? order : -order) || a.name.localeCompare(b.name);
+      return (sortUp ? order : -order) || a.submission.localeCompare(b.submission);
     });
     body.replaceChildren();
     for (const s of rows) {
       const tr = body.insertRow();
-      tr.dataset.name = s.name;
+      tr.dataset.name = s.submission;
       for (const c of columns) {
         const td = tr.insertCell();
         const content = c.cell(s);

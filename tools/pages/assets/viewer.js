@@ -203,11 +203,12 @@ function mountViewer(root, data, options) {
   }
   const traceColours = [[70, 120, 180], [230, 140, 50]];
 
-  function drawScene(ctx, x0, y0, w, h, frame, trace, overlay) {
+  // The camera's projection into the viewport (x0, y0, w, h): project(values, offset) gives the
+  // screen x, y and depth of the point at values[offset..offset+2], or null behind the camera.
+  function projector(x0, y0, w, h) {
     const {eye, forward, right, up} = basis();
     const focal = (0.5 * h) / Math.tan(0.4);
     const cx = x0 + w / 2, cy = y0 + h / 2;
-    const light = [0, 1, 2].map((k) => 0.8 * -forward[k] + 0.6 * up[k]);
     const project = (p, o) => {
       const d = [p[o] - eye[0], p[o + 1] - eye[1], p[o + 2] - eye[2]];
       const z = d[0] * forward[0] + d[1] * forward[1] + d[2] * forward[2];
@@ -217,6 +218,12 @@ function mountViewer(root, data, options) {
       const s = [cx + (focal * x) / z, cy - (focal * y) / z, z];
       return isFinite(s[0]) && isFinite(s[1]) ? s : null;
     };
+    return {project, focal, forward, up};
+  }
+
+  function drawScene(ctx, x0, y0, w, h, frame, trace, overlay) {
+    const {project, focal, forward, up} = projector(x0, y0, w, h);
+    const light = [0, 1, 2].map((k) => 0.8 * -forward[k] + 0.6 * up[k]);
     const items = [];
     const base = frame * floatsPerFrame;
     const p = positions[trace];
@@ -298,25 +305,14 @@ function mountViewer(root, data, options) {
         ctx.fill();
       }
     }
-    return project;
   }
 
   // the other trace over the first: its cloth as a wire mesh, its spheres as rings
   function drawWire(ctx, x0, y0, w, h, frame, trace) {
-    const {eye, forward, right, up} = basis();
-    const focal = (0.5 * h) / Math.tan(0.4);
-    const cx = x0 + w / 2, cy = y0 + h / 2;
+    const {project: projectIn, focal} = projector(x0, y0, w, h);
     const p = positions[trace];
     const base = frame * floatsPerFrame;
-    const project = (o) => {
-      const d = [p[o] - eye[0], p[o + 1] - eye[1], p[o + 2] - eye[2]];
-      const z = d[0] * forward[0] + d[1] * forward[1] + d[2] * forward[2];
-      if (!(z > 1e-6)) return null;
-      const x = d[0] * right[0] + d[1] * right[1] + d[2] * right[2];
-      const y = d[0] * up[0] + d[1] * up[1] + d[2] * up[2];
-      const s = [cx + (focal * x) / z, cy - (focal * y) / z, z];
-      return isFinite(s[0]) && isFinite(s[1]) ? s : null;
-    };
+    const project = (o) => projectIn(p, o);
     ctx.strokeStyle = 'rgba(200, 100, 20, 0.75)';
     ctx.lineWidth = 1;
     ctx.beginPath();
