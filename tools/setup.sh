@@ -14,9 +14,10 @@ build=(cmake ninja-build g++ pkg-config libeigen3-dev libfmt-dev nlohmann-json3-
        libxxhash-dev zlib1g-dev)
 tests=(libgtest-dev libgmock-dev libbenchmark-dev)
 charts=(python3 python3-numpy python3-matplotlib)
+pages=(chromium chromium-driver python3-selenium python3-pil)  # the browser tests of the pages
 grader=(bubblewrap)
 machines=(mmdebstrap)  # the Gradescope test's fresh Debian 12 root (and tools/check_fresh_debian.sh)
-packages=("${build[@]}" "${tests[@]}" "${charts[@]}" "${grader[@]}" "${machines[@]}")
+packages=("${build[@]}" "${tests[@]}" "${charts[@]}" "${pages[@]}" "${grader[@]}" "${machines[@]}")
 missing=()
 for package in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" ||

@@ -5,6 +5,9 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+#include <algorithm>
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -175,6 +178,68 @@ TEST_F(PythonTest, PlotsASweepAndAStabilityTable) {
   };
   EXPECT_NEAR(order("rk4"), 4.0, 0.2) << markdown;
   EXPECT_NEAR(order("explicit"), 1.0, 0.2) << markdown;
+}
+
+// Runs `python3 -B -c SCRIPT ARGS` with the project's package importable; stdout and the status.
+test::CommandResult runScript(const std::string& script, const std::string& args) {
+  const std::string command = "PYTHONPATH=" CLOTHREF_PYTHON_DIR " MPLBACKEND=Agg " +
+                              std::string(CLOTHREF_PYTHON) + " -B -c \"" + script + "\" " + args;
+  test::CommandResult result;
+  FILE* pipe = ::popen(command.c_str(), "r");
+  if (!pipe) return result;
+  char buffer[4096];
+  for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;)
+    result.output.append(buffer, n);
+  const int status = ::pclose(pipe);
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+TEST_F(PythonTest, ReaderAndPlotReadGzipAndStandardInput) {
+  const std::string plain = smallTrace("a.jsonl", Method::Explicit);
+  const std::string packed = dir.file("a.jsonl.gz");
+  ASSERT_EQ(std::system(("gzip -c " + plain + " > " + packed).c_str()), 0);
+  // the same numbers from the file, its gzip, and the gzip piped in (read twice: kept)
+  const std::string script =
+      "import sys; from clothref.trace import read_trace;"
+      "t = [read_trace(p) for p in sys.argv[1:]];"
+      "print(all((x.bodies['cloth']['position'] == t[0].bodies['cloth']['position']).all() "
+      "for x in t), [list(x.step) for x in t][2])";
+  const auto read = runScript(script, plain + " " + packed + " - - < " + packed);
+  ASSERT_EQ(read.exit_code, 0) << read.output;
+  EXPECT_EQ(read.output, "True [0, 20, 40, 60]\n");
+  const auto plotted =
+      test::runCli("plot - --times 0 0.006 --formats png -o " + dir.file("in") + " < " + packed);
+  ASSERT_EQ(plotted.exit_code, 0) << plotted.output;
+  expectImage(dir.file("in-cloth.png"), "PNG", 20000);
+  // a cut gzip stream is one line naming the file
+  test::writeText(dir.file("cut.jsonl.gz"), test::readText(packed).substr(0, 300));
+  const auto cut = test::runCli("plot " + dir.file("cut.jsonl.gz") + " -o " + dir.file("cut"));
+  EXPECT_EQ(cut.exit_code, 2) << cut.output;
+  EXPECT_NE(cut.output.find("cut.jsonl.gz"), std::string::npos) << cut.output;
+  EXPECT_EQ(std::count(cut.output.begin(), cut.output.end(), '\n'), 1) << cut.output;
+}
+
+TEST_F(PythonTest, ClothPanelsShareLimitsAndTwoTracesGetADifferencePanel) {
+  const std::string a = smallTrace("a.jsonl", Method::Explicit);
+  const std::string b = smallTrace("b.jsonl", Method::Rk4);
+  // the figures plot_traces makes, caught before they are saved
+  const std::string script =
+      "import sys; import numpy as np; import clothref.plot as p; figures = {};"
+      "p.save = lambda f, prefix, suffix, formats: figures.setdefault(suffix, f) and [];"
+      "p.main(['trace'] + sys.argv[1:] + ['--times', '0', '0.003', '0.006', '-o', 'x']);"
+      "axes = figures['-cloth'].axes;"
+      "cloth = [x for x in axes if x.name == '3d']; flat = [x for x in axes if x.name != '3d'];"
+      "print(len(cloth), len(set((x.get_xlim(), x.get_ylim(), x.get_zlim()) for x in cloth)), "
+      "len(flat), flat[0].get_yscale() if flat else '', "
+      "np.nanmax(flat[0].lines[0].get_ydata()) > 0 if flat else '')";
+  const auto two = runScript(script, a + " " + b);
+  ASSERT_EQ(two.exit_code, 0) << two.output;
+  // three 3-D panels with one set of limits, and the log-scale difference panel with a difference
+  EXPECT_EQ(two.output, "3 1 1 log True\n");
+  const auto one = runScript(script, a);
+  ASSERT_EQ(one.exit_code, 0) << one.output;
+  EXPECT_EQ(one.output, "3 1 0  \n");
 }
 
 TEST_F(PythonTest, BadInputIsOneLineExitTwoAndNoFile) {

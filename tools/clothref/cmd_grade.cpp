@@ -8,6 +8,7 @@
 #include "commands.h"
 #include "grader/grade/batch.h"
 #include "grader/grade/grade.h"
+#include "grader/grade/html_report.h"
 #include "grader/grade/report.h"
 #include "grader/grade/sanitize.h"
 
@@ -19,7 +20,7 @@ Command addGradeCommand(CLI::App& root) {
   struct Options {
     std::vector<std::string> dirs;
     int edition = 0;
-    std::string results, junit, report, rubric, keep_work, cache_dir;
+    std::string results, junit, report, rubric, keep_work, cache_dir, html;
     bool no_whole_run = false;
     double timeout = 20;
     std::string optimisation = "-O2";
@@ -37,6 +38,8 @@ Command addGradeCommand(CLI::App& root) {
   app->add_option("--results", options->results, "write Gradescope results.json here");
   app->add_option("--junit", options->junit, "write JUnit XML here");
   app->add_option("--report", options->report, "write the Markdown report here (default: stdout)");
+  app->add_option("--html", options->html,
+                  "write the HTML report here (checks, the whole run beside the reference)");
   app->add_option("--rubric", options->rubric,
                   "JSON rubric: weights, tolerances, accepted variants")
       ->check(CLI::ExistingFile);
@@ -70,12 +73,12 @@ Command addGradeCommand(CLI::App& root) {
   return {app, [options] {
             const bool batch = !options->out.empty();
             const bool single = options->dirs.size() == 1 && !batch;
-            if (!single &&
-                (!options->results.empty() || !options->junit.empty() || !options->report.empty()))
+            if (!single && (!options->results.empty() || !options->junit.empty() ||
+                            !options->report.empty() || !options->html.empty()))
               throw InputError(
-                  batch ? "--results, --junit and --report are per submission; a batch (--out) "
-                          "writes them into BATCHDIR/<name>/"
-                        : "--results, --junit and --report take one submission DIR; got " +
+                  batch ? "--results, --junit, --report and --html are per submission; a batch "
+                          "(--out) writes them into BATCHDIR/<name>/"
+                        : "--results, --junit, --report and --html take one submission DIR; got " +
                               std::to_string(options->dirs.size()));
             if (!batch && (options->jobs != 1 || !options->shard.empty() || options->regrade ||
                            !options->csv.empty() || options->csv_no_header))
@@ -115,8 +118,11 @@ Command addGradeCommand(CLI::App& root) {
             int exit_code = kExitOk;
             for (const std::string& dir : options->dirs) {
               grader::GradeReport report;
+              nlohmann::ordered_json whole_run_view;  // --html's pictures
               try {
-                report = grader::gradeSubmission(dir, grade);
+                report = options->html.empty()
+                             ? grader::gradeSubmission(dir, grade)
+                             : grader::gradeWithWholeRun(dir, grade, whole_run_view);
                 if (options->sanitize) grader::diagnoseCrashWithSanitizers(dir, report, grade);
               } catch (const InputError& error) {
                 std::cerr << "clothref grade: " << error.what() << '\n';
@@ -126,7 +132,13 @@ Command addGradeCommand(CLI::App& root) {
               if (!options->quiet) std::cerr << grader::summaryLine(report) << '\n';
               if (!options->results.empty()) {
                 OutputFile out(options->results);
-                out.stream() << grader::resultsJson(report).dump(2) << '\n';
+                out.stream() << grader::withHtmlSummary(grader::resultsJson(report), report).dump(2)
+                             << '\n';
+                out.commit();
+              }
+              if (!options->html.empty()) {
+                OutputFile out(options->html);
+                out.stream() << grader::studentReportHtml(report, whole_run_view);
                 out.commit();
               }
               if (!options->junit.empty()) {
@@ -138,7 +150,8 @@ Command addGradeCommand(CLI::App& root) {
                 OutputFile out(options->report);
                 out.stream() << grader::markdownReport(report);
                 out.commit();
-              } else if (single && options->results.empty() && options->junit.empty()) {
+              } else if (single && options->results.empty() && options->junit.empty() &&
+                         options->html.empty()) {
                 std::cout << grader::markdownReport(report);
               }
             }

@@ -73,5 +73,6 @@ Command addSweepCommand(CLI::App& root);
 Command addPlotCommand(CLI::App& root);
 Command addGradeCommand(CLI::App& root);
 Command addGradescopeCommand(CLI::App& root);
+Command addViewCommand(CLI::App& root);
 
 }  // namespace clothref::cli

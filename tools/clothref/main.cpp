@@ -54,10 +54,10 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->group("Input limits");
   const std::vector<Command> commands = {
-      addTraceCommand(root),     addDiffCommand(root),      addGoldenCommand(root),
-      addVerifyCommand(root),    addScenesCommand(root),    addBenchCommand(root),
-      addStabilityCommand(root), addSweepCommand(root),     addPlotCommand(root),
-      addGradeCommand(root),     addGradescopeCommand(root)};
+      addTraceCommand(root),     addDiffCommand(root),   addGoldenCommand(root),
+      addVerifyCommand(root),    addScenesCommand(root), addBenchCommand(root),
+      addStabilityCommand(root), addSweepCommand(root),  addPlotCommand(root),
+      addGradeCommand(root),     addViewCommand(root),   addGradescopeCommand(root)};
   for (const Command& command : commands) command.app->fallthrough();
   // name an unknown command instead of CLI11's "A subcommand is required"
   if (argc > 1 && argv[1][0] != '-') {

@@ -17,6 +17,7 @@
 #include "clothref/io/json_input.h"
 #include "clothref/io/output_file.h"
 #include "clothref/io/progress.h"
+#include "html_report.h"
 #include "report.h"
 #include "sanitize.h"
 
@@ -88,6 +89,7 @@ std::optional<BatchRow> finishedRow(const fs::path& folder) {
 struct Outputs {
   BatchRow row;
   std::string results_json, report_md;
+  std::string report_html;  // empty when not graded
 };
 
 Outputs notGradable(const BatchEntry& entry, const std::string& verdict,
@@ -115,12 +117,14 @@ Outputs notGradable(const BatchEntry& entry, const std::string& verdict,
 
 Outputs gradeOne(const BatchEntry& entry, const BatchOptions& options, const GradeOptions& grade) {
   try {
-    GradeReport report = gradeSubmission(entry.dir, grade);
+    nlohmann::ordered_json whole_run_view;  // the pictures of report.html (html_report.h)
+    GradeReport report = gradeWithWholeRun(entry.dir, grade, whole_run_view);
     if (options.sanitize) diagnoseCrashWithSanitizers(entry.dir, report, grade);
     Outputs out;
     out.row = rowOf(entry, report);
-    out.results_json = resultsJson(report).dump(2) + "\n";
+    out.results_json = withHtmlSummary(resultsJson(report), report).dump(2) + "\n";
     out.report_md = markdownReport(report);
+    out.report_html = studentReportHtml(report, whole_run_view);
     return out;
   } catch (const InputError& error) {
     return notGradable(entry, "not-gradable", error.what());
@@ -349,6 +353,7 @@ BatchSummary runBatch(const std::vector<fs::path>& dirs, const BatchOptions& opt
         fs::create_directories(folder);
         writeText(folder / "results.json", out.results_json);
         writeText(folder / "report.md", out.report_md);
+        if (!out.report_html.empty()) writeText(folder / "report.html", out.report_html);
         writeText(folder / kRowFile, rowJson(out.row).dump(2) + "\n");  // the marker, last
       } catch (...) {
         failure = std::current_exception();
@@ -377,6 +382,12 @@ BatchSummary runBatch(const std::vector<fs::path>& dirs, const BatchOptions& opt
     summary.rows.push_back(std::move(row));
   }
   writeText(summary.csv, batchCsv(summary.rows, options.csv_header));
+  // the class overview, from the same markers (html_report.h), beside the CSV
+  writeText(options.out_dir / (options.shard.count == 1
+                                   ? std::string("index.html")
+                                   : "index-" + std::to_string(options.shard.index) + "-of-" +
+                                         std::to_string(options.shard.count) + ".html"),
+            batchIndexHtml(options.out_dir, summary.rows));
   return summary;
 }
 

@@ -112,6 +112,36 @@ def read_for_plot(path, wanted_steps):
     return header, np.array(times), energies, states
 
 
+def largest_differences(path_a, path_b):
+    """(t, largest distance between a particle's positions in the two traces) at every step both
+    traces recorded; infinite where one is non-finite and the other not."""
+    a, b = iter_steps(path_a), iter_steps(path_b)
+    next(a)
+    next(b)
+    times, largest = [], []
+    other = next(b, None)
+    for step, t, bodies in a:
+        while other is not None and other[0] < step:
+            other = next(b, None)
+        if other is None:
+            break
+        if other[0] != step:
+            continue
+        worst = 0.0
+        for name, arrays in bodies.items():
+            d = arrays["position"] - other[2][name]["position"]
+            same = (arrays["position"] == other[2][name]["position"]) | (
+                np.isnan(arrays["position"]) & np.isnan(other[2][name]["position"]))
+            d = np.where(same, 0.0, d)
+            with np.errstate(invalid="ignore", over="ignore"):
+                distance = np.sqrt((d * d).sum(axis=1))
+            distance = np.where(np.isnan(distance), np.inf, distance)
+            worst = max(worst, float(distance.max()) if len(distance) else 0.0)
+        times.append(t)
+        largest.append(worst)
+    return np.array(times), np.array(largest)
+
+
 def sphere_mesh(center, radius, resolution=16):
     u = np.linspace(0, 2 * np.pi, resolution)
     v = np.linspace(0, np.pi, resolution // 2)
@@ -166,10 +196,12 @@ def plot_traces(args):
         runs.append((path, wanted) + read_for_plot(path, set(wanted)))
     written = []
 
-    figure = plt.figure(figsize=(4.2 * len(args.times), 4.6))
+    panels = len(args.times) + (1 if len(runs) > 1 else 0)
+    figure = plt.figure(figsize=(4.2 * panels, 4.6))
+    cloth_axes, points = [], []
     for k, t_wanted in enumerate(args.times):
-        axis = figure.add_subplot(1, len(args.times), k + 1, projection="3d")
-        points = []
+        axis = figure.add_subplot(1, panels, k + 1, projection="3d")
+        cloth_axes.append(axis)
         titles = []
         for r, (path, wanted, header, _, _, states) in enumerate(runs):
             t, bodies = states[wanted[k]]
@@ -182,15 +214,33 @@ def plot_traces(args):
                     x = np.vstack([x + radii[:, None], x - radii[:, None]])
                 points.append(x)
             titles.append(f"t = {t:.3g} s (step {wanted[k]})")
-        equal_axes(axis, np.vstack(points))
         axis.view_init(elev=22, azim=-60)
         axis.set_xlabel("x (m)")
         axis.set_ylabel("z (m)")
         axis.set_zlabel("y (m), up")
         axis.tick_params(labelsize=7)
         axis.set_title(titles[0] if len(set(titles)) == 1 else "\n".join(titles), fontsize=10)
+    # one scale for every panel, so sizes and sags compare across times
+    for axis in cloth_axes:
+        equal_axes(axis, np.vstack(points))
     if len(runs) > 1:
-        figure.legend(loc="upper right", fontsize=9)
+        # near-identical runs look the same in 3-D: the difference says how far apart they are
+        axis = figure.add_subplot(1, panels, panels)
+        t, largest = largest_differences(args.traces[0], args.traces[1])
+        shown = np.where(largest > 0, largest, np.nan)
+        axis.semilogy(t, shown, color="black", linewidth=1.2)
+        zero = largest == 0
+        if zero.any():
+            axis.plot(t[zero], np.full(zero.sum(), np.nanmin(shown) if np.isfinite(shown).any()
+                                       else 1.0), "o", markersize=3, color="gray",
+                      label="identical")
+            axis.legend(fontsize=8, loc="lower right")
+        axis.set_xlabel("t (s)")
+        axis.set_ylabel("largest position difference (m)")
+        axis.set_title(f"{labels[1]} vs {labels[0]}", fontsize=10)
+        axis.grid(True, which="major", alpha=0.3)
+        handles, names = cloth_axes[0].get_legend_handles_labels()
+        figure.legend(handles, names, loc="upper left", fontsize=9)
     figure.text(0.01, 0.01, " | ".join(build_caption(r[2]) for r in runs), fontsize=7)
     figure.tight_layout(rect=(0, 0.04, 1, 1))
     written += save(figure, args.output, "-cloth", args.formats)
@@ -246,7 +296,7 @@ def plot_sweep(args):
     for scene in scenes:
         points = [p for p in data["points"] if p["scene"] == scene]
         precisions = list(dict.fromkeys(p["precision"] for p in points))
-        figure, axes = plt.subplots(len(precisions), 2, figsize=(12, 4.8 * len(precisions)),
+        figure, axes = plt.subplots(len(precisions), 2, figsize=(13.5, 4.8 * len(precisions)),
                                     squeeze=False)
         finite_all = [p[key] for p in points if p[key] is not None and p[key] > 0]
         if not finite_all:
@@ -293,13 +343,15 @@ def plot_sweep(args):
                 axis.set_ylabel(f"position error, {args.norm} (m)")
                 axis.set_title(f"{scene}, {precision}", fontsize=10)
                 axis.grid(True, which="major", alpha=0.3)
-            axes[row][1].legend(fontsize=8, ncol=2, loc="lower left")
+            # outside the axes: inside, the legend covered the order slopes
+            axes[row][1].legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.02, 1.0),
+                                borderaxespad=0)
         caption = (f"{data.get('machine', '?')}; {data.get('compiler', '?')} "
                    f"({data.get('build_type', '?')}). Error: {data['norms'][key]}. "
                    "\nTimes: the thread's CPU time (wall time, min and max are in the data); on a "
                    "shared 2-core machine they are noisy, evaluation counts are not.")
         figure.text(0.01, 0.005, caption, fontsize=7)
-        figure.tight_layout(rect=(0, 0.035, 1, 1))
+        figure.tight_layout(rect=(0, 0.035, 0.87, 1))  # the legend sits to the right
         written += save(figure, args.output, f"-{scene}", args.formats)
     return written
 

@@ -8,10 +8,15 @@ read_trace(path, keep=None) -> Trace with
              metres and metres per second, float64 (a float trace widens exactly)
 Lines are parsed one at a time, so memory holds only the steps kept. `keep` is a predicate on
 (step, t); by default every recorded step is kept. Non-finite values (written as the strings
-"NaN", "Infinity", "-Infinity") become float NaN / inf.
+"NaN", "Infinity", "-Infinity") become float NaN / inf. Like the C++ reader, the path "-" is
+standard input (read once and kept, so a trace piped in can be read twice) and gzip is
+recognised by its first byte, whatever the name.
 """
+import gzip
+import io
 import json
 import math
+import sys
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -43,14 +48,43 @@ class Trace:
     bodies: dict = field(default_factory=dict)
 
 
+_stdin_bytes = None  # standard input, once read
+
+
+def _open_lines(path):
+    """A text handle on the trace at `path` ("-": standard input), gzip or not."""
+    global _stdin_bytes
+    if path == "-":
+        if _stdin_bytes is None:
+            _stdin_bytes = sys.stdin.buffer.read()
+        raw = io.BufferedReader(io.BytesIO(_stdin_bytes))
+    else:
+        try:
+            raw = open(path, "rb")
+        except OSError as error:
+            raise TraceError(f"{path}: cannot open ({error.strerror})") from None
+    # 0x1f cannot start a JSON text: it is gzip's first byte
+    if raw.peek(1)[:1] == b"\x1f":
+        raw = gzip.GzipFile(fileobj=raw, mode="rb")
+    return io.TextIOWrapper(raw, encoding="utf-8")
+
+
+def _lines(handle, path):
+    """The handle's lines; a corrupt or cut gzip stream is one TraceError naming the file."""
+    try:
+        yield from handle
+    except (OSError, EOFError, UnicodeDecodeError) as error:
+        raise TraceError(f"{path}: cannot read ({error})") from None
+
+
 def iter_steps(path):
     """Yields the header once, then (step, t, {body: {"position", "velocity"}}) per line."""
-    try:
-        handle = open(path, "r", encoding="utf-8")
-    except OSError as error:
-        raise TraceError(f"{path}: cannot open ({error.strerror})") from None
+    handle = _open_lines(path)
+    if path == "-":
+        path = "standard input"
     with handle:
-        first = handle.readline()
+        lines = _lines(handle, path)
+        first = next(lines, "")
         try:
             header = json.loads(first)
         except json.JSONDecodeError as error:
@@ -63,7 +97,7 @@ def iter_steps(path):
         yield header
         counts = {b["name"]: int(b["particles"]) for b in header.get("bodies", [])}
         dtype = np.float32 if header.get("precision") == "float" else np.float64
-        for number, line in enumerate(handle, start=2):
+        for number, line in enumerate(lines, start=2):
             if not line.strip():
                 continue
             try:

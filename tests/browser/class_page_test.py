@@ -1,0 +1,138 @@
+"""BATCHDIR/index.html, the class overview, in headless Chromium (ctest browser_class;
+tools/grader/grade/html_report.cpp, tools/pages/assets/class.js).
+
+Usage: class_page_test.py --cli build/bin/clothref --screenshots DIR
+
+A batch of 30 submissions is made of markers (row.json) and results.json files with known scores
+and causes, so `clothref grade ... --out BATCHDIR` rebuilds grades.csv and index.html from them
+without grading anything (as it does after an interrupted batch). Checks: no console message, no
+network request, 30 rows, sorting by total (both ways) and by name, filtering by cause and by
+verdict, the histogram counts all 30, the cause table counts and links the right reports, a
+check's pass rate, the page opens in under 2 s. Screenshot: class-index.png.
+"""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import browser  # noqa: E402
+
+STUBS = ['Cloth::initializeSpring', 'Cloth::computeSpringForce', 'Spheres::collide(Cloth*)',
+         'Spheres::collide()', 'ExplicitEuler::integrate', 'ImplicitEuler::integrate',
+         'MidpointEuler::integrate', 'RungeKuttaFourth::integrate']
+
+
+def fixture(batch, subs, n=30):
+    """Writes n graded folders; returns their rows as {name: (total, verdict, causes, passed)}."""
+    expected = {}
+    for i in range(n):
+        name = f'student{i:02d}'
+        os.makedirs(os.path.join(subs, name))
+        folder = os.path.join(batch, name)
+        os.makedirs(folder)
+        scores = {stub: float((i * 7 + k * 3) % 5) for k, stub in enumerate(STUBS)}
+        causes = (['backup-aliases'] if i % 2 == 0 and i < 28 else []) + \
+                 (['spring-force-sign'] if i % 6 == 1 else [])
+        verdict = 'compile-error' if i in (3, 17) else 'graded'
+        passed = i % 3 != 0  # "RungeKuttaFourth::integrate: convergence order"
+        total = sum(scores.values())
+        row = {'submission': name, 'dir': os.path.join(subs, name), 'edition': 2022,
+               'stub_scores': scores, 'stub_max': {stub: 4.0 for stub in STUBS},
+               'total': total, 'max': 32.0, 'verdict': verdict, 'isolation': 'rlimits only',
+               'problem': '', 'seconds': 10.0 + i}
+        tests = [{'name': 'RungeKuttaFourth::integrate: convergence order',
+                  'status': 'passed' if passed else 'failed', 'score': 1, 'max_score': 1,
+                  'tags': ['RungeKuttaFourth::integrate']},
+                 {'name': 'Cloth::initializeSpring: spring count', 'status': 'passed',
+                  'tags': ['Cloth::initializeSpring']},
+                 {'name': 'Cloth::computeSpringForce: one spring',
+                  'status': 'failed' if causes else 'passed',
+                  'tags': ['Cloth::computeSpringForce', *causes]}]
+        with open(os.path.join(folder, 'results.json'), 'w') as f:
+            json.dump({'score': total, 'tests': tests}, f)
+        with open(os.path.join(folder, 'report.md'), 'w') as f:
+            f.write(f'# Grading report: {name}\n')
+        with open(os.path.join(folder, 'row.json'), 'w') as f:
+            json.dump(row, f)
+        expected[name] = (total, verdict, causes, passed)
+    return expected
+
+
+def shown_names(b):
+    return b.js("return [...document.querySelectorAll('.cl-submissions tbody tr')]"
+                ".map((tr) => tr.dataset.name)")
+
+
+def main():
+    options, checks = browser.start()
+    with tempfile.TemporaryDirectory(prefix='clothref-class-test-') as tmp:
+        batch, subs = os.path.join(tmp, 'batch'), os.path.join(tmp, 'subs')
+        expected = fixture(batch, subs)
+        names = sorted(expected)
+        result = subprocess.run([options.cli, 'grade', '--out', batch,
+                                 *[os.path.join(subs, n) for n in names]],
+                                capture_output=True, text=True)
+        checks.check(result.returncode == 0, f'grade rebuilt the batch: {result.stderr.strip()}')
+        page = os.path.join(batch, 'index.html')
+        checks.check(os.path.isfile(page), 'index.html written from the markers')
+        if not os.path.isfile(page):
+            checks.finish()
+        b = browser.Browser()
+        try:
+            started = time.monotonic()
+            url = b.open(page)
+            opened = time.monotonic() - started
+            timing = b.js("return performance.getEntriesByType('navigation')[0].loadEventEnd")
+            print(f'      30 submissions: {os.path.getsize(page) / 1e3:.1f} kB, load event at '
+                  f'{timing:.0f} ms, driver.get {opened:.2f} s')
+            checks.check(0 < timing < 2000, f'opens in under 2 s ({timing:.0f} ms)')
+            checks.check(b.js("return document.getElementById('class').dataset.ready === '1'"),
+                         'the page mounted')
+            checks.check(shown_names(b) == names, 'all 30 rows, sorted by name')
+            header = "[...document.querySelectorAll('.cl-submissions th')]" \
+                     ".find((th) => th.textContent.startsWith(arguments[0])).click()"
+            by_total = sorted(names, key=lambda n: (expected[n][0], n))
+            b.js(header, 'total')
+            checks.check(shown_names(b) == by_total, 'sorted by total, ascending')
+            b.js(header, 'total')
+            descending = sorted(names, key=lambda n: (-expected[n][0], n))
+            checks.check(shown_names(b) == descending, 'sorted by total, descending')
+            b.save_screenshot(os.path.join(options.screenshots, 'class-index.png'))
+            set_filter = "const f = document.querySelector('.cl-filter'); f.value = arguments[0];" \
+                         "f.dispatchEvent(new Event('input'));"
+            b.js(set_filter, 'backup')
+            with_cause = sorted(n for n in names if 'backup-aliases' in expected[n][2])
+            checks.check(sorted(shown_names(b)) == with_cause and len(with_cause) == 14,
+                         f'filter by cause: {len(shown_names(b))} rows')
+            shown = b.js("return document.querySelector('.cl-shown').textContent")
+            checks.check(shown == '14 of 30 shown', f'count of shown rows: {shown}')
+            b.js(set_filter, 'compile-error')
+            checks.check(sorted(shown_names(b)) == ['student03', 'student17'], 'filter by verdict')
+            b.js(set_filter, '')
+            checks.check(len(shown_names(b)) == 30, 'clearing the filter shows all')
+            bars = b.js("return [...document.querySelectorAll('.cl-hist-bar')]"
+                        ".map((r) => Number(r.dataset.count))")
+            checks.check(len(bars) == 10 and sum(bars) == 30, f'histogram of 30 totals {bars}')
+            cause = b.js("const tr = document.querySelector('.cl-causes tr[data-cause=\"backup-aliases\"]');"
+                         "return tr ? [tr.cells[1].textContent,"
+                         " [...tr.querySelectorAll('a')].map((a) => a.getAttribute('href'))] : null")
+            checks.check(cause is not None and cause[0] == '14' and
+                         sorted(cause[1]) == [f'{n}/report.md' for n in with_cause] and
+                         all(os.path.isfile(os.path.join(batch, h)) for h in cause[1]),
+                         'backup-aliases: 14, linked to their reports')
+            rate = b.js("const tr = [...document.querySelectorAll('.cl-check-rate tr')].find("
+                        "(tr) => tr.cells[0].textContent.startsWith('RungeKuttaFourth'));"
+                        "return tr ? tr.cells[1].textContent : null")
+            passed = sum(1 for n in names if expected[n][3])
+            checks.check(rate == f'{round(100 * passed / 30)} %', f'check pass rate {rate}')
+            browser.check_quiet(b, checks, url, 'class')
+        finally:
+            b.close()
+    checks.finish()
+
+
+if __name__ == '__main__':
+    main()

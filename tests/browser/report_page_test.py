@@ -1,0 +1,85 @@
+"""`clothref grade --html`, the report a student reads, in headless Chromium (ctest browser_report;
+tools/grader/grade/html_report.cpp, tools/pages/assets/report.html).
+
+Usage: report_page_test.py --cli build/bin/clothref --source SOURCE_DIR --cache DIR --screenshots DIR
+
+Grades the corpus's 2022 reference with the mutant cloth-normal-reversed's sphere.cpp (collision
+normal reversed: Spheres::collide(Cloth*) loses points, cause collision-normal-sign) and checks:
+no console message, no network request, the stub table, the failed checks open with the named
+cause, the whole run's viewer mounted side by side with four stills that are not blank, and
+results.json's top-level output is HTML while its tests stay Markdown. Screenshots: report.png,
+report-whole-run.png.
+"""
+import glob
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import browser  # noqa: E402
+
+
+def main():
+    options, checks = browser.start('--source', '--cache')
+    corpus = os.path.join(options.source, 'tests', 'grader', 'submissions', '2022')
+    with tempfile.TemporaryDirectory(prefix='clothref-report-test-') as tmp:
+        sub = os.path.join(tmp, 'normal-reversed')
+        shutil.copytree(os.path.join(corpus, 'reference'), sub)
+        for name in glob.glob(os.path.join(sub, '**', '*.json'), recursive=True):
+            os.remove(name)
+        shutil.copy(os.path.join(corpus, 'cloth-normal-reversed', 'sphere.cpp'),
+                    glob.glob(os.path.join(sub, '**', 'sphere.cpp'), recursive=True)[0])
+        page, results = os.path.join(tmp, 'report.html'), os.path.join(tmp, 'results.json')
+        result = subprocess.run([options.cli, 'grade', sub, '--cache-dir', options.cache,
+                                 '--html', page, '--results', results],
+                                capture_output=True, text=True)
+        checks.check(result.returncode == 0 and os.path.isfile(page),
+                     f'graded with --html: {result.stderr.strip()}')
+        if not os.path.isfile(page):
+            checks.finish()
+        with open(results) as f:
+            data = json.load(f)
+        checks.check(data.get('output_format') == 'html' and '<table>' in data.get('output', ''),
+                     "results.json: the top-level output is HTML")
+        checks.check(all(t.get('output_format') == 'md' for t in data['tests']),
+                     'results.json: every test keeps its Markdown output')
+        b = browser.Browser(height=1400)
+        try:
+            url = b.open(page)
+            rows = b.js("return [...document.querySelectorAll('.gr-stubs tr')].map("
+                        "(tr) => [...tr.cells].map((c) => c.textContent))")
+            collide = [r for r in rows if r and r[0] == 'Spheres::collide(Cloth*)']
+            checks.check(len(rows) == 9 and collide and collide[0][2] != '8 of 8',
+                         f'stub table: {len(rows) - 1} stubs, collide(Cloth*) {collide}')
+            failed = b.js("return [...document.querySelectorAll('details.gr-check[open]')].map("
+                          "(d) => d.querySelector('summary').textContent)")
+            checks.check(len(failed) > 0 and all('collision-normal-sign' in f for f in failed),
+                         f'{len(failed)} failed checks open, each naming collision-normal-sign')
+            passed = b.js("return document.querySelectorAll('details.gr-check:not([open])').length")
+            checks.check(passed > 20, f'{passed} passed checks, folded')
+            b.save_screenshot(os.path.join(options.screenshots, 'report.png'))
+            ready = b.js("const v = document.getElementById('whole-run');"
+                         "return v ? v.dataset.ready === '1' : false")
+            checks.check(ready, 'the whole run viewer mounted')
+            layout = b.js("const s = document.querySelector('.cv-layout'); return s && s.value")
+            checks.check(layout == 'side', f'student and reference side by side ({layout})')
+            stills = b.driver.find_elements('css selector', '.cv-still canvas')
+            checks.check(len(stills) == 4, f'{len(stills)} stills of the whole run')
+            b.js("document.getElementById('whole-run').scrollIntoView()")
+            drawn = [browser.non_background_fraction(b.element_image(f'.cv-still:nth-child({k}) canvas'))
+                     for k in range(1, len(stills) + 1)]
+            checks.check(drawn and min(drawn) > 0.1,
+                         'every still shows the cloth and spheres (' +
+                         ', '.join(f'{d:.0%}' for d in drawn) + ' drawn)')
+            b.save_screenshot(os.path.join(options.screenshots, 'report-whole-run.png'))
+            browser.check_quiet(b, checks, url, 'report')
+        finally:
+            b.close()
+    checks.finish()
+
+
+if __name__ == '__main__':
+    main()

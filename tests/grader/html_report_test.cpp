@@ -1,0 +1,122 @@
+// The grader's pages (tools/grader/grade/html_report.cpp): the student's report, the Gradescope
+// summary and the class overview escape what a student controls, keep every check, and are built
+// from the batch's files alone. In a real browser: tests/browser/.
+#include "grader/grade/html_report.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "test_util.h"
+
+namespace clothref::grader {
+namespace {
+
+namespace fs = std::filesystem;
+
+GradeReport sampleReport() {
+  GradeReport report;
+  report.submission = "subs/<img src=x onerror=alert(1)>";
+  report.edition = 2022;
+  report.edition_source = "detected";
+  report.files = {{"cloth.cpp", "src/<b>cloth.cpp", true, "", 0},
+                  {"sphere.cpp", "", false, "missing", 0}};
+  report.notes = {"non-UTF-8 bytes \xFF in integrator.cpp"};
+  TestResult pass = makeTest("Cloth::initializeSpring", "connections at N = 25", 1);
+  pass.fraction = 1;
+  pass.score = pass.max_score = 6;
+  TestResult fail = makeTest("Spheres::collide(Cloth*)", "approaching pair", 1);
+  fail.max_score = 1.25;
+  fail.output =
+      "State tried:\n\n- sphere 0: x (0.1, 0.42, -0.05)\n  - expected x (1, 2, 3) - actual "
+      "x (1, 2, 4)\n\n```\n</pre><script>alert(2)</script>\n```\n\n**Likely cause** "
+      "(`collision-normal-sign`): <the normal>";
+  fail.diagnoses = {"collision-normal-sign"};
+  report.tests = {pass, fail};
+  report.stub_score = {{"Cloth::initializeSpring", 6}, {"Spheres::collide(Cloth*)", 0}};
+  report.stub_max = {{"Cloth::initializeSpring", 6}, {"Spheres::collide(Cloth*)", 1.25}};
+  report.score = 6;
+  report.max_score = 7.25;
+  return report;
+}
+
+TEST(HtmlReport, MarkdownBecomesEscapedHtml) {
+  const std::string html =
+      markdownToHtml("text with `code` and **bold** <i>\n\n- one\n  - two\n\n```\na < b\n```\n");
+  EXPECT_EQ(html,
+            "<p>text with <code>code</code> and <strong>bold</strong> &lt;i&gt;</p>\n"
+            "<ul>\n<li>one</li>\n<li>two</li>\n</ul>\n<pre><code>a &lt; b\n</code></pre>\n");
+}
+
+TEST(HtmlReport, StudentReportEscapesAndKeepsEveryCheck) {
+  const std::string page = studentReportHtml(sampleReport(), nullptr);
+  EXPECT_EQ(page.find("<img src=x"), std::string::npos);
+  EXPECT_EQ(page.find("<script>alert(2)"), std::string::npos);
+  EXPECT_EQ(page.find("<b>cloth.cpp"), std::string::npos);
+  EXPECT_NE(page.find("&lt;img src=x onerror=alert(1)&gt;"), std::string::npos);
+  EXPECT_NE(page.find("&lt;/pre&gt;&lt;script&gt;alert(2)&lt;/script&gt;"), std::string::npos);
+  EXPECT_NE(page.find("\xEF\xBF\xBD"), std::string::npos);  // the bad byte, replaced
+  EXPECT_EQ(page.find('\xFF'), std::string::npos);
+  EXPECT_NE(page.find("connections at N = 25"), std::string::npos);
+  EXPECT_NE(page.find("approaching pair"), std::string::npos);
+  EXPECT_NE(page.find("<span class=\"gr-cause\">collision-normal-sign</span>"), std::string::npos);
+  EXPECT_NE(page.find("<li>expected x (1, 2, 3) - actual x (1, 2, 4)</li>"), std::string::npos);
+  // no whole run: no viewer and no script at all
+  EXPECT_EQ(page.find("<script"), std::string::npos);
+}
+
+TEST(HtmlReport, GradescopeSummaryIsStaticHtml) {
+  nlohmann::ordered_json results = {{"score", 6},
+                                    {"output", "Edition 2022. **Verdict** <graded>."},
+                                    {"output_format", "md"},
+                                    {"tests", {{{"name", "x"}, {"output_format", "md"}}}}};
+  const auto html = withHtmlSummary(results, sampleReport());
+  EXPECT_EQ(html["output_format"], "html");
+  EXPECT_EQ(html["tests"][0]["output_format"], "md");
+  const std::string output = html["output"].get<std::string>();
+  EXPECT_NE(output.find("<td>Spheres::collide(Cloth*)</td><td>0 / 1.25</td><td>0 of 1</td>"),
+            std::string::npos)
+      << output;
+  EXPECT_NE(output.find("<li>Spheres::collide(Cloth*): approaching pair <em>(collision-normal-"
+                        "sign)</em></li>"),
+            std::string::npos)
+      << output;
+  EXPECT_NE(output.find("<strong>Verdict</strong> &lt;graded&gt;."), std::string::npos);
+  EXPECT_EQ(output.find("<script"), std::string::npos);
+  EXPECT_EQ(output.find("<style"), std::string::npos);
+}
+
+TEST(HtmlReport, ClassPageFromTheBatchFolders) {
+  const test::TempDir dir;
+  BatchRow a;
+  a.name = "alice";
+  a.verdict = "graded";
+  a.score = 5;
+  BatchRow b = a;
+  b.name = "bob";  // no results.json: a row without checks
+  fs::create_directories(dir.path() / "alice");
+  test::writeText(dir.path() / "alice" / "results.json",
+                  R"({"tests": [{"name": "Cloth::initializeSpring: count", "status": "failed",
+                      "tags": ["Cloth::initializeSpring", "backup-</script>-aliases"]}]})");
+  test::writeText(dir.path() / "alice" / "report.html", "x");
+  const std::string page = batchIndexHtml(dir.path(), {a, b});
+  const std::string open = "<script type=\"application/json\" id=\"class-data\">";
+  const std::size_t begin = page.find(open);
+  ASSERT_NE(begin, std::string::npos);
+  const std::size_t end = page.find("</script>", begin);
+  ASSERT_NE(end, std::string::npos);
+  const auto data =
+      nlohmann::json::parse(page.substr(begin + open.size(), end - begin - open.size()));
+  ASSERT_EQ(data["submissions"].size(), 2u);
+  EXPECT_EQ(data["checks"], nlohmann::json({"Cloth::initializeSpring: count"}));
+  EXPECT_EQ(data["submissions"][0]["causes"], nlohmann::json({"backup-</script>-aliases"}));
+  EXPECT_EQ(data["submissions"][0]["checks"]["0"], false);
+  EXPECT_EQ(data["submissions"][0]["report"], "alice/report.html");
+  EXPECT_EQ(data["submissions"][1]["report"], "bob/report.md");
+  EXPECT_TRUE(data["submissions"][1]["checks"].empty());
+}
+
+}  // namespace
+}  // namespace clothref::grader

@@ -1,0 +1,324 @@
+#include "html_report.h"
+
+#include <stdlib.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "clothref/io/error.h"
+#include "pages/html.h"
+#include "pages/page_assets.h"
+#include "pages/view_data.h"
+
+namespace clothref::grader {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// results.json of a batch folder, or null when it is missing or not JSON (a half-written folder
+// of an interrupted batch has a row.json only if its results were written first).
+nlohmann::json readResults(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return nullptr;
+  std::stringstream text;
+  text << in.rdbuf();
+  return nlohmann::json::parse(text.str(), nullptr, false);
+}
+
+std::string number(double value) {
+  const double rounded = std::round(value * 1000) / 1000;
+  return fmt::format("{}", rounded == 0 ? 0.0 : rounded);
+}
+
+// Inline Markdown of one escaped line: `code` and **bold**.
+std::string inlineMarkdown(const std::string& escaped) {
+  std::string out;
+  bool code = false, bold = false;
+  for (std::size_t i = 0; i < escaped.size(); ++i) {
+    if (escaped[i] == '`') {
+      out += code ? "</code>" : "<code>";
+      code = !code;
+    } else if (!code && escaped.compare(i, 2, "**") == 0) {
+      out += bold ? "</strong>" : "<strong>";
+      bold = !bold;
+      ++i;
+    } else {
+      out += escaped[i];
+    }
+  }
+  if (code) out += "</code>";
+  if (bold) out += "</strong>";
+  return out;
+}
+
+// Checks of `stub` that count for points, and how many of them passed.
+std::pair<int, int> checksPassed(const GradeReport& report, const std::string& stub) {
+  int passed = 0, total = 0;
+  for (const TestResult& t : report.tests)
+    if (t.stub == stub && !t.informational) {
+      ++total;
+      passed += t.passed();
+    }
+  return {passed, total};
+}
+
+const char* kReportStyle = R"(
+.gr-table { border-collapse: collapse; margin: 6px 0; font-size: 0.92em; }
+.gr-table th, .gr-table td { border: 1px solid #ddd; padding: 2px 8px; text-align: left;
+                             overflow-wrap: anywhere; }
+.gr-table th { background: #f0f2f5; }
+.gr-pass { color: #2a7a2a; } .gr-fail { color: #b22222; } .gr-info { color: #555; }
+.gr-check { border: 1px solid #e3e3e3; border-radius: 4px; margin: 4px 0; padding: 2px 8px; }
+.gr-check > summary { cursor: pointer; font-weight: 600; }
+.gr-cause { display: inline-block; background: #fde8e8; color: #8b1a1a; border-radius: 3px;
+            padding: 0 5px; margin-left: 6px; font-size: 0.85em; font-weight: 400; }
+.gr-check pre { background: #f6f8fa; padding: 6px; overflow-x: auto; }
+)";
+
+}  // namespace
+
+std::string markdownToHtml(std::string_view markdown) {
+  std::string out;
+  std::istringstream lines{std::string(markdown)};
+  std::string line;
+  bool fence = false, list = false, paragraph = false;
+  const auto close = [&] {
+    if (list) out += "</ul>\n";
+    if (paragraph) out += "</p>\n";
+    list = paragraph = false;
+  };
+  while (std::getline(lines, line)) {
+    if (line.rfind("```", 0) == 0) {
+      if (!fence) close();
+      out += fence ? "</code></pre>\n" : "<pre><code>";
+      fence = !fence;
+      continue;
+    }
+    if (fence) {
+      out += pages::escapeHtml(line) + "\n";
+      continue;
+    }
+    if (line.find_first_not_of(" \t") == std::string::npos) {
+      close();
+      continue;
+    }
+    const std::size_t indent = line.find_first_not_of(' ');
+    if (line.compare(indent, 2, "- ") == 0) {
+      line.erase(0, indent);
+      if (paragraph) out += "</p>\n";
+      paragraph = false;
+      if (!list) out += "<ul>\n";
+      list = true;
+      out += "<li>" + inlineMarkdown(pages::escapeHtml(line.substr(2))) + "</li>\n";
+      continue;
+    }
+    if (list) out += "</ul>\n";
+    list = false;
+    if (line.rfind("#", 0) == 0) {
+      if (paragraph) out += "</p>\n";
+      paragraph = false;
+      out += "<p><strong>" +
+             inlineMarkdown(pages::escapeHtml(line.substr(line.find_first_not_of('#')))) +
+             "</strong></p>\n";
+      continue;
+    }
+    out += (paragraph ? "\n" : "<p>") + inlineMarkdown(pages::escapeHtml(line));
+    paragraph = true;
+  }
+  if (fence) out += "</code></pre>\n";
+  close();
+  return out;
+}
+
+GradeReport gradeWithWholeRun(const fs::path& dir, const GradeOptions& options,
+                              nlohmann::ordered_json& whole_run_view) {
+  whole_run_view = nullptr;
+  GradeOptions keeping = options;
+  std::string temporary;
+  if (keeping.keep_work.empty()) {
+    std::string pattern = (fs::temp_directory_path() / "clothref-report-XXXXXX").string();
+    if (!::mkdtemp(pattern.data())) throw InputError("grade: cannot create a temporary folder");
+    temporary = pattern;
+    keeping.keep_work = fs::path(temporary) / "work";
+  }
+  struct Remove {
+    std::string path;
+    ~Remove() {
+      std::error_code ignored;
+      if (!path.empty()) fs::remove_all(path, ignored);
+    }
+  } remove{temporary};
+  GradeReport report = gradeSubmission(dir, keeping);
+  const fs::path run = keeping.keep_work / "probes" / "whole-run";
+  std::error_code error;
+  if (fs::exists(run / "reference.jsonl", error) && fs::exists(run / "student.jsonl", error)) {
+    try {
+      pages::ViewOptions view;
+      view.labels = {"reference", "your code"};
+      whole_run_view = pages::viewerData(
+          {(run / "reference.jsonl").string(), (run / "student.jsonl").string()}, view);
+    } catch (const InputError& problem) {
+      // a student trace the reader refuses (cut short by a crash) leaves the report without it
+      report.notes.push_back(std::string("The whole run could not be pictured: ") + problem.what());
+    }
+  }
+  return report;
+}
+
+nlohmann::ordered_json withHtmlSummary(nlohmann::ordered_json results, const GradeReport& report) {
+  std::string out = "<p><strong>Score " + number(report.score) + " / " + number(report.max_score) +
+                    "</strong> (edition " + std::to_string(report.edition) + ", verdict " +
+                    pages::escapeHtml(report.verdict) +
+                    ")</p>\n<table>\n<tr><th>stub</th>"
+                    "<th>points</th><th>checks passed</th></tr>\n";
+  for (const std::string& stub : stubNames()) {
+    if (!report.stub_max.count(stub)) continue;
+    const auto [passed, total] = checksPassed(report, stub);
+    out += "<tr><td>" + pages::escapeHtml(stub) + "</td><td>" +
+           number(report.stub_score.count(stub) ? report.stub_score.at(stub) : 0) + " / " +
+           number(report.stub_max.at(stub)) + "</td><td>" + std::to_string(passed) + " of " +
+           std::to_string(total) + "</td></tr>\n";
+  }
+  out += "</table>\n";
+  std::string failed;
+  for (const TestResult& t : report.tests) {
+    if (t.passed() || t.informational) continue;
+    failed += "<li>" + pages::escapeHtml(t.name());
+    for (const std::string& cause : t.diagnoses)
+      failed += " <em>(" + pages::escapeHtml(cause) + ")</em>";
+    failed += "</li>\n";
+  }
+  if (!failed.empty())
+    out += "<p>Failed checks (details in each test below):</p>\n<ul>\n" + failed + "</ul>\n";
+  if (results.contains("output") && results["output"].is_string())
+    out += markdownToHtml(results["output"].get<std::string>());
+  results["output"] = out;
+  results["output_format"] = "html";
+  return results;
+}
+
+std::string studentReportHtml(const GradeReport& report,
+                              const nlohmann::ordered_json& whole_run_view) {
+  const auto e = [](const std::string& text) { return pages::escapeHtml(text); };
+  std::string body = "<p><strong>Score " + number(report.score) + " / " + number(report.max_score) +
+                     "</strong>. Edition " + std::to_string(report.edition) + " (" +
+                     e(report.edition_source) + "). Verdict: " + e(report.verdict) + ".</p>\n";
+  body +=
+      "<table class=\"gr-table gr-files\"><tr><th>file</th><th>found at</th><th>used</th></tr>\n";
+  for (const UsedFile& f : report.files)
+    body += "<tr><td>" + e(f.name) + "</td><td>" + (f.path.empty() ? "(missing)" : e(f.path)) +
+            "</td><td>" +
+            (f.compiled ? std::string("yours")
+                        : "ours (yours: " + e(f.problem.substr(0, f.problem.find('\n'))) + ")") +
+            "</td></tr>\n";
+  body += "</table>\n";
+  for (const std::string& note : report.notes) body += "<p class=\"gr-info\">" + e(note) + "</p>\n";
+  // score per stub, then every check of each stub
+  body +=
+      "<h2>Stubs</h2>\n<table class=\"gr-table gr-stubs\"><tr><th>stub</th><th>points</th>"
+      "<th>checks passed</th></tr>\n";
+  for (const std::string& stub : stubNames()) {
+    if (!report.stub_max.count(stub)) continue;
+    const auto [passed, total] = checksPassed(report, stub);
+    body += "<tr><td><a href=\"#" + e(stub) + "\">" + e(stub) + "</a></td><td>" +
+            number(report.stub_score.count(stub) ? report.stub_score.at(stub) : 0) + " / " +
+            number(report.stub_max.at(stub)) + "</td><td class=\"" +
+            (passed == total ? "gr-pass" : "gr-fail") + "\">" + std::to_string(passed) + " of " +
+            std::to_string(total) + "</td></tr>\n";
+  }
+  body += "</table>\n";
+  std::string section;
+  for (const TestResult& t : report.tests) {
+    if (t.stub != section) {
+      section = t.stub;
+      body += "<h2 id=\"" + e(t.stub) + "\">" + e(t.stub) + "</h2>\n";
+    }
+    const char* state = t.informational ? "gr-info" : t.passed() ? "gr-pass" : "gr-fail";
+    const char* mark = t.informational ? "\xE2\x84\xB9"
+                       : t.passed()    ? "\xE2\x9C\x94"
+                                       : "\xE2\x9C\x98";
+    body += std::string("<details class=\"gr-check\"") + (t.passed() ? "" : " open") +
+            "><summary class=\"" + state + "\">" + mark + " " + e(t.check) +
+            (t.informational ? std::string(t.check.find("information only") == std::string::npos
+                                               ? " (information only)"
+                                               : "")
+                             : " \xE2\x80\x94 " + number(t.score) + " / " + number(t.max_score));
+    for (const std::string& cause : t.diagnoses)
+      body += "<span class=\"gr-cause\">" + e(cause) + "</span>";
+    body += "</summary>\n" + markdownToHtml(t.output) + "</details>\n";
+  }
+  std::string viewer;
+  if (!whole_run_view.is_null()) {
+    body +=
+        "<h2>Your whole run beside the reference</h2>\n<p>The course scene run by your "
+        "three files and by the reference (information only: it never changes the score). "
+        "Each of your cloth's particles is coloured by its distance to the reference's.</p>\n"
+        "<div id=\"whole-run\"></div>\n"
+        "<script type=\"application/json\" id=\"whole-run-data\">" +
+        pages::jsonForScript(whole_run_view) +
+        "</script>\n<script>mountViewer(document.getElementById('whole-run'), "
+        "JSON.parse(document.getElementById('whole-run-data').textContent), "
+        "{layout: 'side', stills: 4});</script>\n";
+    viewer = pages::viewerScriptAndStyle();
+  }
+  return pages::fillTemplate(pages::pageAsset("report.html"),
+                             {{"TITLE", e(report.submission)},
+                              {"STYLE", std::string(pages::pageAsset("viewer.css")) + kReportStyle},
+                              {"VIEWER", viewer},
+                              {"BODY", body}});
+}
+
+std::string batchIndexHtml(const fs::path& batch_dir, const std::vector<BatchRow>& rows) {
+  nlohmann::ordered_json data;
+  data["stubs"] = stubNames();
+  std::vector<std::string> checks;           // every check name, in order of first appearance
+  std::map<std::string, std::size_t> index;  // check name -> position in `checks`
+  nlohmann::ordered_json submissions = nlohmann::ordered_json::array();
+  for (const BatchRow& row : rows) {
+    nlohmann::ordered_json s = rowJson(row);  // the marker's fields, then the page's own
+    s.erase("dir");                           // where it was graded: not for the page
+    s.erase("isolation");
+    std::error_code error;
+    s["report"] =
+        row.name +
+        (fs::exists(batch_dir / row.name / "report.html", error) ? "/report.html" : "/report.md");
+    // per check: passed, failed; the named causes (a test's tags after its stub)
+    nlohmann::ordered_json passed = nlohmann::ordered_json::object();
+    std::vector<std::string> causes;
+    const nlohmann::json results = readResults(batch_dir / row.name / "results.json");
+    if (results.is_object() && results.contains("tests") && results["tests"].is_array())
+      for (const auto& test : results["tests"]) {
+        if (!test.is_object() || !test.contains("name") || !test["name"].is_string()) continue;
+        const std::string name = test["name"].get<std::string>();
+        if (!index.count(name)) {
+          index[name] = checks.size();
+          checks.push_back(name);
+        }
+        passed[std::to_string(index[name])] = test.value("status", "") == "passed";
+        if (test.contains("tags") && test["tags"].is_array())
+          for (std::size_t k = 1; k < test["tags"].size(); ++k)
+            if (test["tags"][k].is_string()) {
+              const std::string cause = test["tags"][k].get<std::string>();
+              if (std::find(causes.begin(), causes.end(), cause) == causes.end())
+                causes.push_back(cause);
+            }
+      }
+    s["checks"] = passed;
+    s["causes"] = causes;
+    submissions.push_back(s);
+  }
+  data["checks"] = checks;
+  data["submissions"] = submissions;
+  return pages::fillTemplate(pages::pageAsset("class.html"),
+                             {{"STYLE", std::string(pages::pageAsset("viewer.css"))},
+                              {"SCRIPT", std::string(pages::pageAsset("class.js"))},
+                              {"DATA", pages::jsonForScript(data)}});
+}
+
+}  // namespace clothref::grader
