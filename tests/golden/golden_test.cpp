@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "clothref/io/error.h"
+#include "clothref/io/gzip_stream.h"
 #include "clothref/record/world_views.h"
 #include "test_util.h"
 
@@ -137,16 +138,17 @@ TEST(Manifest, BadFieldsAreNamed) {
 // Replaces the first velocity value of the trace line for `step` with `value`.
 void tamperTrace(const fs::path& file, int step, const std::string& value) {
   std::istringstream in(test::readText(file));
-  std::string out, line;
+  std::vector<std::string> lines;
   const std::string prefix = fmt::format("{{\"step\":{},", step);
-  while (std::getline(in, line)) {
-    if (line.rfind(prefix, 0) == 0) {
-      const std::size_t start = line.find("\"velocity\":[[") + 13;
-      line.replace(start, line.find(',', start) - start, value);
-    }
-    out += line + '\n';
+  for (std::string line; std::getline(in, line);) {
+    lines.push_back(line);
+    if (line.rfind(prefix, 0) != 0) continue;
+    const std::size_t start = line.find("\"velocity\":[[") + 13;
+    lines.back().replace(start, line.find(',', start) - start, value);
+    lines.back() =
+        test::rehashed(lines, lines.size() - 1);  // a changed value, not a corrupt record
   }
-  test::writeText(file, out);
+  test::writeLines(file.string(), lines);
 }
 
 // The line (1-based) of the first occurrence of `text` in `file_text`.
@@ -289,6 +291,40 @@ TEST(GoldenDirectory, UpdateThenCheckThenTamper) {
   // The diff report of the tampered trace names the step and shows the value.
   EXPECT_NE(tampered.reports.find("step 1000"), std::string::npos) << tampered.reports;
   EXPECT_NE(tampered.reports.find("-12.5"), std::string::npos) << tampered.reports;
+}
+
+// A golden trace stored as concatenated gzip members (as `zcat` reads them) checks like the plain
+// one; trailing zero bytes after it are that entry's mismatch. Both used to spin forever.
+TEST(GoldenDirectory, MultiMemberGzipGoldenTraceChecks) {
+  const test::TempDir root;
+  const fs::path dir = root.path() / "golden";
+  GoldenSet set;
+  for (const GoldenTrace& trace : goldenSet().traces)
+    if (trace.scene == "spring" && trace.settings.method == Method::Explicit)
+      set.traces.push_back(trace);
+  ASSERT_EQ(set.traces.size(), 1u);
+  updateGolden(dir, set);
+  const fs::path file = dir / set.traces[0].file;
+  const std::string text = test::readText(file);
+  const std::size_t half = text.find('\n', text.size() / 2) + 1;
+  auto member = [](const std::string& part) {
+    std::stringbuf sink;
+    GzipOutputBuffer gzip(sink);
+    std::ostream(&gzip) << part;
+    EXPECT_TRUE(gzip.finish());
+    return sink.str();
+  };
+  const std::string multi = member(text.substr(0, half)) + member("") + member(text.substr(half));
+  test::writeText(file, multi);
+  EXPECT_EQ(check(dir, set).mismatches, std::vector<std::string>{});
+
+  test::writeText(file, multi + std::string(4, '\0'));
+  const CheckRun padded = check(dir, set);
+  ASSERT_EQ(padded.mismatches.size(), 1u);
+  EXPECT_NE(
+      padded.mismatches[0].find("trailing bytes after the gzip data (not another gzip member)"),
+      std::string::npos)
+      << padded.mismatches[0];
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "clothref/io/files.h"
 
 #include <stdlib.h>
+#include <sys/stat.h>
 
 #include <fstream>
 #include <system_error>
@@ -26,6 +27,18 @@ std::string readFile(const std::filesystem::path& path, const std::string& what,
   }
   if (in.bad()) throw InputError(path.string() + ": cannot read the " + what);
   return text;
+}
+
+void requireStreamInput(const std::string& path, const std::string& what) {
+  struct stat info {};
+  if (path == "-") {
+    if (::fstat(0, &info) != 0)
+      throw InputError("standard input: closed (nothing to read a " + what + " from)");
+    if (S_ISDIR(info.st_mode)) throw InputError("standard input: a directory, not a " + what);
+    return;
+  }
+  if (::stat(path.c_str(), &info) == 0 && S_ISDIR(info.st_mode))
+    throw InputError(path + ": a directory, not a " + what + " file");
 }
 
 ScratchDir::ScratchDir(const std::string& prefix) {

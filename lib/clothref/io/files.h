@@ -14,6 +14,11 @@ namespace clothref {
 std::string readFile(const std::filesystem::path& path, const std::string& what,
                      std::size_t max_bytes = 0);
 
+// Throws InputError when the input `path` ("-": standard input) can never be read as a stream of
+// text: "PATH: a directory, not a <what>", "standard input: closed (nothing to read a <what>
+// from)". Through iostreams both read like an empty file, which is the wrong message.
+void requireStreamInput(const std::string& path, const std::string& what);
+
 // A fresh directory under the system temporary directory, removed with its contents when this
 // goes out of scope. `prefix` names the directory (prefix-XXXXXX).
 class ScratchDir {
