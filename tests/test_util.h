@@ -13,6 +13,7 @@
 
 #include <fcntl.h>
 #include <gtest/gtest.h>
+#include <signal.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -155,12 +156,14 @@ struct ProcessResult {
 };
 
 // Runs `clothref ARGS...` without a shell (so its own peak memory is measured), stdin from
-// `stdin_path` ("" for /dev/null), under an address-space limit `address_space_bytes` (0: none)
-// set in the forked child only. Output goes through files in `scratch`.
+// `stdin_path` ("" for /dev/null), under an address-space limit `address_space_bytes` and a
+// file-size limit `file_size_bytes` (0: none), set in the forked child only. Output goes through
+// files in `scratch`.
 inline ProcessResult runCliDirect(const std::vector<std::string>& args,
                                   const std::filesystem::path& scratch,
                                   const std::string& stdin_path = "",
-                                  unsigned long long address_space_bytes = 0) {
+                                  unsigned long long address_space_bytes = 0,
+                                  unsigned long long file_size_bytes = 0) {
   const std::string out = (scratch / "direct.stdout").string();
   const std::string err = (scratch / "direct.stderr").string();
   std::vector<std::string> argv_text = {CLOTHREF_BIN};
@@ -180,6 +183,11 @@ inline ProcessResult runCliDirect(const std::vector<std::string>& args,
     if (address_space_bytes) {
       const struct rlimit limit = {address_space_bytes, address_space_bytes};
       if (::setrlimit(RLIMIT_AS, &limit) != 0) ::_exit(126);
+    }
+    if (file_size_bytes) {  // a full disk, as a write past the limit fails with EFBIG
+      const struct rlimit limit = {file_size_bytes, file_size_bytes};
+      if (::setrlimit(RLIMIT_FSIZE, &limit) != 0) ::_exit(126);
+      ::signal(SIGXFSZ, SIG_IGN);
     }
     ::execv(argv[0], argv.data());
     ::_exit(127);

@@ -327,5 +327,80 @@ TEST(GoldenDirectory, MultiMemberGzipGoldenTraceChecks) {
       << padded.mismatches[0];
 }
 
+// --update never follows a link when it writes or deletes: a linked scenes/ is refused (and the
+// files where it points are kept: they used to be deleted as stale); a linked trace file is
+// replaced by the new trace, its target untouched (it used to receive the trace); a stale link
+// is deleted, not its target. A 0444 file stays 0444.
+TEST(GoldenDirectory, UpdateNeverFollowsALinkAndKeepsModes) {
+  const test::TempDir root;
+  const fs::path dir = root.path() / "golden";
+  const fs::path outside = root.path() / "outside";
+  fs::create_directories(dir);
+  fs::create_directories(outside);
+  test::writeText(outside / "victim.jsonl", "victim\n");
+  test::writeText(outside / "keep.json", "keep\n");
+  GoldenSet set;
+  set.scenes = {"spring"};
+  for (const GoldenTrace& trace : goldenSet().traces)
+    if (trace.scene == "spring" && trace.settings.method == Method::Explicit)
+      set.traces.push_back(trace);
+  ASSERT_EQ(set.traces.size(), 1u);
+
+  fs::create_directory_symlink("../outside", dir / "scenes");
+  try {
+    updateGolden(dir, set);
+    ADD_FAILURE() << "a linked scenes/ was written through";
+  } catch (const InputError& error) {
+    EXPECT_EQ(std::string(error.what()),
+              (dir / "scenes").string() +
+                  ": a symbolic link, not a directory (golden never writes through one)");
+  }
+  EXPECT_EQ(test::readText(outside / "keep.json"), "keep\n");
+  EXPECT_EQ(test::readText(outside / "victim.jsonl"), "victim\n");
+  fs::remove(dir / "scenes");
+
+  fs::create_directories(dir / "traces");
+  fs::create_symlink("../../outside/victim.jsonl", dir / set.traces[0].file);
+  fs::create_symlink("../../outside/keep.json", dir / "traces" / "stale.jsonl");
+  const GoldenUpdateSummary summary = updateGolden(dir, set);
+  EXPECT_EQ(test::readText(outside / "victim.jsonl"), "victim\n");
+  EXPECT_EQ(test::readText(outside / "keep.json"), "keep\n");
+  EXPECT_TRUE(fs::is_regular_file(fs::symlink_status(dir / set.traces[0].file)));
+  EXPECT_FALSE(fs::exists(fs::symlink_status(dir / "traces" / "stale.jsonl")));
+  EXPECT_EQ(summary.removed, std::vector<fs::path>{dir / "traces" / "stale.jsonl"});
+  EXPECT_EQ(check(dir, set).mismatches, std::vector<std::string>{});
+
+  const fs::path scene = dir / "scenes" / "spring.json";
+  fs::permissions(scene, fs::perms::owner_read | fs::perms::group_read | fs::perms::others_read);
+  updateGolden(dir, set);
+  EXPECT_EQ(fs::status(scene).permissions() & fs::perms::all,
+            fs::perms::owner_read | fs::perms::group_read | fs::perms::others_read);
+}
+
+// A traces/ that is a link loop or a link at all is one line, from the check and the update
+// (a loop used to reach "unexpected error: filesystem error").
+TEST(GoldenDirectory, LinkedOrLoopingTracesDirectoryIsOneLine) {
+  const test::TempDir root;
+  const fs::path dir = root.path() / "golden";
+  GoldenSet set;
+  set.scenes = {"spring"};
+  updateGolden(dir, set);
+  fs::remove(dir / "traces");
+  fs::create_directory_symlink("traces", dir / "traces");  // traces -> traces: a loop
+  for (int update = 0; update < 2; ++update) {
+    std::string message;
+    try {
+      if (update)
+        updateGolden(dir, set);
+      else
+        check(dir, set);
+    } catch (const InputError& error) {
+      message = error.what();
+    }
+    EXPECT_EQ(message, (dir / "traces").string() +
+                           ": a symbolic link, not a directory (golden never writes through one)");
+  }
+}
+
 }  // namespace
 }  // namespace clothref
