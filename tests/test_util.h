@@ -11,12 +11,19 @@
 #include <string>
 #include <vector>
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "clothref/io/error.h"
 #include "clothref/record/record.h"
+#include "clothref/trace/format.h"
+#include "clothref/trace/hash.h"
+#include "clothref/trace/reader.h"
 
 namespace clothref::test {
 
@@ -35,6 +42,30 @@ inline void writeLines(const std::string& path, const std::vector<std::string>& 
   std::ofstream out(path, std::ios::binary);
   for (std::size_t i = 0; i < lines.size(); ++i)
     out << lines[i] << (i + 1 < lines.size() || final_newline ? "\n" : "");
+}
+
+// Step line `index` of `lines` with its hash recomputed from its values, as the writer would
+// have written it, so an edit reads as a changed value and not as a corrupt record (the reader
+// checks every hash it parses). A line that does not parse is returned as it is.
+inline std::string rehashed(const std::vector<std::string>& lines, std::size_t index) {
+  std::string header = lines[0];
+  const std::string ours(kTraceHashDescription);
+  header.replace(header.find(ours), ours.size(), "not checked");  // read the edit unchecked
+  std::string text = header + "\n";
+  for (std::size_t i = 1; i <= index; ++i) text += lines[i] + "\n";
+  std::istringstream in(text);
+  try {
+    TraceReader reader(in, "edited");
+    while (reader.lineNumber() <= std::int64_t(index) && reader.next()) {
+    }
+    TraceStep step;
+    reader.parseStep(step);
+    std::string line = lines[index];
+    line.replace(line.find("\"hash\":\"") + 8, 16, hashToHex(stateHashOf(reader.header(), step)));
+    return line;
+  } catch (const InputError&) {
+    return lines[index];
+  }
 }
 
 // A method's name as a GoogleTest parameter name (letters, digits and '_' only).
@@ -115,6 +146,59 @@ inline CommandResult runCli(const std::string& args, Capture capture = Capture::
     result.output.append(buffer.data(), n);
   const int status = ::pclose(pipe);
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+struct ProcessResult {
+  int exit_code = -1;   // -1 when ended by a signal
+  long max_rss_kb = 0;  // peak resident memory of the process (getrusage), KiB
+  std::string stdout_text, stderr_text;
+};
+
+// Runs `clothref ARGS...` without a shell (so its own peak memory is measured), stdin from
+// `stdin_path` ("" for /dev/null), under an address-space limit `address_space_bytes` and a
+// file-size limit `file_size_bytes` (0: none), set in the forked child only. Output goes through
+// files in `scratch`.
+inline ProcessResult runCliDirect(const std::vector<std::string>& args,
+                                  const std::filesystem::path& scratch,
+                                  const std::string& stdin_path = "",
+                                  unsigned long long address_space_bytes = 0,
+                                  unsigned long long file_size_bytes = 0) {
+  const std::string out = (scratch / "direct.stdout").string();
+  const std::string err = (scratch / "direct.stderr").string();
+  std::vector<std::string> argv_text = {CLOTHREF_BIN};
+  argv_text.insert(argv_text.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (std::string& arg : argv_text) argv.push_back(arg.data());
+  argv.push_back(nullptr);
+  ProcessResult result;
+  const pid_t pid = ::fork();
+  if (pid < 0) return result;
+  if (pid == 0) {
+    const int in = ::open(stdin_path.empty() ? "/dev/null" : stdin_path.c_str(), O_RDONLY);
+    const int o = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    const int e = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    if (in < 0 || o < 0 || e < 0 || ::dup2(in, 0) < 0 || ::dup2(o, 1) < 0 || ::dup2(e, 2) < 0)
+      ::_exit(127);
+    if (address_space_bytes) {
+      const struct rlimit limit = {address_space_bytes, address_space_bytes};
+      if (::setrlimit(RLIMIT_AS, &limit) != 0) ::_exit(126);
+    }
+    if (file_size_bytes) {  // a full disk, as a write past the limit fails with EFBIG
+      const struct rlimit limit = {file_size_bytes, file_size_bytes};
+      if (::setrlimit(RLIMIT_FSIZE, &limit) != 0) ::_exit(126);
+      ::signal(SIGXFSZ, SIG_IGN);
+    }
+    ::execv(argv[0], argv.data());
+    ::_exit(127);
+  }
+  int status = 0;
+  struct rusage usage {};
+  if (::wait4(pid, &status, 0, &usage) != pid) return result;
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  result.max_rss_kb = usage.ru_maxrss;
+  result.stdout_text = readText(out);
+  result.stderr_text = readText(err);
   return result;
 }
 

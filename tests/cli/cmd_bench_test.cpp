@@ -55,7 +55,8 @@ TEST(BenchCommand, RunsTheRequestedPath) {
 
 TEST(BenchCommand, BadInputIsOneLineAndExitTwo) {
   for (const char* args : {"bench --simd avx9", "bench --repetitions 0", "bench --threads 0",
-                           "bench --seconds -1", "bench --scene no-such-scene"}) {
+                           "bench --threads 65", "bench --threads 2000", "bench --seconds -1",
+                           "bench --seconds nan", "bench --scene no-such-scene"}) {
     const test::CommandResult result = test::runCli(args);
     EXPECT_EQ(result.exit_code, 2) << args;
     EXPECT_EQ(result.output.find('\n'), result.output.size() - 1) << args << ":\n" << result.output;

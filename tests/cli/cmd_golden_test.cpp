@@ -3,6 +3,9 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
+#include <algorithm>
 #include <filesystem>
 #include <string>
 
@@ -61,7 +64,8 @@ TEST(GoldenCli, BadInputExitsTwo) {
   EXPECT_EQ(under_file.exit_code, 2) << under_file.output;
   EXPECT_EQ(under_file.output.rfind("clothref: " + root.file("plain-file"), 0), 0u)
       << under_file.output;
-  EXPECT_NE(under_file.output.find("cannot update the golden set"), std::string::npos)
+  EXPECT_NE(under_file.output.find("golden: cannot create the directory: Not a directory"),
+            std::string::npos)
       << under_file.output;
   EXPECT_EQ(std::count(under_file.output.begin(), under_file.output.end(), '\n'), 1)
       << under_file.output;
@@ -96,6 +100,38 @@ TEST(GoldenCli, DefaultDirectoryIsTheSourceTreesAndUpdateNeverCreatesASetUnasked
       test::runCli("golden --create --dir " + root.file("new"));
   EXPECT_EQ(create_alone.exit_code, 2) << create_alone.output;
   EXPECT_FALSE(std::filesystem::exists(root.file("new")));
+}
+
+// manifest.json that is a directory or a FIFO is named as such (it was "no manifest.json"; a
+// FIFO is never opened, so nothing blocks).
+TEST(GoldenCli, ManifestThatIsNotAFileIsNamed) {
+  const test::TempDir root;
+  std::filesystem::create_directories(root.path() / "dir" / "manifest.json");
+  std::filesystem::create_directories(root.path() / "fifo");
+  ASSERT_EQ(::mkfifo((root.path() / "fifo" / "manifest.json").c_str(), 0600), 0);
+  for (const auto& [sub, kind] : {std::pair{"dir", "a directory"}, std::pair{"fifo", "a FIFO"}}) {
+    for (const std::string& update : {"", " --update"}) {
+      const test::CommandResult run = test::runCli("golden" + update + " --dir " + root.file(sub));
+      EXPECT_EQ(run.exit_code, 2) << run.output;
+      EXPECT_EQ(run.output, "clothref: " + root.file(sub) + "/manifest.json: " + kind +
+                                ", not a regular file\n");
+    }
+  }
+}
+
+// `--update --create` that runs out of disk (a file-size limit in the child: writes fail with
+// EFBIG) leaves no golden files without a manifest: it used to leave the scenes it had written.
+TEST(GoldenCli, CreateOnAFullDiskLeavesNoSetWithoutAManifest) {
+  const test::TempDir root;
+  const test::ProcessResult run = test::runCliDirect(
+      {"golden", "--update", "--create", "--dir", root.file("new")}, root.path(), "", 0, 100'000);
+  EXPECT_EQ(run.exit_code, 2) << run.stderr_text;
+  EXPECT_NE(run.stderr_text.find("write failed"), std::string::npos) << run.stderr_text;
+  EXPECT_EQ(std::count(run.stderr_text.begin(), run.stderr_text.end(), '\n'), 1) << run.stderr_text;
+  std::vector<std::string> left;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(root.path() / "new"))
+    if (!entry.is_directory()) left.push_back(entry.path().string());
+  EXPECT_EQ(left, std::vector<std::string>{});
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "clothref/io/error.h"
+#include "clothref/io/gzip_stream.h"
 #include "clothref/record/world_views.h"
 #include "test_util.h"
 
@@ -137,16 +138,17 @@ TEST(Manifest, BadFieldsAreNamed) {
 // Replaces the first velocity value of the trace line for `step` with `value`.
 void tamperTrace(const fs::path& file, int step, const std::string& value) {
   std::istringstream in(test::readText(file));
-  std::string out, line;
+  std::vector<std::string> lines;
   const std::string prefix = fmt::format("{{\"step\":{},", step);
-  while (std::getline(in, line)) {
-    if (line.rfind(prefix, 0) == 0) {
-      const std::size_t start = line.find("\"velocity\":[[") + 13;
-      line.replace(start, line.find(',', start) - start, value);
-    }
-    out += line + '\n';
+  for (std::string line; std::getline(in, line);) {
+    lines.push_back(line);
+    if (line.rfind(prefix, 0) != 0) continue;
+    const std::size_t start = line.find("\"velocity\":[[") + 13;
+    lines.back().replace(start, line.find(',', start) - start, value);
+    lines.back() =
+        test::rehashed(lines, lines.size() - 1);  // a changed value, not a corrupt record
   }
-  test::writeText(file, out);
+  test::writeLines(file.string(), lines);
 }
 
 // The line (1-based) of the first occurrence of `text` in `file_text`.
@@ -289,6 +291,115 @@ TEST(GoldenDirectory, UpdateThenCheckThenTamper) {
   // The diff report of the tampered trace names the step and shows the value.
   EXPECT_NE(tampered.reports.find("step 1000"), std::string::npos) << tampered.reports;
   EXPECT_NE(tampered.reports.find("-12.5"), std::string::npos) << tampered.reports;
+}
+
+// A golden trace stored as concatenated gzip members (as `zcat` reads them) checks like the plain
+// one; trailing zero bytes after it are that entry's mismatch. Both used to spin forever.
+TEST(GoldenDirectory, MultiMemberGzipGoldenTraceChecks) {
+  const test::TempDir root;
+  const fs::path dir = root.path() / "golden";
+  GoldenSet set;
+  for (const GoldenTrace& trace : goldenSet().traces)
+    if (trace.scene == "spring" && trace.settings.method == Method::Explicit)
+      set.traces.push_back(trace);
+  ASSERT_EQ(set.traces.size(), 1u);
+  updateGolden(dir, set);
+  const fs::path file = dir / set.traces[0].file;
+  const std::string text = test::readText(file);
+  const std::size_t half = text.find('\n', text.size() / 2) + 1;
+  auto member = [](const std::string& part) {
+    std::stringbuf sink;
+    GzipOutputBuffer gzip(sink);
+    std::ostream(&gzip) << part;
+    EXPECT_TRUE(gzip.finish());
+    return sink.str();
+  };
+  const std::string multi = member(text.substr(0, half)) + member("") + member(text.substr(half));
+  test::writeText(file, multi);
+  EXPECT_EQ(check(dir, set).mismatches, std::vector<std::string>{});
+
+  test::writeText(file, multi + std::string(4, '\0'));
+  const CheckRun padded = check(dir, set);
+  ASSERT_EQ(padded.mismatches.size(), 1u);
+  EXPECT_NE(
+      padded.mismatches[0].find("trailing bytes after the gzip data (not another gzip member)"),
+      std::string::npos)
+      << padded.mismatches[0];
+}
+
+// --update never follows a link when it writes or deletes: a linked scenes/ is refused (and the
+// files where it points are kept: they used to be deleted as stale); a linked trace file is
+// replaced by the new trace, its target untouched (it used to receive the trace); a stale link
+// is deleted, not its target. A 0444 file stays 0444.
+TEST(GoldenDirectory, UpdateNeverFollowsALinkAndKeepsModes) {
+  const test::TempDir root;
+  const fs::path dir = root.path() / "golden";
+  const fs::path outside = root.path() / "outside";
+  fs::create_directories(dir);
+  fs::create_directories(outside);
+  test::writeText(outside / "victim.jsonl", "victim\n");
+  test::writeText(outside / "keep.json", "keep\n");
+  GoldenSet set;
+  set.scenes = {"spring"};
+  for (const GoldenTrace& trace : goldenSet().traces)
+    if (trace.scene == "spring" && trace.settings.method == Method::Explicit)
+      set.traces.push_back(trace);
+  ASSERT_EQ(set.traces.size(), 1u);
+
+  fs::create_directory_symlink("../outside", dir / "scenes");
+  try {
+    updateGolden(dir, set);
+    ADD_FAILURE() << "a linked scenes/ was written through";
+  } catch (const InputError& error) {
+    EXPECT_EQ(std::string(error.what()),
+              (dir / "scenes").string() +
+                  ": a symbolic link, not a directory (golden never writes through one)");
+  }
+  EXPECT_EQ(test::readText(outside / "keep.json"), "keep\n");
+  EXPECT_EQ(test::readText(outside / "victim.jsonl"), "victim\n");
+  fs::remove(dir / "scenes");
+
+  fs::create_directories(dir / "traces");
+  fs::create_symlink("../../outside/victim.jsonl", dir / set.traces[0].file);
+  fs::create_symlink("../../outside/keep.json", dir / "traces" / "stale.jsonl");
+  const GoldenUpdateSummary summary = updateGolden(dir, set);
+  EXPECT_EQ(test::readText(outside / "victim.jsonl"), "victim\n");
+  EXPECT_EQ(test::readText(outside / "keep.json"), "keep\n");
+  EXPECT_TRUE(fs::is_regular_file(fs::symlink_status(dir / set.traces[0].file)));
+  EXPECT_FALSE(fs::exists(fs::symlink_status(dir / "traces" / "stale.jsonl")));
+  EXPECT_EQ(summary.removed, std::vector<fs::path>{dir / "traces" / "stale.jsonl"});
+  EXPECT_EQ(check(dir, set).mismatches, std::vector<std::string>{});
+
+  const fs::path scene = dir / "scenes" / "spring.json";
+  fs::permissions(scene, fs::perms::owner_read | fs::perms::group_read | fs::perms::others_read);
+  updateGolden(dir, set);
+  EXPECT_EQ(fs::status(scene).permissions() & fs::perms::all,
+            fs::perms::owner_read | fs::perms::group_read | fs::perms::others_read);
+}
+
+// A traces/ that is a link loop or a link at all is one line, from the check and the update
+// (a loop used to reach "unexpected error: filesystem error").
+TEST(GoldenDirectory, LinkedOrLoopingTracesDirectoryIsOneLine) {
+  const test::TempDir root;
+  const fs::path dir = root.path() / "golden";
+  GoldenSet set;
+  set.scenes = {"spring"};
+  updateGolden(dir, set);
+  fs::remove(dir / "traces");
+  fs::create_directory_symlink("traces", dir / "traces");  // traces -> traces: a loop
+  for (int update = 0; update < 2; ++update) {
+    std::string message;
+    try {
+      if (update)
+        updateGolden(dir, set);
+      else
+        check(dir, set);
+    } catch (const InputError& error) {
+      message = error.what();
+    }
+    EXPECT_EQ(message, (dir / "traces").string() +
+                           ": a symbolic link, not a directory (golden never writes through one)");
+  }
 }
 
 }  // namespace

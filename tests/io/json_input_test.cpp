@@ -40,6 +40,20 @@ TEST(JsonInput, NumberTooLargeForADoubleIsASyntaxErrorWithItsPlace) {
   EXPECT_EQ(message.rfind("h: /dt: not valid JSON (line 1, column ", 0), 0u) << message;
 }
 
+// A key repeated in one object is refused with its pointer (nlohmann would keep the last one
+// silently); the same key in different objects is fine.
+TEST(JsonInput, DuplicateKeysAreRefused) {
+  EXPECT_EQ(errorOf([] { parseJson("{\"dt\": 1, \"dt\": 2}", "f.json"); }),
+            "f.json: /dt: duplicate key");
+  EXPECT_EQ(errorOf([] {
+              parseOrderedJson("{\"a\": [{}, {\"x\": 1, \"y\": {\"z\": 1, \"z\": 1}}]}", "h");
+            }),
+            "h: /a/1/y/z: duplicate key");
+  EXPECT_EQ(
+      errorOf([] { parseJson("{\"a\": {\"x\": 1}, \"b\": {\"x\": 1}, \"x\": [1, 2]}", "f"); }),
+      "(no error)");
+}
+
 TEST(JsonInput, ValidTextParses) {
   EXPECT_EQ(parseJson("{\"a\": [1, 2]}", "x")["a"][1], 2);
   // the ordered form keeps the key order (trace headers are compared by JSON pointer, written in

@@ -438,5 +438,29 @@ TEST_F(TraceReaderTest, RecomputedHashMatchesTheWrittenOne) {
   }
 }
 
+// A value edited under its old hash is a corrupt record; a NaN, written "NaN" whatever its bits,
+// keeps whatever hash the writer computed from them.
+TEST_F(TraceReaderTest, StaleHashIsACorruptRecord) {
+  const Scene& scene = *findBuiltinScene("spring");
+  const std::vector<std::string> lines =
+      writeLines("a.jsonl", scene, settingsFor(scene, Precision::Float, 10, 5));
+  ASSERT_EQ(lines.size(), 4u);
+  std::vector<std::string> edited = lines;
+  const std::size_t at = edited[2].find("\"velocity\":[[") + 13;
+  edited[2].replace(at, edited[2].find(',', at) - at, "7");
+  writeLines("stale.jsonl", edited);
+  EXPECT_EQ(readError("stale.jsonl"),
+            path("stale.jsonl") +
+                ":3: /hash: does not match the step's own values (a corrupt or edited record)");
+  edited[2] = test::rehashed(edited, 2);
+  writeLines("rehashed.jsonl", edited);
+  EXPECT_EQ(readError("rehashed.jsonl"), "");
+  // a NaN's sign and payload are not in the text: the written hash stands
+  edited = lines;
+  edited[2].replace(at, edited[2].find(',', at) - at, "\"NaN\"");
+  writeLines("nan.jsonl", edited);
+  EXPECT_EQ(readError("nan.jsonl"), "");
+}
+
 }  // namespace
 }  // namespace clothref

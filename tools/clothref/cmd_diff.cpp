@@ -64,6 +64,8 @@ DiffOptions buildOptions(const DiffCommandOptions& o) {
 }
 
 int runDiff(const DiffCommandOptions& o) {
+  if (o.path_a == "-" && o.path_b == "-")
+    throw InputError("A and B are both standard input (-): at most one trace can come from it");
   const DiffOptions options = buildOptions(o);
   const DiffReport report = diffTraces(o.path_a, o.path_b, options);
   if (!o.write_tolerances.empty()) {

@@ -34,7 +34,17 @@ struct GoldenOptions {
 // A golden set is a directory with a manifest; anything else is refused before any work.
 void requireGoldenSet(const GoldenOptions& options) {
   const std::filesystem::path manifest = std::filesystem::path(options.golden) / "manifest.json";
-  if (std::filesystem::is_regular_file(manifest)) return;
+  std::error_code error;
+  const std::filesystem::file_status status = std::filesystem::status(manifest, error);
+  if (std::filesystem::is_regular_file(status)) return;
+  // named as what it is (and never opened: a FIFO would block the read)
+  if (std::filesystem::exists(status))
+    throw InputError(fmt::format("{}: {}, not a regular file", manifest.string(),
+                                 std::filesystem::is_directory(status) ? "a directory"
+                                 : std::filesystem::is_fifo(status)    ? "a FIFO"
+                                                                       : "a special file"));
+  if (error && error != std::errc::no_such_file_or_directory)
+    throw InputError(fmt::format("{}: cannot be read: {}", manifest.string(), error.message()));
   throw InputError(fmt::format(
       "{}: golden directory not found (no manifest.json); give it with --dir, or make a new "
       "golden set there with --update --create",
@@ -76,10 +86,11 @@ int runCheck(const GoldenOptions& options) {
   requireGoldenSet(options);
 
   const GoldenSet& defined = goldenSet();
-  Progress progress("clothref golden",
-                    static_cast<std::int64_t>(defined.scenes.size() + defined.traces.size() +
-                                              defined.hash_runs.size()),
-                    "entries", progressStyleForStderr(options.quiet), std::cerr);
+  // counts what is checked: the hash runs only when they are
+  const std::size_t entries_checked = defined.scenes.size() + defined.traces.size() +
+                                      (options.skip_hashes ? 0 : defined.hash_runs.size());
+  Progress progress("clothref golden", static_cast<std::int64_t>(entries_checked), "entries",
+                    progressStyleForStderr(options.quiet), std::cerr);
   std::int64_t entries = 0;
   const GoldenCheckSummary summary =
       checkGolden(options.golden, check, [&](const GoldenEntryResult& entry) {

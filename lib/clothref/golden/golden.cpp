@@ -13,7 +13,6 @@
 #include "clothref/io/error.h"
 #include "clothref/io/files.h"
 #include "clothref/io/json_input.h"
-#include "clothref/io/output_file.h"
 #include "clothref/record/world_views.h"
 #include "clothref/trace/build_info.h"
 
@@ -270,14 +269,13 @@ GoldenEntryResult checkSceneFile(const std::filesystem::path& dir, const std::st
   return result;
 }
 
-// Regular files directly in DIR/sub, as '/'-separated names relative to DIR, sorted.
-std::vector<std::string> filesIn(const std::filesystem::path& dir, const std::string& sub) {
+// The regular files and links directly in DIR/sub, as '/'-separated names relative to DIR,
+// sorted; none when DIR/sub does not exist. A DIR/sub that is a link (or a loop), or that cannot be
+// read, is refused with one line (OpenDirectory::sub).
+std::vector<std::string> filesIn(const OpenDirectory& dir, const std::string& sub) {
   std::vector<std::string> files;
-  std::error_code error;
-  if (!std::filesystem::is_directory(dir / sub, error)) return files;
-  for (const auto& entry : std::filesystem::directory_iterator(dir / sub))
-    if (entry.is_regular_file()) files.push_back(sub + "/" + entry.path().filename().string());
-  std::sort(files.begin(), files.end());
+  if (!dir.has(sub)) return files;
+  for (const std::string& name : dir.sub(sub, false).files()) files.push_back(sub + "/" + name);
   return files;
 }
 
@@ -425,47 +423,60 @@ GoldenSet readManifest(const std::filesystem::path& file) {
 
 namespace {
 
-// Writes one golden file: a temporary beside it, renamed into place once complete.
-void writeFile(const std::filesystem::path& path, FunctionRef<void(std::ostream&)> write) {
-  OutputFile output(path.string());
-  write(output.stream());
-  output.commit();
-}
-
-GoldenUpdateSummary writeGoldenSet(const std::filesystem::path& dir, const GoldenSet& set) {
+// Writes the set through descriptors of DIR, DIR/scenes and DIR/traces, never following a link
+// (io/files.h OpenDirectory): a linked scenes/ or traces/ is refused, a linked file is replaced,
+// not written through, and a stale link is deleted, not its target.
+GoldenUpdateSummary writeGoldenSet(const std::filesystem::path& path, const GoldenSet& set) {
   GoldenUpdateSummary summary;
-  std::filesystem::create_directories(dir / "scenes");
-  std::filesystem::create_directories(dir / "traces");
-
-  for (const std::string& name : set.scenes) {
-    writeFile(dir / "scenes" / (name + ".json"),
-              [&name](std::ostream& out) { out << sceneFileText(builtin(name)); });
-    ++summary.scenes;
+  const OpenDirectory dir(path, true);
+  const bool new_set = !dir.has("manifest.json");
+  const OpenDirectory scenes = dir.sub("scenes", true);
+  const OpenDirectory traces = dir.sub("traces", true);
+  std::vector<std::pair<const OpenDirectory*, std::string>> written;
+  auto write = [&written](const OpenDirectory& where, const std::string& name,
+                          const std::string& text) {
+    where.replaceFile(name, text);
+    written.emplace_back(&where, name);
+  };
+  try {
+    for (const std::string& name : set.scenes) {
+      write(scenes, name + ".json", sceneFileText(builtin(name)));
+      ++summary.scenes;
+    }
+    for (const GoldenTrace& trace : set.traces) {
+      if (trace.file.rfind("traces/", 0) != 0)
+        throw InputError("golden set: trace file '" + trace.file + "' is not under traces/");
+      std::ostringstream text;
+      writeTrace(builtin(trace.scene), trace.settings, text);
+      write(traces, trace.file.substr(7), text.str());
+      ++summary.traces;
+    }
+    GoldenSet manifest = set;
+    for (HashRun& run : manifest.hash_runs) {
+      for (std::uint64_t hash :
+           computeHashes(builtin(run.scene), run.method, run.precision, run.dt, run.steps))
+        run.hashes.push_back(hashToHex(hash));
+      ++summary.hash_runs;
+    }
+    // The manifest last: an interrupted update of a set leaves the old manifest, which the check
+    // then flags.
+    dir.replaceFile("manifest.json", manifestText(manifest));
+  } catch (...) {
+    // a new set (--create) that could not be finished (a full disk) leaves no files without a
+    // manifest
+    if (new_set)
+      for (const auto& [where, name] : written) where->remove(name);
+    throw;
   }
-  for (const GoldenTrace& trace : set.traces) {
-    writeFile(dir / trace.file, [&trace](std::ostream& out) {
-      writeTrace(builtin(trace.scene), trace.settings, out);
-    });
-    ++summary.traces;
-  }
-  GoldenSet manifest = set;
-  for (HashRun& run : manifest.hash_runs) {
-    for (std::uint64_t hash :
-         computeHashes(builtin(run.scene), run.method, run.precision, run.dt, run.steps))
-      run.hashes.push_back(hashToHex(hash));
-    ++summary.hash_runs;
-  }
-  // The manifest last: an interrupted update leaves the old manifest, which the check then flags.
-  writeFile(dir / "manifest.json",
-            [&manifest](std::ostream& out) { out << manifestText(manifest); });
 
   // Only the two generated subdirectories are swept, so nothing else in DIR is ever deleted.
   const std::set<std::string> expected = expectedFiles(set);
-  for (const char* sub : {"scenes", "traces"}) {
-    for (const std::string& file : filesIn(dir, sub)) {
+  for (const OpenDirectory* sub : {&scenes, &traces}) {
+    for (const std::string& name : sub->files()) {
+      const std::string file = sub->path().filename().string() + "/" + name;
       if (expected.count(file)) continue;
-      std::filesystem::remove(dir / file);
-      summary.removed.push_back(dir / file);
+      sub->remove(name);
+      summary.removed.push_back(path / file);
     }
   }
   return summary;
@@ -492,6 +503,10 @@ GoldenCheckSummary checkGolden(const std::filesystem::path& dir, const GoldenChe
                      ": golden directory not found (generate it with clothref "
                      "golden --update)");
   const GoldenSet manifest = readManifest(dir / "manifest.json");
+  // listed first: a linked, looping or unreadable scenes/ or traces/ is refused before any work
+  const OpenDirectory root(dir, false);
+  std::vector<std::string> present = filesIn(root, "scenes");
+  for (std::string& file : filesIn(root, "traces")) present.push_back(std::move(file));
   GoldenCheckSummary summary;
   auto report = [&summary, &on_entry](const GoldenEntryResult& result) {
     ++summary.checked;
@@ -542,11 +557,10 @@ GoldenCheckSummary checkGolden(const std::filesystem::path& dir, const GoldenChe
 
   // Files the golden set does not produce (left by hand or by an older set) are mismatches too.
   const std::set<std::string> expected = expectedFiles(defined);
-  for (const char* sub : {"scenes", "traces"})
-    for (const std::string& file : filesIn(dir, sub))
-      if (!expected.count(file))
-        report(
-            {"file", file, false, "stray file: not produced by the golden set (run --update)", ""});
+  for (const std::string& file : present)
+    if (!expected.count(file))
+      report(
+          {"file", file, false, "stray file: not produced by the golden set (run --update)", ""});
   return summary;
 }
 

@@ -81,9 +81,11 @@ struct GoldenUpdateSummary {
 };
 
 // Regenerates the golden set `set` (the CLI: goldenSet(); tests: a small subset) into `dir`
-// (created if missing): scenes, traces, then the manifest last, each through OutputFile so a
-// failure leaves no partial file; then deletes the files in scenes/ and traces/ that the set does
-// not produce.
+// (created if missing): scenes, traces, then the manifest last, each replaced atomically so a
+// failure leaves no partial file (and a new set that fails leaves none of its files); then deletes
+// the files in scenes/ and traces/ that the set does not produce. Never follows a symbolic link
+// when it writes or deletes: a linked scenes/ or traces/ is refused (InputError); a linked file is
+// replaced by the new file, its target untouched. A file keeps its permission bits.
 GoldenUpdateSummary updateGolden(const std::filesystem::path& dir,
                                  const GoldenSet& set = goldenSet());
 

@@ -38,10 +38,18 @@ GzipInputBuffer::int_type GzipInputBuffer::underflow() {
       }
       z.next_in = reinterpret_cast<Bytef*>(in_.data());
       z.avail_in = uInt(got);
-      if (finished_) {  // another gzip member follows
-        inflateReset(&z);
-        finished_ = false;
+    }
+    if (finished_) {
+      // Bytes after a member: another member (like zcat), which starts with the gzip magic (0x1f
+      // is no valid zlib header, so inflate then insists on 0x8b); anything else (zero padding,
+      // text) is refused rather than ignored. Checked on every member end, so input left in the
+      // buffer after Z_STREAM_END can never make inflate spin.
+      if (*z.next_in != 0x1f) {
+        error_ = "trailing bytes after the gzip data (not another gzip member)";
+        throw std::ios_base::failure(error_);
       }
+      inflateReset(&z);
+      finished_ = false;
     }
     z.next_out = reinterpret_cast<Bytef*>(out_.data());
     z.avail_out = uInt(out_.size());

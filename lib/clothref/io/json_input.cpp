@@ -1,6 +1,7 @@
 #include "clothref/io/json_input.h"
 
 #include <algorithm>
+#include <set>
 #include <vector>
 
 #include <fmt/format.h>
@@ -123,11 +124,60 @@ void checkDepth(std::string_view text, const std::string& source) {
   }
 }
 
+// Follows the parse to refuse a key repeated in one object (nlohmann keeps the last silently, so
+// `{"dt": 1, "dt": 2}` would read as another value than a reader keeping the first sees).
+template <typename Json>
+class DuplicateKeyCheck {
+ public:
+  explicit DuplicateKeyCheck(const std::string& source) : source_(source) {}
+
+  bool operator()(int, nlohmann::detail::parse_event_t event, Json& parsed) {
+    using Event = nlohmann::detail::parse_event_t;
+    switch (event) {
+      case Event::object_start:
+      case Event::array_start:
+        frames_.push_back({event == Event::array_start, 0, "", {}});
+        break;
+      case Event::key: {
+        Frame& frame = frames_.back();
+        frame.key = parsed.template get<std::string>();
+        if (!frame.keys.insert(frame.key).second)
+          throw InputError(fmt::format("{}: {}: duplicate key", source_, pointer()));
+        break;
+      }
+      case Event::object_end:
+      case Event::array_end:
+        frames_.pop_back();
+        [[fallthrough]];
+      case Event::value:
+        if (!frames_.empty() && frames_.back().array) ++frames_.back().index;
+        break;
+    }
+    return true;
+  }
+
+ private:
+  struct Frame {
+    bool array;
+    std::size_t index;
+    std::string key;
+    std::set<std::string> keys;
+  };
+  std::string pointer() const {
+    std::string text;
+    for (const Frame& frame : frames_)
+      text += "/" + (frame.array ? std::to_string(frame.index) : excerpt(frame.key));
+    return text;
+  }
+  const std::string& source_;
+  std::vector<Frame> frames_;
+};
+
 template <typename Json>
 Json parse(std::string_view text, const std::string& source) {
   checkDepth(text, source);
   try {
-    return Json::parse(text);
+    return Json::parse(text, DuplicateKeyCheck<Json>(source));
   } catch (const json::exception& error) {
     const std::string copy(text);
     JsonErrorLocator locator(copy);

@@ -13,7 +13,10 @@ namespace clothref {
 struct InputLimits {
   std::size_t file_bytes =
       std::size_t(256) << 20;  // a whole file read into memory (scene, tolerance file, manifest)
-  std::size_t line_bytes = std::size_t(256) << 20;  // one trace line (header or step)
+  std::size_t line_bytes = std::size_t(256) << 20;  // one trace step line
+  // The header line, parsed as a JSON document (about 30 bytes of memory per byte of text for a
+  // long array), so bounded far below a step line, which is parsed in place.
+  std::size_t header_bytes = std::size_t(4) << 20;
   std::size_t json_depth = 64;             // nesting of arrays and objects in any JSON input
   std::int64_t particles = 10'000'000;     // particles of one body in a trace header
   std::int64_t steps = 1'000'000'000'000;  // steps of a run or a trace header

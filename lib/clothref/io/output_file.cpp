@@ -105,6 +105,14 @@ bool writesInPlace(const std::filesystem::path& target) {
 
 void setOutputCommandName(const std::string& name) { commandName() = name; }
 
+void exitOutOfMemory() {
+  if (g_has_temporary) ::unlink(g_temporary);
+  const std::string& name = commandName();  // already allocated: reading it allocates nothing
+  [[maybe_unused]] const ssize_t written = ::write(2, name.data(), name.size());
+  writeAll(": out of memory\n");
+  ::_exit(2);  // kExitBadInput; no destructors or atexit handlers, which might allocate
+}
+
 OutputFile::OutputFile(const std::string& path) : path_(path) {
   if (path_ == "-") return;
   open();

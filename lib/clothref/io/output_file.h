@@ -21,6 +21,12 @@ class GzipOutputBuffer;
 // the CLI with the subcommand it runs, before any OutputFile opens.
 void setOutputCommandName(const std::string& name);
 
+// Out of memory anywhere, even where an exception cannot pass (nlohmann's destructors allocate;
+// a bad_alloc there used to abort): removes the temporary file of the output being written, prints
+// "<command>: out of memory" on stderr and ends the process with status 2. Allocates nothing.
+// The CLI installs it as the new-handler (std::set_new_handler), so `new` never throws bad_alloc.
+[[noreturn]] void exitOutOfMemory();
+
 class OutputFile {
  public:
   // Throws InputError when the file cannot be created.

@@ -94,7 +94,9 @@ class TraceReader {
   std::int64_t lineNumber() const { return line_number_; }
   const StepPrefix& prefix() const { return prefix_; }
 
-  // Parses the whole current line into `step` (reusing its storage); throws InputError.
+  // Parses the whole current line into `step` (reusing its storage); throws InputError, also when
+  // the header's hash is clothref's (kTraceHashDescription) and the step's "hash" is not that of
+  // its values (a corrupt or edited record; steps holding NaN excepted, see docs/trace-format.md).
   void parseStep(TraceStep& step) const;
 
   // Throws InputError("FILE:LINE: problem") for the current line.
@@ -102,8 +104,9 @@ class TraceReader {
 
  private:
   void readHeader();
-  // Reads one line (bounded by the line limit) into line_; false at the end of the input.
-  bool readLine(bool& ended_with_newline);
+  // Reads one line of at most `limit` bytes into line_ (longer: an error naming `flag`); false at
+  // the end of the input.
+  bool readLine(bool& ended_with_newline, std::size_t limit, const char* what, const char* flag);
 
   std::string path_;
   std::unique_ptr<std::ifstream> owned_;   // set when the reader opened the file itself
@@ -115,7 +118,16 @@ class TraceReader {
   TraceHeader header_;
   StepPrefix prefix_;
   bool has_step_ = false;
+  bool own_hash_ = false;  // the header's hash is kTraceHashDescription: parseStep checks it
 };
+
+// The check of a header's "scene" beyond its being an object: unknown keys at any depth, types,
+// ranges. trace/ never sees a scene (docs/layout.md), so the code that knows scenes supplies it:
+// the CLI installs the scene reader at start (tools/clothref/main.cpp); without one (nullptr, the
+// default) only the shape is checked. It throws InputError naming the JSON pointer inside the
+// scene ("/cloth/spring_cof: unknown key"), reported as "FILE:1: header: /scene/cloth/...".
+using HeaderSceneCheck = void (*)(const nlohmann::ordered_json& scene);
+void setHeaderSceneCheck(HeaderSceneCheck check);
 
 // Parses a header object (already read as JSON); throws InputError("SOURCE:1: problem").
 TraceHeader parseTraceHeader(const nlohmann::ordered_json& json, const std::string& source);
