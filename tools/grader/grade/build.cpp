@@ -260,7 +260,10 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseTo
     used.path = found->second.string();
     const fs::path folder = work_dir / ("src-" + stem(name));
     fs::create_directories(folder);
-    fs::copy_file(found->second, folder / name, fs::copy_options::overwrite_existing);
+    // The bytes the finder read through a checked descriptor, never the student's path again.
+    std::ofstream copy(folder / name, std::ios::binary | std::ios::trunc);
+    copy << files.bytes.at(name);
+    if (!copy.flush()) throw std::runtime_error("cannot copy " + name + " into the scratch folder");
     commands.push_back(
         compileCommand(toolchain, edition, folder / name, work_dir / (stem(name) + ".o"), 25, pch));
     names.push_back(name);
