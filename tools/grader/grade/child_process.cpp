@@ -143,6 +143,96 @@ struct ExecLimits {
   _exit(127);
 }
 
+// A status the supervisor passes on as its exit code, the way bubblewrap does: a child killed by
+// signal S becomes 128 + S.
+[[noreturn]] void exitLike(int status) {
+  if (WIFSIGNALED(status)) _exit(128 + WTERMSIG(status));
+  _exit(WIFEXITED(status) ? WEXITSTATUS(status) : 1);
+}
+
+// The exit code of a supervisor that could not fork the student program.
+constexpr int kSupervisorForkFailed = 124;
+
+volatile pid_t supervised_student = 0;
+
+// The grader's SIGTERM at a wall timeout: the student program dies, then the supervisor cleans up.
+void stopStudent(int) {
+  const pid_t student = supervised_student;
+  if (student > 1) {
+    kill(-student, SIGKILL);
+    kill(student, SIGKILL);
+  }
+}
+
+// Subreaper mode: kills every child the supervisor has (the student's orphans were reparented to
+// it) until none is left; children of a killed child become ours in turn. Async-signal-safe.
+void killInherited() {
+  char path[64] = "/proc/self/task/";
+  {
+    // "/proc/self/task/<tid>/children" without snprintf: the supervisor has one thread.
+    char digits[24];
+    int n = 0;
+    for (long v = getpid(); v > 0 && n < 23; v /= 10) digits[n++] = static_cast<char>('0' + v % 10);
+    std::size_t at = std::strlen(path);
+    while (n > 0) path[at++] = digits[--n];
+    const char tail[] = "/children";
+    for (const char* c = tail; *c; ++c) path[at++] = *c;
+    path[at] = '\0';
+  }
+  for (;;) {
+    const int fd = open(path, O_RDONLY | O_CLOEXEC);
+    if (fd >= 0) {
+      char buffer[4096];
+      const ssize_t n = read(fd, buffer, sizeof buffer - 1);
+      close(fd);
+      long pid = 0;
+      for (ssize_t k = 0; k <= n && n > 0; ++k) {
+        if (k < n && buffer[k] >= '0' && buffer[k] <= '9') {
+          pid = pid * 10 + (buffer[k] - '0');
+        } else {
+          if (pid > 1) kill(static_cast<pid_t>(pid), SIGKILL);
+          pid = 0;
+        }
+      }
+    }
+    int status = 0;
+    if (waitpid(-1, &status, 0) < 0 && errno == ECHILD) return;
+  }
+}
+
+// The rlimits fallback's process between the grader and the student program: pid 1 of a new pid
+// namespace (`in_namespace`) or a child subreaper. It starts the student program, reaps it and
+// whatever was reparented to it, passes the student's status on, and leaves nothing behind: in a
+// namespace the kernel kills the rest when pid 1 exits; as a subreaper it kills them itself.
+[[noreturn]] void superviseChild(const ExecArgs& exec, int stdin_fd, int stdout_fd, int stderr_fd,
+                                 int answer_fd, const ExecLimits& how, bool in_namespace) {
+  setpgid(0, 0);
+  prctl(PR_SET_PDEATHSIG, SIGKILL);  // the grader gone: so is the supervisor (and its namespace)
+  if (!in_namespace) prctl(PR_SET_CHILD_SUBREAPER, 1);
+  struct sigaction action {};
+  action.sa_handler = stopStudent;
+  sigaction(SIGTERM, &action, nullptr);
+  const pid_t student = fork();
+  if (student < 0) _exit(kSupervisorForkFailed);
+  if (student == 0) {
+    signal(SIGTERM, SIG_DFL);
+    execChild(exec, stdin_fd, stdout_fd, stderr_fd, answer_fd, -1, how);
+  }
+  supervised_student = student;
+  // Only the student holds the answer pipe and the output files: the grader sees the end of the
+  // answer when the student's whole tree is gone, not when we are.
+  for (int fd = 0; fd < 1024; ++fd) close(fd);
+  int status = 0;
+  for (;;) {
+    const pid_t done = waitpid(-1, &status, 0);
+    if (done == student) break;
+    if (done < 0 && errno != EINTR) _exit(kSupervisorForkFailed);
+  }
+  supervised_student = 0;
+  if (!in_namespace) killInherited();
+  exitLike(status);
+}
+
 // The sandbox's first process (bubblewrap's pid 1 of the new pid namespace), pinned by a pidfd,
 // once bubblewrap has reported it and only if it really is in the reported namespace.
 struct SandboxInit {
@@ -174,6 +264,27 @@ struct SandboxInit {
     pidfd = -1;
   }
 };
+
+// SIGKILL to the process group `pid` leads and to `pid`: never for a pid <= 1 (kill(-1) signals
+// every process we may signal; kill(0) our own group).
+void killGroup(pid_t pid) {
+  if (pid <= 1) return;
+  kill(-pid, SIGKILL);
+  kill(pid, SIGKILL);
+}
+
+// A wall timeout in the rlimits fallback: SIGTERM lets the supervisor kill the student and reap
+// (and, as a subreaper, kill) what it left; SIGKILL after 2 s if it does not finish.
+// True when it exited (and was reaped, `status` set): its pid must not be signalled again.
+bool stopSupervisor(pid_t pid, int& status) {
+  if (pid <= 1) return false;
+  kill(pid, SIGTERM);
+  for (int k = 0; k < 200; ++k) {
+    if (waitpid(pid, &status, WNOHANG) == pid) return true;
+    usleep(10000);
+  }
+  return false;
+}
 
 void readAvailable(int fd, std::string& into) {
   char buffer[4096];
@@ -208,6 +319,9 @@ std::string ChildRun::describe() const {
     case ChildStatus::NoAnswer:
       out << "exited without sending the probe results";
       break;
+    case ChildStatus::NotStarted:
+      out << "could not be started by the grader (a grader error, not the student's)";
+      break;
   }
   return out.str();
 }
@@ -227,6 +341,8 @@ std::string ChildRun::verdict() const {
       return "exited-non-zero";
     case ChildStatus::NoAnswer:
       return "no-answer";
+    case ChildStatus::NotStarted:
+      return "grader-error";
     case ChildStatus::Crashed:
       break;
   }
@@ -287,11 +403,33 @@ ChildRun runChildOnce(const std::vector<std::string>& command,
   }
   const ExecArgs exec(argv, run_dir);
   const ExecLimits how{&limits, 0, isolation.uid};
-  const pid_t pid = fork();
-  if (pid == 0)
-    execChild(exec, in_fd, out_fd, err_fd, expect_answer ? pipe_fds[1] : -1, info_fds[1], how);
+  // The rlimits fallback puts a supervisor between us and the student (superviseChild).
+  const bool supervised = !boxed && isolation.kind == IsolationKind::Rlimits &&
+                          isolation.containment != Containment::None;
+  bool in_namespace = supervised && isolation.containment == Containment::PidNamespace;
+  pid_t pid = -1;
+  if (in_namespace) {
+    pid = static_cast<pid_t>(syscall(SYS_clone, CLONE_NEWPID | SIGCHLD, 0, 0, 0, 0));
+    if (pid < 0 && (errno == EPERM || errno == EINVAL || errno == ENOSPC)) in_namespace = false;
+  }
+  if (!in_namespace) pid = fork();
+  const int answer_fd = expect_answer ? pipe_fds[1] : -1;
+  if (pid == 0) {
+    if (supervised) superviseChild(exec, in_fd, out_fd, err_fd, answer_fd, how, in_namespace);
+    execChild(exec, in_fd, out_fd, err_fd, answer_fd, info_fds[1], how);
+  }
+  const int fork_error = errno;
   for (int fd : {in_fd, out_fd, err_fd, pipe_fds[1], info_fds[1]})
     if (fd >= 0) close(fd);
+  if (pid < 0) {
+    // No process: nothing to wait for or kill (a kill(-1) would signal every process we may).
+    for (int fd : {pipe_fds[0], info_fds[0]})
+      if (fd >= 0) close(fd);
+    run.status = ChildStatus::NotStarted;
+    run.stderr_head =
+        std::string("grader: cannot start the child (fork: ") + std::strerror(fork_error) + ")\n";
+    return run;
+  }
   setpgid(pid, pid);  // also done in the child; whichever runs first wins the race harmlessly
 
   std::string answer, info;
@@ -338,15 +476,17 @@ ChildRun runChildOnce(const std::vector<std::string>& command,
   }
   if (timed_out) {
     sandbox.killAndWait();
-    kill(-pid, SIGKILL);
-    kill(pid, SIGKILL);
-    waitpid(pid, &status, 0);
+    if (!(supervised && stopSupervisor(pid, status))) {
+      killGroup(pid);
+      waitpid(pid, &status, 0);
+    }
     run.status = ChildStatus::TimedOut;
   } else {
-    sandbox.killAndWait();  // normally gone already: bubblewrap exits after its sandbox
-    kill(-pid, SIGKILL);    // any grandchildren left behind
-    // bubblewrap reports a child killed by signal S as exit code 128 + S.
-    if (boxed && WIFEXITED(status) && WEXITSTATUS(status) > 128 && WEXITSTATUS(status) < 160) {
+    sandbox.killAndWait();             // normally gone already: bubblewrap exits after its sandbox
+    if (pid > 1) kill(-pid, SIGKILL);  // any grandchildren left in the group (pid is reaped)
+    // bubblewrap and our supervisor report a child killed by signal S as exit code 128 + S.
+    if ((boxed || supervised) && WIFEXITED(status) && WEXITSTATUS(status) > 128 &&
+        WEXITSTATUS(status) < 160) {
       run.status = ChildStatus::Crashed;
       run.signal = WEXITSTATUS(status) - 128;
     } else if (WIFSIGNALED(status)) {
@@ -372,6 +512,7 @@ ChildRun runChildOnce(const std::vector<std::string>& command,
 // of the uid, all runs together) are held by another run, e.g. a fork bomb waiting for its
 // timeout: bubblewrap cannot clone, or our execve after the uid drop fails with EAGAIN.
 bool couldNotStart(const ChildRun& run) {
+  if (run.status == ChildStatus::NotStarted) return true;  // fork failed: EAGAIN, ENOMEM
   if (run.status != ChildStatus::ExitedNonZero || (run.exit_code != 1 && run.exit_code != 127))
     return false;
   return run.stderr_head.rfind("clothref-grader: cannot start", 0) == 0 ||
@@ -442,8 +583,15 @@ std::vector<ToolRun> runTools(const std::vector<std::vector<std::string>>& comma
       const ExecLimits how{nullptr, wall_seconds, -1};
       const pid_t pid = fork();
       if (pid == 0) execChild(exec, in_fd, log_fd, log_fd, -1, -1, how);
+      const int fork_error = errno;
       close(in_fd);
       close(log_fd);
+      if (pid < 0) {
+        results[next].output = std::string("grader: cannot start the tool (fork: ") +
+                               std::strerror(fork_error) + ")\n";
+        ++next;
+        continue;
+      }
       setpgid(pid, pid);
       running.push_back({pid, next, Clock::now()});
       ++next;
@@ -454,7 +602,7 @@ std::vector<ToolRun> runTools(const std::vector<std::vector<std::string>>& comma
       const bool late = secondsSince(running[r].start) > wall_seconds;
       if (done == running[r].pid || late) {
         if (late && done != running[r].pid) {
-          kill(-running[r].pid, SIGKILL);
+          killGroup(running[r].pid);
           waitpid(running[r].pid, &status, 0);
         }
         ToolRun& result = results[running[r].index];

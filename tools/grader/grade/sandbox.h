@@ -16,8 +16,19 @@ enum class IsolationKind {
   Bubblewrap  // all of Rlimits, inside bubblewrap
 };
 
+// How the rlimits fallback makes sure no student process outlives its run (bubblewrap has its own
+// pid namespace). Every run gets a supervisor of ours between the grader and the student program.
+enum class Containment {
+  None,          // the student program is the grader's direct child (IsolationKind::None)
+  PidNamespace,  // the supervisor is pid 1 of a new pid namespace: when it exits, the kernel
+                 // kills every process left in it, detached (setsid, double fork) or not
+  Subreaper      // no pid namespace allowed: the supervisor is a child subreaper, so orphans
+                 // become its children, and it kills and reaps all of them before it exits
+};
+
 struct Isolation {
   IsolationKind kind = IsolationKind::None;
+  Containment containment = Containment::None;  // for IsolationKind::Rlimits
   int uid = -1;                    // uid and gid to run as (65534 when root); -1 = unchanged
   std::string bwrap;               // bubblewrap executable (Bubblewrap only)
   std::string why_not_bubblewrap;  // why the detection fell back, for the description
