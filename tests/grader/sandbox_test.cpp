@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 
@@ -195,6 +196,58 @@ INSTANTIATE_TEST_SUITE_P(Modes, FallbackContainment,
                            return info.param == Containment::PidNamespace ? "PidNamespace"
                                                                           : "Subreaper";
                          });
+
+// A whole grade in each isolation mode: the reference, with a static initialiser in cloth.cpp
+// that forks, setsid()s, double-forks and leaves a `sleep` behind in every probe process. The
+// grade is full marks (the daemon holds nothing open that the grader waits for) and afterwards no
+// process of it is left on the machine.
+class GradeIsolation : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(GradeIsolation, ADaemonFromAStaticInitialiserDoesNotOutliveTheGrade) {
+  const std::string mode = GetParam();
+  setenv("CLOTHREF_GRADER_ISOLATION", mode.c_str(), 1);
+  if (mode == "bubblewrap") {
+    setenv("CLOTHREF_GRADER_ISOLATION", "auto", 1);
+    if (detectIsolation().kind != IsolationKind::Bubblewrap)
+      GTEST_SKIP() << "bubblewrap cannot make namespaces here: " << detectIsolation().describe();
+  }
+  test::TempDir temp;
+  const fs::path reference = fs::path(CLOTHREF_SOURCE_DIR) / "tools/grader/reference/2022";
+  const fs::path submission = temp.path() / "daemon";
+  fs::create_directories(submission);
+  for (const char* file : {"sphere.cpp", "integrator.cpp"})
+    fs::copy_file(reference / file, submission / file);
+  const std::string marker = mode == "bubblewrap" ? "31.0601" : "31.0602";
+  test::writeText(submission / "cloth.cpp",
+                  test::readText(reference / "cloth.cpp") +
+                      "\n#include <unistd.h>\n"
+                      "static const int daemon_started = [] {\n"
+                      "  if (fork() == 0) {\n"
+                      "    setsid();\n"
+                      "    if (fork() == 0) {\n"
+                      "      if (fork() == 0) execl(\"/bin/sleep\", \"sleep\", \"" +
+                      marker +
+                      "\", (char*)nullptr);\n"
+                      "      _exit(0);\n"
+                      "    }\n"
+                      "    _exit(0);\n"
+                      "  }\n"
+                      "  return 0;\n"
+                      "}();\n");
+  const test::CommandResult run = test::runCli(
+      "grade '" + submission.string() + "' --results '" + temp.file("r.json") +
+      "' --no-whole-run --timeout 10 --cache-dir '" + std::string(CLOTHREF_GRADER_CACHE) + "'");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const nlohmann::json results = nlohmann::json::parse(test::readText(temp.file("r.json")));
+  EXPECT_EQ(results["extra_data"]["verdict"], "graded") << results["output"];
+  EXPECT_EQ(results["score"].get<double>(), 80.0) << results["output"];
+  EXPECT_EQ(results["extra_data"]["isolation"].get<std::string>().rfind(
+                mode == "bubblewrap" ? "bubblewrap" : "rlimits", 0),
+            0u);
+  EXPECT_EQ(processesWith(std::string("sleep\0", 6) + marker), 0);  // argv: sleep MARKER
+}
+
+INSTANTIATE_TEST_SUITE_P(Modes, GradeIsolation, ::testing::Values("rlimits", "bubblewrap"));
 
 TEST(Bubblewrap, NoNetworkOwnPidsAndNothingButUsr) {
   test::TempDir temp;

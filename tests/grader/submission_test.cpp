@@ -9,6 +9,7 @@
 
 #include <chrono>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "clothref/io/error.h"
 #include "test_util.h"
@@ -179,6 +180,64 @@ TEST(FindSubmissionFiles, ControlCharactersInNamesAreEscaped) {
   const std::string notes = allNotes(findSubmissionFiles(temp.path()));
   EXPECT_EQ(notes.find('\x1b'), std::string::npos) << notes;
   EXPECT_NE(notes.find("a\\x1B[31mred/cloth.cpp"), std::string::npos) << notes;
+}
+
+// Through the CLI, single grade and batch: a submission whose files are links to a host file the
+// test made, /etc/passwd and our own reference gets none of them read: no byte of them in any
+// output, the three files refused and missing (0 points, not the reference's 80).
+TEST(GradeThroughTheCli, LinkedFilesAreRefusedInASingleGradeAndInABatch) {
+  test::TempDir temp;
+  write(temp.path() / "host" / "secret.cpp", "SECRET-HOST-BYTES-4711\n");
+  const fs::path submission = temp.path() / "linked";
+  fs::create_directories(submission / "src");
+  fs::create_symlink(temp.path() / "host" / "secret.cpp", submission / "src" / "cloth.cpp");
+  fs::create_symlink("/etc/passwd", submission / "sphere.cpp");
+  fs::create_symlink(fs::path(CLOTHREF_SOURCE_DIR) / "tools/grader/reference/2022/integrator.cpp",
+                     submission / "integrator.cpp");
+  const std::string common =
+      " --no-whole-run --timeout 10 --cache-dir '" + std::string(CLOTHREF_GRADER_CACHE) + "'";
+  const test::CommandResult single = test::runCli(
+      "grade '" + submission.string() + "' --results '" + temp.file("r.json") + "' --junit '" +
+      temp.file("j.xml") + "' --report '" + temp.file("r.md") + "'" + common);
+  // Nothing found at all: not gradable, one line, nothing written.
+  EXPECT_EQ(single.exit_code, 2) << single.output;
+  EXPECT_NE(single.output.find("none of cloth.cpp, sphere.cpp, integrator.cpp found"),
+            std::string::npos)
+      << single.output;
+  EXPECT_FALSE(fs::exists(temp.file("r.json")));
+  // With one real file the others are refused, named and graded as missing.
+  write(submission / "extra" / "sphere.cpp",
+        test::readText(fs::path(CLOTHREF_SOURCE_DIR) / "tools/grader/reference/2022/sphere.cpp"));
+  const test::CommandResult graded = test::runCli(
+      "grade '" + submission.string() + "' --results '" + temp.file("r.json") + "' --junit '" +
+      temp.file("j.xml") + "' --report '" + temp.file("r.md") + "'" + common);
+  ASSERT_EQ(graded.exit_code, 0) << graded.output;
+  const test::CommandResult batch = test::runCli("grade '" + submission.string() + "' --out '" +
+                                                 temp.file("batch") + "' --quiet" + common);
+  ASSERT_EQ(batch.exit_code, 0) << batch.output;
+  const std::string passwd_line = test::readText("/etc/passwd").substr(0, 12);
+  for (const std::string& file :
+       {temp.file("r.json"), temp.file("j.xml"), temp.file("r.md"),
+        temp.file("batch/linked/results.json"), temp.file("batch/linked/report.md"),
+        temp.file("batch/linked/row.json"), temp.file("batch/grades.csv")}) {
+    const std::string text = test::readText(file);
+    ASSERT_FALSE(text.empty()) << file;
+    EXPECT_EQ(text.find("SECRET-HOST-BYTES"), std::string::npos) << file;
+    EXPECT_EQ(text.find(passwd_line), std::string::npos) << file;
+  }
+  for (const std::string& file : {temp.file("r.json"), temp.file("batch/linked/results.json")}) {
+    const nlohmann::json results = nlohmann::json::parse(test::readText(file));
+    const std::string output = results["output"].get<std::string>();
+    EXPECT_NE(output.find("cloth.cpp: refused src/cloth.cpp: a symbolic link"), std::string::npos)
+        << output;
+    EXPECT_NE(output.find("integrator.cpp: refused integrator.cpp: a symbolic link"),
+              std::string::npos)
+        << output;
+    const auto& scores = results["extra_data"]["stub_scores"];
+    EXPECT_EQ(scores["RungeKuttaFourth::integrate"].get<double>(), 0.0) << scores;
+    EXPECT_EQ(scores["Cloth::computeSpringForce"].get<double>(), 0.0) << scores;
+    EXPECT_GT(scores["Spheres::collide(Cloth*)"].get<double>(), 0.0) << scores;
+  }
 }
 
 TEST(DetectEdition, FromTheDefinitionsNotFromComments) {
