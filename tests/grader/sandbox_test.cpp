@@ -84,8 +84,12 @@ TEST(Isolation, DescriptionsSayWhatRan) {
   isolation.why_not_bubblewrap = "bwrap not installed";
   isolation.containment = Containment::PidNamespace;
   EXPECT_EQ(isolation.describe(),
-            "rlimits, uid 65534, private working directory, own pid namespace per run; no "
-            "bubblewrap (bwrap not installed)");
+            "rlimits, uid 65534, private working directory, own pid namespace per run; compiles "
+            "with the grader's uid (the host is readable); no bubblewrap (bwrap not installed)");
+  isolation.tool_uid = kToolUid;
+  EXPECT_NE(isolation.describe().find("; compiles as uid 65533 in a private mount namespace;"),
+            std::string::npos)
+      << isolation.describe();
   isolation.containment = Containment::Subreaper;
   EXPECT_NE(isolation.describe().find("a subreaper that kills what a run leaves behind"),
             std::string::npos);

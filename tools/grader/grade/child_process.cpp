@@ -3,7 +3,9 @@
 #include <fcntl.h>
 #include <grp.h>
 #include <poll.h>
+#include <sched.h>
 #include <signal.h>
+#include <sys/mount.h>
 #include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
@@ -89,7 +91,21 @@ struct ExecLimits {
   const ChildLimits* limits = nullptr;  // nullptr: tool limits below
   double tool_seconds = 0;
   int uid = -1;
+  // A compile in the fallback: a private mount namespace where these folders are covered by an
+  // empty read-only tmpfs (built before fork: no allocation after it).
+  bool new_mount_namespace = false;
+  std::vector<std::string> hide;
 };
+
+// Covers `hide` in a private mount namespace (root only, before the uid drop); where unshare is
+// not allowed the compile still runs, with the uid drop alone.
+void hideFolders(const ExecLimits& how) {
+  if (!how.new_mount_namespace || unshare(CLONE_NEWNS) != 0) return;
+  if (mount("none", "/", nullptr, MS_REC | MS_PRIVATE, nullptr) != 0) return;
+  for (const std::string& folder : how.hide)
+    mount("tmpfs", folder.c_str(), "tmpfs", MS_RDONLY | MS_NOSUID | MS_NODEV | MS_NOEXEC,
+          "size=4k,mode=0555");
+}
 
 [[noreturn]] void execChild(const ExecArgs& exec, int stdin_fd, int stdout_fd, int stderr_fd,
                             int answer_fd, int info_fd, const ExecLimits& how) {
@@ -122,10 +138,15 @@ struct ExecLimits {
     setLimit(RLIMIT_FSIZE, kToolFileSize);
   }
   setLimit(RLIMIT_CORE, 0);
+  hideFolders(how);
   if (how.uid >= 0) {
     // Groups first, then gid, then uid: after setresuid we could not change the others.
     const auto id = static_cast<uid_t>(how.uid);
-    if (setgroups(0, nullptr) != 0 || setresgid(id, id, id) != 0 || setresuid(id, id, id) != 0)
+    // Raw system calls: glibc's wrappers signal every thread glibc believes exists and wait for
+    // them, and after the raw clone of the fallback's supervisor it still believes in the
+    // grader's threads (a wait that never ends). This process has one thread.
+    if (syscall(SYS_setgroups, 0, nullptr) != 0 || syscall(SYS_setresgid, id, id, id) != 0 ||
+        syscall(SYS_setresuid, id, id, id) != 0)
       _exit(125);
   }
   prctl(PR_SET_NO_NEW_PRIVS, 1, 0, 0, 0);  // no set-uid program gives the privileges back
@@ -212,7 +233,9 @@ void killInherited() {
   struct sigaction action {};
   action.sa_handler = stopStudent;
   sigaction(SIGTERM, &action, nullptr);
-  const pid_t student = fork();
+  // A raw clone, not glibc's fork(): in a child of a threaded grader, fork() would wait for the
+  // malloc and stdio locks that other threads held when we were cloned, forever.
+  const pid_t student = static_cast<pid_t>(syscall(SYS_clone, SIGCHLD, 0, 0, 0, 0));
   if (student < 0) _exit(kSupervisorForkFailed);
   if (student == 0) {
     signal(SIGTERM, SIG_DFL);
@@ -520,6 +543,36 @@ bool couldNotStart(const ChildRun& run) {
           run.stderr_head.find("Resource temporarily unavailable") != std::string::npos);
 }
 
+// The fallback's confinement of one compile or link (docs/grading.md, "Sandbox"): as root, the
+// tool uid and a private mount namespace hiding the grader's folders the command does not name;
+// a command writing outside `work_dir` (the precompiled header into the cache) compiles only our
+// header and keeps the grader's uid.
+void confineTool(const Isolation& isolation, const std::vector<std::string>& command,
+                 const std::filesystem::path& work_dir, ExecLimits& how) {
+  if (isolation.tool_uid < 0) return;
+  const auto under = [](const std::filesystem::path& path, const std::filesystem::path& root) {
+    const std::string p = path.lexically_normal().string(), r = root.lexically_normal().string();
+    return p == r || (p.size() > r.size() && p.compare(0, r.size(), r) == 0 && p[r.size()] == '/');
+  };
+  for (std::size_t k = 0; k + 1 < command.size(); ++k)
+    if (command[k] == "-o" && !under(command[k + 1], work_dir)) return;
+  // The tool uid writes its objects into the scratch folder, nowhere else.
+  if (chown(work_dir.c_str(), static_cast<uid_t>(isolation.tool_uid),
+            static_cast<gid_t>(isolation.tool_uid)) != 0)
+    return;
+  how.uid = isolation.tool_uid;
+  how.new_mount_namespace = true;
+  for (const std::filesystem::path& folder : isolation.hidden) {
+    if (folder.empty() || under(work_dir, folder)) continue;
+    bool named = false;
+    for (std::size_t k = 1; k < command.size() && !named; ++k) {
+      const std::string arg = command[k].rfind("-I", 0) == 0 ? command[k].substr(2) : command[k];
+      named = !arg.empty() && arg[0] == '/' && (under(arg, folder) || under(folder, arg));
+    }
+    if (!named) how.hide.push_back(folder.lexically_normal().string());
+  }
+}
+
 }  // namespace
 
 ChildRun runChild(const std::vector<std::string>& command, const std::filesystem::path& work_dir,
@@ -580,7 +633,9 @@ std::vector<ToolRun> runTools(const std::vector<std::vector<std::string>>& comma
       const ExecArgs exec(
           boxed ? bubblewrapToolArgv(*isolation, commands[next], work_dir) : commands[next],
           work_dir);
-      const ExecLimits how{nullptr, wall_seconds, -1};
+      ExecLimits how{nullptr, wall_seconds, -1};
+      if (isolation && isolation->kind == IsolationKind::Rlimits)
+        confineTool(*isolation, commands[next], work_dir, how);
       const pid_t pid = fork();
       if (pid == 0) execChild(exec, in_fd, log_fd, log_fd, -1, -1, how);
       const int fork_error = errno;

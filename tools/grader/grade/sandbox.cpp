@@ -76,6 +76,7 @@ Isolation detect() {
   Isolation isolation;
   isolation.kind = IsolationKind::Rlimits;
   isolation.uid = geteuid() == 0 ? kNobodyUid : -1;
+  isolation.tool_uid = geteuid() == 0 ? kToolUid : -1;
   isolation.containment =
       canMakePidNamespace() ? Containment::PidNamespace : Containment::Subreaper;
   if (forced == "rlimits") {
@@ -123,6 +124,10 @@ std::string Isolation::describe() const {
              (containment == Containment::PidNamespace
                   ? "own pid namespace per run"
                   : "a subreaper that kills what a run leaves behind") +
+             (tool_uid >= 0
+                  ? "; compiles as uid " + std::to_string(tool_uid) +
+                        " in a private mount namespace"
+                  : std::string("; compiles with the grader's uid (the host is readable)")) +
              "; no bubblewrap (" + why_not_bubblewrap + ")";
     case IsolationKind::None:
       break;

@@ -29,9 +29,12 @@ enum class Containment {
 struct Isolation {
   IsolationKind kind = IsolationKind::None;
   Containment containment = Containment::None;  // for IsolationKind::Rlimits
-  int uid = -1;                    // uid and gid to run as (65534 when root); -1 = unchanged
-  std::string bwrap;               // bubblewrap executable (Bubblewrap only)
-  std::string why_not_bubblewrap;  // why the detection fell back, for the description
+  int uid = -1;  // uid and gid to run as (65534 when root); -1 = unchanged
+  // Rlimits: uid and gid of compiles and links (kToolUid when root, -1 = the grader's, which can
+  // read the host), in a private mount namespace hiding `hidden` except what a command names.
+  int tool_uid = -1;
+  std::string bwrap;                          // bubblewrap executable (Bubblewrap only)
+  std::string why_not_bubblewrap;             // why the detection fell back, for the description
   std::vector<std::filesystem::path> hidden;  // covered with an empty tmpfs if visible in the box
   // Short exact description for GradeReport::isolation, e.g. "bubblewrap (new net, pid, mount,
   // ipc, uts namespaces; only /usr visible), uid 65534, rlimits".
@@ -39,6 +42,9 @@ struct Isolation {
 };
 
 inline constexpr int kNobodyUid = 65534;
+// Compiles and links in the fallback: not the probes' uid, so no student process can write into
+// a scratch folder or replace a probe executable.
+inline constexpr int kToolUid = 65533;
 
 // The isolation for this grader process: probes bubblewrap once (same uid drop and flags as a
 // real run, command /bin/true) and caches the answer. Throws InputError for an unknown
