@@ -1,7 +1,12 @@
-// Quoting the compiler: the first error with its context, without scratch paths.
+// Quoting the compiler: the first error with its context, without scratch paths. The object
+// cache's key: another compiler version or another isolation is another object.
 #include "grader/grade/build.h"
 
 #include <gtest/gtest.h>
+
+#include <set>
+
+#include "test_util.h"
 
 namespace clothref::grader {
 namespace {
@@ -27,6 +32,39 @@ TEST(FirstCompilerError, LinkErrors) {
       "cloth.cpp");
   EXPECT_NE(quote.find("undefined reference to `Cloth::computeNormal()'"), std::string::npos)
       << quote;
+}
+
+// An object compiled unconfined may hold host bytes (`.incbin "/etc/shadow"`): a confined run
+// must never reuse it; nor may a run with another compiler version reuse another's objects.
+TEST(ObjectCachePath, DependsOnTheIsolationAndTheCompilerVersion) {
+  test::TempDir temp;
+  test::writeText(temp.path() / "a.cpp", "int a;\n");
+  for (const char* version : {"1", "2"}) {
+    const std::filesystem::path compiler = temp.path() / (std::string("cc-") + version);
+    test::writeText(compiler, std::string("#!/bin/sh\necho fake compiler ") + version + "\n");
+    std::filesystem::permissions(compiler, std::filesystem::perms::owner_all);
+  }
+  CourseToolchain toolchain = defaultToolchain();
+  toolchain.cache_dir = temp.path() / "cache";
+  toolchain.compiler = (temp.path() / "cc-1").string();
+  // The same command line (the cache hashes its flags): only the version query tells them apart.
+  const std::vector<std::string> command = {"cc", "-O2", "-c", (temp.path() / "a.cpp").string(),
+                                            "-o", "a.o"};
+  const auto key = [&] {
+    return objectCachePath(toolchain, command, temp.path() / "a.cpp", temp.path());
+  };
+  const std::filesystem::path none = key();
+  EXPECT_EQ(key(), none);  // a key, not a random name
+  toolchain.isolation.kind = IsolationKind::Rlimits;
+  const std::filesystem::path rlimits = key();
+  toolchain.isolation.tool_uid = kToolUid;
+  const std::filesystem::path confined = key();
+  toolchain.isolation.kind = IsolationKind::Bubblewrap;
+  const std::filesystem::path boxed = key();
+  toolchain.compiler = (temp.path() / "cc-2").string();
+  const std::filesystem::path other_compiler = key();
+  const std::set<std::filesystem::path> keys = {none, rlimits, confined, boxed, other_compiler};
+  EXPECT_EQ(keys.size(), 5u);
 }
 
 }  // namespace

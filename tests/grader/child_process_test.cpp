@@ -106,5 +106,45 @@ TEST(RunTools, CompilesHaveTimeAndMemoryLimits) {
   EXPECT_NE(slow[0].output.find("stopped after"), std::string::npos);
 }
 
+// In the fallback (no bubblewrap) a compile runs as the tool uid in a private mount namespace:
+// `.incbin` of a host file only root may read fails, and so does an #include from one of the
+// grader's hidden folders (our reference) the command does not name. Without the confinement the
+// same two commands compile, so the test sees the difference.
+TEST(RunTools, FallbackCompilesCannotReadHostFilesNorHiddenFolders) {
+  if (geteuid() != 0) GTEST_SKIP() << "the compile uid drop needs root";
+  test::TempDir temp;
+  const fs::path secret = temp.path() / "secret.txt";
+  test::writeText(secret, "SECRET-HOST-BYTES\n");
+  fs::permissions(secret, fs::perms::owner_read | fs::perms::owner_write);
+  const fs::path hidden = temp.path() / "reference";
+  fs::create_directories(hidden);
+  test::writeText(hidden / "ref.h", "int reference_value = 1;\n");
+  const fs::path work = temp.path() / "work";
+  fs::create_directories(work);
+  test::writeText(work / "incbin.cpp", "asm(\".incbin \\\"" + secret.string() + "\\\"\");\n");
+  test::writeText(work / "include.cpp", "#include \"" + (hidden / "ref.h").string() + "\"\n");
+  const std::vector<std::vector<std::string>> commands = {
+      {"g++", "-c", (work / "incbin.cpp").string(), "-o", (work / "incbin.o").string()},
+      {"g++", "-c", (work / "include.cpp").string(), "-o", (work / "include.o").string()}};
+  const auto open = runTools(commands, work, 2, 60);
+  ASSERT_EQ(open.size(), 2u);
+  EXPECT_TRUE(open[0].ok) << open[0].output;
+  EXPECT_TRUE(open[1].ok) << open[1].output;
+  Isolation isolation;
+  isolation.kind = IsolationKind::Rlimits;
+  isolation.tool_uid = kToolUid;
+  isolation.hidden = {hidden};
+  fs::remove(work / "incbin.o");
+  fs::remove(work / "include.o");
+  const auto confined = runTools(commands, work, 2, 60, &isolation);
+  ASSERT_EQ(confined.size(), 2u);
+  EXPECT_FALSE(confined[0].ok);
+  // The assembler says "file not found" for a file it may not open.
+  EXPECT_NE(confined[0].output.find("secret.txt"), std::string::npos) << confined[0].output;
+  EXPECT_FALSE(confined[1].ok);
+  EXPECT_NE(confined[1].output.find("No such file"), std::string::npos) << confined[1].output;
+  EXPECT_FALSE(fs::exists(work / "incbin.o"));
+}
+
 }  // namespace
 }  // namespace clothref::grader

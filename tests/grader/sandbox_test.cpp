@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 
@@ -81,8 +82,17 @@ TEST(Isolation, DescriptionsSayWhatRan) {
   isolation.kind = IsolationKind::Rlimits;
   isolation.uid = 65534;
   isolation.why_not_bubblewrap = "bwrap not installed";
+  isolation.containment = Containment::PidNamespace;
   EXPECT_EQ(isolation.describe(),
-            "rlimits, uid 65534, private working directory; no namespaces (bwrap not installed)");
+            "rlimits, uid 65534, private working directory, own pid namespace per run; compiles "
+            "with the grader's uid (the host is readable); no bubblewrap (bwrap not installed)");
+  isolation.tool_uid = kToolUid;
+  EXPECT_NE(isolation.describe().find("; compiles as uid 65533 in a private mount namespace;"),
+            std::string::npos)
+      << isolation.describe();
+  isolation.containment = Containment::Subreaper;
+  EXPECT_NE(isolation.describe().find("a subreaper that kills what a run leaves behind"),
+            std::string::npos);
   isolation.kind = IsolationKind::Bubblewrap;
   EXPECT_EQ(isolation.describe().rfind("bubblewrap (new user, net, pid, mount", 0), 0u);
 }
@@ -102,11 +112,12 @@ TEST(DetectIsolation, AnUnknownValueIsRefused) {
 }
 
 ChildRun runIsolated(const test::TempDir& temp, IsolationKind kind, const std::string& script,
-                     double wall = 5) {
+                     double wall = 5, Containment containment = Containment::None) {
   test::writeText(temp.file("in"), "");
   ChildLimits limits;
   limits.wall_seconds = wall;
   limits.isolation.kind = kind;
+  limits.isolation.containment = containment;
   limits.isolation.uid = geteuid() == 0 ? kNobodyUid : -1;
   if (kind == IsolationKind::Bubblewrap) {
     setenv("CLOTHREF_GRADER_ISOLATION", "auto", 1);
@@ -129,6 +140,118 @@ TEST(Fallback, RunsAsNobodyInItsOwnFolderWithAProcessLimit) {
             "65534\n" + (temp.path() / "sandbox").string() + "\n64\ndenied\n");
   EXPECT_FALSE(fs::exists(temp.path() / "outside"));
 }
+
+// Processes whose command line holds `marker`, anywhere on the machine.
+int processesWith(const std::string& marker) {
+  int alive = 0;
+  std::error_code error;
+  for (const auto& entry : fs::directory_iterator("/proc", error)) {
+    std::ifstream in(entry.path() / "cmdline", std::ios::binary);
+    std::string cmdline((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (cmdline.find(marker) != std::string::npos) ++alive;
+  }
+  return alive;
+}
+
+// What the fallback can do here: a pid namespace needs root (or unprivileged user namespaces).
+bool canUse(Containment containment) {
+  if (containment == Containment::Subreaper) return true;
+  setenv("CLOTHREF_GRADER_ISOLATION", "rlimits", 1);
+  return detectIsolation().containment == Containment::PidNamespace;
+}
+
+class FallbackContainment : public ::testing::TestWithParam<Containment> {};
+
+// A detached grandchild (setsid, then a double fork) of a run that ends normally, and of one that
+// times out, is gone when runChild returns: nothing of a run outlives it.
+TEST_P(FallbackContainment, NoDetachedProcessOutlivesItsRun) {
+  if (!canUse(GetParam())) GTEST_SKIP() << "no pid namespace here (needs root)";
+  test::TempDir temp;
+  const std::string marker = GetParam() == Containment::PidNamespace ? "27.1801" : "27.1802";
+  const std::string daemon =
+      "setsid sh -c '(sleep " + marker + " &); sleep " + marker + "' >/dev/null 2>&1 &";
+  const ChildRun finished =
+      runIsolated(temp, IsolationKind::Rlimits, daemon + " echo started", 10, GetParam());
+  EXPECT_EQ(finished.status, ChildStatus::Ok) << finished.describe() << finished.stderr_head;
+  EXPECT_LT(finished.seconds, 5);  // the detached ones do not hold the run open either
+  EXPECT_EQ(processesWith("sleep " + marker), 0);
+  const ChildRun stuck =
+      runIsolated(temp, IsolationKind::Rlimits, daemon + " sleep " + marker, 0.5, GetParam());
+  EXPECT_EQ(stuck.status, ChildStatus::TimedOut);
+  EXPECT_EQ(processesWith("sleep " + marker), 0);
+}
+
+// The student's exit code and signal come through the supervisor unchanged.
+TEST_P(FallbackContainment, VerdictsComeThroughTheSupervisor) {
+  if (!canUse(GetParam())) GTEST_SKIP() << "no pid namespace here (needs root)";
+  test::TempDir temp;
+  const ChildRun exited = runIsolated(temp, IsolationKind::Rlimits, "exit 3", 5, GetParam());
+  EXPECT_EQ(exited.status, ChildStatus::ExitedNonZero);
+  EXPECT_EQ(exited.exit_code, 3);
+  const ChildRun crashed =
+      runIsolated(temp, IsolationKind::Rlimits, "kill -SEGV $$", 5, GetParam());
+  EXPECT_EQ(crashed.status, ChildStatus::Crashed);
+  EXPECT_EQ(crashed.signal, SIGSEGV);
+}
+
+INSTANTIATE_TEST_SUITE_P(Modes, FallbackContainment,
+                         ::testing::Values(Containment::PidNamespace, Containment::Subreaper),
+                         [](const auto& info) {
+                           return info.param == Containment::PidNamespace ? "PidNamespace"
+                                                                          : "Subreaper";
+                         });
+
+// A whole grade in each isolation mode: the reference, with a static initialiser in cloth.cpp
+// that forks, setsid()s, double-forks and leaves a `sleep` behind in every probe process. The
+// grade is full marks (the daemon holds nothing open that the grader waits for) and afterwards no
+// process of it is left on the machine.
+class GradeIsolation : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(GradeIsolation, ADaemonFromAStaticInitialiserDoesNotOutliveTheGrade) {
+  const std::string mode = GetParam();
+  setenv("CLOTHREF_GRADER_ISOLATION", mode.c_str(), 1);
+  if (mode == "bubblewrap") {
+    setenv("CLOTHREF_GRADER_ISOLATION", "auto", 1);
+    if (detectIsolation().kind != IsolationKind::Bubblewrap)
+      GTEST_SKIP() << "bubblewrap cannot make namespaces here: " << detectIsolation().describe();
+  }
+  test::TempDir temp;
+  const fs::path reference = fs::path(CLOTHREF_SOURCE_DIR) / "tools/grader/reference/2022";
+  const fs::path submission = temp.path() / "daemon";
+  fs::create_directories(submission);
+  for (const char* file : {"sphere.cpp", "integrator.cpp"})
+    fs::copy_file(reference / file, submission / file);
+  const std::string marker = mode == "bubblewrap" ? "31.0601" : "31.0602";
+  test::writeText(submission / "cloth.cpp",
+                  test::readText(reference / "cloth.cpp") +
+                      "\n#include <unistd.h>\n"
+                      "static const int daemon_started = [] {\n"
+                      "  if (fork() == 0) {\n"
+                      "    setsid();\n"
+                      "    if (fork() == 0) {\n"
+                      "      if (fork() == 0) execl(\"/bin/sleep\", \"sleep\", \"" +
+                      marker +
+                      "\", (char*)nullptr);\n"
+                      "      _exit(0);\n"
+                      "    }\n"
+                      "    _exit(0);\n"
+                      "  }\n"
+                      "  return 0;\n"
+                      "}();\n");
+  const test::CommandResult run = test::runCli(
+      "grade '" + submission.string() + "' --results '" + temp.file("r.json") +
+      "' --no-whole-run --timeout 10 --cache-dir '" + std::string(CLOTHREF_GRADER_CACHE) + "'");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const nlohmann::json results = nlohmann::json::parse(test::readText(temp.file("r.json")));
+  EXPECT_EQ(results["extra_data"]["verdict"], "graded") << results["output"];
+  EXPECT_EQ(results["score"].get<double>(), 80.0) << results["output"];
+  EXPECT_EQ(results["extra_data"]["isolation"].get<std::string>().rfind(
+                mode == "bubblewrap" ? "bubblewrap" : "rlimits", 0),
+            0u);
+  EXPECT_EQ(processesWith(std::string("sleep\0", 6) + marker), 0);  // argv: sleep MARKER
+}
+
+INSTANTIATE_TEST_SUITE_P(Modes, GradeIsolation, ::testing::Values("rlimits", "bubblewrap"));
 
 TEST(Bubblewrap, NoNetworkOwnPidsAndNothingButUsr) {
   test::TempDir temp;

@@ -3,7 +3,13 @@
 
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <chrono>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "clothref/io/error.h"
 #include "test_util.h"
@@ -57,22 +63,198 @@ TEST(FindSubmissionFiles, NotADirectoryIsBadInput) {
   EXPECT_THROW(findSubmissionFiles(temp.path() / "missing"), InputError);
 }
 
+std::string allNotes(const SubmissionFiles& files) {
+  std::string notes;
+  for (const auto& note : files.notes) notes += note + "\n";
+  return notes;
+}
+
+// A symbolic link is never followed, wherever it points: to a file of the host this test
+// creates outside the submission, to /etc/passwd, or to our own reference file. It is refused
+// with a note naming it and the file counts as missing.
+TEST(FindSubmissionFiles, RefusesSymbolicLinksToHostAndReferenceFiles) {
+  test::TempDir temp;
+  const fs::path secret = temp.path() / "outside" / "secret.txt";
+  write(secret, "SECRET-HOST-BYTES\n");
+  const fs::path root = temp.path() / "submission";
+  fs::create_directories(root);
+  fs::create_symlink(secret, root / "cloth.cpp");
+  fs::create_symlink("/etc/passwd", root / "sphere.cpp");
+  const fs::path reference =
+      fs::path(CLOTHREF_SOURCE_DIR) / "tools/grader/reference/2022/integrator.cpp";
+  ASSERT_TRUE(fs::is_regular_file(reference));
+  fs::create_symlink(reference, root / "integrator.cpp");
+  const SubmissionFiles files = findSubmissionFiles(root);
+  EXPECT_TRUE(files.found.empty());
+  EXPECT_TRUE(files.bytes.empty());
+  const std::string notes = allNotes(files);
+  for (const char* name : {"cloth.cpp", "sphere.cpp", "integrator.cpp"})
+    EXPECT_NE(notes.find(std::string(name) + ": refused " + name + ": a symbolic link"),
+              std::string::npos)
+        << notes;
+  EXPECT_EQ(notes.find("SECRET"), std::string::npos);
+}
+
+// A FIFO named like a student file must not block the grader (nobody ever writes to it), and a
+// folder named cloth.cpp is not a file; the real file in a sibling folder is still found.
+TEST(FindSubmissionFiles, AFifoDoesNotHangAndAFolderIsNotAFile) {
+  test::TempDir temp;
+  const fs::path root = temp.path();
+  ASSERT_EQ(mkfifo((root / "sphere.cpp").c_str(), 0644), 0);
+  fs::create_directories(root / "cloth.cpp");
+  write(root / "src" / "integrator.cpp", "int i;\n");
+  const auto start = std::chrono::steady_clock::now();
+  const SubmissionFiles files = findSubmissionFiles(root);
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(5));
+  EXPECT_EQ(files.found.count("sphere.cpp"), 0u);
+  EXPECT_EQ(files.found.count("cloth.cpp"), 0u);
+  ASSERT_EQ(files.bytes.count("integrator.cpp"), 1u);
+  EXPECT_EQ(files.bytes.at("integrator.cpp"), "int i;\n");
+  const std::string notes = allNotes(files);
+  EXPECT_NE(notes.find("sphere.cpp: refused sphere.cpp: a FIFO"), std::string::npos) << notes;
+  EXPECT_NE(notes.find("cloth.cpp: refused cloth.cpp: a folder"), std::string::npos) << notes;
+}
+
+// A symbolic link to a folder (inside or outside the submission) is not entered: files reached
+// only through it are missing, and the link is named in a note.
+TEST(FindSubmissionFiles, DoesNotEnterASymlinkedFolder) {
+  test::TempDir temp;
+  write(temp.path() / "elsewhere" / "cloth.cpp", "int elsewhere;\n");
+  const fs::path root = temp.path() / "submission";
+  write(root / "sphere.cpp", "int s;\n");
+  fs::create_symlink(temp.path() / "elsewhere", root / "src");
+  const SubmissionFiles files = findSubmissionFiles(root);
+  EXPECT_EQ(files.found.count("cloth.cpp"), 0u);
+  EXPECT_EQ(files.found.count("sphere.cpp"), 1u);
+  const std::string notes = allNotes(files);
+  EXPECT_NE(notes.find("1 symbolic link(s) not followed: src"), std::string::npos) << notes;
+}
+
+// Both ways of opening below a folder refuse a link on the way and a way out: openat2 and the
+// per-component O_NOFOLLOW walk used where the kernel lacks openat2.
+TEST(OpenBeneath, RefusesLinksAndEscapesWithAndWithoutOpenat2) {
+  test::TempDir temp;
+  write(temp.path() / "outside.txt", "outside\n");
+  const fs::path root = temp.path() / "root";
+  write(root / "dir" / "file.cpp", "inside\n");
+  fs::create_symlink(temp.path() / "outside.txt", root / "dir" / "link.cpp");
+  fs::create_symlink(root / "dir", root / "dirlink");
+  const int root_fd = open(root.c_str(), O_RDONLY | O_DIRECTORY);
+  ASSERT_GE(root_fd, 0);
+  for (const bool openat2 : {true, false}) {
+    std::string bytes, why;
+    EXPECT_TRUE(readRegularFileBeneath(root_fd, "dir/file.cpp", 1000, bytes, why, openat2));
+    EXPECT_EQ(bytes, "inside\n");
+    EXPECT_FALSE(readRegularFileBeneath(root_fd, "dir/link.cpp", 1000, bytes, why, openat2));
+    EXPECT_NE(why.find("symbolic link"), std::string::npos) << why;
+    EXPECT_FALSE(readRegularFileBeneath(root_fd, "dirlink/file.cpp", 1000, bytes, why, openat2));
+    EXPECT_NE(why.find("symbolic link"), std::string::npos) << why;
+    EXPECT_FALSE(readRegularFileBeneath(root_fd, "../outside.txt", 1000, bytes, why, openat2));
+    EXPECT_EQ(why, "outside the submission");
+    EXPECT_FALSE(readRegularFileBeneath(root_fd, "dir/file.cpp", 3, bytes, why, openat2));
+    EXPECT_NE(why.find("larger than 3 bytes"), std::string::npos) << why;
+  }
+  close(root_fd);
+}
+
+// --max-file-bytes: a file over the limit is refused (and named) but the others are graded.
+TEST(FindSubmissionFiles, AFileOverTheLimitIsRefusedTheOthersAreFound) {
+  test::TempDir temp;
+  write(temp.path() / "cloth.cpp", std::string(2000, 'x'));
+  write(temp.path() / "sphere.cpp", "int s;\n");
+  const SubmissionFiles small = findSubmissionFiles(temp.path(), 1000);
+  EXPECT_EQ(small.found.count("cloth.cpp"), 0u);
+  EXPECT_EQ(small.found.count("sphere.cpp"), 1u);
+  EXPECT_NE(allNotes(small).find("cloth.cpp: refused cloth.cpp: larger than 1000 bytes (raise "
+                                 "the limit with --max-file-bytes)"),
+            std::string::npos)
+      << allNotes(small);
+  EXPECT_EQ(findSubmissionFiles(temp.path(), 2000).bytes.at("cloth.cpp").size(), 2000u);
+}
+
+// Names a student chose are escaped in notes: no terminal escape reaches a report or stderr.
+TEST(FindSubmissionFiles, ControlCharactersInNamesAreEscaped) {
+  test::TempDir temp;
+  write(temp.path() / "a\x1b[31mred" / "cloth.cpp", "int c;\n");
+  write(temp.path() / "b" / "cloth.cpp", "int d;\n");
+  const std::string notes = allNotes(findSubmissionFiles(temp.path()));
+  EXPECT_EQ(notes.find('\x1b'), std::string::npos) << notes;
+  EXPECT_NE(notes.find("a\\x1B[31mred/cloth.cpp"), std::string::npos) << notes;
+}
+
+// Through the CLI, single grade and batch: a submission whose files are links to a host file the
+// test made, /etc/passwd and our own reference gets none of them read: no byte of them in any
+// output, the three files refused and missing (0 points, not the reference's 80).
+TEST(GradeThroughTheCli, LinkedFilesAreRefusedInASingleGradeAndInABatch) {
+  test::TempDir temp;
+  write(temp.path() / "host" / "secret.cpp", "SECRET-HOST-BYTES-4711\n");
+  const fs::path submission = temp.path() / "linked";
+  fs::create_directories(submission / "src");
+  fs::create_symlink(temp.path() / "host" / "secret.cpp", submission / "src" / "cloth.cpp");
+  fs::create_symlink("/etc/passwd", submission / "sphere.cpp");
+  fs::create_symlink(fs::path(CLOTHREF_SOURCE_DIR) / "tools/grader/reference/2022/integrator.cpp",
+                     submission / "integrator.cpp");
+  const std::string common =
+      " --no-whole-run --timeout 10 --cache-dir '" + std::string(CLOTHREF_GRADER_CACHE) + "'";
+  const test::CommandResult single = test::runCli(
+      "grade '" + submission.string() + "' --results '" + temp.file("r.json") + "' --junit '" +
+      temp.file("j.xml") + "' --report '" + temp.file("r.md") + "'" + common);
+  // Nothing found at all: not gradable, one line, nothing written.
+  EXPECT_EQ(single.exit_code, 2) << single.output;
+  EXPECT_NE(single.output.find("none of cloth.cpp, sphere.cpp, integrator.cpp found"),
+            std::string::npos)
+      << single.output;
+  EXPECT_FALSE(fs::exists(temp.file("r.json")));
+  // With one real file the others are refused, named and graded as missing.
+  write(submission / "extra" / "sphere.cpp",
+        test::readText(fs::path(CLOTHREF_SOURCE_DIR) / "tools/grader/reference/2022/sphere.cpp"));
+  const test::CommandResult graded = test::runCli(
+      "grade '" + submission.string() + "' --results '" + temp.file("r.json") + "' --junit '" +
+      temp.file("j.xml") + "' --report '" + temp.file("r.md") + "'" + common);
+  ASSERT_EQ(graded.exit_code, 0) << graded.output;
+  const test::CommandResult batch = test::runCli("grade '" + submission.string() + "' --out '" +
+                                                 temp.file("batch") + "' --quiet" + common);
+  ASSERT_EQ(batch.exit_code, 0) << batch.output;
+  const std::string passwd_line = test::readText("/etc/passwd").substr(0, 12);
+  for (const std::string& file :
+       {temp.file("r.json"), temp.file("j.xml"), temp.file("r.md"),
+        temp.file("batch/linked/results.json"), temp.file("batch/linked/report.md"),
+        temp.file("batch/linked/row.json"), temp.file("batch/grades.csv")}) {
+    const std::string text = test::readText(file);
+    ASSERT_FALSE(text.empty()) << file;
+    EXPECT_EQ(text.find("SECRET-HOST-BYTES"), std::string::npos) << file;
+    EXPECT_EQ(text.find(passwd_line), std::string::npos) << file;
+  }
+  for (const std::string& file : {temp.file("r.json"), temp.file("batch/linked/results.json")}) {
+    const nlohmann::json results = nlohmann::json::parse(test::readText(file));
+    const std::string output = results["output"].get<std::string>();
+    EXPECT_NE(output.find("cloth.cpp: refused src/cloth.cpp: a symbolic link"), std::string::npos)
+        << output;
+    EXPECT_NE(output.find("integrator.cpp: refused integrator.cpp: a symbolic link"),
+              std::string::npos)
+        << output;
+    const auto& scores = results["extra_data"]["stub_scores"];
+    EXPECT_EQ(scores["RungeKuttaFourth::integrate"].get<double>(), 0.0) << scores;
+    EXPECT_EQ(scores["Cloth::computeSpringForce"].get<double>(), 0.0) << scores;
+    EXPECT_GT(scores["Spheres::collide(Cloth*)"].get<double>(), 0.0) << scores;
+  }
+}
+
 TEST(DetectEdition, FromTheDefinitionsNotFromComments) {
   test::TempDir temp;
   SubmissionFiles files;
   files.found["sphere.cpp"] = temp.path() / "sphere.cpp";
-  write(files.found["sphere.cpp"],
-        "void Spheres::collide(Cloth* c) {}\nvoid Spheres::collide() {}\n");
+  auto& sphere = files.bytes["sphere.cpp"];
+  sphere = "void Spheres::collide(Cloth* c) {}\nvoid Spheres::collide() {}\n";
   std::string why;
   EXPECT_EQ(detectEdition(files, why), 2022);
-  write(files.found["sphere.cpp"],
-        "// Spheres::collide() was removed\n"
-        "void Spheres::setVelocity(int i, const Eigen::Vector4f v) {}\n");
+  sphere =
+      "// Spheres::collide() was removed\n"
+      "void Spheres::setVelocity(int i, const Eigen::Vector4f v) {}\n";
   EXPECT_EQ(detectEdition(files, why), 2024);
-  write(files.found["sphere.cpp"],
-        "/* void Spheres::setVelocity(int) */ void Spheres::collide ( ) {}\n");
+  sphere = "/* void Spheres::setVelocity(int) */ void Spheres::collide ( ) {}\n";
   EXPECT_EQ(detectEdition(files, why), 2022);
-  write(files.found["sphere.cpp"], "int nothing;\n");
+  sphere = "int nothing;\n";
   EXPECT_EQ(detectEdition(files, why), 0);
 }
 

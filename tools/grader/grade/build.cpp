@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <map>
+#include <mutex>
 #include <sstream>
 
 #include "child_process.h"
@@ -86,11 +88,41 @@ std::string readBytes(const fs::path& path) {
   return out.str();
 }
 
-// The cache file for a compile command: its flags (paths of the source and object excluded) and
-// the bytes of the source and of every stand-in header.
-fs::path cachePath(const CourseToolchain& t, const std::vector<std::string>& command,
-                   const fs::path& source) {
+// What the compiler says it is (`--version`), once per compiler per grader process: an object
+// built by another compiler version is another object.
+std::string compilerVersion(const std::string& compiler, const fs::path& work_dir) {
+  static std::mutex mutex;
+  static std::map<std::string, std::string> versions;
+  std::lock_guard<std::mutex> lock(mutex);
+  auto it = versions.find(compiler);
+  if (it == versions.end()) {
+    const ToolRun run = runTools({{compiler, "--version"}}, work_dir, 1, 30).front();
+    it = versions.emplace(compiler, run.ok ? run.output : "unknown compiler").first;
+  }
+  return it->second;
+}
+
+// How a compile was confined: an object built unconfined (the fallback as a non-root user) may
+// hold host bytes (`.incbin`), so it is never reused by a confined run, nor the other way round.
+std::string confinement(const Isolation& isolation) {
+  switch (isolation.kind) {
+    case IsolationKind::Bubblewrap:
+      return "bubblewrap";
+    case IsolationKind::Rlimits:
+      return "rlimits tool-uid " + std::to_string(isolation.tool_uid);
+    case IsolationKind::None:
+      break;
+  }
+  return "none";
+}
+
+}  // namespace
+
+fs::path objectCachePath(const CourseToolchain& t, const std::vector<std::string>& command,
+                         const fs::path& source, const fs::path& work_dir) {
   std::uint64_t hash = fnv1a(readBytes(source));
+  hash = fnv1a(compilerVersion(t.compiler, work_dir), hash);
+  hash = fnv1a(confinement(t.isolation), hash);
   for (std::size_t k = 0; k + 1 < command.size(); ++k) {
     if (command[k] == "-c" || command[k] == "-o") {
       ++k;
@@ -112,6 +144,8 @@ fs::path cachePath(const CourseToolchain& t, const std::vector<std::string>& com
   std::snprintf(name, sizeof name, "%016llx.o", static_cast<unsigned long long>(hash));
   return t.cache_dir / name;
 }
+
+namespace {
 
 // With a cache: a precompiled header of exactly what every student file includes first anyway
 // (each course header starts with <Eigen/Core> and these std headers), built once per compiler
@@ -156,7 +190,7 @@ std::vector<ToolRun> compileAll(const CourseToolchain& t,
     const fs::path object = *(std::find(c.begin(), c.end(), "-o") + 1);
     std::error_code error;
     if (!t.cache_dir.empty()) {
-      cached[k] = cachePath(t, c, source);
+      cached[k] = objectCachePath(t, c, source, work_dir);
       if (fs::exists(cached[k], error) &&
           fs::copy_file(cached[k], object, fs::copy_options::overwrite_existing, error)) {
         results[k].ok = true;
@@ -260,7 +294,10 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseTo
     used.path = found->second.string();
     const fs::path folder = work_dir / ("src-" + stem(name));
     fs::create_directories(folder);
-    fs::copy_file(found->second, folder / name, fs::copy_options::overwrite_existing);
+    // The bytes the finder read through a checked descriptor, never the student's path again.
+    std::ofstream copy(folder / name, std::ios::binary | std::ios::trunc);
+    copy << files.bytes.at(name);
+    if (!copy.flush()) throw std::runtime_error("cannot copy " + name + " into the scratch folder");
     commands.push_back(
         compileCommand(toolchain, edition, folder / name, work_dir / (stem(name) + ".o"), 25, pch));
     names.push_back(name);

@@ -57,6 +57,15 @@ struct ProbeBuild {
 ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseToolchain& toolchain,
                        const std::filesystem::path& work_dir);
 
+// The object cache's file for compile `command` of `source`: keyed by the source's bytes, the
+// flags, the stand-in headers, the compiler's `--version` and the isolation the compile ran in
+// (an unconfined object may hold host bytes read with `.incbin`). `work_dir` is where the
+// version query runs.
+std::filesystem::path objectCachePath(const CourseToolchain& toolchain,
+                                      const std::vector<std::string>& command,
+                                      const std::filesystem::path& source,
+                                      const std::filesystem::path& work_dir);
+
 // The first compiler error of `log` with up to two following lines, scratch paths replaced by
 // the file's name.
 std::string firstCompilerError(const std::string& log, const std::string& file_name);

@@ -3,7 +3,9 @@
 #include <fcntl.h>
 #include <grp.h>
 #include <poll.h>
+#include <sched.h>
 #include <signal.h>
+#include <sys/mount.h>
 #include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
@@ -89,7 +91,21 @@ struct ExecLimits {
   const ChildLimits* limits = nullptr;  // nullptr: tool limits below
   double tool_seconds = 0;
   int uid = -1;
+  // A compile in the fallback: a private mount namespace where these folders are covered by an
+  // empty read-only tmpfs (built before fork: no allocation after it).
+  bool new_mount_namespace = false;
+  std::vector<std::string> hide;
 };
+
+// Covers `hide` in a private mount namespace (root only, before the uid drop); where unshare is
+// not allowed the compile still runs, with the uid drop alone.
+void hideFolders(const ExecLimits& how) {
+  if (!how.new_mount_namespace || unshare(CLONE_NEWNS) != 0) return;
+  if (mount("none", "/", nullptr, MS_REC | MS_PRIVATE, nullptr) != 0) return;
+  for (const std::string& folder : how.hide)
+    mount("tmpfs", folder.c_str(), "tmpfs", MS_RDONLY | MS_NOSUID | MS_NODEV | MS_NOEXEC,
+          "size=4k,mode=0555");
+}
 
 [[noreturn]] void execChild(const ExecArgs& exec, int stdin_fd, int stdout_fd, int stderr_fd,
                             int answer_fd, int info_fd, const ExecLimits& how) {
@@ -122,10 +138,15 @@ struct ExecLimits {
     setLimit(RLIMIT_FSIZE, kToolFileSize);
   }
   setLimit(RLIMIT_CORE, 0);
+  hideFolders(how);
   if (how.uid >= 0) {
     // Groups first, then gid, then uid: after setresuid we could not change the others.
     const auto id = static_cast<uid_t>(how.uid);
-    if (setgroups(0, nullptr) != 0 || setresgid(id, id, id) != 0 || setresuid(id, id, id) != 0)
+    // Raw system calls: glibc's wrappers signal every thread glibc believes exists and wait for
+    // them, and after the raw clone of the fallback's supervisor it still believes in the
+    // grader's threads (a wait that never ends). This process has one thread.
+    if (syscall(SYS_setgroups, 0, nullptr) != 0 || syscall(SYS_setresgid, id, id, id) != 0 ||
+        syscall(SYS_setresuid, id, id, id) != 0)
       _exit(125);
   }
   prctl(PR_SET_NO_NEW_PRIVS, 1, 0, 0, 0);  // no set-uid program gives the privileges back
@@ -141,6 +162,98 @@ struct ExecLimits {
     [[maybe_unused]] const ssize_t n = write(2, busy, sizeof busy - 1);
   }
   _exit(127);
+}
+
+// A status the supervisor passes on as its exit code, the way bubblewrap does: a child killed by
+// signal S becomes 128 + S.
+[[noreturn]] void exitLike(int status) {
+  if (WIFSIGNALED(status)) _exit(128 + WTERMSIG(status));
+  _exit(WIFEXITED(status) ? WEXITSTATUS(status) : 1);
+}
+
+// The exit code of a supervisor that could not fork the student program.
+constexpr int kSupervisorForkFailed = 124;
+
+volatile pid_t supervised_student = 0;
+
+// The grader's SIGTERM at a wall timeout: the student program dies, then the supervisor cleans up.
+void stopStudent(int) {
+  const pid_t student = supervised_student;
+  if (student > 1) {
+    kill(-student, SIGKILL);
+    kill(student, SIGKILL);
+  }
+}
+
+// Subreaper mode: kills every child the supervisor has (the student's orphans were reparented to
+// it) until none is left; children of a killed child become ours in turn. Async-signal-safe.
+void killInherited() {
+  char path[64] = "/proc/self/task/";
+  {
+    // "/proc/self/task/<tid>/children" without snprintf: the supervisor has one thread.
+    char digits[24];
+    int n = 0;
+    for (long v = getpid(); v > 0 && n < 23; v /= 10) digits[n++] = static_cast<char>('0' + v % 10);
+    std::size_t at = std::strlen(path);
+    while (n > 0) path[at++] = digits[--n];
+    const char tail[] = "/children";
+    for (const char* c = tail; *c; ++c) path[at++] = *c;
+    path[at] = '\0';
+  }
+  for (;;) {
+    const int fd = open(path, O_RDONLY | O_CLOEXEC);
+    if (fd >= 0) {
+      char buffer[4096];
+      const ssize_t n = read(fd, buffer, sizeof buffer - 1);
+      close(fd);
+      long pid = 0;
+      for (ssize_t k = 0; k <= n && n > 0; ++k) {
+        if (k < n && buffer[k] >= '0' && buffer[k] <= '9') {
+          pid = pid * 10 + (buffer[k] - '0');
+        } else {
+          if (pid > 1) kill(static_cast<pid_t>(pid), SIGKILL);
+          pid = 0;
+        }
+      }
+    }
+    int status = 0;
+    if (waitpid(-1, &status, 0) < 0 && errno == ECHILD) return;
+  }
+}
+
+// The rlimits fallback's process between the grader and the student program: pid 1 of a new pid
+// namespace (`in_namespace`) or a child subreaper. It starts the student program, reaps it and
+// whatever was reparented to it, passes the student's status on, and leaves nothing behind: in a
+// namespace the kernel kills the rest when pid 1 exits; as a subreaper it kills them itself.
+[[noreturn]] void superviseChild(const ExecArgs& exec, int stdin_fd, int stdout_fd, int stderr_fd,
+                                 int answer_fd, const ExecLimits& how, bool in_namespace) {
+  setpgid(0, 0);
+  prctl(PR_SET_PDEATHSIG, SIGKILL);  // the grader gone: so is the supervisor (and its namespace)
+  if (!in_namespace) prctl(PR_SET_CHILD_SUBREAPER, 1);
+  struct sigaction action {};
+  action.sa_handler = stopStudent;
+  sigaction(SIGTERM, &action, nullptr);
+  // A raw clone, not glibc's fork(): in a child of a threaded grader, fork() would wait for the
+  // malloc and stdio locks that other threads held when we were cloned, forever.
+  const pid_t student = static_cast<pid_t>(syscall(SYS_clone, SIGCHLD, 0, 0, 0, 0));
+  if (student < 0) _exit(kSupervisorForkFailed);
+  if (student == 0) {
+    signal(SIGTERM, SIG_DFL);
+    execChild(exec, stdin_fd, stdout_fd, stderr_fd, answer_fd, -1, how);
+  }
+  supervised_student = student;
+  // Only the student holds the answer pipe and the output files: the grader sees the end of the
+  // answer when the student's whole tree is gone, not when we are.
+  for (int fd = 0; fd < 1024; ++fd) close(fd);
+  int status = 0;
+  for (;;) {
+    const pid_t done = waitpid(-1, &status, 0);
+    if (done == student) break;
+    if (done < 0 && errno != EINTR) _exit(kSupervisorForkFailed);
+  }
+  supervised_student = 0;
+  if (!in_namespace) killInherited();
+  exitLike(status);
 }
 
 // The sandbox's first process (bubblewrap's pid 1 of the new pid namespace), pinned by a pidfd,
@@ -175,6 +288,27 @@ struct SandboxInit {
   }
 };
 
+// SIGKILL to the process group `pid` leads and to `pid`: never for a pid <= 1 (kill(-1) signals
+// every process we may signal; kill(0) our own group).
+void killGroup(pid_t pid) {
+  if (pid <= 1) return;
+  kill(-pid, SIGKILL);
+  kill(pid, SIGKILL);
+}
+
+// A wall timeout in the rlimits fallback: SIGTERM lets the supervisor kill the student and reap
+// (and, as a subreaper, kill) what it left; SIGKILL after 2 s if it does not finish.
+// True when it exited (and was reaped, `status` set): its pid must not be signalled again.
+bool stopSupervisor(pid_t pid, int& status) {
+  if (pid <= 1) return false;
+  kill(pid, SIGTERM);
+  for (int k = 0; k < 200; ++k) {
+    if (waitpid(pid, &status, WNOHANG) == pid) return true;
+    usleep(10000);
+  }
+  return false;
+}
+
 void readAvailable(int fd, std::string& into) {
   char buffer[4096];
   for (ssize_t n; (n = read(fd, buffer, sizeof buffer)) > 0;)
@@ -208,6 +342,9 @@ std::string ChildRun::describe() const {
     case ChildStatus::NoAnswer:
       out << "exited without sending the probe results";
       break;
+    case ChildStatus::NotStarted:
+      out << "could not be started by the grader (a grader error, not the student's)";
+      break;
   }
   return out.str();
 }
@@ -227,6 +364,8 @@ std::string ChildRun::verdict() const {
       return "exited-non-zero";
     case ChildStatus::NoAnswer:
       return "no-answer";
+    case ChildStatus::NotStarted:
+      return "grader-error";
     case ChildStatus::Crashed:
       break;
   }
@@ -287,11 +426,33 @@ ChildRun runChildOnce(const std::vector<std::string>& command,
   }
   const ExecArgs exec(argv, run_dir);
   const ExecLimits how{&limits, 0, isolation.uid};
-  const pid_t pid = fork();
-  if (pid == 0)
-    execChild(exec, in_fd, out_fd, err_fd, expect_answer ? pipe_fds[1] : -1, info_fds[1], how);
+  // The rlimits fallback puts a supervisor between us and the student (superviseChild).
+  const bool supervised = !boxed && isolation.kind == IsolationKind::Rlimits &&
+                          isolation.containment != Containment::None;
+  bool in_namespace = supervised && isolation.containment == Containment::PidNamespace;
+  pid_t pid = -1;
+  if (in_namespace) {
+    pid = static_cast<pid_t>(syscall(SYS_clone, CLONE_NEWPID | SIGCHLD, 0, 0, 0, 0));
+    if (pid < 0 && (errno == EPERM || errno == EINVAL || errno == ENOSPC)) in_namespace = false;
+  }
+  if (!in_namespace) pid = fork();
+  const int answer_fd = expect_answer ? pipe_fds[1] : -1;
+  if (pid == 0) {
+    if (supervised) superviseChild(exec, in_fd, out_fd, err_fd, answer_fd, how, in_namespace);
+    execChild(exec, in_fd, out_fd, err_fd, answer_fd, info_fds[1], how);
+  }
+  const int fork_error = errno;
   for (int fd : {in_fd, out_fd, err_fd, pipe_fds[1], info_fds[1]})
     if (fd >= 0) close(fd);
+  if (pid < 0) {
+    // No process: nothing to wait for or kill (a kill(-1) would signal every process we may).
+    for (int fd : {pipe_fds[0], info_fds[0]})
+      if (fd >= 0) close(fd);
+    run.status = ChildStatus::NotStarted;
+    run.stderr_head =
+        std::string("grader: cannot start the child (fork: ") + std::strerror(fork_error) + ")\n";
+    return run;
+  }
   setpgid(pid, pid);  // also done in the child; whichever runs first wins the race harmlessly
 
   std::string answer, info;
@@ -338,15 +499,17 @@ ChildRun runChildOnce(const std::vector<std::string>& command,
   }
   if (timed_out) {
     sandbox.killAndWait();
-    kill(-pid, SIGKILL);
-    kill(pid, SIGKILL);
-    waitpid(pid, &status, 0);
+    if (!(supervised && stopSupervisor(pid, status))) {
+      killGroup(pid);
+      waitpid(pid, &status, 0);
+    }
     run.status = ChildStatus::TimedOut;
   } else {
-    sandbox.killAndWait();  // normally gone already: bubblewrap exits after its sandbox
-    kill(-pid, SIGKILL);    // any grandchildren left behind
-    // bubblewrap reports a child killed by signal S as exit code 128 + S.
-    if (boxed && WIFEXITED(status) && WEXITSTATUS(status) > 128 && WEXITSTATUS(status) < 160) {
+    sandbox.killAndWait();             // normally gone already: bubblewrap exits after its sandbox
+    if (pid > 1) kill(-pid, SIGKILL);  // any grandchildren left in the group (pid is reaped)
+    // bubblewrap and our supervisor report a child killed by signal S as exit code 128 + S.
+    if ((boxed || supervised) && WIFEXITED(status) && WEXITSTATUS(status) > 128 &&
+        WEXITSTATUS(status) < 160) {
       run.status = ChildStatus::Crashed;
       run.signal = WEXITSTATUS(status) - 128;
     } else if (WIFSIGNALED(status)) {
@@ -372,11 +535,42 @@ ChildRun runChildOnce(const std::vector<std::string>& command,
 // of the uid, all runs together) are held by another run, e.g. a fork bomb waiting for its
 // timeout: bubblewrap cannot clone, or our execve after the uid drop fails with EAGAIN.
 bool couldNotStart(const ChildRun& run) {
+  if (run.status == ChildStatus::NotStarted) return true;  // fork failed: EAGAIN, ENOMEM
   if (run.status != ChildStatus::ExitedNonZero || (run.exit_code != 1 && run.exit_code != 127))
     return false;
   return run.stderr_head.rfind("clothref-grader: cannot start", 0) == 0 ||
          (run.stderr_head.rfind("bwrap: ", 0) == 0 &&
           run.stderr_head.find("Resource temporarily unavailable") != std::string::npos);
+}
+
+// The fallback's confinement of one compile or link (docs/grading.md, "Sandbox"): as root, the
+// tool uid and a private mount namespace hiding the grader's folders the command does not name;
+// a command writing outside `work_dir` (the precompiled header into the cache) compiles only our
+// header and keeps the grader's uid.
+void confineTool(const Isolation& isolation, const std::vector<std::string>& command,
+                 const std::filesystem::path& work_dir, ExecLimits& how) {
+  if (isolation.tool_uid < 0) return;
+  const auto under = [](const std::filesystem::path& path, const std::filesystem::path& root) {
+    const std::string p = path.lexically_normal().string(), r = root.lexically_normal().string();
+    return p == r || (p.size() > r.size() && p.compare(0, r.size(), r) == 0 && p[r.size()] == '/');
+  };
+  for (std::size_t k = 0; k + 1 < command.size(); ++k)
+    if (command[k] == "-o" && !under(command[k + 1], work_dir)) return;
+  // The tool uid writes its objects into the scratch folder, nowhere else.
+  if (chown(work_dir.c_str(), static_cast<uid_t>(isolation.tool_uid),
+            static_cast<gid_t>(isolation.tool_uid)) != 0)
+    return;
+  how.uid = isolation.tool_uid;
+  how.new_mount_namespace = true;
+  for (const std::filesystem::path& folder : isolation.hidden) {
+    if (folder.empty() || under(work_dir, folder)) continue;
+    bool named = false;
+    for (std::size_t k = 1; k < command.size() && !named; ++k) {
+      const std::string arg = command[k].rfind("-I", 0) == 0 ? command[k].substr(2) : command[k];
+      named = !arg.empty() && arg[0] == '/' && (under(arg, folder) || under(folder, arg));
+    }
+    if (!named) how.hide.push_back(folder.lexically_normal().string());
+  }
 }
 
 }  // namespace
@@ -439,11 +633,20 @@ std::vector<ToolRun> runTools(const std::vector<std::vector<std::string>>& comma
       const ExecArgs exec(
           boxed ? bubblewrapToolArgv(*isolation, commands[next], work_dir) : commands[next],
           work_dir);
-      const ExecLimits how{nullptr, wall_seconds, -1};
+      ExecLimits how{nullptr, wall_seconds, -1};
+      if (isolation && isolation->kind == IsolationKind::Rlimits)
+        confineTool(*isolation, commands[next], work_dir, how);
       const pid_t pid = fork();
       if (pid == 0) execChild(exec, in_fd, log_fd, log_fd, -1, -1, how);
+      const int fork_error = errno;
       close(in_fd);
       close(log_fd);
+      if (pid < 0) {
+        results[next].output = std::string("grader: cannot start the tool (fork: ") +
+                               std::strerror(fork_error) + ")\n";
+        ++next;
+        continue;
+      }
       setpgid(pid, pid);
       running.push_back({pid, next, Clock::now()});
       ++next;
@@ -454,7 +657,7 @@ std::vector<ToolRun> runTools(const std::vector<std::vector<std::string>>& comma
       const bool late = secondsSince(running[r].start) > wall_seconds;
       if (done == running[r].pid || late) {
         if (late && done != running[r].pid) {
-          kill(-running[r].pid, SIGKILL);
+          killGroup(running[r].pid);
           waitpid(running[r].pid, &status, 0);
         }
         ToolRun& result = results[running[r].index];

@@ -43,7 +43,8 @@ enum class ChildStatus {
   Crashed,        // killed by a signal (segfault, abort, CPU limit, ...)
   TimedOut,       // wall-clock limit reached
   ExitedNonZero,  // exited with a non-zero code
-  NoAnswer        // exited 0 but sent no valid answer (missing, malformed, wrong nonce)
+  NoAnswer,       // exited 0 but sent no valid answer (missing, malformed, wrong nonce)
+  NotStarted      // the grader could not start it (fork failed): our failure, not the student's
 };
 
 struct ChildRun {
@@ -57,7 +58,7 @@ struct ChildRun {
   std::string describe() const;
   // One word (docs/grading.md, "Verdicts"): "ok", "timed-out" (wall or CPU limit),
   // "memory-limit" (std::bad_alloc under the address-space limit), "output-limit" (file size),
-  // "crashed", "exited-non-zero", "no-answer".
+  // "crashed", "exited-non-zero", "no-answer", "grader-error" (NotStarted).
   std::string verdict() const;
 };
 
@@ -79,7 +80,8 @@ struct ToolRun {
   std::string output;
   double seconds = 0;
 };
-// Runs several tool commands at once (at most `jobs` in parallel); results in command order.
+// Runs several tool commands at once (at most `jobs` in parallel); results in command order. A
+// command the grader cannot start (fork fails) is a failed run whose output says so.
 // With an `isolation` of kind Bubblewrap each command runs in bubblewrap seeing only /usr, the
 // work dir and the paths it names (sandbox.h); every run has CPU (wall + 1 s), address-space
 // (kToolAddressSpace) and file-size (kToolFileSize) limits.

@@ -80,7 +80,7 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   GradeReport report;
   report.submission = dir.string();
-  const SubmissionFiles files = findSubmissionFiles(dir);
+  const SubmissionFiles files = findSubmissionFiles(dir, options.max_file_bytes);
   if (files.found.empty())
     throw InputError(dir.string() + ": none of cloth.cpp, sphere.cpp, integrator.cpp found");
   report.notes = files.notes;
@@ -192,7 +192,10 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
   // A crash or an unexplained result next to an `auto` Eigen expression: name it, as a guess.
   for (const UsedFile& used : build.files) {
     if (!used.compiled) continue;
-    const auto lines = autoExpressionLines(used.path);
+    // The copy in the scratch folder: the student's path is never opened again.
+    const auto lines = autoExpressionLines(
+        (scratch.path() / ("src-" + used.name.substr(0, used.name.size() - 4)) / used.name)
+            .string());
     if (lines.empty()) continue;
     for (TestResult& t : report.tests) {
       const auto& stubs = stubsOfFile().at(used.name);

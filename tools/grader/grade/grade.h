@@ -21,6 +21,7 @@ struct GradeOptions {
   bool whole_run = true;            // run the information-only whole-run check
   int probe_jobs = 2;               // probe groups at once
   std::uint64_t seed = 20221;
+  std::size_t max_file_bytes = kDefaultMaxSourceBytes;  // a larger student file is refused
 };
 
 // Throws InputError when the submission cannot be graded at all (not a directory, no student

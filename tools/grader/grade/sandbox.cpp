@@ -1,6 +1,10 @@
 #include "sandbox.h"
 
+#include <sched.h>
+#include <signal.h>
 #include <sys/stat.h>
+#include <sys/syscall.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdlib>
@@ -53,6 +57,16 @@ void addHidden(const Isolation& isolation, std::vector<std::string>& argv) {
   }
 }
 
+// Whether this process may make a pid namespace (root, or a kernel that lets users): one clone.
+bool canMakePidNamespace() {
+  const long pid = syscall(SYS_clone, CLONE_NEWPID | SIGCHLD, 0, 0, 0, 0);
+  if (pid == 0) _exit(0);
+  if (pid < 0) return false;
+  int status = 0;
+  waitpid(static_cast<pid_t>(pid), &status, 0);
+  return WIFEXITED(status) && WEXITSTATUS(status) == 0;
+}
+
 Isolation detect() {
   const char* forced_env = std::getenv("CLOTHREF_GRADER_ISOLATION");
   const std::string forced = forced_env && *forced_env ? forced_env : "auto";
@@ -62,6 +76,9 @@ Isolation detect() {
   Isolation isolation;
   isolation.kind = IsolationKind::Rlimits;
   isolation.uid = geteuid() == 0 ? kNobodyUid : -1;
+  isolation.tool_uid = geteuid() == 0 ? kToolUid : -1;
+  isolation.containment =
+      canMakePidNamespace() ? Containment::PidNamespace : Containment::Subreaper;
   if (forced == "rlimits") {
     isolation.why_not_bubblewrap = "CLOTHREF_GRADER_ISOLATION=rlimits";
     return isolation;
@@ -103,8 +120,15 @@ std::string Isolation::describe() const {
       return "bubblewrap (new user, net, pid, mount, ipc, uts namespaces; only /usr visible), " +
              user + ", rlimits";
     case IsolationKind::Rlimits:
-      return "rlimits, " + user + ", private working directory; no namespaces (" +
-             why_not_bubblewrap + ")";
+      return "rlimits, " + user + ", private working directory, " +
+             (containment == Containment::PidNamespace
+                  ? "own pid namespace per run"
+                  : "a subreaper that kills what a run leaves behind") +
+             (tool_uid >= 0
+                  ? "; compiles as uid " + std::to_string(tool_uid) +
+                        " in a private mount namespace"
+                  : std::string("; compiles with the grader's uid (the host is readable)")) +
+             "; no bubblewrap (" + why_not_bubblewrap + ")";
     case IsolationKind::None:
       break;
   }

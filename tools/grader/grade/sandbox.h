@@ -16,11 +16,25 @@ enum class IsolationKind {
   Bubblewrap  // all of Rlimits, inside bubblewrap
 };
 
+// How the rlimits fallback makes sure no student process outlives its run (bubblewrap has its own
+// pid namespace). Every run gets a supervisor of ours between the grader and the student program.
+enum class Containment {
+  None,          // the student program is the grader's direct child (IsolationKind::None)
+  PidNamespace,  // the supervisor is pid 1 of a new pid namespace: when it exits, the kernel
+                 // kills every process left in it, detached (setsid, double fork) or not
+  Subreaper      // no pid namespace allowed: the supervisor is a child subreaper, so orphans
+                 // become its children, and it kills and reaps all of them before it exits
+};
+
 struct Isolation {
   IsolationKind kind = IsolationKind::None;
-  int uid = -1;                    // uid and gid to run as (65534 when root); -1 = unchanged
-  std::string bwrap;               // bubblewrap executable (Bubblewrap only)
-  std::string why_not_bubblewrap;  // why the detection fell back, for the description
+  Containment containment = Containment::None;  // for IsolationKind::Rlimits
+  int uid = -1;  // uid and gid to run as (65534 when root); -1 = unchanged
+  // Rlimits: uid and gid of compiles and links (kToolUid when root, -1 = the grader's, which can
+  // read the host), in a private mount namespace hiding `hidden` except what a command names.
+  int tool_uid = -1;
+  std::string bwrap;                          // bubblewrap executable (Bubblewrap only)
+  std::string why_not_bubblewrap;             // why the detection fell back, for the description
   std::vector<std::filesystem::path> hidden;  // covered with an empty tmpfs if visible in the box
   // Short exact description for GradeReport::isolation, e.g. "bubblewrap (new net, pid, mount,
   // ipc, uts namespaces; only /usr visible), uid 65534, rlimits".
@@ -28,6 +42,9 @@ struct Isolation {
 };
 
 inline constexpr int kNobodyUid = 65534;
+// Compiles and links in the fallback: not the probes' uid, so no student process can write into
+// a scratch folder or replace a probe executable.
+inline constexpr int kToolUid = 65533;
 
 // The isolation for this grader process: probes bubblewrap once (same uid drop and flags as a
 // real run, command /bin/true) and caches the answer. Throws InputError for an unknown
