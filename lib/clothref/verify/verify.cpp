@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <complex>
 #include <functional>
 #include <limits>
 #include <random>
@@ -636,27 +637,15 @@ constexpr double kEnergyDt = 0.02;  // seconds
 constexpr int kEnergySteps = 50;    // 1 s: explicit Euler's amplitude stays below the rest length
 constexpr int kSymplecticSteps = 1000;  // 20 s, ~32 periods: bounded, not just slow to grow
 
-// |R(i theta)|^2 of each method's amplification factor on y' = lambda y, at lambda dt = i theta.
+// |R(i theta)|^2 of the method's amplification factor on y' = lambda y (the method table's
+// R = P / Q), at lambda dt = i theta, as |P|^2 / |Q|^2 (no complex division, so backward Euler's
+// 1 / (1 + theta^2) is exact). On a linear spring backward Euler's linearised step is backward
+// Euler itself, so its table R applies too. Symplectic Euler is not a scaled rotation: see
+// energyChecks.
 double amplificationSquared(Method method, double theta) {
-  const double t2 = theta * theta;
-  switch (method) {
-    case Method::Explicit:  // R = 1 + z
-      return 1 + t2;
-    case Method::Implicit:  // the course's one predictor-corrector pass: R = 1 + z + z^2
-      return (1 - t2) * (1 - t2) + t2;
-    case Method::Midpoint:  // R = 1 + z + z^2 / 2
-      return (1 - t2 / 2) * (1 - t2 / 2) + t2;
-    case Method::Rk4: {  // R = 1 + z + z^2 / 2 + z^3 / 6 + z^4 / 24
-      const double re = 1 - t2 / 2 + t2 * t2 / 24;
-      const double im = theta - theta * t2 / 6;
-      return re * re + im * im;
-    }
-    case Method::Symplectic:  // not a scaled rotation: see energyChecks
-      return 1;
-    case Method::BackwardEuler:  // R = 1 / (1 - z): the spring is linear, so the linearised
-      return 1 / (1 + t2);       // step is backward Euler itself
-  }
-  return 1;
+  const Amplification& r = methodInfo(method).amplification;
+  const std::complex<double> z(0, theta);
+  return std::norm(evaluatePolynomial(r.p, z)) / std::norm(evaluatePolynomial(r.q, z));
 }
 
 // E_k / E_0 for k = 0..steps on spring-undamped.
@@ -694,7 +683,7 @@ std::vector<CheckRow> energyChecks() {
   const double theta = 10 * kEnergyDt;
   for (Precision precision : kPrecisions) {
     for (Method method : kAllMethods) {
-      if (method == Method::Symplectic) {
+      if (methodInfo(method).amplification.kind == AmplificationKind::SymplecticEuler) {
         // Symplectic Euler keeps H = u^2 + w^2 - theta u w exactly (w = v / omega); from rest
         // that bounds |E / E0 - 1| by (theta / 2) / (1 - theta / 2) at every step, forever.
         const std::vector<double> ratios = precision == Precision::Float
