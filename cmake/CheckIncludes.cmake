@@ -8,9 +8,11 @@
 
 set(RULES_base_AREAS "")
 set(RULES_base_EXTERNAL "")
-set(RULES_fast_AREAS "")
+set(RULES_formula_AREAS "")
+set(RULES_formula_EXTERNAL "")
+set(RULES_fast_AREAS "formula")
 set(RULES_fast_EXTERNAL "immintrin.h;cpuid.h;x86intrin.h")
-set(RULES_core_AREAS "base;fast")
+set(RULES_core_AREAS "base;fast;formula")
 set(RULES_core_EXTERNAL "Eigen/")
 set(RULES_io_AREAS "base")
 set(RULES_io_EXTERNAL "nlohmann/;fmt/;stdlib.h;unistd.h;fcntl.h;sys/;signal.h;zlib.h")

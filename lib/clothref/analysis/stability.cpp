@@ -23,24 +23,6 @@ std::array<Complex, 2> modeEigenvalues(const Mode& mode) {
   return {(-mode.delta + root) / 2.0, (-mode.delta - root) / 2.0};
 }
 
-Complex amplification(Method method, Complex mu) {
-  switch (method) {
-    case Method::BackwardEuler:
-      return 1.0 / (1.0 - mu);
-    case Method::Explicit:
-      return 1.0 + mu;
-    case Method::Implicit:
-      return 1.0 + mu + mu * mu;
-    case Method::Midpoint:
-      return 1.0 + mu + mu * mu / 2.0;
-    case Method::Rk4:
-      return 1.0 + mu + mu * mu / 2.0 + mu * mu * mu / 6.0 + mu * mu * mu * mu / 24.0;
-    case Method::Symplectic:
-      break;  // not a function of mu alone
-  }
-  return Complex(std::numeric_limits<double>::quiet_NaN(), 0);
-}
-
 // Radius above this counts as growth: well above the round-off of the formulas (1e-16) and
 // below the smallest growth the limits are defined by (z^4 / 8 at z = 1e-3 is 1.25e-13).
 constexpr double kRadiusSlack = 1e-14;
@@ -168,19 +150,24 @@ bool isSpringScene(const Scene& scene) {
 }  // namespace
 
 double stepSpectralRadius(Method method, const Mode& mode, double h) {
-  if (method == Method::Symplectic) {
-    // v1 = v0 + h (-kappa x0 - delta v0), x1 = x0 + h v1
-    const double a = 1 - h * h * mode.kappa, b = h * (1 - h * mode.delta);
-    const double c = -h * mode.kappa, d = 1 - h * mode.delta;
-    // (a - d)^2 + 4 b c rather than trace^2 - 4 det: no cancellation when a drag-only mode
-    // (kappa = 0) has the eigenvalues 1 and 1 - h delta
-    const double trace = a + d;
-    const Complex root = std::sqrt(Complex((a - d) * (a - d) + 4 * b * c, 0));
-    return std::max(std::abs((trace + root) / 2.0), std::abs((trace - root) / 2.0));
+  const Amplification& amplification = methodInfo(method).amplification;
+  switch (amplification.kind) {
+    case AmplificationKind::Rational:
+      break;
+    case AmplificationKind::SymplecticEuler: {
+      // v1 = v0 + h (-kappa x0 - delta v0), x1 = x0 + h v1
+      const double a = 1 - h * h * mode.kappa, b = h * (1 - h * mode.delta);
+      const double c = -h * mode.kappa, d = 1 - h * mode.delta;
+      // (a - d)^2 + 4 b c rather than trace^2 - 4 det: no cancellation when a drag-only mode
+      // (kappa = 0) has the eigenvalues 1 and 1 - h delta
+      const double trace = a + d;
+      const Complex root = std::sqrt(Complex((a - d) * (a - d) + 4 * b * c, 0));
+      return std::max(std::abs((trace + root) / 2.0), std::abs((trace - root) / 2.0));
+    }
   }
   double radius = 0;
   for (const Complex& lambda : modeEigenvalues(mode))
-    radius = std::max(radius, std::abs(amplification(method, h * lambda)));
+    radius = std::max(radius, std::abs(clothref::amplification(amplification, h * lambda)));
   return radius;
 }
 

@@ -1,5 +1,7 @@
 #include "clothref/core/cloth.h"
 
+#include "clothref/formula/course_formulas.h"
+
 namespace clothref {
 
 template <typename T>
@@ -30,28 +32,22 @@ void initializeSpring(Cloth<T>& cloth, int particles_per_edge) {
   cloth.springs.reserve(cloth.springs.size() + 2 * n * (n - 1) + 2 * (n - 1) * (n - 1) +
                         (n > 2 ? 2 * n * (n - 2) : 0));
 
+  // rest lengths measured once from the first particles, as the course does; a 2 x 2 cloth has
+  // no bend springs (and no particle 2 in its first row)
   const T structural_length = (x.col(0) - x.col(1)).norm();
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n - 1; ++j)
-      add(i * n + j, i * n + j + 1, structural_length, SpringType::Structural);
-  for (int i = 0; i < n - 1; ++i)
-    for (int j = 0; j < n; ++j)
-      add(i * n + j, i * n + j + n, structural_length, SpringType::Structural);
-
   const T shear_length = (x.col(0) - x.col(n + 1)).norm();
-  for (int i = 0; i < n - 1; ++i)
-    for (int j = 0; j < n - 1; ++j)
-      add(i * n + j, i * n + j + n + 1, shear_length, SpringType::Shear);
-  for (int i = 0; i < n - 1; ++i)
-    for (int j = 1; j < n; ++j) add(i * n + j, i * n + j + n - 1, shear_length, SpringType::Shear);
-
-  // a 2 x 2 cloth has no bend springs (and no particle 2 in its first row)
-  if (n < 3) return;
-  const T bend_length = (x.col(0) - x.col(2)).norm();
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n - 2; ++j) add(i * n + j, i * n + j + 2, bend_length, SpringType::Bend);
-  for (int i = 0; i < n - 2; ++i)
-    for (int j = 0; j < n; ++j) add(i * n + j, i * n + j + 2 * n, bend_length, SpringType::Bend);
+  const T bend_length = n < 3 ? T(0) : (x.col(0) - x.col(2)).norm();
+  // the course's six passes, in push order (course_formulas.h, shared with fast::matchCourseGrid)
+  formula::forEachGridSpring(n, [&](int family, int start, int end) {
+    switch (formula::kGridFamilyRest[family]) {
+      case formula::GridRest::Structural:
+        return add(start, end, structural_length, SpringType::Structural);
+      case formula::GridRest::Shear:
+        return add(start, end, shear_length, SpringType::Shear);
+      case formula::GridRest::Bend:
+        return add(start, end, bend_length, SpringType::Bend);
+    }
+  });
 }
 
 template <typename T>
@@ -62,12 +58,12 @@ void computeSpringForce(Cloth<T>& cloth) {
   for (const Spring<T>& spring : cloth.springs) {
     const int s = static_cast<int>(spring.start);
     const int e = static_cast<int>(spring.end);
-    // Eigen's 4-wide norm, normalize and dot: the course's own reductions, so the bits match
-    Vec4<T> d = p.position.col(s) - p.position.col(e);
-    const T length = d.norm();
-    d.normalize();
-    const Vec4<T> force = d * (k_d * (p.velocity.col(s) - p.velocity.col(e)).dot(d) +
-                               k_s * (length - spring.rest_length));
+    // F = n (k_d ((v_s - v_e) . n) + k_s (|x_s - x_e| - rest)), n = (x_s - x_e) / |x_s - x_e|:
+    // course_formulas.h, in the order of Eigen's 4-wide reductions, so the bits are the course's
+    Vec4<T> force;
+    formula::springForce(p.position.col(s).data(), p.position.col(e).data(),
+                         p.velocity.col(s).data(), p.velocity.col(e).data(), spring.rest_length,
+                         k_s, k_d, force.data());
     p.acceleration.col(s) -= force * p.inverse_mass[s];
     p.acceleration.col(e) += force * p.inverse_mass[e];
   }

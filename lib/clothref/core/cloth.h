@@ -54,13 +54,20 @@ Particles<T> initializeVertex(int particles_per_edge, T half_extent, T y, T part
 // row-major passes: horizontal structural, vertical structural, shear (i,j)-(i+1,j+1), shear
 // (i,j)-(i+1,j-1), horizontal bend, vertical bend. Rest lengths are measured from the current
 // positions: |p0 - p1| (both structural passes), |p0 - p(n+1)| (shear), |p0 - p2| (bend).
-// Counts: 2n(n-1) structural, 2(n-1)^2 shear, 2n(n-2) bend.
+// Counts: 2n(n-1) structural, 2(n-1)^2 shear, 2n(n-2) bend. The passes are
+// formula::forEachGridSpring (formula/course_formulas.h), which fast::matchCourseGrid walks too to
+// recognise this topology (tests: fast/grid_springs_test.cpp, formula/course_formulas_test.cpp).
 template <typename T>
 void initializeSpring(Cloth<T>& cloth, int particles_per_edge);
 
 // Stub 2, the course's Cloth::computeSpringForce: for each spring, in order, with d = x_s - x_e,
 // L = |d|, n = d / L: F = n * (k_d * ((v_s - v_e) . n) + k_s * (L - rest)), then
-// a_s -= F * invM_s and a_e += F * invM_e. Accumulates into the accelerations.
+// a_s -= F * invM_s and a_e += F * invM_e. Accumulates into the accelerations. F is
+// formula::springForce (formula/course_formulas.h). On the course grid with the fast kernels on
+// (the default), World's step runs its twin instead: fast::evaluateGridCloth, the same expression
+// in SIMD lanes together with computeExternalForce, proven bit-equal by
+// GridSprings.RandomStatesMatchTheOracleOnEveryPathAndSize (tests/fast/grid_springs_test.cpp),
+// WorldEquivalence.* and verify's course-form rows (setExecution(world, false, ...) runs this).
 template <typename T>
 void computeSpringForce(Cloth<T>& cloth);
 

@@ -1,5 +1,7 @@
 #include "clothref/core/spheres.h"
 
+#include "clothref/formula/course_formulas.h"
+
 namespace clothref {
 
 template <typename T>
@@ -20,29 +22,15 @@ void addSphere(Spheres<T>& spheres, const Vec4<T>& center, T radius, T density) 
 
 namespace {
 
-// One contact between body a (the sphere, index i) and body b (index j), normal from b to a.
-// Shared by both collide stubs: the course writes the same lines in each.
+// One contact between body a (the sphere, index i) and body b (index j), normal from b to a: the
+// course writes the same lines in both collide stubs, course_formulas.h writes them once (the
+// impulse's association order and the correction included).
 template <typename T>
 void resolveContact(Particles<T>& a, int i, Particles<T>& b, int j, T contact_distance,
                     T restitution, T correction) {
-  Vec4<T> normal = a.position.col(i) - b.position.col(j);
-  const T penetration = contact_distance - normal.norm();
-  if (penetration < T(0)) return;
-  normal.normalize();
-  const Vec4<T> relative_velocity = a.velocity.col(i) - b.velocity.col(j);
-  const T approach = relative_velocity.dot(normal);
-  if (approach < T(0)) {
-    // the course's order: the normal velocity n * (v_rel . n) first, then scaled by -(1 + e);
-    // -(1 + e) * n * s would round differently whenever e != 0
-    const Vec4<T> normal_velocity = normal * approach;
-    const Vec4<T> impulse =
-        (-(T(1) + restitution) * normal_velocity) / (b.inverse_mass[j] + a.inverse_mass[i]);
-    a.velocity.col(i) += impulse * a.inverse_mass[i];
-    b.velocity.col(j) -= impulse * b.inverse_mass[j];
-  }
-  const Vec4<T> shift = penetration * normal * correction;
-  a.position.col(i) += shift;
-  b.position.col(j) -= shift;
+  formula::resolveContact(a.position.col(i).data(), a.velocity.col(i).data(), a.inverse_mass[i],
+                          b.position.col(j).data(), b.velocity.col(j).data(), b.inverse_mass[j],
+                          contact_distance, restitution, correction);
 }
 
 }  // namespace

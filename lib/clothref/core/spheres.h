@@ -31,12 +31,17 @@ void addSphere(Spheres<T>& spheres, const Vec4<T>& center, T radius, T density);
 // n = x_i - x_j, penetration p = r_i - |n|; skip when p < 0 (touching counts). With n normalized
 // and v_rel = v_i - v_j: if v_rel . n < 0, J = -(1 + e) * n * (v_rel . n) / (invM_j + invM_i),
 // v_i += J * invM_i, v_j -= J * invM_j. Then, always, c = (p * n) * correction: x_i += c, x_j -= c.
-// A fixed particle (invM 0) is immovable in the impulse; the correction ignores mass.
+// A fixed particle (invM 0) is immovable in the impulse; the correction ignores mass. The contact
+// is formula::resolveContact (formula/course_formulas.h). With the fast kernels on (the default,
+// any cloth) World's step runs its twin instead: fast::collideSpheresWithCloth, a SIMD filter that
+// skips far pairs, then the same formula::resolveContact, proven bit-equal by
+// SphereClothContacts.* (tests/fast/sphere_cloth_contacts_test.cpp), WorldEquivalence.* and
+// verify's course-form rows.
 template <typename T>
 void collide(Spheres<T>& spheres, Cloth<T>& cloth, T restitution, T correction);
 
 // Stub 4, the course's Spheres::collide(): the same contact between spheres i < j, with
-// n = x_i - x_j and p = r_i + r_j - |n|.
+// n = x_i - x_j and p = r_i + r_j - |n|. No fast twin: this stub itself runs.
 template <typename T>
 void collide(Spheres<T>& spheres, T restitution, T correction);
 

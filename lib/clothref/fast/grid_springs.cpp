@@ -3,27 +3,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "clothref/formula/course_formulas.h"
+
 namespace clothref::fast {
 
 namespace {
 
-// The course's six passes (start, end) in push order, for an n x n grid.
-template <typename F>
-void forEachGridSpring(int n, F&& f) {
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n - 1; ++j) f(0, i * n + j, i * n + j + 1);
-  for (int i = 0; i < n - 1; ++i)
-    for (int j = 0; j < n; ++j) f(1, i * n + j, i * n + j + n);
-  for (int i = 0; i < n - 1; ++i)
-    for (int j = 0; j < n - 1; ++j) f(2, i * n + j, i * n + j + n + 1);
-  for (int i = 0; i < n - 1; ++i)
-    for (int j = 1; j < n; ++j) f(3, i * n + j, i * n + j + n - 1);
-  if (n < 3) return;
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n - 2; ++j) f(4, i * n + j, i * n + j + 2);
-  for (int i = 0; i < n - 2; ++i)
-    for (int j = 0; j < n; ++j) f(5, i * n + j, i * n + j + 2 * n);
-}
+static_assert(std::size(formula::kGridFamilyRest) == kGridFamilies);
 
 int roundUp(int value, int multiple) { return (value + multiple - 1) / multiple * multiple; }
 
@@ -44,7 +30,7 @@ bool matchCourseGrid(int count, std::span<const std::uint32_t> start,
   std::array<bool, kGridFamilies> rest_seen{};
   std::size_t k = 0;
   bool matches = true;
-  forEachGridSpring(n, [&](int family, int s, int e) {
+  formula::forEachGridSpring(n, [&](int family, int s, int e) {
     if (!matches) return;
     if (k >= start.size() || int(start[k]) != s || int(end[k]) != e) {
       matches = false;

@@ -5,6 +5,7 @@
 #include <type_traits>
 
 #include "clothref/fast/contact_filter.h"
+#include "clothref/formula/course_formulas.h"
 
 namespace clothref::fast {
 
@@ -68,42 +69,11 @@ int findCandidate(SimdPath, const double* center, double reach_squared, const do
 template <typename T>
 bool resolveSphereParticleContact(const ContactBodies<T>& bodies, int i, int j, T restitution,
                                   T correction) {
-  T* xs = bodies.sphere_position + 4 * i;
-  T* vs = bodies.sphere_velocity + 4 * i;
-  T* xc = bodies.cloth_position + 4 * j;
-  T* vc = bodies.cloth_velocity + 4 * j;
-  T n[4];
-  for (int k = 0; k < 4; ++k) n[k] = xs[k] - xc[k];
-  // Eigen's 4-wide reduction order: (lane 0 + lane 2) + (lane 1 + lane 3)
-  const T squared = (n[0] * n[0] + n[2] * n[2]) + (n[1] * n[1] + n[3] * n[3]);
-  const T penetration = bodies.radius[i] - std::sqrt(squared);
-  if (penetration < T(0)) return false;
-  if (squared > T(0)) {  // Eigen's normalize leaves a zero vector alone
-    const T length = std::sqrt(squared);
-    for (int k = 0; k < 4; ++k) n[k] = n[k] / length;
-  }
-  T relative[4];
-  for (int k = 0; k < 4; ++k) relative[k] = vs[k] - vc[k];
-  const T approach =
-      (relative[0] * n[0] + relative[2] * n[2]) + (relative[1] * n[1] + relative[3] * n[3]);
-  const T inverse_mass_sphere = bodies.sphere_inverse_mass[i];
-  const T inverse_mass_cloth = bodies.cloth_inverse_mass[j];
-  if (approach < T(0)) {
-    // the course scales the normal velocity u = n (v_rel . n), not the normal
-    const T factor = -(T(1) + restitution);
-    const T denominator = inverse_mass_cloth + inverse_mass_sphere;
-    for (int k = 0; k < 4; ++k) {
-      const T impulse = (factor * (n[k] * approach)) / denominator;
-      vs[k] += impulse * inverse_mass_sphere;
-      vc[k] -= impulse * inverse_mass_cloth;
-    }
-  }
-  for (int k = 0; k < 4; ++k) {
-    const T shift = (penetration * n[k]) * correction;
-    xs[k] += shift;
-    xc[k] -= shift;
-  }
-  return true;
+  // the course's contact, written once (course_formulas.h): the oracle's bits by construction
+  return formula::resolveContact(bodies.sphere_position + 4 * i, bodies.sphere_velocity + 4 * i,
+                                 bodies.sphere_inverse_mass[i], bodies.cloth_position + 4 * j,
+                                 bodies.cloth_velocity + 4 * j, bodies.cloth_inverse_mass[j],
+                                 bodies.radius[i], restitution, correction);
 }
 
 template <typename T>

@@ -23,6 +23,8 @@
 #include <vector>
 
 #include "../bridge/probe_protocol.h"
+// std only: the one header of clothref the course side may include (docs/layout.md)
+#include "../../../lib/clothref/formula/course_formulas.h"
 #include "cloth.h"
 #include "configs.h"
 #include "integrator.h"
@@ -161,31 +163,20 @@ void springForce(MiniWorld& w) {
   for (const Spring& spring : w.springs) {
     const int s = static_cast<int>(spring.startParticleIndex());
     const int e = static_cast<int>(spring.endParticleIndex());
-    Eigen::Vector4f d = p.position(s) - p.position(e);
-    const float length = d.norm();
-    d.normalize();
-    const Eigen::Vector4f force = d * (w.damper_coef * (p.velocity(s) - p.velocity(e)).dot(d) +
-                                       w.spring_coef * (length - spring.length()));
+    // the course's expression, written once for clothref and this driver alike
+    Eigen::Vector4f force;
+    clothref::formula::springForce(p.position(s).data(), p.position(e).data(), p.velocity(s).data(),
+                                   p.velocity(e).data(), spring.length(), w.spring_coef,
+                                   w.damper_coef, force.data());
     p.acceleration(s) -= force * p.inverseMass(s);
     p.acceleration(e) += force * p.inverseMass(e);
   }
 }
 
 void contact(Particles& a, int i, Particles& b, int j, float reach, float e) {
-  Eigen::Vector4f n = a.position(i) - b.position(j);
-  const float penetration = reach - n.norm();
-  if (penetration < 0) return;
-  n.normalize();
-  const float approach = (a.velocity(i) - b.velocity(j)).dot(n);
-  if (approach < 0) {
-    const Eigen::Vector4f u = n * approach;
-    const Eigen::Vector4f impulse = (-(1 + e) * u) / (b.inverseMass(j) + a.inverseMass(i));
-    a.velocity(i) += impulse * a.inverseMass(i);
-    b.velocity(j) -= impulse * b.inverseMass(j);
-  }
-  const Eigen::Vector4f c = (penetration * n) * 0.15f;
-  a.position(i) += c;
-  b.position(j) -= c;
+  clothref::formula::resolveContact(a.position(i).data(), a.velocity(i).data(), a.inverseMass(i),
+                                    b.position(j).data(), b.velocity(j).data(), b.inverseMass(j),
+                                    reach, e, 0.15f);
 }
 
 void simulate(MiniWorld& w) {

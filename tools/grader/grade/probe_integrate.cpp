@@ -199,23 +199,7 @@ double stabilityLimit(Method method) {
                zeta = o.damping / (2 * std::sqrt(o.stiffness * o.mass));
   const std::complex<double> lambda(-zeta * w, w * std::sqrt(1 - zeta * zeta));
   const auto stable = [&](double h) {
-    const std::complex<double> z = lambda * h;
-    std::complex<double> r;
-    switch (method) {
-      case Method::Explicit:
-        r = 1.0 + z;
-        break;
-      case Method::Implicit:
-        r = 1.0 + z + z * z;
-        break;
-      case Method::Midpoint:
-        r = 1.0 + z + z * z / 2.0;
-        break;
-      default:
-        r = 1.0 + z + z * z / 2.0 + z * z * z / 6.0 + z * z * z * z / 24.0;
-        break;
-    }
-    return std::abs(r) <= 1.0;
+    return std::abs(amplification(methodInfo(method).amplification, lambda * h)) <= 1.0;
   };
   double lo = 1e-6, hi = 1.0;
   for (int k = 0; k < 60; ++k) {
