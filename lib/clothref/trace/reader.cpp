@@ -1,6 +1,7 @@
 #include "clothref/trace/reader.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <iostream>
@@ -9,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "clothref/io/error.h"
+#include "clothref/io/files.h"
 #include "clothref/io/gzip_stream.h"
 #include "clothref/io/json_input.h"
 #include "clothref/io/limits.h"
@@ -437,8 +439,9 @@ TraceReader::TraceReader(const std::string& path) : path_(path) {
     path_ = "standard input";
     in_ = &std::cin;
   } else {
+    errno = 0;
     owned_ = std::make_unique<std::ifstream>(path, std::ios::binary);
-    if (!*owned_) throw InputError(path + ": cannot open the trace file");
+    if (!*owned_) throw InputError(cannotOpenMessage(path, "open", "trace file", errno));
     in_ = owned_.get();
   }
   readHeader();
