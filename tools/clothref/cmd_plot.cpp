@@ -15,10 +15,14 @@
 #include <vector>
 
 #include "clothref/io/error.h"
+#include "clothref/io/files.h"
 #include "commands.h"
 
 #ifndef CLOTHREF_PYTHON
 #define CLOTHREF_PYTHON "/usr/bin/python3"
+#endif
+#ifndef CLOTHREF_DATA_FROM_BIN
+#define CLOTHREF_DATA_FROM_BIN ""
 #endif
 #ifndef CLOTHREF_PYTHON_DIR
 #define CLOTHREF_PYTHON_DIR ""
@@ -54,8 +58,11 @@ int runPython(const std::vector<std::string>& args) {
   if (child < 0) throw InputError("plot: cannot start python3");
   if (child == 0) {
     const char* old = std::getenv("PYTHONPATH");
+    // an install's own package (<prefix>/share/clothref/python), else the source tree's
+    const std::filesystem::path installed = installedDataDir(CLOTHREF_DATA_FROM_BIN);
     const std::string path =
-        std::string(CLOTHREF_PYTHON_DIR) + (old && *old ? std::string(":") + old : "");
+        (installed.empty() ? std::string(CLOTHREF_PYTHON_DIR) : (installed / "python").string()) +
+        (old && *old ? std::string(":") + old : "");
     ::setenv("PYTHONPATH", path.c_str(), 1);
     ::setenv("PYTHONDONTWRITEBYTECODE", "1", 1);  // nothing written into the source tree
     ::setenv("MPLBACKEND", "Agg", 1);
