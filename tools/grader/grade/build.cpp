@@ -198,7 +198,8 @@ std::vector<std::string> precompileCommand(const CourseToolchain& t, int edition
 std::string precompiledHeaderName(const CourseToolchain& t, int edition, const fs::path& work_dir) {
   std::uint64_t hash = fnv1a("clothref-grader-pch-2\n" + compilerIdentity(t, work_dir));
   for (const std::string& arg : precompileCommand(t, edition, {}))
-    if (arg.find("course_pch.h") == std::string::npos) hash = fnv1a(arg + '\n', hash);
+    if (arg.find("course_pch.h") == std::string::npos)
+      hash = fnv1a(keyArgument(t, arg) + '\n', hash);
   hash = fnv1a(precompiledHeaderText(t, edition), hash);
   hash = fnv1a(std::to_string(courseHeadersHash(t)), hash);
   hash = fnv1a(readBytes(t.eigen_include / "Eigen" / "src" / "Core" / "util" / "Macros.h"), hash);
