@@ -11,7 +11,7 @@ build_dir=${BUILD_DIR:-$root/build}
 
 packages=(cmake ninja-build g++ pkg-config libeigen3-dev libfmt-dev nlohmann-json3-dev
           libcli11-dev libxxhash-dev libgtest-dev libgmock-dev libbenchmark-dev python3
-          python3-numpy python3-matplotlib zlib1g-dev bubblewrap)
+          python3-numpy python3-matplotlib zlib1g-dev bubblewrap help2man slurm-wlm munge)
 missing=()
 for package in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" ||
