@@ -32,6 +32,9 @@ set(RULES_solver_AREAS "base;core")
 set(RULES_solver_EXTERNAL "Eigen/")
 set(RULES_analysis_AREAS "base;core;io;scene;trace;record;verify;solver")
 set(RULES_analysis_EXTERNAL "Eigen/;nlohmann/;fmt/")
+# the umbrella header clothref/clothref.h (one include for a consumer): only the areas it gathers
+set(RULES_clothref.h_AREAS "core;record;scene;trace")
+set(RULES_clothref.h_EXTERNAL "")
 
 if(NOT ROOT)
   message(FATAL_ERROR "CheckIncludes.cmake: pass -DROOT=<path to lib/clothref>")

@@ -1,4 +1,4 @@
-# Install rules: the CLI, every library area (static), the public headers, a CMake package
+# Install rules: the CLI with its data (cmake/InstallData.cmake), every library area (static), the public headers, a CMake package
 # (find_package(clothref) -> clothref::clothref and clothref::<area>, carrying the determinism
 # options) and a pkg-config file (clothref.pc). Included from the top-level CMakeLists.txt.
 include(GNUInstallDirs)
@@ -14,6 +14,7 @@ install(TARGETS clothref_determinism clothref_base ${clothref_areas} clothref
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 if(TARGET clothref-cli)
   install(TARGETS clothref-cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+  include(cmake/InstallData.cmake)
 endif()
 
 # Public headers: every header of lib/clothref, and the generated build information.

@@ -16,8 +16,11 @@ tests=(libgtest-dev libgmock-dev libbenchmark-dev)
 charts=(python3 python3-numpy python3-matplotlib)
 pages=(chromium chromium-driver python3-selenium python3-pil)  # the browser tests of the pages
 grader=(bubblewrap)
+manpages=(help2man)  # a man page per command, made from --help at build time
+cluster=(slurm-wlm munge)  # the single-node Slurm of the cluster test (ctest -L cluster)
 machines=(mmdebstrap)  # the Gradescope test's fresh Debian 12 root (and tools/check_fresh_debian.sh)
-packages=("${build[@]}" "${tests[@]}" "${charts[@]}" "${pages[@]}" "${grader[@]}" "${machines[@]}")
+packages=("${build[@]}" "${tests[@]}" "${charts[@]}" "${pages[@]}" "${grader[@]}" "${manpages[@]}"
+          "${cluster[@]}" "${machines[@]}")
 missing=()
 for package in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" ||

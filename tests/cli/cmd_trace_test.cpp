@@ -25,6 +25,15 @@ TEST(TraceCli, DefaultRunSummarisesOnStderr) {
   EXPECT_NE(result.output.find("state stayed finite"), std::string::npos);
 }
 
+// -q: nothing on stderr (no progress, no summary) and the same trace.
+TEST(TraceCli, QuietPrintsNothing) {
+  const test::TempDir dir;
+  const auto result = test::runCli("trace -q --steps 20 --stride 10 -o " + dir.file("out.jsonl"));
+  EXPECT_EQ(result.exit_code, 0);
+  EXPECT_EQ(result.output, "");
+  EXPECT_GT(fs::file_size(dir.file("out.jsonl")), 0u);
+}
+
 TEST(TraceCli, ThreadsGiveTheSameBytes) {
   // a 100 x 100 cloth: big enough that the spring sweeps really are split over the threads
   Scene scene = *findBuiltinScene("course2022");

@@ -1,6 +1,8 @@
 // `clothref verify`: the JSON report and the table (tools/clothref/cmd_verify.cpp).
 #include <gtest/gtest.h>
+
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 
 #include "test_util.h"
@@ -39,6 +41,28 @@ TEST(VerifyCommand, TablePrintsTheColumnsAndASummary) {
     EXPECT_NE(output.find(column), std::string::npos) << column;
   EXPECT_NE(output.find(" checks, 0 failed"), std::string::npos);
   EXPECT_EQ(output.find(" NO\n"), std::string::npos);
+  // every row's last column under the header's "pass", whatever the longest method name
+  // (backward-euler) or expected value ("<= ...")
+  std::istringstream in(output);
+  std::string header;
+  ASSERT_TRUE(std::getline(in, header));
+  const std::size_t pass = header.rfind("pass");
+  ASSERT_NE(pass, std::string::npos);
+  int rows = 0;
+  for (std::string line; std::getline(in, line) && !line.empty(); ++rows)
+    EXPECT_EQ(line.size(), pass + 3) << "misaligned: " << line;  // "yes"
+  EXPECT_GT(rows, 100);
+  // the orders lines: "expected" in one column for every method
+  std::size_t column = std::string::npos;
+  int methods = 0;
+  for (std::string line; std::getline(in, line);) {
+    const std::size_t at = line.find("  expected ");
+    if (line.rfind("  ", 0) != 0 || at == std::string::npos) continue;
+    ++methods;
+    if (column == std::string::npos) column = at;
+    EXPECT_EQ(at, column) << "misaligned: " << line;
+  }
+  EXPECT_EQ(methods, 6);
 }
 
 }  // namespace

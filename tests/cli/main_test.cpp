@@ -121,5 +121,18 @@ TEST(MainCli, OutOfMemoryIsOneLineAndExitTwo) {
   EXPECT_EQ(run.stdout_text, "");
 }
 
+// Bare `clothref` says where to look; a missing input file says why it did not open.
+TEST(MainCli, BareClothrefPointsToHelpAndMissingFilesSayWhy) {
+  const test::CommandResult bare = test::runCli("");
+  EXPECT_EQ(bare.exit_code, 2);
+  EXPECT_EQ(bare.output, "clothref: a command is needed (clothref --help lists them)\n");
+  const test::TempDir dir;
+  const test::CommandResult diff =
+      test::runCli("diff " + dir.file("missing.jsonl") + " " + dir.file("other.jsonl"));
+  EXPECT_EQ(diff.exit_code, 2);
+  EXPECT_EQ(diff.output, "clothref: " + dir.file("missing.jsonl") +
+                             ": cannot open the trace file (No such file or directory)\n");
+}
+
 }  // namespace
 }  // namespace clothref

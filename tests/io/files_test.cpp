@@ -26,7 +26,8 @@ TEST(Files, ReadFileRefusesPastItsLimitAndNamesMissingFiles) {
     readFile(dir.file("missing"), "scene file");
     ADD_FAILURE();
   } catch (const InputError& error) {
-    EXPECT_EQ(std::string(error.what()), dir.file("missing") + ": cannot read the scene file");
+    EXPECT_EQ(std::string(error.what()),
+              dir.file("missing") + ": cannot read the scene file (No such file or directory)");
   }
 }
 

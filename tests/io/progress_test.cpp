@@ -89,5 +89,18 @@ TEST(Progress, QuietAlwaysSilent) {
   EXPECT_NE(progressStyleForStderr(false), ProgressStyle::Silent);
 }
 
+TEST(Progress, DurationsAndRateWithEta) {
+  EXPECT_EQ(formatDuration(0), "0s");
+  EXPECT_EQ(formatDuration(59.4), "59s");
+  EXPECT_EQ(formatDuration(125), "2m05s");
+  EXPECT_EQ(formatDuration(-3), "0s");
+  std::ostringstream out;
+  Progress progress("clothref trace", 1000, "steps", ProgressStyle::Lines, out, 0);
+  EXPECT_EQ(progress.rateAndEta(0), "ETA unknown");
+  const std::string note = progress.rateAndEta(500);
+  EXPECT_NE(note.find(" steps/s, ETA "), std::string::npos) << note;
+  EXPECT_EQ(note.back(), 's') << note;
+}
+
 }  // namespace
 }  // namespace clothref

@@ -12,16 +12,24 @@
 
 #include "clothref/golden/golden.h"
 #include "clothref/io/error.h"
+#include "clothref/io/files.h"
 #include "clothref/io/output_file.h"
 #include "clothref/io/progress.h"
 #include "commands.h"
+
+#ifndef CLOTHREF_DATA_FROM_BIN
+#define CLOTHREF_DATA_FROM_BIN ""
+#endif
 
 namespace clothref::cli {
 
 namespace {
 
 struct GoldenOptions {
-  std::string golden = CLOTHREF_GOLDEN_DIR;  // tools/CMakeLists.txt: <source>/golden
+  // an install's own copy (<prefix>/share/clothref/golden), else the source tree's
+  std::string golden = installedDataDir(CLOTHREF_DATA_FROM_BIN).empty()
+                           ? std::string(CLOTHREF_GOLDEN_DIR)
+                           : (installedDataDir(CLOTHREF_DATA_FROM_BIN) / "golden").string();
   bool update = false;
   bool create = false;
   bool quiet = false;
@@ -118,8 +126,9 @@ Command addGoldenCommand(CLI::App& root) {
       "Check the golden data (scenes, traces, per-step hashes) against the code, or regenerate "
       "it with --update (docs/regression.md)");
   auto options = std::make_shared<GoldenOptions>();
-  app->add_option("--dir,--golden", options->golden,
-                  "Golden directory (default: the source tree's, recorded at configure time)")
+  app->add_option(
+         "--dir,--golden", options->golden,
+         "Golden directory (default: an installed clothref's own copy, else the source tree's)")
       ->capture_default_str();
   CLI::Option* update =
       app->add_flag("--update", options->update,

@@ -14,11 +14,15 @@
 #include <vector>
 
 #include "clothref/io/error.h"
+#include "clothref/io/files.h"
 #include "commands.h"
 #include "run_program.h"
 
 #ifndef CLOTHREF_PYTHON
 #define CLOTHREF_PYTHON "/usr/bin/python3"
+#endif
+#ifndef CLOTHREF_DATA_FROM_BIN
+#define CLOTHREF_DATA_FROM_BIN ""
 #endif
 #ifndef CLOTHREF_PYTHON_DIR
 #define CLOTHREF_PYTHON_DIR ""
@@ -48,8 +52,11 @@ int runPython(const std::vector<std::string>& args) {
   std::vector<std::string> argv = {python, "-m", "clothref.plot"};
   argv.insert(argv.end(), args.begin(), args.end());
   const char* old = std::getenv("PYTHONPATH");
+  // an install's own package (<prefix>/share/clothref/python), else the source tree's
+  const std::filesystem::path installed = installedDataDir(CLOTHREF_DATA_FROM_BIN);
   const std::string path =
-      std::string(CLOTHREF_PYTHON_DIR) + (old && *old ? std::string(":") + old : "");
+      (installed.empty() ? std::string(CLOTHREF_PYTHON_DIR) : (installed / "python").string()) +
+      (old && *old ? std::string(":") + old : "");
   return runProgram(argv,
                     {{"PYTHONPATH", path},
                      {"PYTHONDONTWRITEBYTECODE", "1"},  // nothing written into the source tree

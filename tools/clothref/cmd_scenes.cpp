@@ -1,4 +1,5 @@
 // clothref scenes: the built-in scenes, one line each.
+#include <algorithm>
 #include <iostream>
 #include <memory>
 
@@ -15,12 +16,14 @@ Command addScenesCommand(CLI::App& root) {
   auto json = std::make_shared<bool>(false);
   app->add_flag("--json", *json, "Print every built-in scene as JSON, one per line");
   return {app, [json] {
+            std::size_t width = 0;  // the longest name sets the column
+            for (const Scene& scene : builtinScenes()) width = std::max(width, scene.name.size());
             for (const Scene& scene : builtinScenes()) {
               if (*json) {
                 std::cout << sceneToJson(scene).dump() << '\n';
                 continue;
               }
-              std::cout << fmt::format("{:<16} {}\n", scene.name, scene.description);
+              std::cout << fmt::format("{:<{}}  {}\n", scene.name, width, scene.description);
             }
             return kExitOk;
           }};

@@ -55,7 +55,10 @@ class ProgressStreambuf : public std::streambuf {
 
  private:
   void countLine() {
-    if (++lines_ >= 2) progress_.update((lines_ - 2) * stride_);
+    if (++lines_ >= 2) {
+      const std::int64_t done = (lines_ - 2) * stride_;
+      progress_.update(done, progress_.rateAndEta(done));
+    }
   }
   std::streambuf* target_;
   std::int64_t stride_;
@@ -95,6 +98,7 @@ int runTrace(const TraceOptions& options) {
   }
   output.commit();
 
+  if (options.quiet) return kExitOk;  // -q: nothing on stderr but errors
   std::cerr << fmt::format(
       "clothref trace: {} {} {} dt={}: {} steps, {:.6g} s simulated in {:.3f} s wall, {} lines\n"
       "  final kinetic energy {:.9g} J, momentum ({:.9g}, {:.9g}, {:.9g}) kg m/s, hash {}\n"
@@ -141,8 +145,9 @@ Command addTraceCommand(CLI::App& root) {
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
   app->add_flag("-q,--quiet", options->quiet,
-                "No progress on stderr (shown for runs over a second: one updating line on a "
-                "terminal, a line per 10 % otherwise)");
+                "Nothing on stderr but errors: no progress (shown for runs over a second: one "
+                "updating line on a terminal, a line per 10 % otherwise, with rate and ETA) and no "
+                "summary");
   return {app, [options] { return runTrace(*options); }};
 }
 

@@ -69,6 +69,11 @@ int main(int argc, char** argv) {
       addStabilityCommand(root), addSweepCommand(root),  addPlotCommand(root),
       addGradeCommand(root),     addViewCommand(root),   addGradescopeCommand(root)};
   for (const Command& command : commands) command.app->fallthrough();
+  // bare `clothref`: where to look, instead of CLI11's "A subcommand is required"
+  if (argc == 1) {
+    std::cerr << "clothref: a command is needed (clothref --help lists them)\n";
+    return kExitBadInput;
+  }
   // name an unknown command instead of CLI11's "A subcommand is required"
   if (argc > 1 && argv[1][0] != '-') {
     std::string names;

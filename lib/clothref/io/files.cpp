@@ -17,11 +17,27 @@
 
 namespace clothref {
 
+std::string cannotOpenMessage(const std::filesystem::path& path, const std::string& verb,
+                              const std::string& what, int error_number) {
+  std::string message = path.string() + ": cannot " + verb + " the " + what;
+  if (error_number != 0) message += std::string(" (") + std::strerror(error_number) + ")";
+  return message;
+}
+
+std::filesystem::path installedDataDir(const std::string& data_from_bin) {
+  std::error_code error;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", error);
+  if (error || data_from_bin.empty()) return {};
+  const std::filesystem::path dir = (exe.parent_path() / data_from_bin).lexically_normal();
+  return std::filesystem::is_directory(dir, error) ? dir : std::filesystem::path();
+}
+
 std::string readFile(const std::filesystem::path& path, const std::string& what,
                      std::size_t max_bytes) {
   if (max_bytes == 0) max_bytes = inputLimits().file_bytes;
+  errno = 0;
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path.string() + ": cannot read the " + what);
+  if (!in) throw InputError(cannotOpenMessage(path, "read", what, errno));
   std::string text;
   char buffer[1 << 16];
   while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {

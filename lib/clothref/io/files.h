@@ -21,6 +21,16 @@ std::string readFile(const std::filesystem::path& path, const std::string& what,
 // from)". Through iostreams both read like an empty file, which is the wrong message.
 void requireStreamInput(const std::string& path, const std::string& what);
 
+// "PATH: cannot <verb> the <what> (<the system's reason, e.g. No such file or directory>)": the
+// one message for an input file that does not open; `error_number` is errno right after the open.
+std::string cannotOpenMessage(const std::filesystem::path& path, const std::string& verb,
+                              const std::string& what, int error_number);
+
+// Where an installed clothref keeps its data: `data_from_bin` (e.g. "../share/clothref") taken
+// from the folder of the running executable (/proc/self/exe), when that folder exists; else
+// empty (a build tree, whose programs use the source tree's paths).
+std::filesystem::path installedDataDir(const std::string& data_from_bin);
+
 // A fresh directory under the system temporary directory, removed with its contents when this
 // goes out of scope. `prefix` names the directory (prefix-XXXXXX).
 class ScratchDir {

@@ -1,12 +1,19 @@
 #include "clothref/io/progress.h"
 
 #include <algorithm>
+#include <cmath>
 #include <utility>
 
 #include <fmt/format.h>
 #include <unistd.h>
 
 namespace clothref {
+
+std::string formatDuration(double seconds) {
+  const long s = std::lround(std::max(0.0, seconds));
+  if (s < 60) return std::to_string(s) + "s";
+  return fmt::format("{}m{:02}s", s / 60, s % 60);
+}
 
 ProgressStyle progressStyleForStderr(bool quiet) {
   if (quiet) return ProgressStyle::Silent;
@@ -24,6 +31,15 @@ Progress::Progress(std::string label, std::int64_t total, std::string unit, Prog
       delay_(delay_seconds) {}
 
 Progress::~Progress() { finish(); }
+
+std::string Progress::rateAndEta(std::int64_t done) const {
+  const double elapsed =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  if (done <= 0 || elapsed <= 0) return "ETA unknown";
+  const double rate = static_cast<double>(done) / elapsed;
+  return fmt::format("{:.0f} {}/s, ETA {}", rate, unit_,
+                     formatDuration(static_cast<double>(total_ - std::min(done, total_)) / rate));
+}
 
 bool Progress::due() {
   if (delay_.count() <= 0) return true;

@@ -14,6 +14,9 @@ namespace clothref {
 
 enum class ProgressStyle { Silent, Lines, Terminal };
 
+// A duration as progress lines show it: "42s", "2m05s".
+std::string formatDuration(double seconds);
+
 // Terminal when standard error is a terminal, else Lines; Silent when `quiet`.
 ProgressStyle progressStyleForStderr(bool quiet);
 
@@ -32,6 +35,9 @@ class Progress {
   void update(std::int64_t done);
   // The same, with `note` appended to the line ("..., 2 failed, ETA 1m05s").
   void update(std::int64_t done, const std::string& note);
+  // The rate since construction and the time left at that rate, for a note: "2315 steps/s, ETA
+  // 12s" (no ETA before the first unit is done).
+  std::string rateAndEta(std::int64_t done) const;
   // Terminal: clears the line, so the command's summary takes its place. Called by the destructor.
   void finish();
 

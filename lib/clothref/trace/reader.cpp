@@ -1,6 +1,7 @@
 #include "clothref/trace/reader.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <iostream>
@@ -458,8 +459,9 @@ TraceReader::TraceReader(const std::string& path) : path_(path) {
     path_ = "standard input";
     in_ = &std::cin;
   } else {
+    errno = 0;
     owned_ = std::make_unique<std::ifstream>(path, std::ios::binary);
-    if (!*owned_) throw InputError(path + ": cannot open the trace file");
+    if (!*owned_) throw InputError(cannotOpenMessage(path, "open", "trace file", errno));
     in_ = owned_.get();
   }
   readHeader();

@@ -66,19 +66,28 @@ nlohmann::ordered_json reportToJson(const VerifyReport& report) {
 }
 
 std::string reportTable(const VerifyReport& report) {
-  std::size_t width = 5;
-  for (const CheckRow& row : report.checks) width = std::max(width, row.check.size());
-  std::string table =
-      fmt::format("{:<{}}  {:<10}  {:<6}  {:>12}  {:>12}  {:>10}  {}\n", "check", width, "method",
-                  "prec", "expected", "observed", "tolerance", "pass");
+  // every column as wide as its longest entry (a method name like backward-euler, "<= 1e-05")
+  const auto expectedText = [](const CheckRow& row) {
+    return row.rule == CheckRule::AtMost ? fmt::format("<= {:.6g}", row.expected)
+                                         : fmt::format("{:.6g}", row.expected);
+  };
+  std::size_t width = 5, method_width = 6, expected_width = 8;
+  for (Method method : kAllMethods)
+    method_width = std::max(method_width, std::string(methodName(method)).size());
+  for (const CheckRow& row : report.checks) {
+    width = std::max(width, row.check.size());
+    method_width = std::max(method_width, row.method.size());
+    expected_width = std::max(expected_width, expectedText(row).size());
+  }
+  std::string table = fmt::format("{:<{}}  {:<{}}  {:<6}  {:>{}}  {:>12}  {:>10}  {}\n", "check",
+                                  width, "method", method_width, "prec", "expected", expected_width,
+                                  "observed", "tolerance", "pass");
   int failed = 0;
   for (const CheckRow& row : report.checks) {
-    const std::string expected = row.rule == CheckRule::AtMost
-                                     ? fmt::format("<= {:.6g}", row.expected)
-                                     : fmt::format("{:.6g}", row.expected);
-    table += fmt::format("{:<{}}  {:<10}  {:<6}  {:>12}  {:>12.4e}  {:>10.3e}  {}\n", row.check,
-                         width, row.method, precisionName(row.precision), expected, row.observed,
-                         row.tolerance, row.pass ? "yes" : "NO");
+    table +=
+        fmt::format("{:<{}}  {:<{}}  {:<6}  {:>{}}  {:>12.4e}  {:>10.3e}  {}\n", row.check, width,
+                    row.method, method_width, precisionName(row.precision), expectedText(row),
+                    expected_width, row.observed, row.tolerance, row.pass ? "yes" : "NO");
     failed += row.pass ? 0 : 1;
   }
   // one line per method: the orders side by side, and where the float floor lies
@@ -86,8 +95,8 @@ std::string reportTable(const VerifyReport& report) {
       "\norders on spring (least squares of log error on log dt, pass |p - expected| <= 0.2);\n"
       "float floor = largest |x_float - x_double| in the ladder; null = < 3 dt above 10x floor:\n";
   for (Method method : kAllMethods) {
-    std::string line =
-        fmt::format("  {:<10}  expected {}", methodName(method), methodInfo(method).order);
+    std::string line = fmt::format("  {:<{}}  expected {}", methodName(method), method_width,
+                                   methodInfo(method).order);
     for (const ConvergenceStudy& study : report.studies) {
       if (study.method != method) continue;
       line += fmt::format("  {} {}", precisionName(study.precision),

@@ -63,13 +63,6 @@ void writeText(const fs::path& path, const std::string& text) {
   out.commit();
 }
 
-std::string duration(double seconds) {
-  const long s = std::lround(std::max(0.0, seconds));
-  if (s < 60) return std::to_string(s) + "s";
-  const std::string secs = std::to_string(s % 60);
-  return std::to_string(s / 60) + "m" + (secs.size() < 2 ? "0" : "") + secs + "s";
-}
-
 // The row a previous run left in `folder`, or nullopt (none, unreadable, or a grader error,
 // which is ours to retry).
 std::optional<BatchRow> finishedRow(const fs::path& folder) {
@@ -362,7 +355,7 @@ BatchSummary runBatch(const std::vector<fs::path>& dirs, const BatchOptions& opt
       ++done;
       if (out.row.verdict != "graded") ++failed;
       const double eta = since(start) / done * static_cast<double>(pending.size() - done);
-      progress.update(done, std::to_string(failed) + " failed, ETA " + duration(eta));
+      progress.update(done, std::to_string(failed) + " failed, ETA " + formatDuration(eta));
     }
   };
   std::vector<std::thread> threads;

@@ -10,9 +10,11 @@
 #include <fstream>
 #include <map>
 #include <mutex>
+#include <set>
 #include <sstream>
 
 #include "child_process.h"
+#include "clothref/io/files.h"
 
 #ifndef CLOTHREF_GRADER_COURSE_DIR
 #define CLOTHREF_GRADER_COURSE_DIR ""
@@ -22,6 +24,12 @@
 #endif
 #ifndef CLOTHREF_GRADER_LIB_DIR
 #define CLOTHREF_GRADER_LIB_DIR ""
+#endif
+#ifndef CLOTHREF_GRADER_PREBUILT_DIR
+#define CLOTHREF_GRADER_PREBUILT_DIR ""
+#endif
+#ifndef CLOTHREF_DATA_FROM_BIN
+#define CLOTHREF_DATA_FROM_BIN ""
 #endif
 #ifndef CLOTHREF_GRADER_EIGEN_INCLUDE
 #define CLOTHREF_GRADER_EIGEN_INCLUDE "/usr/include/eigen3"
@@ -88,18 +96,46 @@ std::string readBytes(const fs::path& path) {
   return out.str();
 }
 
-// What the compiler says it is (`--version`), once per compiler per grader process: an object
-// built by another compiler version is another object.
-std::string compilerVersion(const std::string& compiler, const fs::path& work_dir) {
+// The bytes of every stand-in file under their relative names (once per course folder): where
+// the course folder lives (source tree, install) is no part of a key.
+std::uint64_t courseHeadersHash(const CourseToolchain& t) {
   static std::mutex mutex;
-  static std::map<std::string, std::string> versions;
-  std::lock_guard<std::mutex> lock(mutex);
-  auto it = versions.find(compiler);
-  if (it == versions.end()) {
-    const ToolRun run = runTools({{compiler, "--version"}}, work_dir, 1, 30).front();
-    it = versions.emplace(compiler, run.ok ? run.output : "unknown compiler").first;
-  }
-  return it->second;
+  static std::map<fs::path, std::uint64_t> known;
+  const std::lock_guard lock(mutex);
+  auto found = known.find(t.course_dir);
+  if (found != known.end()) return found->second;
+  std::uint64_t h = 0;
+  std::vector<fs::path> files;
+  for (const auto& entry : fs::recursive_directory_iterator(t.course_dir))
+    if (entry.is_regular_file()) files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  for (const auto& f : files) h = fnv1a(fs::relative(f, t.course_dir).string() + readBytes(f), h);
+  return known[t.course_dir] = h;
+}
+
+// A compile argument as a key sees it: the course folder's location replaced by a name, and a
+// precompiled header by its folder's name (which is its key), so objects built with clothref
+// (`prebuilt_dir`) are found wherever clothref is installed.
+std::string keyArgument(const CourseToolchain& t, const std::string& arg) {
+  const std::string course = t.course_dir.string();
+  std::string out = arg;
+  for (std::size_t at; !course.empty() && (at = out.find(course)) != std::string::npos;)
+    out.replace(at, course.size(), "<course>");
+  if (out.size() > 13 && out.compare(out.size() - 13, 13, "/course_pch.h") == 0)
+    out = "<pch>/" + fs::path(out).parent_path().filename().string();
+  return out;
+}
+
+// What names the compiler in a key: its `--version` text (asked once per process), so an
+// upgraded or another compiler never reuses a precompiled header or an object of the old one.
+std::string compilerIdentity(const CourseToolchain& t, const fs::path& work_dir) {
+  static std::mutex mutex;
+  static std::map<std::string, std::string> known;
+  const std::lock_guard lock(mutex);
+  auto found = known.find(t.compiler);
+  if (found != known.end()) return found->second;
+  const ToolRun run = runTools({{t.compiler, "--version"}}, work_dir, 1, 30, nullptr).front();
+  return known[t.compiler] = run.ok ? run.output : std::string();
 }
 
 // How a compile was confined: an object built unconfined (the fallback as a non-root user) may
@@ -116,64 +152,118 @@ std::string confinement(const Isolation& isolation) {
   return "none";
 }
 
-}  // namespace
-
-fs::path objectCachePath(const CourseToolchain& t, const std::vector<std::string>& command,
-                         const fs::path& source, const fs::path& work_dir) {
+// The cache file for a compile command: its flags (paths of the source and object excluded), the
+// bytes of the source and of every stand-in header, the compiler's identity and, for student
+// files, how the compile was confined. Our own reference files (`trusted`: prebuilt with
+// clothref) are keyed without the confinement, so the prebuilt objects serve every isolation.
+fs::path cachePath(const CourseToolchain& t, const std::vector<std::string>& command,
+                   const fs::path& source, const fs::path& work_dir, bool trusted) {
   std::uint64_t hash = fnv1a(readBytes(source));
-  hash = fnv1a(compilerVersion(t.compiler, work_dir), hash);
-  hash = fnv1a(confinement(t.isolation), hash);
   for (std::size_t k = 0; k + 1 < command.size(); ++k) {
     if (command[k] == "-c" || command[k] == "-o") {
       ++k;
       continue;
     }
-    hash = fnv1a(command[k] + '\n', hash);
+    hash = fnv1a(keyArgument(t, command[k]) + '\n', hash);
   }
-  static const std::uint64_t headers = [&] {
-    std::uint64_t h = 0;
-    std::vector<fs::path> files;
-    for (const auto& entry : fs::recursive_directory_iterator(t.course_dir))
-      if (entry.is_regular_file()) files.push_back(entry.path());
-    std::sort(files.begin(), files.end());
-    for (const auto& f : files) h = fnv1a(f.string() + readBytes(f), h);
-    return h;
-  }();
-  hash = fnv1a(std::to_string(headers), hash);
+  hash = fnv1a(std::to_string(courseHeadersHash(t)), hash);
+  hash = fnv1a(compilerIdentity(t, work_dir), hash);
+  if (!trusted) hash = fnv1a(confinement(t.isolation), hash);
   char name[32];
   std::snprintf(name, sizeof name, "%016llx.o", static_cast<unsigned long long>(hash));
   return t.cache_dir / name;
 }
 
-namespace {
+// The headers every file of an edition sees, in a fixed order: the std and Eigen headers course
+// files include, then every stand-in header except configs.h (the springs probe's second build
+// sets its particlesPerEdge, so it stays outside the precompiled part and one header serves
+// both sizes). Including more than a student's file does is harmless: the stand-in headers are
+// the course's, and a name they bring is one the course's own build has too.
+std::string precompiledHeaderText(const CourseToolchain& t, int edition) {
+  std::string text =
+      "#include <algorithm>\n#include <cmath>\n#include <filesystem>\n#include <functional>\n"
+      "#include <iostream>\n#include <stdexcept>\n#include <string>\n#include <vector>\n"
+      "#include <Eigen/Core>\n#include <Eigen/Dense>\n";
+  std::vector<std::string> names;
+  for (const fs::path& dir :
+       {t.course_dir / std::to_string(edition) / "include", t.course_dir / "common" / "include"}) {
+    std::error_code error;
+    for (const auto& entry : fs::directory_iterator(dir, error))
+      if (entry.path().extension() == ".h" && entry.path().filename() != "configs.h")
+        names.push_back(entry.path().filename().string());
+  }
+  std::sort(names.begin(), names.end());
+  for (const std::string& name : names) text += "#include \"" + name + "\"\n";
+  return text;
+}
 
-// With a cache: a precompiled header of exactly what every student file includes first anyway
-// (each course header starts with <Eigen/Core> and these std headers), built once per compiler
-// and flags. It halves a compile; without a cache it would cost more than it saves.
-fs::path precompiledHeader(const CourseToolchain& t, const fs::path& work_dir) {
-  if (t.cache_dir.empty()) return {};
-  std::uint64_t hash = fnv1a("clothref-grader-pch-1");
-  for (const std::string& flag : baseFlags(t)) hash = fnv1a(flag + '\n', hash);
-  hash = fnv1a(t.eigen_include.string(), hash);
+// The compile of an edition's precompiled header, written to `dir`.
+std::vector<std::string> precompileCommand(const CourseToolchain& t, int edition,
+                                           const fs::path& dir) {
+  const std::string ed = std::to_string(edition);
+  std::vector<std::string> command = baseFlags(t);
+  command.insert(command.end(),
+                 {"-fdiagnostics-color=never", "-DCLOTHREF_GRADER_EDITION_" + ed,
+                  "-I" + (t.course_dir / ed / "include").string(),
+                  "-I" + (t.course_dir / "common" / "include").string(), "-isystem",
+                  t.eigen_include.string(), "-x", "c++-header", (dir / "course_pch.h").string(),
+                  "-o", (dir / "course_pch.h.gch").string()});
+  return command;
+}
+
+// The folder name of an edition's precompiled header: its key is the compiler's identity, the
+// command (paths of the header itself excluded), the header's text, the bytes of every stand-in
+// header and Eigen's version header (gcc never checks whether a header changed since).
+std::string precompiledHeaderName(const CourseToolchain& t, int edition, const fs::path& work_dir) {
+  std::uint64_t hash = fnv1a("clothref-grader-pch-2\n" + compilerIdentity(t, work_dir));
+  for (const std::string& arg : precompileCommand(t, edition, {}))
+    if (arg.find("course_pch.h") == std::string::npos)
+      hash = fnv1a(keyArgument(t, arg) + '\n', hash);
+  hash = fnv1a(precompiledHeaderText(t, edition), hash);
+  hash = fnv1a(std::to_string(courseHeadersHash(t)), hash);
+  hash = fnv1a(readBytes(t.eigen_include / "Eigen" / "src" / "Core" / "util" / "Macros.h"), hash);
   char name[40];
   std::snprintf(name, sizeof name, "pch-%016llx", static_cast<unsigned long long>(hash));
-  const fs::path dir = t.cache_dir / name;
-  const fs::path header = dir / "course_pch.h";
+  return name;
+}
+
+// The edition's precompiled stand-in headers (the `-include` file; gcc takes the .gch beside it):
+// the one built with clothref (`prebuilt_dir`) when its key matches, else the cache's, built there
+// on first use (once per process: concurrent submissions of a batch wait for it). Without either,
+// none: building one costs about as much as the four compiles it speeds up.
+fs::path precompiledHeader(const CourseToolchain& t, int edition, const fs::path& work_dir) {
+  if (t.cache_dir.empty() && t.prebuilt_dir.empty()) return {};
+  const std::string name = precompiledHeaderName(t, edition, work_dir);
   std::error_code error;
-  if (fs::exists(dir / "course_pch.h.gch", error)) return header;
-  const fs::path temporary = t.cache_dir / (std::string(name) + ".tmp" + uniqueSuffix());
+  for (const fs::path& root : {t.prebuilt_dir, t.cache_dir})
+    if (!root.empty() && fs::exists(root / name / "course_pch.h.gch", error))
+      return root / name / "course_pch.h";
+  if (t.cache_dir.empty()) return {};
+  static std::mutex mutex;
+  const std::lock_guard lock(mutex);
+  const fs::path dir = t.cache_dir / name;
+  if (fs::exists(dir / "course_pch.h.gch", error)) return dir / "course_pch.h";
+  const fs::path temporary = t.cache_dir / (name + ".tmp" + uniqueSuffix());
   fs::create_directories(temporary, error);
-  std::ofstream(temporary / "course_pch.h")
-      << "#include <filesystem>\n#include <functional>\n#include <stdexcept>\n#include <string>\n"
-         "#include <vector>\n#include <Eigen/Core>\n";
-  std::vector<std::string> command = baseFlags(t);
-  command.insert(command.end(), {"-isystem", t.eigen_include.string(), "-x", "c++-header",
-                                 (temporary / "course_pch.h").string(), "-o",
-                                 (temporary / "course_pch.h.gch").string()});
-  const bool built = runTools({command}, work_dir, 1, t.compile_seconds, &t.isolation).front().ok;
+  std::ofstream(temporary / "course_pch.h") << precompiledHeaderText(t, edition);
+  const bool built = runTools({precompileCommand(t, edition, temporary)}, work_dir, 1,
+                              t.compile_seconds, &t.isolation)
+                         .front()
+                         .ok;
   if (built) fs::rename(temporary, dir, error);  // another grader may have won: use theirs
   fs::remove_all(temporary, error);
-  return fs::exists(dir / "course_pch.h.gch", error) ? header : fs::path();
+  return fs::exists(dir / "course_pch.h.gch", error) ? dir / "course_pch.h" : fs::path();
+}
+
+// The object built with clothref for this command (our reference files), copied to `object`.
+bool fromPrebuilt(const CourseToolchain& t, const std::vector<std::string>& command,
+                  const fs::path& source, const fs::path& object) {
+  if (t.prebuilt_dir.empty()) return false;
+  const fs::path prebuilt =
+      t.prebuilt_dir / cachePath(t, command, source, object.parent_path(), true).filename();
+  std::error_code error;
+  return fs::exists(prebuilt, error) &&
+         fs::copy_file(prebuilt, object, fs::copy_options::overwrite_existing, error);
 }
 
 // Runs the compile commands, taking objects from the cache where it has them and filling it.
@@ -190,12 +280,16 @@ std::vector<ToolRun> compileAll(const CourseToolchain& t,
     const fs::path object = *(std::find(c.begin(), c.end(), "-o") + 1);
     std::error_code error;
     if (!t.cache_dir.empty()) {
-      cached[k] = objectCachePath(t, c, source, work_dir);
+      cached[k] = cachePath(t, c, source, work_dir, t.trusted_sources);
       if (fs::exists(cached[k], error) &&
           fs::copy_file(cached[k], object, fs::copy_options::overwrite_existing, error)) {
         results[k].ok = true;
         continue;
       }
+    }
+    if (fromPrebuilt(t, c, source, object)) {
+      results[k].ok = true;
+      continue;
     }
     to_run.push_back(c);
     index.push_back(k);
@@ -219,14 +313,62 @@ std::vector<ToolRun> compileAll(const CourseToolchain& t,
 
 }  // namespace
 
+fs::path objectCachePath(const CourseToolchain& t, const std::vector<std::string>& command,
+                         const fs::path& source, const fs::path& work_dir) {
+  return cachePath(t, command, source, work_dir, t.trusted_sources);
+}
+
 CourseToolchain defaultToolchain() {
   CourseToolchain t;
-  t.course_dir = fromEnv("CLOTHREF_GRADER_COURSE_DIR", CLOTHREF_GRADER_COURSE_DIR);
-  t.reference_dir = fromEnv("CLOTHREF_GRADER_REFERENCE_DIR", CLOTHREF_GRADER_REFERENCE_DIR);
-  t.driver_lib_dir = fromEnv("CLOTHREF_GRADER_LIB_DIR", CLOTHREF_GRADER_LIB_DIR);
+  // An install keeps the course side in <prefix>/share/clothref/grader; a build tree uses the
+  // source tree's and its own.
+  const fs::path installed = installedDataDir(CLOTHREF_DATA_FROM_BIN) / "grader";
+  const bool from_install = !installed.parent_path().empty() && fs::is_directory(installed);
+  const auto where = [&](const char* name, const char* relative, const char* built) {
+    return fromEnv(name, from_install ? (installed / relative).c_str() : built);
+  };
+  t.course_dir = where("CLOTHREF_GRADER_COURSE_DIR", "course", CLOTHREF_GRADER_COURSE_DIR);
+  t.reference_dir =
+      where("CLOTHREF_GRADER_REFERENCE_DIR", "reference", CLOTHREF_GRADER_REFERENCE_DIR);
+  t.driver_lib_dir = where("CLOTHREF_GRADER_LIB_DIR", "lib", CLOTHREF_GRADER_LIB_DIR);
+  t.prebuilt_dir = where("CLOTHREF_GRADER_PREBUILT_DIR", "prebuilt", CLOTHREF_GRADER_PREBUILT_DIR);
   t.eigen_include = CLOTHREF_GRADER_EIGEN_INCLUDE;
   t.compiler = fromEnv("CLOTHREF_GRADER_CXX", "g++");
   return t;
+}
+
+bool prebuildCourse(const CourseToolchain& given, const std::vector<int>& editions,
+                    const fs::path& out_dir, const fs::path& work_dir, std::string* problem) {
+  CourseToolchain t = given;
+  t.cache_dir = fs::absolute(out_dir);
+  t.prebuilt_dir.clear();
+  t.trusted_sources = true;  // our reference files: keyed for every isolation
+  std::set<std::string> wanted;
+  for (const int edition : editions) {
+    const fs::path pch = precompiledHeader(t, edition, work_dir);
+    if (pch.empty()) {
+      if (problem) *problem = "the precompiled header of " + std::to_string(edition) + " failed";
+      return false;
+    }
+    wanted.insert(pch.parent_path().filename().string());
+    std::vector<std::vector<std::string>> commands;
+    for (const std::string& name : studentFileNames()) {
+      const fs::path source = t.reference_dir / std::to_string(edition) / name;
+      commands.push_back(compileCommand(t, edition, source, work_dir / (name + ".o"), 25, pch));
+      wanted.insert(cachePath(t, commands.back(), source, work_dir, true).filename().string());
+    }
+    const std::vector<ToolRun> runs = compileAll(t, commands, work_dir);
+    for (std::size_t k = 0; k < runs.size(); ++k)
+      if (!runs[k].ok) {
+        if (problem) *problem = "our reference " + studentFileNames()[k] + " does not compile";
+        return false;
+      }
+  }
+  // What an older clothref built (other headers or flags) is never found again: remove it.
+  std::error_code error;
+  for (const auto& entry : fs::directory_iterator(t.cache_dir, error))
+    if (!wanted.count(entry.path().filename().string())) fs::remove_all(entry.path(), error);
+  return true;
 }
 
 std::string firstCompilerError(const std::string& log, const std::string& file_name) {
@@ -274,11 +416,13 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseTo
   // Compiles run inside the scratch folder: every path they get must be absolute.
   CourseToolchain toolchain = given;
   if (!toolchain.cache_dir.empty()) toolchain.cache_dir = fs::absolute(toolchain.cache_dir);
+  if (!toolchain.prebuilt_dir.empty())
+    toolchain.prebuilt_dir = fs::absolute(toolchain.prebuilt_dir);
   ProbeBuild build;
   const std::string ed = std::to_string(edition);
   const auto stem = [](const std::string& name) { return name.substr(0, name.size() - 4); };
 
-  const fs::path pch = precompiledHeader(toolchain, work_dir);
+  const fs::path pch = precompiledHeader(toolchain, edition, work_dir);
   // 1. Student files, each alone in its folder; plus cloth.cpp at the second size.
   std::vector<std::vector<std::string>> commands;
   std::vector<std::string> names;

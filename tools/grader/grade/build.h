@@ -1,9 +1,11 @@
 // Building the probe executables of one submission: each student file is copied alone into a
 // scratch folder (so no student header can be found) and compiled once against the edition's
-// stand-in headers; cloth.cpp is compiled a second time with another particlesPerEdge for the
-// springs probe. A file that does not compile (or is missing) is replaced by our course-form
-// reference version, so the other files are still graded. The objects are linked with the probe
-// driver and our framework definitions (built with clothref, one library per edition).
+// stand-in headers, precompiled once per edition, compiler and flags (built with clothref, or on
+// first use in the object cache); cloth.cpp is compiled a second time with another
+// particlesPerEdge for the springs probe. A file that does not compile (or is missing) is replaced
+// by our course-form reference version, so the other files are still graded. The objects are linked
+// with the probe driver and our framework definitions (built with clothref, one library per
+// edition).
 #pragma once
 #include <filesystem>
 #include <map>
@@ -26,7 +28,12 @@ struct CourseToolchain {
   std::filesystem::path eigen_include;   // e.g. /usr/include/eigen3
   int jobs = 2;                          // compiles at once
   std::filesystem::path cache_dir;       // object cache keyed by source bytes + flags; empty = off
-  double compile_seconds = 120;          // per compile
+  // Read-only, built with clothref (clothref_grader_prebuild): the precompiled stand-in headers
+  // and our reference objects for the default flags, found under the object cache's keys.
+  std::filesystem::path prebuilt_dir;
+  // Our own reference files only (prebuildCourse): objects keyed without the confinement.
+  bool trusted_sources = false;
+  double compile_seconds = 120;  // per compile
   Isolation isolation;  // Bubblewrap: compiles and links see only /usr and the paths they name
   // Diagnostic build (--sanitize): -fsanitize=address,undefined -g -O1 -fno-omit-frame-pointer
   // instead of `optimisation`, linked by g++ with the same -fsanitize (which brings the runtimes;
@@ -38,7 +45,7 @@ struct CourseToolchain {
 inline constexpr const char* kSanitizeFlag = "-fsanitize=address,undefined";
 
 // The built-in locations (set by CMake) with environment overrides CLOTHREF_GRADER_COURSE_DIR,
-// CLOTHREF_GRADER_REFERENCE_DIR and CLOTHREF_GRADER_LIB_DIR.
+// CLOTHREF_GRADER_REFERENCE_DIR, CLOTHREF_GRADER_LIB_DIR and CLOTHREF_GRADER_PREBUILT_DIR.
 CourseToolchain defaultToolchain();
 
 inline constexpr int kSecondParticlesPerEdge = 10;  // the springs probe's second cloth size
@@ -56,6 +63,13 @@ struct ProbeBuild {
 
 ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseToolchain& toolchain,
                        const std::filesystem::path& work_dir);
+
+// Fills `out_dir` (a `prebuilt_dir`) with what grading needs whatever the submission: per edition
+// the precompiled stand-in headers and our three reference objects; removes what it holds for
+// other headers or flags. Run with clothref's build; false (and why) when something fails.
+bool prebuildCourse(const CourseToolchain& toolchain, const std::vector<int>& editions,
+                    const std::filesystem::path& out_dir, const std::filesystem::path& work_dir,
+                    std::string* problem);
 
 // The object cache's file for compile `command` of `source`: keyed by the source's bytes, the
 // flags, the stand-in headers, the compiler's `--version` and the isolation the compile ran in

@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# A Slurm array that grades a batch in shards (docs/grading.md, "Splitting a batch over machines"):
+# task k of n grades the k-th slice of the sorted submissions into one shared BATCHDIR, whose
+# per-submission folders never overlap between shards. After the array:
+#   cat $(for k in $(seq 1 8); do echo "$BATCHDIR/grades-$k-of-8.csv"; done) > grades.csv
+# (only shard 1 writes a header). A task that was preempted or failed is simply run again: it
+# skips what it already graded.
+#
+#   CLOTHREF=clothref/build/bin/clothref SUBMISSIONS=submissions BATCHDIR=$SCRATCH/batch \
+#     sbatch tools/grader/slurm/grade-array.sh
+#
+# Environment: CLOTHREF (default: clothref on PATH), SUBMISSIONS (a folder of submission folders,
+# default submissions), BATCHDIR (default $SCRATCH/batch), GRADE_OPTIONS (more options for every
+# submission, e.g. "--timeout 10"). `sbatch --array=0-2` overrides the array below.
+#SBATCH --array=0-7
+#SBATCH --cpus-per-task=2
+#SBATCH --job-name=clothref-grade
+set -euo pipefail
+k=$((SLURM_ARRAY_TASK_ID + 1))
+header=$([ "$k" -gt 1 ] && echo --csv-no-header || true)
+# shellcheck disable=SC2086 # GRADE_OPTIONS and header are lists of words
+"${CLOTHREF:-clothref}" grade "${SUBMISSIONS:-submissions}"/*/ --out "${BATCHDIR:-$SCRATCH/batch}" \
+  --jobs 2 --shard "$k/$SLURM_ARRAY_TASK_COUNT" $header ${GRADE_OPTIONS:-}
