@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <nlohmann/json.hpp>
 #include <set>
 
@@ -141,6 +142,106 @@ TEST(Exit, NoStudentFileIsBadInput) {
   EXPECT_EQ(run.exit_code, 2) << run.output;
   EXPECT_NE(run.output.find("none of cloth.cpp"), std::string::npos) << run.output;
   EXPECT_FALSE(fs::exists(temp.file("results.json")));
+}
+
+// ---- The realistic corpus (tests/grader/corpus): submissions combining several mistakes, with
+// hand labels per stub. Over the whole corpus: every stub's verdict (full marks or not) as
+// labelled, the labelled cause named as *likely* for at least 85 % of the wrong stubs, and no
+// *likely* cause the label contradicts (one that is neither a labelled cause nor in its "also").
+
+const fs::path kRealCorpus = fs::path(CLOTHREF_SOURCE_DIR) / "tests" / "grader" / "corpus";
+
+std::vector<fs::path> realCorpus() {
+  std::vector<fs::path> cases;
+  for (const char* edition : {"2022", "2024"}) {
+    std::error_code error;
+    for (const auto& entry : fs::directory_iterator(kRealCorpus / edition, error))
+      if (fs::exists(entry.path() / "labels.json")) cases.push_back(entry.path());
+  }
+  std::sort(cases.begin(), cases.end());
+  return cases;
+}
+
+// The ids a test's feedback names as *likely* ("**Likely cause** (`id`)"), not as a guess.
+std::set<std::string> likelyCauses(const std::string& output) {
+  std::set<std::string> ids;
+  const std::string marker = "**Likely cause** (`";
+  for (std::size_t at = output.find(marker); at != std::string::npos;
+       at = output.find(marker, at + 1)) {
+    const std::size_t start = at + marker.size(), end = output.find('`', start);
+    if (end != std::string::npos) ids.insert(output.substr(start, end - start));
+  }
+  return ids;
+}
+
+TEST(RealCorpus, VerdictsAllRightCausesMostlyNamedNoneContradicted) {
+  const std::vector<fs::path> cases = realCorpus();
+  ASSERT_GE(cases.size(), 12u) << kRealCorpus;
+  // Grade them all at once, as a course would: one batch, two submissions at a time.
+  TempDir temp;
+  std::string args = "grade";
+  for (const fs::path& dir : cases) args += " '" + dir.string() + "'";
+  args += " --no-whole-run --jobs 2 --cache-dir '" + std::string(CLOTHREF_GRADER_CACHE) +
+          "' --out '" + temp.file("batch") + "'";
+  const CommandResult run = runCli(args);
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+
+  int stubs = 0, verdicts_right = 0, wrong_stubs = 0, cause_named = 0;
+  std::vector<std::string> problems;
+  for (const fs::path& dir : cases) {
+    const std::string name = dir.parent_path().filename().string() + "/" + dir.filename().string();
+    const nlohmann::json labels = readJson(dir / "labels.json");
+    const fs::path results_path = fs::path(temp.file("batch")) / dir.filename() / "results.json";
+    ASSERT_TRUE(fs::exists(results_path)) << results_path;
+    const nlohmann::json results = readJson(results_path);
+    ASSERT_TRUE(results.contains("extra_data")) << name;
+    EXPECT_EQ(results["extra_data"]["edition"].get<int>(),
+              std::stoi(labels["edition"].get<std::string>()))
+        << name;
+    for (const auto& [stub, label] : labels["stubs"].items()) {
+      ++stubs;
+      const auto& scores = results["extra_data"]["stub_scores"];
+      const auto& maxima = results["extra_data"]["stub_max"];
+      ASSERT_TRUE(scores.contains(stub) && maxima.contains(stub)) << name << " " << stub;
+      const bool loses = scores[stub].get<double>() < maxima[stub].get<double>();
+      const bool labelled_loses = label["verdict"] == "loses";
+      if (loses == labelled_loses)
+        ++verdicts_right;
+      else
+        problems.push_back(name + ": " + stub + " " + (loses ? "loses points" : "full marks") +
+                           ", labelled " + label["verdict"].get<std::string>());
+      std::set<std::string> allowed, likely;
+      for (const char* key : {"causes", "also"})
+        if (label.contains(key))
+          for (const auto& id : label[key]) allowed.insert(id.get<std::string>());
+      for (const auto& test : results["tests"])
+        if (test["tags"][0] == stub && test["status"] == "failed")
+          for (const std::string& id : likelyCauses(test["output"].get<std::string>()))
+            likely.insert(id);
+      for (const std::string& id : likely)
+        if (!allowed.count(id))
+          problems.push_back(name + ": " + stub + ": likely `" + id + "` contradicts the label");
+      if (!labelled_loses) continue;
+      ++wrong_stubs;
+      bool named = false;
+      for (const auto& id : label["causes"]) named = named || likely.count(id.get<std::string>());
+      if (named)
+        ++cause_named;
+      else
+        problems.push_back(name + ": " + stub + ": labelled cause " + label["causes"].dump() +
+                           " not named as likely");
+    }
+  }
+  std::string all;
+  for (const auto& p : problems) all += "\n  " + p;
+  EXPECT_EQ(verdicts_right, stubs) << all;
+  ASSERT_GT(wrong_stubs, 0);
+  EXPECT_GE(cause_named * 100, 85 * wrong_stubs)
+      << cause_named << " of " << wrong_stubs << " wrong stubs have their cause named" << all;
+  for (const auto& p : problems) EXPECT_EQ(p.find("contradicts"), std::string::npos) << p;
+  std::cout << "real corpus: " << cases.size() << " submissions, per-stub verdicts "
+            << verdicts_right << " / " << stubs << ", cause named as likely " << cause_named
+            << " / " << wrong_stubs << all << "\n";
 }
 
 }  // namespace
