@@ -244,5 +244,98 @@ TEST(RealCorpus, VerdictsAllRightCausesMostlyNamedNoneContradicted) {
             << " / " << wrong_stubs << all << "\n";
 }
 
+// Results of grading `submission` with extra CLI arguments (`--no-whole-run`, cached objects).
+nlohmann::json gradeResults(const fs::path& submission, const TempDir& temp,
+                            const std::string& extra = "") {
+  const CommandResult run = runCli("grade '" + submission.string() + "' --no-whole-run " + extra +
+                                   " --cache-dir '" + std::string(CLOTHREF_GRADER_CACHE) +
+                                   "' --results '" + temp.file("results.json") + "'");
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  return readJson(temp.file("results.json"));
+}
+
+// The reference with ExplicitEuler::integrate's body replaced by `body`.
+fs::path withExplicitBody(const TempDir& temp, const std::string& body) {
+  const fs::path dir = temp.path() / "submission";
+  fs::create_directories(dir);
+  const fs::path reference = kCorpus / "2022" / "reference";
+  for (const char* name : kFiles) fs::copy_file(corpusFile(reference, name), dir / name);
+  std::ifstream in(dir / "integrator.cpp");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string head = "void ExplicitEuler::integrate(";
+  const std::size_t at = text.find(head);
+  const std::size_t open = text.find("{\n", at) + 2;
+  const std::size_t close = text.find("\n}\n", open) + 1;
+  EXPECT_NE(at, std::string::npos);
+  text = text.substr(0, open) + body + text.substr(close);
+  std::ofstream(dir / "integrator.cpp") << text;
+  return dir;
+}
+
+double stubScore(const nlohmann::json& results, const std::string& stub) {
+  return results["extra_data"]["stub_scores"][stub].get<double>();
+}
+
+// A crash on the small probe cloth is graded again on the course's cloth; a crash there too stays
+// a crash, and both are quoted.
+TEST(CourseCloth, CrashOnBothClothsStaysACrash) {
+  TempDir temp;
+  const fs::path submission =
+      withExplicitBody(temp,
+                       "  for (auto p : particles) {\n"
+                       "    p->position() += p->velocity() * deltaTime;\n"
+                       "    p->velocity() += p->acceleration() * deltaTime;\n"
+                       "  }\n"
+                       "  particles[0]->velocity(100000).setZero();\n");
+  const nlohmann::json results = gradeResults(submission, temp);
+  EXPECT_EQ(stubScore(results, "ExplicitEuler::integrate"), 0.0);
+  EXPECT_EQ(results["extra_data"]["verdict"], "crashed");
+  bool quoted = false;
+  for (const auto& test : results["tests"])
+    if (test["tags"][0] == "ExplicitEuler::integrate") {
+      const std::string output = test["output"];
+      quoted = output.find("On the 4 x 4 probe cloth") != std::string::npos &&
+               output.find("On the course's cloth") != std::string::npos;
+    }
+  EXPECT_TRUE(quoted) << results.dump(1).substr(0, 3000);
+}
+
+// Code that only runs on the course's 25 x 25 cloth (corners pinned by index) gets full marks
+// there, says why, and the submission's verdict stays `graded`.
+TEST(CourseCloth, CourseOnlyCodeIsGradedOnTheCourseCloth) {
+  TempDir temp;
+  const fs::path submission = withExplicitBody(
+      temp,
+      "  for (auto p : particles) {\n"
+      "    p->position() += p->velocity() * deltaTime;\n"
+      "    p->velocity() += p->acceleration() * deltaTime;\n"
+      "  }\n"
+      "  particles[0]->velocity(particlesPerEdge * particlesPerEdge - 1).setZero();\n");
+  const nlohmann::json results = gradeResults(submission, temp);
+  EXPECT_EQ(stubScore(results, "ExplicitEuler::integrate"), 5.0);
+  EXPECT_EQ(results["extra_data"]["verdict"], "graded");
+  for (const auto& test : results["tests"])
+    if (test["tags"][0] == "ExplicitEuler::integrate")
+      EXPECT_NE(test["output"].get<std::string>().find("graded on the course's cloth"),
+                std::string::npos)
+          << test["output"];
+}
+
+// The symplectic predictor in implicit and midpoint is accepted by default and refused with the
+// rubric switch off.
+TEST(Variants, SymplecticPredictorIsARubricSwitch) {
+  const fs::path submission =
+      kRealCorpus / "2022" / "symplectic-both-sqrt2-normal-stage-current";  // midpoint: predictor
+  TempDir on, off;
+  EXPECT_EQ(stubScore(gradeResults(submission, on), "MidpointEuler::integrate"), 2.5);
+  std::ofstream(off.file("rubric.json"))
+      << R"({"accepted_variants": {"symplectic-predictor": false}})";
+  const nlohmann::json refused =
+      gradeResults(submission, off, "--rubric '" + off.file("rubric.json") + "'");
+  EXPECT_LT(stubScore(refused, "MidpointEuler::integrate"), 2.5);
+  // explicit-as-symplectic is its own switch: still accepted
+  EXPECT_EQ(stubScore(refused, "ExplicitEuler::integrate"), 5.0);
+}
+
 }  // namespace
 }  // namespace clothref::test
