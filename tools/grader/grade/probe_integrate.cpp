@@ -85,16 +85,28 @@ enum class Variant {
   PositionOnly
 };
 
+// The start state of `bodies`: a copy, or with `alias` the live state (what a pointer or
+// Eigen::Ref "copy" reads later).
+struct Backup {
+  Backup(const std::vector<Particles<float>*>& of, bool alias_live)
+      : bodies(of), alias(alias_live) {
+    for (auto* p : bodies) x0.push_back(p->position), v0.push_back(p->velocity);
+  }
+  Mat4X<float> x(std::size_t b) const { return alias ? bodies[b]->position : x0[b]; }
+  Mat4X<float> v(std::size_t b) const { return alias ? bodies[b]->velocity : v0[b]; }
+  const std::vector<Particles<float>*>& bodies;
+  bool alias;
+  std::vector<Mat4X<float>> x0, v0;
+};
+
 // The course's predictor-corrector (implicit h = 1, midpoint h = 1/2) for `bodies` only; the
 // others keep their state (a per-body loop).
 void predictCorrect(System& s, const std::vector<Particles<float>*>& bodies, float h,
                     Variant variant) {
   const float dt = s.dt;
-  const bool alias = variant == Variant::Alias;
-  std::vector<Mat4X<float>> x0, v0;
-  for (auto* p : bodies) x0.push_back(p->position), v0.push_back(p->velocity);
-  const auto X0 = [&](std::size_t b) { return alias ? bodies[b]->position : x0[b]; };
-  const auto V0 = [&](std::size_t b) { return alias ? bodies[b]->velocity : v0[b]; };
+  const Backup backup(bodies, variant == Variant::Alias);
+  const auto X0 = [&](std::size_t b) { return backup.x(b); };
+  const auto V0 = [&](std::size_t b) { return backup.v(b); };
   if (variant == Variant::NoReevaluationHalfVelocity) simulate(s);
   if (variant == Variant::ZeroHalfStep) h = 0;
   for (auto* p : bodies) {
@@ -124,11 +136,9 @@ void predictCorrect(System& s, const std::vector<Particles<float>*>& bodies, flo
 void rungeKutta(System& s, const std::vector<Particles<float>*>& bodies, Variant variant,
                 int stage_index) {
   const float dt = s.dt;
-  const bool alias = variant == Variant::Alias;
-  std::vector<Mat4X<float>> x0, v0;
-  for (auto* p : bodies) x0.push_back(p->position), v0.push_back(p->velocity);
-  const auto X0 = [&](std::size_t b) { return alias ? bodies[b]->position : x0[b]; };
-  const auto V0 = [&](std::size_t b) { return alias ? bodies[b]->velocity : v0[b]; };
+  const Backup backup(bodies, variant == Variant::Alias);
+  const auto X0 = [&](std::size_t b) { return backup.x(b); };
+  const auto V0 = [&](std::size_t b) { return backup.v(b); };
   std::vector<Mat4X<float>> kx[4], kv[4];
   const float stage[] = {0.5f, 0.5f, 1.0f};
   for (int k = 0; k < 4; ++k) {
