@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <nlohmann/json.hpp>
 #include <set>
 
@@ -141,6 +142,199 @@ TEST(Exit, NoStudentFileIsBadInput) {
   EXPECT_EQ(run.exit_code, 2) << run.output;
   EXPECT_NE(run.output.find("none of cloth.cpp"), std::string::npos) << run.output;
   EXPECT_FALSE(fs::exists(temp.file("results.json")));
+}
+
+// ---- The realistic corpus (tests/grader/corpus): submissions combining several mistakes, with
+// hand labels per stub. Over the whole corpus: every stub's verdict (full marks or not) as
+// labelled, the labelled cause named as *likely* for at least 85 % of the wrong stubs, and no
+// *likely* cause the label contradicts (one that is neither a labelled cause nor in its "also").
+
+const fs::path kRealCorpus = fs::path(CLOTHREF_SOURCE_DIR) / "tests" / "grader" / "corpus";
+
+std::vector<fs::path> realCorpus() {
+  std::vector<fs::path> cases;
+  for (const char* edition : {"2022", "2024"}) {
+    std::error_code error;
+    for (const auto& entry : fs::directory_iterator(kRealCorpus / edition, error))
+      if (fs::exists(entry.path() / "labels.json")) cases.push_back(entry.path());
+  }
+  std::sort(cases.begin(), cases.end());
+  return cases;
+}
+
+// The ids a test's feedback names as *likely* ("**Likely cause** (`id`)"), not as a guess.
+std::set<std::string> likelyCauses(const std::string& output) {
+  std::set<std::string> ids;
+  const std::string marker = "**Likely cause** (`";
+  for (std::size_t at = output.find(marker); at != std::string::npos;
+       at = output.find(marker, at + 1)) {
+    const std::size_t start = at + marker.size(), end = output.find('`', start);
+    if (end != std::string::npos) ids.insert(output.substr(start, end - start));
+  }
+  return ids;
+}
+
+TEST(RealCorpus, VerdictsAllRightCausesMostlyNamedNoneContradicted) {
+  const std::vector<fs::path> cases = realCorpus();
+  ASSERT_GE(cases.size(), 12u) << kRealCorpus;
+  // Grade them all at once, as a course would: one batch, two submissions at a time.
+  TempDir temp;
+  std::string args = "grade";
+  for (const fs::path& dir : cases) args += " '" + dir.string() + "'";
+  args += " --no-whole-run --jobs 2 --cache-dir '" + std::string(CLOTHREF_GRADER_CACHE) +
+          "' --out '" + temp.file("batch") + "'";
+  const CommandResult run = runCli(args);
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+
+  int stubs = 0, verdicts_right = 0, wrong_stubs = 0, cause_named = 0;
+  std::vector<std::string> problems;
+  for (const fs::path& dir : cases) {
+    const std::string name = dir.parent_path().filename().string() + "/" + dir.filename().string();
+    const nlohmann::json labels = readJson(dir / "labels.json");
+    const fs::path results_path = fs::path(temp.file("batch")) / dir.filename() / "results.json";
+    ASSERT_TRUE(fs::exists(results_path)) << results_path;
+    const nlohmann::json results = readJson(results_path);
+    ASSERT_TRUE(results.contains("extra_data")) << name;
+    EXPECT_EQ(results["extra_data"]["edition"].get<int>(),
+              std::stoi(labels["edition"].get<std::string>()))
+        << name;
+    for (const auto& [stub, label] : labels["stubs"].items()) {
+      ++stubs;
+      const auto& scores = results["extra_data"]["stub_scores"];
+      const auto& maxima = results["extra_data"]["stub_max"];
+      ASSERT_TRUE(scores.contains(stub) && maxima.contains(stub)) << name << " " << stub;
+      const bool loses = scores[stub].get<double>() < maxima[stub].get<double>();
+      const bool labelled_loses = label["verdict"] == "loses";
+      if (loses == labelled_loses)
+        ++verdicts_right;
+      else
+        problems.push_back(name + ": " + stub + " " + (loses ? "loses points" : "full marks") +
+                           ", labelled " + label["verdict"].get<std::string>());
+      std::set<std::string> allowed, likely;
+      for (const char* key : {"causes", "also"})
+        if (label.contains(key))
+          for (const auto& id : label[key]) allowed.insert(id.get<std::string>());
+      for (const auto& test : results["tests"])
+        if (test["tags"][0] == stub && test["status"] == "failed")
+          for (const std::string& id : likelyCauses(test["output"].get<std::string>()))
+            likely.insert(id);
+      for (const std::string& id : likely)
+        if (!allowed.count(id))
+          problems.push_back(name + ": " + stub + ": likely `" + id + "` contradicts the label");
+      if (!labelled_loses) continue;
+      ++wrong_stubs;
+      bool named = false;
+      for (const auto& id : label["causes"]) named = named || likely.count(id.get<std::string>());
+      if (named)
+        ++cause_named;
+      else
+        problems.push_back(name + ": " + stub + ": labelled cause " + label["causes"].dump() +
+                           " not named as likely");
+    }
+  }
+  std::string all;
+  for (const auto& p : problems) all += "\n  " + p;
+  EXPECT_EQ(verdicts_right, stubs) << all;
+  ASSERT_GT(wrong_stubs, 0);
+  EXPECT_GE(cause_named * 100, 85 * wrong_stubs)
+      << cause_named << " of " << wrong_stubs << " wrong stubs have their cause named" << all;
+  for (const auto& p : problems) EXPECT_EQ(p.find("contradicts"), std::string::npos) << p;
+  std::cout << "real corpus: " << cases.size() << " submissions, per-stub verdicts "
+            << verdicts_right << " / " << stubs << ", cause named as likely " << cause_named
+            << " / " << wrong_stubs << all << "\n";
+}
+
+// Results of grading `submission` with extra CLI arguments (`--no-whole-run`, cached objects).
+nlohmann::json gradeResults(const fs::path& submission, const TempDir& temp,
+                            const std::string& extra = "") {
+  const CommandResult run = runCli("grade '" + submission.string() + "' --no-whole-run " + extra +
+                                   " --cache-dir '" + std::string(CLOTHREF_GRADER_CACHE) +
+                                   "' --results '" + temp.file("results.json") + "'");
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  return readJson(temp.file("results.json"));
+}
+
+// The reference with ExplicitEuler::integrate's body replaced by `body`.
+fs::path withExplicitBody(const TempDir& temp, const std::string& body) {
+  const fs::path dir = temp.path() / "submission";
+  fs::create_directories(dir);
+  const fs::path reference = kCorpus / "2022" / "reference";
+  for (const char* name : kFiles) fs::copy_file(corpusFile(reference, name), dir / name);
+  std::ifstream in(dir / "integrator.cpp");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string head = "void ExplicitEuler::integrate(";
+  const std::size_t at = text.find(head);
+  const std::size_t open = text.find("{\n", at) + 2;
+  const std::size_t close = text.find("\n}\n", open) + 1;
+  EXPECT_NE(at, std::string::npos);
+  text = text.substr(0, open) + body + text.substr(close);
+  std::ofstream(dir / "integrator.cpp") << text;
+  return dir;
+}
+
+double stubScore(const nlohmann::json& results, const std::string& stub) {
+  return results["extra_data"]["stub_scores"][stub].get<double>();
+}
+
+// A crash on the small probe cloth is graded again on the course's cloth; a crash there too stays
+// a crash, and both are quoted.
+TEST(CourseCloth, CrashOnBothClothsStaysACrash) {
+  TempDir temp;
+  const fs::path submission =
+      withExplicitBody(temp,
+                       "  for (auto p : particles) {\n"
+                       "    p->position() += p->velocity() * deltaTime;\n"
+                       "    p->velocity() += p->acceleration() * deltaTime;\n"
+                       "  }\n"
+                       "  particles[0]->velocity(100000).setZero();\n");
+  const nlohmann::json results = gradeResults(submission, temp);
+  EXPECT_EQ(stubScore(results, "ExplicitEuler::integrate"), 0.0);
+  EXPECT_EQ(results["extra_data"]["verdict"], "crashed");
+  bool quoted = false;
+  for (const auto& test : results["tests"])
+    if (test["tags"][0] == "ExplicitEuler::integrate") {
+      const std::string output = test["output"];
+      quoted = output.find("On the 4 x 4 probe cloth") != std::string::npos &&
+               output.find("On the course's cloth") != std::string::npos;
+    }
+  EXPECT_TRUE(quoted) << results.dump(1).substr(0, 3000);
+}
+
+// Code that only runs on the course's 25 x 25 cloth (corners pinned by index) gets full marks
+// there, says why, and the submission's verdict stays `graded`.
+TEST(CourseCloth, CourseOnlyCodeIsGradedOnTheCourseCloth) {
+  TempDir temp;
+  const fs::path submission = withExplicitBody(
+      temp,
+      "  for (auto p : particles) {\n"
+      "    p->position() += p->velocity() * deltaTime;\n"
+      "    p->velocity() += p->acceleration() * deltaTime;\n"
+      "  }\n"
+      "  particles[0]->velocity(particlesPerEdge * particlesPerEdge - 1).setZero();\n");
+  const nlohmann::json results = gradeResults(submission, temp);
+  EXPECT_EQ(stubScore(results, "ExplicitEuler::integrate"), 5.0);
+  EXPECT_EQ(results["extra_data"]["verdict"], "graded");
+  for (const auto& test : results["tests"])
+    if (test["tags"][0] == "ExplicitEuler::integrate")
+      EXPECT_NE(test["output"].get<std::string>().find("graded on the course's cloth"),
+                std::string::npos)
+          << test["output"];
+}
+
+// The symplectic predictor in implicit and midpoint is accepted by default and refused with the
+// rubric switch off.
+TEST(Variants, SymplecticPredictorIsARubricSwitch) {
+  const fs::path submission =
+      kRealCorpus / "2022" / "symplectic-both-sqrt2-normal-stage-current";  // midpoint: predictor
+  TempDir on, off;
+  EXPECT_EQ(stubScore(gradeResults(submission, on), "MidpointEuler::integrate"), 2.5);
+  std::ofstream(off.file("rubric.json"))
+      << R"({"accepted_variants": {"symplectic-predictor": false}})";
+  const nlohmann::json refused =
+      gradeResults(submission, off, "--rubric '" + off.file("rubric.json") + "'");
+  EXPECT_LT(stubScore(refused, "MidpointEuler::integrate"), 2.5);
+  // explicit-as-symplectic is its own switch: still accepted
+  EXPECT_EQ(stubScore(refused, "ExplicitEuler::integrate"), 5.0);
 }
 
 }  // namespace

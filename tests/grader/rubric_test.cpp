@@ -3,9 +3,12 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
+#include <map>
 
 #include "clothref/io/error.h"
+#include "grader/grade/probes.h"
 #include "test_util.h"
 
 namespace clothref::grader {
@@ -116,6 +119,53 @@ TEST(Rubric, PointsSplitByWeightAndPartialCredit) {
   EXPECT_DOUBLE_EQ(report.tests[2].max_score, 0);
   EXPECT_DOUBLE_EQ(report.score, 13.125);
   EXPECT_DOUBLE_EQ(report.max_score, 15);
+}
+
+// Every test planned for an edition, all passed: the points add up to each stub's points and to 80
+// exactly, also after results.json's rounding to three decimals (a reader sums those).
+TEST(Rubric, TestPointsAddUpToTheStubsPointsExactly) {
+  for (int edition : {2022, 2024}) {
+    GradeReport report;
+    for (const PlannedTest& planned : plannedTests(edition)) {
+      report.tests.push_back(makeTest(planned.stub, planned.check, planned.weight));
+      report.tests.back().fraction = 1;
+    }
+    const Rubric rubric = defaultRubric(edition);
+    applyRubric(rubric, report);
+    EXPECT_EQ(report.max_score, 80.0) << edition;
+    EXPECT_EQ(report.score, 80.0) << edition;
+    std::map<std::string, double> summed, summed_rounded;
+    double total = 0;
+    for (const TestResult& t : report.tests) {
+      summed[t.stub] += t.max_score;
+      summed_rounded[t.stub] += std::round(t.max_score * 1000) / 1000;
+      total += t.max_score;
+    }
+    EXPECT_EQ(total, 80.0) << edition;
+    ASSERT_EQ(report.stub_max.size(), rubric.stub_points.size()) << edition;
+    for (const auto& [stub, points] : rubric.stub_points) {
+      EXPECT_EQ(report.stub_max.at(stub), points) << edition << " " << stub;
+      EXPECT_EQ(report.stub_score.at(stub), points) << edition << " " << stub;
+      EXPECT_EQ(summed.at(stub), points) << edition << " " << stub;
+      EXPECT_EQ(summed_rounded.at(stub), points) << edition << " " << stub;
+    }
+  }
+}
+
+// A rubric's points that are no multiple of 1/8 still split exactly (in thousandths).
+TEST(Rubric, OddPointsSplitIntoThousandthsThatAddUp) {
+  GradeReport report;
+  for (const char* check : {"a", "b", "c"})
+    report.tests.push_back(makeTest("Cloth::initializeSpring", check, 1));
+  for (TestResult& t : report.tests) t.fraction = 1;
+  Rubric rubric = defaultRubric(2024);
+  rubric.stub_points = {{"Cloth::initializeSpring", 3.3}};
+  applyRubric(rubric, report);
+  ASSERT_EQ(report.tests.size(), 3u);
+  long thousandths = 0;
+  for (const TestResult& t : report.tests) thousandths += std::lround(t.max_score * 1000);
+  EXPECT_EQ(thousandths, 3300);
+  EXPECT_EQ(std::round(report.stub_max.at("Cloth::initializeSpring") * 1000) / 1000, 3.3);
 }
 
 }  // namespace

@@ -19,30 +19,27 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The stubs defined in each student file.
-const std::map<std::string, std::vector<std::string>>& stubsOfFile() {
-  static const std::map<std::string, std::vector<std::string>> stubs = {
-      {"cloth.cpp", {"Cloth::initializeSpring", "Cloth::computeSpringForce"}},
-      {"sphere.cpp", {"Spheres::collide(Cloth*)", "Spheres::collide()"}},
-      {"integrator.cpp",
-       {"ExplicitEuler::integrate", "ImplicitEuler::integrate", "MidpointEuler::integrate",
-        "RungeKuttaFourth::integrate"}}};
-  return stubs;
-}
-
-// Lines that hold an Eigen expression in an `auto` variable (e.g. `auto d = p.position(i) -
-// p.position(j);`): it may refer to temporaries that are gone when it is read.
+// Lines that hold an Eigen *expression* in an `auto` variable (e.g. `auto d = p.position(i) -
+// p.position(j);`): it refers to temporaries that are gone when it is read. Not when the
+// expression ends in a call that returns a plain value (`.normalized()`, `.eval()`, `.norm()`,
+// `.dot(...)`, `.cross3(...)`): those hold a vector or a number and nothing dangles.
 std::vector<std::string> autoExpressionLines(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  static const std::regex pattern(
-      R"(\bauto\s*&{0,2}\s*\w+\s*=\s*[^;]*(position|velocity|acceleration|normalized|cross3)\s*\([^;]*[-+*/][^;]*;)");
+  static const std::regex declaration(R"(\bauto\s*&{0,2}\s*\w+\s*=\s*([^;]*);)");
+  static const std::regex over_state(
+      R"((position|velocity|acceleration)\s*\([^;]*\)\s*[-+*/]|[-+*/]\s*[\w>.-]*(position|velocity|acceleration)\s*\()");
+  static const std::regex plain_value(
+      R"(\.\s*(normalized|eval|norm|squaredNorm|stableNorm|sum|dot|cross3|cross|value)\s*\([^()]*\)\s*$)");
   std::vector<std::string> lines;
   int number = 0;
   for (std::string line; std::getline(in, line);) {
     ++number;
-    if (std::regex_search(line, pattern))
-      lines.push_back("line " + std::to_string(number) + ": `" +
-                      line.substr(line.find_first_not_of(" \t")) + "`");
+    std::smatch match;
+    if (!std::regex_search(line, match, declaration)) continue;
+    const std::string value = match[1].str();
+    if (!std::regex_search(value, over_state) || std::regex_search(value, plain_value)) continue;
+    lines.push_back("line " + std::to_string(number) + ": `" +
+                    line.substr(line.find_first_not_of(" \t")) + "`");
   }
   return lines;
 }
@@ -68,6 +65,11 @@ std::string submissionVerdict(const GradeReport& report,
         "crashed", "exited-non-zero", "no-answer", "non-finite"})
     if (happened.count(verdict)) return verdict;
   return "graded";
+}
+
+std::string readSource(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
 double since(std::chrono::steady_clock::time_point start) {
@@ -133,6 +135,8 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
   context.limits.isolation = isolation;
   context.limits.log = std::make_shared<RunLog>();
   context.seed = options.seed;
+  for (const UsedFile& used : build.files)
+    if (used.compiled) context.sources[used.name] = readSource(used.path);
 
   // Stubs whose file is not the student's: every planned test gets the compile verdict.
   std::map<std::string, std::string> unavailable;  // stub -> verdict text
@@ -148,33 +152,23 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
                            used.problem + "```\n\n" + catalogue.cause("compile-error")
                      : used.name + " does not compile against the course's headers:\n\n```\n" +
                            used.problem + "```\n\n" + catalogue.cause("compile-error");
-    for (const auto& stub : stubsOfFile().at(used.name)) unavailable[stub] = text;
+    for (const auto& stub : stubsOfFile(used.name)) unavailable[stub] = text;
   }
 
   const auto probe_start = std::chrono::steady_clock::now();
-  using Group = std::function<std::vector<TestResult>()>;
-  std::vector<std::pair<std::vector<std::string>, Group>> groups = {
-      {{"Cloth::initializeSpring"}, [&] { return probeSprings(context); }},
-      {{"Cloth::computeSpringForce"}, [&] { return probeForces(context); }},
-      {{"Spheres::collide(Cloth*)"}, [&] { return probeCollideCloth(context); }}};
-  if (report.edition == 2022)
-    groups.push_back({{"Spheres::collide()"}, [&] { return probeCollideSpheres(context); }});
-  const char* integrators[] = {"ExplicitEuler::integrate", "ImplicitEuler::integrate",
-                               "MidpointEuler::integrate", "RungeKuttaFourth::integrate"};
-  for (int k = 0; k < 4; ++k)
-    groups.push_back({{integrators[k]}, [&context, k] { return probeIntegrator(context, k); }});
-  if (options.whole_run) groups.push_back({{}, [&] { return probeWholeRun(context); }});
+  const std::vector<ProbeGroup> groups = probeGroups(report.edition, options.whole_run);
 
   std::vector<std::vector<TestResult>> results(groups.size());
   std::vector<std::future<void>> running;
   for (std::size_t g = 0; g < groups.size(); ++g) {
-    const bool skip = !groups[g].first.empty() && unavailable.count(groups[g].first.front());
+    const bool skip = !groups[g].stub.empty() && unavailable.count(groups[g].stub);
     if (skip) continue;
     if (static_cast<int>(running.size()) >= std::max(1, options.probe_jobs)) {
       running.front().get();
       running.erase(running.begin());
     }
-    running.push_back(std::async(std::launch::async, [&, g] { results[g] = groups[g].second(); }));
+    running.push_back(
+        std::async(std::launch::async, [&, g] { results[g] = groups[g].run(context); }));
   }
   for (auto& r : running) r.get();
   report.seconds["probes"] = since(probe_start);
@@ -189,7 +183,8 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
   }
   for (auto& group : results)
     for (auto& t : group) report.tests.push_back(std::move(t));
-  // A crash or an unexplained result next to an `auto` Eigen expression: name it, as a guess.
+  // A crash next to an `auto` Eigen expression over temporaries: the likely cause (a pattern
+  // alone, without the crash, names nothing).
   for (const UsedFile& used : build.files) {
     if (!used.compiled) continue;
     // The copy in the scratch folder: the student's path is never opened again.
@@ -198,15 +193,13 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
             .string());
     if (lines.empty()) continue;
     for (TestResult& t : report.tests) {
-      const auto& stubs = stubsOfFile().at(used.name);
+      const auto stubs = stubsOfFile(used.name);
       if (t.passed() || std::find(stubs.begin(), stubs.end(), t.stub) == stubs.end()) continue;
-      const bool suspicious = std::any_of(
-          t.diagnoses.begin(), t.diagnoses.end(),
-          [](const auto& id) { return id == "crashed" || id == "unknown" || id == "non-finite"; });
-      if (!suspicious) continue;
+      const bool crashed =
+          std::find(t.diagnoses.begin(), t.diagnoses.end(), "crashed") != t.diagnoses.end();
+      if (!crashed) continue;
       t.diagnoses.push_back("dangling-auto-expression");
-      t.output +=
-          "\n" + catalogue.cause("dangling-auto-expression", true) + " In " + used.name + ":\n\n";
+      t.output += "\n" + catalogue.cause("dangling-auto-expression") + " In " + used.name + ":\n\n";
       for (std::size_t k = 0; k < lines.size() && k < 3; ++k) t.output += "- " + lines[k] + "\n";
     }
   }

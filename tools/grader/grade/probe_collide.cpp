@@ -4,6 +4,7 @@
 // Three spheres are added once; unused ones and the rest of the cloth are parked far away, so
 // each case touches only the bodies it names and the loop order cannot matter.
 #include <functional>
+#include <set>
 
 #include "clothref/core/cloth.h"
 #include "clothref/core/spheres.h"
@@ -241,7 +242,7 @@ Vec4<double> momentum(const State& s, const Outcome& o) {
 }
 
 std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_sphere) {
-  const std::string stub = sphere_sphere ? "Spheres::collide()" : "Spheres::collide(Cloth*)";
+  const std::string stub = stubName(sphere_sphere ? Stub::CollideSpheres : Stub::CollideCloth);
   const float e = sphere_sphere ? 0.8f : 0.0f;
   const double rel = context.rubric.tolerances.collide_rel;
   std::vector<Case> cases =
@@ -263,9 +264,31 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
   std::string failure;
   const auto answer =
       util::runGroup(context, context.probe, request.texts["group"], request, failure);
+  std::vector<std::pair<ContactMistake, const char*>> signatures = {
+      {ContactMistake::NoApproachCheck, "no-approach-check"},
+      {ContactMistake::RestitutionFull, "restitution-full-velocity"},
+      {ContactMistake::CorrectionSphereOnly, "correction-one-body"},
+      {ContactMistake::CorrectionOtherOnly, "correction-one-body"},
+      {ContactMistake::NoCorrection, "no-position-correction"},
+      {ContactMistake::FirstSphereOnly, "first-sphere-only"},
+      {ContactMistake::NormalSign, "collision-normal-sign"},
+      {ContactMistake::TouchingSkipped, "touching-skipped"},
+      {ContactMistake::ImpulseNotDivided, "wrong-mass-split"}};
+  // coefRestitution overwritten (e = 0 or 1); a case where it cannot matter is skipped below.
+  signatures.push_back({ContactMistake::RestitutionZero, "restitution-ignored"});
+  signatures.push_back({ContactMistake::RestitutionOne, "restitution-ignored"});
+  if (sphere_sphere) {
+    signatures.push_back({ContactMistake::PairTwice, "pair-processed-twice"});
+  } else {
+    signatures.push_back({ContactMistake::FixedMassless, "fixed-particle-massless"});
+  }
   std::vector<TestResult> tests;
   std::string momentum_report;
   bool momentum_ok = true;
+  // A mistake is consistent when its simulation gives the student's numbers in every case, the
+  // passed ones included; a case may not tell two mistakes apart, the whole probe usually does.
+  std::vector<bool> consistent(signatures.size(), bool(answer));
+  std::vector<std::size_t> failed;  // indices into tests, causes still to be written
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const Case& c = cases[k];
     if (!answer) {
@@ -329,30 +352,18 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
       line("cloth particle", q, c.state.cloth.particles.position, c.state.cloth.particles.velocity,
            c.state.cloth.particles.mass[q], expected.cloth_x, expected.cloth_v, actual.cloth_x,
            actual.cloth_v);
-    std::vector<std::pair<ContactMistake, const char*>> signatures = {
-        {ContactMistake::NoApproachCheck, "no-approach-check"},
-        {ContactMistake::RestitutionFull, "restitution-full-velocity"},
-        {ContactMistake::CorrectionSphereOnly, "correction-one-body"},
-        {ContactMistake::CorrectionOtherOnly, "correction-one-body"},
-        {ContactMistake::NoCorrection, "no-position-correction"},
-        {ContactMistake::FirstSphereOnly, "first-sphere-only"},
-        {ContactMistake::NormalSign, "collision-normal-sign"},
-        {ContactMistake::TouchingSkipped, "touching-skipped"},
-        {ContactMistake::ImpulseNotDivided, "wrong-mass-split"}};
-    if (sphere_sphere) {
-      signatures.push_back({ContactMistake::RestitutionZero, "restitution-ignored"});
-      signatures.push_back({ContactMistake::RestitutionOne, "restitution-ignored"});
-      signatures.push_back({ContactMistake::PairTwice, "pair-processed-twice"});
-    } else {
-      signatures.push_back({ContactMistake::FixedMassless, "fixed-particle-massless"});
-    }
-    for (const auto& [mistake, id] : signatures) {
+    for (std::size_t m = 0; m < signatures.size(); ++m) {
+      const auto& [mistake, id] = signatures[m];
       State variant = c.state;
       collideVariant(variant, sphere_sphere, e, mistake);
       const Outcome v = outcomeOf(variant);
-      if (distance(v, expected) <= rel) continue;  // this case cannot tell them apart
-      if (distance(actual, v) <= 10 * rel &&
-          std::find(t.diagnoses.begin(), t.diagnoses.end(), id) == t.diagnoses.end())
+      if (distance(v, expected) <= rel) {  // this case cannot tell them apart
+        consistent[m] = false;             // ... but the student's numbers are not the course's
+        continue;
+      }
+      const bool matches = distance(actual, v) <= 10 * rel;
+      if (!matches) consistent[m] = false;
+      if (matches && std::find(t.diagnoses.begin(), t.diagnoses.end(), id) == t.diagnoses.end())
         t.diagnoses.push_back(id);
     }
     if (t.diagnoses.empty()) {
@@ -362,13 +373,39 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
                actual.cloth_v.col(0) != c.state.cloth.particles.velocity.col(0))
         t.diagnoses.push_back("fixed-particle-massless");
     }
+    failed.push_back(tests.size());
+    tests.push_back(t);
+  }
+  // Passed cases: a mistake whose simulation differs from the course there is refuted.
+  if (answer)
+    for (std::size_t k = 0; k < cases.size(); ++k) {
+      if (!tests[k].passed()) continue;
+      for (std::size_t m = 0; m < signatures.size(); ++m) {
+        if (!consistent[m]) continue;
+        State variant = cases[k].state, reference = cases[k].state;
+        collideVariant(variant, sphere_sphere, e, signatures[m].first);
+        collideVariant(reference, sphere_sphere, e, ContactMistake::None);
+        if (distance(outcomeOf(variant), outcomeOf(reference)) > 10 * rel) consistent[m] = false;
+      }
+    }
+  std::set<std::string> explains_all;
+  for (std::size_t m = 0; m < signatures.size(); ++m)
+    if (consistent[m]) explains_all.insert(signatures[m].second);
+  for (std::size_t k : failed) {
+    TestResult& t = tests[k];
+    // One mistake that explains every case wins over those a single case cannot rule out.
+    if (!explains_all.empty()) {
+      std::vector<std::string> kept;
+      for (const auto& id : t.diagnoses)
+        if (explains_all.count(id) || id == "non-finite") kept.push_back(id);
+      if (!kept.empty()) t.diagnoses = kept;
+    }
     if (t.diagnoses.empty()) {
       t.output += "\n" + context.catalogue->cause("unknown", true) + "\n";
       t.diagnoses.push_back("unknown");
     } else {
       for (const auto& id : t.diagnoses) t.output += "\n" + context.catalogue->cause(id) + "\n";
     }
-    tests.push_back(t);
   }
   if (answer) {
     TestResult t = makeTest(stub, "momentum conserved", 1);

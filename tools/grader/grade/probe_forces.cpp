@@ -10,7 +10,7 @@
 namespace clothref::grader {
 namespace {
 
-const char* kStub = "Cloth::computeSpringForce";
+const std::string& kStub = stubName(Stub::ComputeSpringForce);
 constexpr int kN = 25;
 
 // Course-form force with one known mistake switched on (for the numeric signatures).

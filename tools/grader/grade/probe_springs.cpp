@@ -13,7 +13,7 @@
 namespace clothref::grader {
 namespace {
 
-const char* kStub = "Cloth::initializeSpring";
+const std::string& kStub = stubName(Stub::InitializeSpring);
 const char* kTypeNames[] = {"STRUCTURAL", "SHEAR", "BEND"};
 
 struct SpringSet {
@@ -291,7 +291,10 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
     if (!small_set) {
       small.output = state + small_failure + "\n";
       if (big_ok) {
-        small.output += "\n" + context.catalogue->cause("hard-coded-n25", true) + "\n";
+        // Right at 25 and springs to particles a 10 x 10 cloth does not have: measured. A crash
+        // at 10 is only suggestive.
+        const bool measured = small_answer.has_value();
+        small.output += "\n" + context.catalogue->cause("hard-coded-n25", !measured) + "\n";
         small.diagnoses.push_back("hard-coded-n25");
       }
     } else {

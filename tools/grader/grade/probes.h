@@ -5,6 +5,7 @@
 // The reference never enters the child: the child receives only inputs and returns only outputs.
 #pragma once
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -37,17 +38,10 @@ struct ProbeContext {
   std::filesystem::path work_dir;     // scratch; one sub-folder per group
   ChildLimits limits;
   std::uint64_t seed = 20221;  // random states are reproducible
+  // The student's compiled files, by name ("integrator.cpp"): source patterns refine a finding
+  // the probes measured (e.g. integer division), never make one.
+  std::map<std::string, std::string> sources;
 };
-
-std::vector<TestResult> probeSprings(const ProbeContext& context);
-std::vector<TestResult> probeForces(const ProbeContext& context);
-std::vector<TestResult> probeCollideCloth(const ProbeContext& context);
-std::vector<TestResult> probeCollideSpheres(const ProbeContext& context);
-// method: 0 explicit, 1 implicit, 2 midpoint, 3 RK4 (the course's currentIntegrator).
-std::vector<TestResult> probeIntegrator(const ProbeContext& context, int method);
-// The student's whole simulation of the course scene against clothref's, via clothref diff.
-// Informational only: never scored.
-std::vector<TestResult> probeWholeRun(const ProbeContext& context);
 
 // Test names of each group, in order (used for compile errors and crashes, where the group did
 // not run): {stub, check, weight}.
@@ -56,5 +50,18 @@ struct PlannedTest {
   double weight;
 };
 std::vector<PlannedTest> plannedTests(int edition);
+
+// The integrator probe's checks for `method` (0..3), in report order.
+std::vector<PlannedTest> integratorChecks(int method);
+
+// The probe groups of an edition, in the order they run: the one table of probes. Each group is
+// one child process. Adding a probe: a row here (probes.cpp), its probe_<name>.cpp, and its
+// group in driver/probe_driver.cpp (docs/grading.md, "Adding a probe").
+struct ProbeGroup {
+  std::string stub;                 // the course stub it grades; "" = information only
+  std::vector<PlannedTest> checks;  // its tests, for a stub whose file could not be used
+  std::function<std::vector<TestResult>(const ProbeContext&)> run;
+};
+std::vector<ProbeGroup> probeGroups(int edition, bool whole_run);
 
 }  // namespace clothref::grader

@@ -8,13 +8,62 @@
 
 namespace clothref::grader {
 
+// The graded stubs, in the course's order.
+enum class Stub {
+  InitializeSpring,
+  ComputeSpringForce,
+  CollideCloth,
+  CollideSpheres,
+  ExplicitEuler,
+  ImplicitEuler,
+  MidpointEuler,
+  RungeKuttaFourth
+};
+
+struct StubInfo {
+  Stub stub;
+  const char* name;    // the course's name
+  const char* file;    // the student file that defines it
+  double points_2022;  // the course's weights (points of 100); 0 = not in that edition
+  double points_2024;
+};
+
+// The one table of the graded stubs: every list of stub names, files or weights derives from it.
+inline const std::vector<StubInfo>& stubTable() {
+  static const std::vector<StubInfo> table = {
+      {Stub::InitializeSpring, "Cloth::initializeSpring", "cloth.cpp", 15, 10},
+      {Stub::ComputeSpringForce, "Cloth::computeSpringForce", "cloth.cpp", 20, 25},
+      {Stub::CollideCloth, "Spheres::collide(Cloth*)", "sphere.cpp", 10, 20},
+      {Stub::CollideSpheres, "Spheres::collide()", "sphere.cpp", 10, 0},
+      {Stub::ExplicitEuler, "ExplicitEuler::integrate", "integrator.cpp", 5, 5},
+      {Stub::ImplicitEuler, "ImplicitEuler::integrate", "integrator.cpp", 2.5, 2.5},
+      {Stub::MidpointEuler, "MidpointEuler::integrate", "integrator.cpp", 2.5, 2.5},
+      {Stub::RungeKuttaFourth, "RungeKuttaFourth::integrate", "integrator.cpp", 15, 15}};
+  return table;
+}
+
 // The course's names of the graded stubs, in the course's order.
 inline const std::vector<std::string>& stubNames() {
-  static const std::vector<std::string> names = {
-      "Cloth::initializeSpring",  "Cloth::computeSpringForce",  "Spheres::collide(Cloth*)",
-      "Spheres::collide()",       "ExplicitEuler::integrate",   "ImplicitEuler::integrate",
-      "MidpointEuler::integrate", "RungeKuttaFourth::integrate"};
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> all;
+    for (const StubInfo& info : stubTable()) all.push_back(info.name);
+    return all;
+  }();
   return names;
+}
+
+inline const std::string& stubName(Stub stub) { return stubNames()[std::size_t(stub)]; }
+
+// The integrator stub of the course's currentIntegrator (0 explicit, 1 implicit, 2 midpoint, 3
+// RK4).
+inline Stub integratorStub(int method) { return Stub(int(Stub::ExplicitEuler) + method); }
+
+// The stubs `file` ("cloth.cpp", ...) defines, in the course's order.
+inline std::vector<std::string> stubsOfFile(const std::string& file) {
+  std::vector<std::string> stubs;
+  for (const StubInfo& info : stubTable())
+    if (info.file == file) stubs.push_back(info.name);
+  return stubs;
 }
 
 struct TestResult {

@@ -1,5 +1,7 @@
 #include "rubric.h"
 
+#include <algorithm>
+#include <cmath>
 #include <utility>
 
 #include "clothref/io/error.h"
@@ -10,16 +12,12 @@ namespace clothref::grader {
 
 Rubric defaultRubric(int edition) {
   Rubric rubric;
-  const bool y2024 = edition == 2024;
-  rubric.stub_points = {{"Cloth::initializeSpring", y2024 ? 10 : 15},
-                        {"Cloth::computeSpringForce", y2024 ? 25 : 20},
-                        {"Spheres::collide(Cloth*)", y2024 ? 20 : 10},
-                        {"ExplicitEuler::integrate", 5},
-                        {"ImplicitEuler::integrate", 2.5},
-                        {"MidpointEuler::integrate", 2.5},
-                        {"RungeKuttaFourth::integrate", 15}};
-  if (!y2024) rubric.stub_points["Spheres::collide()"] = 10;
-  rubric.accepted_variants = {{"explicit-as-symplectic", true}, {"implicit-corrector-v-new", true}};
+  for (const StubInfo& info : stubTable()) {
+    const double points = edition == 2024 ? info.points_2024 : info.points_2022;
+    if (points > 0) rubric.stub_points[info.name] = points;
+  }
+  for (const std::string& variant : acceptedVariantNames())
+    rubric.accepted_variants[variant] = true;
   return rubric;
 }
 
@@ -90,7 +88,8 @@ Rubric rubricFromJson(const nlohmann::json& document, const std::string& source,
     } else if (key == "accepted_variants") {
       requireObject(value, source, pointer);
       for (const auto& [name, on] : value.items()) {
-        if (name != "explicit-as-symplectic" && name != "implicit-corrector-v-new")
+        const auto& names = acceptedVariantNames();
+        if (std::find(names.begin(), names.end(), name) == names.end())
           rubricError(source, child(pointer, name), "unknown variant");
         if (!on.is_boolean())
           rubricError(source, child(pointer, name),
@@ -104,32 +103,79 @@ Rubric rubricFromJson(const nlohmann::json& document, const std::string& source,
   return rubric;
 }
 
+namespace {
+
+// A stub's points in whole units: 1/8 point when the points are a multiple of it (the course's
+// weights are), else 1/1000. Both print exactly with three decimals (results.json rounds to
+// three), and 1/8 is a power of two, so every sum of test points is exact in binary too.
+double pointUnit(double points) {
+  return std::abs(points * 8 - std::round(points * 8)) < 1e-9 ? 0.125 : 0.001;
+}
+
+// Splits `units` over `weights` by the largest remainder: the parts add up to `units` exactly.
+std::vector<long> apportion(long units, const std::vector<double>& weights) {
+  double sum = 0;
+  for (double w : weights) sum += w;
+  std::vector<long> parts(weights.size(), 0);
+  if (!(sum > 0)) return parts;
+  std::vector<std::pair<double, std::size_t>> remainders;
+  long given = 0;
+  for (std::size_t k = 0; k < weights.size(); ++k) {
+    const double share = double(units) * weights[k] / sum;
+    parts[k] = static_cast<long>(std::floor(share));
+    given += parts[k];
+    remainders.push_back({share - double(parts[k]), k});
+  }
+  // Ties go to the earlier test, so the split does not depend on the sort's stability.
+  std::stable_sort(remainders.begin(), remainders.end(),
+                   [](const auto& a, const auto& b) { return a.first > b.first; });
+  for (std::size_t k = 0; given < units && k < remainders.size(); ++k, ++given)
+    ++parts[remainders[k].second];
+  return parts;
+}
+
+}  // namespace
+
 void applyRubric(const Rubric& rubric, GradeReport& report) {
-  std::map<std::string, double> weight_sum;
-  for (TestResult& test : report.tests) {
+  std::map<std::string, std::vector<std::size_t>> of_stub;  // stub -> its scored tests
+  for (std::size_t k = 0; k < report.tests.size(); ++k) {
+    TestResult& test = report.tests[k];
+    test.max_score = test.score = 0;
     if (test.informational) continue;
     auto it = rubric.test_weights.find(test.name());
     if (it != rubric.test_weights.end()) test.weight = it->second;
-    weight_sum[test.stub] += test.weight;
+    of_stub[test.stub].push_back(k);
   }
   report.score = report.max_score = 0;
   report.stub_score.clear();
   report.stub_max.clear();
-  for (TestResult& test : report.tests) {
-    if (test.informational) {
-      test.max_score = test.score = 0;
-      continue;
-    }
-    auto points = rubric.stub_points.find(test.stub);
+  // Points are whole units (pointUnit), so test points add up to the stub's points exactly and
+  // the stubs to the total, in every output and in whatever order a reader sums them.
+  for (const std::string& stub : stubNames()) {
+    auto tests = of_stub.find(stub);
+    if (tests == of_stub.end()) continue;
+    auto points = rubric.stub_points.find(stub);
     const double stub_points = points == rubric.stub_points.end() ? 0 : points->second;
-    const double sum = weight_sum[test.stub];
-    test.max_score = sum > 0 ? stub_points * test.weight / sum : 0;
-    test.score = test.max_score * std::clamp(test.fraction, 0.0, 1.0);
-    report.stub_score[test.stub] += test.score;
-    report.stub_max[test.stub] += test.max_score;
-    report.score += test.score;
-    report.max_score += test.max_score;
+    const double unit = pointUnit(stub_points);
+    std::vector<double> weights;
+    for (std::size_t k : tests->second) weights.push_back(report.tests[k].weight);
+    const std::vector<long> parts = apportion(std::lround(stub_points / unit), weights);
+    long earned = 0;
+    for (std::size_t j = 0; j < parts.size(); ++j) {
+      TestResult& test = report.tests[tests->second[j]];
+      const long got = std::lround(double(parts[j]) * std::clamp(test.fraction, 0.0, 1.0));
+      test.max_score = double(parts[j]) * unit;
+      test.score = double(got) * unit;
+      earned += got;
+    }
+    long total = 0;
+    for (long part : parts) total += part;
+    report.stub_max[stub] = double(total) * unit;
+    report.stub_score[stub] = double(earned) * unit;
   }
+  // Whole units of 1/8 sum exactly in any order; 1/1000 units are summed as integers first.
+  for (const auto& [stub, max] : report.stub_max) report.max_score += max;
+  for (const auto& [stub, score] : report.stub_score) report.score += score;
 }
 
 }  // namespace clothref::grader

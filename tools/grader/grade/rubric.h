@@ -5,7 +5,8 @@
 //    "tests": {"RungeKuttaFourth::integrate: convergence order": 2, ...},  relative weights
 //    "tolerances": {"force_rel": 1e-4, "collide_rel": 1e-5, "integrate_rel": 2e-5,
 //                   "rest_length_rel": 1e-5, "order": 0.35},
-//    "accepted_variants": {"explicit-as-symplectic": true, "implicit-corrector-v-new": true}}
+//    "accepted_variants": {"explicit-as-symplectic": true, "implicit-corrector-v-new": true,
+//                          "symplectic-predictor": true}}
 #pragma once
 #include <map>
 #include <string>
@@ -25,6 +26,16 @@ struct Tolerances {
   double order = 0.35;            // |observed - expected| convergence order
 };
 
+// The accepted variants a rubric can switch (docs/grading.md lists each with its formula):
+//   explicit-as-symplectic    ExplicitEuler: v += a dt, then x += v dt
+//   implicit-corrector-v-new  ImplicitEuler's corrector: v = v0 + a dt, then x = x0 + v dt
+//   symplectic-predictor      Implicit and Midpoint: the predictor v += a h dt, then x += v h dt
+inline const std::vector<std::string>& acceptedVariantNames() {
+  static const std::vector<std::string> names = {
+      "explicit-as-symplectic", "implicit-corrector-v-new", "symplectic-predictor"};
+  return names;
+}
+
 struct Rubric {
   std::map<std::string, double> stub_points;   // course stub name -> points
   std::map<std::string, double> test_weights;  // full test name -> relative weight
@@ -38,7 +49,7 @@ struct Rubric {
 
 // The course's weights for `edition` (2022: springs 15, forces 20, collisions 10 + 10,
 // Explicit 5, Implicit + Midpoint 5, RK4 15; 2024: springs 10, forces 25, collision 20, same
-// integrators), both accepted variants on.
+// integrators), every accepted variant on.
 Rubric defaultRubric(int edition);
 
 // `base` with the overrides of the JSON file at `path`, read by the library's one JSON reader

@@ -1,0 +1,96 @@
+// clothref's reference solution for the 2024 edition, written in course form (see cloth.cpp here).
+// Explicit: x += v dt, then v += a dt (forward Euler). Implicit and midpoint: back up full copies,
+// predict (the midpoint with (v dt) * 0.5f), simulateOneStep(), then x = x0 + v dt, v = v0 + a dt
+// with the derivatives just evaluated. RK4: k = (v dt, a dt) per stage, stage states x0 + k * 0.5f,
+// x0 + k * 0.5f, x0 + k, and x0 + (k1 + 2.0f * k2 + 2.0f * k3 + k4) / 6.0f.
+#include "integrator.h"
+
+#include "configs.h"
+
+void ExplicitEuler::integrate(const std::vector<Particles *> &particles, std::function<void(void)>) const {
+  for (auto p : particles) {
+    p->position() += p->velocity() * deltaTime;
+    p->velocity() += p->acceleration() * deltaTime;
+  }
+}
+
+void ImplicitEuler::integrate(const std::vector<Particles *> &particles,
+                              std::function<void(void)> simulateOneStep) const {
+  // TODO: Integrate velocity and acceleration
+  //   1. Backup original particles' data.
+  //   2. Integrate velocity and acceleration using explicit euler to get Xn+1.
+  //   3. Compute refined Xn+1 using (1.) and (2.).
+  // Note:
+  //   1. Use simulateOneStep with modified position and velocity to get Xn+1.
+  // A pointer-vector copy would alias the live state: back up the Particles themselves.
+  std::vector<Particles> backup;
+  for (const auto &p : particles) backup.push_back(*p);
+
+  for (const auto &p : particles) {
+    p->position() += p->velocity() * deltaTime;
+    p->velocity() += p->acceleration() * deltaTime;
+  }
+  simulateOneStep();
+  for (size_t i = 0; i < particles.size(); ++i) {
+    particles[i]->position() = backup[i].position() + particles[i]->velocity() * deltaTime;
+    particles[i]->velocity() = backup[i].velocity() + particles[i]->acceleration() * deltaTime;
+  }
+}
+
+void MidpointEuler::integrate(const std::vector<Particles *> &particles,
+                              std::function<void(void)> simulateOneStep) const {
+  for (size_t b = 0; b < particles.size(); b++) {
+    Eigen::Matrix4Xf x0 = particles[b]->position();
+    Eigen::Matrix4Xf v0 = particles[b]->velocity();
+    particles[b]->position() += particles[b]->velocity() * deltaTime * 0.5f;
+    particles[b]->velocity() += particles[b]->acceleration() * deltaTime * 0.5f;
+    simulateOneStep();
+    particles[b]->position() = x0 + particles[b]->velocity() * deltaTime;
+    particles[b]->velocity() = v0 + particles[b]->acceleration() * deltaTime;
+  }
+}
+
+void RungeKuttaFourth::integrate(const std::vector<Particles *> &particles,
+                                 std::function<void(void)> simulateOneStep) const {
+  // TODO: Integrate velocity and acceleration
+  //   1. Backup original particles' data.
+  //   2. Compute k1, k2, k3, k4
+  //   3. Compute refined Xn+1 using (1.) and (2.).
+  // Note:
+  //   1. Use simulateOneStep with modified position and velocity to get Xn+1.
+  std::vector<Particles> backup;
+  for (const auto &p : particles) backup.push_back(*p);
+  // k?x holds v * dt and k?v holds a * dt, one matrix per Particles.
+  std::vector<Eigen::Matrix4Xf> k1x, k1v, k2x, k2v, k3x, k3v, k4x, k4v;
+
+  for (size_t i = 0; i < particles.size(); ++i) {
+    k1x.push_back(particles[i]->velocity() * deltaTime);
+    k1v.push_back(particles[i]->acceleration() * deltaTime);
+    particles[i]->position() = backup[i].position() + k1x[i] * 0.5f;
+    particles[i]->velocity() = backup[i].velocity() + k1v[i] * 0.5f;
+  }
+  simulateOneStep();
+  for (size_t i = 0; i < particles.size(); ++i) {
+    k2x.push_back(particles[i]->velocity() * deltaTime);
+    k2v.push_back(particles[i]->acceleration() * deltaTime);
+    particles[i]->position() = backup[i].position() + k2x[i] * 0.5f;
+    particles[i]->velocity() = backup[i].velocity() + k2v[i] * 0.5f;
+  }
+  simulateOneStep();
+  for (size_t i = 0; i < particles.size(); ++i) {
+    k3x.push_back(particles[i]->velocity() * deltaTime);
+    k3v.push_back(particles[i]->acceleration() * deltaTime);
+    particles[i]->position() = backup[i].position() + k3x[i];
+    particles[i]->velocity() = backup[i].velocity() + k3v[i];
+  }
+  simulateOneStep();
+  for (size_t i = 0; i < particles.size(); ++i) {
+    k4x.push_back(particles[i]->velocity() * deltaTime);
+    k4v.push_back(particles[i]->acceleration() * deltaTime);
+  }
+
+  for (size_t i = 0; i < particles.size(); ++i) {
+    particles[i]->position() = backup[i].position() + (k1x[i] + 2.0f * k2x[i] + 2.0f * k3x[i] + k4x[i]) / 6.0f;
+    particles[i]->velocity() = backup[i].velocity() + (k1v[i] + 2.0f * k2v[i] + 2.0f * k3v[i] + k4v[i]) / 6.0f;
+  }
+}
