@@ -115,7 +115,10 @@ for test in tests:
     assert isinstance(test["score"], (int, float)) and isinstance(test["max_score"], (int, float))
     assert test["visibility"] in {"hidden", "after_due_date", "after_published", "visible"}
     assert test.get("output_format", "text") in formats, test.get("output_format")
-total = sum(t["max_score"] for t in tests)
+# Gradescope shows `score` against the sum of the tests' max_score: they must agree to the
+# rounding of the per-test figures, and with the grader's own maximum.
+total = sum(results["extra_data"]["stub_max"].values())
+assert abs(sum(t["max_score"] for t in tests) - total) < 0.01, "tests' max_score do not sum up"
 got = results["extra_data"]["verdict"]
 isolation = results["extra_data"]["isolation"]
 assert got == verdict, f"verdict {got}, expected {verdict}"
