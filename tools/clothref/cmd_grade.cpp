@@ -10,8 +10,34 @@
 #include "grader/grade/grade.h"
 #include "grader/grade/report.h"
 #include "grader/grade/sanitize.h"
+#include "grader/grade/text.h"
 
 namespace clothref::cli {
+namespace {
+
+constexpr double kMaxTimeoutSeconds = 24 * 3600;  // one day: past it a probe is simply stuck
+
+// The user's text in a message: escaped, and cut (a 300-digit number says nothing more).
+std::string shownText(const std::string& text) {
+  const std::string safe = grader::safeName(text);
+  return safe.size() > 32 ? safe.substr(0, 32) + "..." : safe;
+}
+
+// --timeout: seconds in (0, 1 day]. NaN, infinity and huge values would set no limit at all.
+CLI::Validator timeoutSeconds() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        double value = 0;
+        if (!CLI::detail::lexical_cast(text, value))
+          return "expected a number of seconds, got '" + shownText(text) + "'";
+        if (!(value > 0 && value <= kMaxTimeoutSeconds))
+          return "must be > 0 and <= 86400 seconds (got " + shownText(text) + ")";
+        return "";
+      },
+      "seconds, (0, 86400]");
+}
+
+}  // namespace
 
 Command addGradeCommand(CLI::App& root) {
   auto* app = root.add_subcommand(
@@ -23,6 +49,7 @@ Command addGradeCommand(CLI::App& root) {
     bool no_whole_run = false;
     double timeout = 20;
     std::string optimisation = "-O2";
+    std::size_t max_file_bytes = grader::kDefaultMaxSourceBytes;
     // batch
     std::string out, csv, shard;
     int jobs = 1;
@@ -40,8 +67,13 @@ Command addGradeCommand(CLI::App& root) {
   app->add_option("--rubric", options->rubric,
                   "JSON rubric: weights, tolerances, accepted variants")
       ->check(CLI::ExistingFile);
-  app->add_option("--timeout", options->timeout, "wall-clock limit per probe process, seconds")
-      ->check(CLI::PositiveNumber);
+  app->add_option("--timeout", options->timeout,
+                  "wall-clock limit per probe process, seconds (at most 86400)")
+      ->check(timeoutSeconds());
+  app->add_option("--max-file-bytes", options->max_file_bytes,
+                  "largest student file read, bytes (default 16777216); a larger one is refused "
+                  "and graded as missing")
+      ->check(atLeast(1));
   app->add_option("--opt", options->optimisation, "optimisation flag for student code")
       ->check(CLI::IsMember({"-O0", "-O1", "-O2", "-O3"}));
   app->add_option("--cache-dir", options->cache_dir,
@@ -57,8 +89,9 @@ Command addGradeCommand(CLI::App& root) {
                   "report.md; BATCHDIR/grades.csv)");
   app->add_option("--jobs", options->jobs, "batch: submissions graded at once (default 1)")
       ->check(atLeast(1));
-  app->add_option("--shard", options->shard,
-                  "batch: grade only part k of n of the sorted submissions (k/n, 1 <= k <= n)");
+  auto* shard =
+      app->add_option("--shard", options->shard,
+                      "batch: grade only part k of n of the sorted submissions (k/n, 1 <= k <= n)");
   app->add_flag("--regrade", options->regrade,
                 "batch: grade again submissions a previous run already graded");
   app->add_option("--csv", options->csv,
@@ -67,7 +100,7 @@ Command addGradeCommand(CLI::App& root) {
   app->add_flag("--csv-no-header", options->csv_no_header,
                 "batch: no header line in the CSV (for shards 2..n before concatenating)");
   app->add_flag("--quiet", options->quiet, "batch: no progress or summary on stderr");
-  return {app, [options] {
+  return {app, [options, shard] {
             const bool batch = !options->out.empty();
             const bool single = options->dirs.size() == 1 && !batch;
             if (!single &&
@@ -77,7 +110,8 @@ Command addGradeCommand(CLI::App& root) {
                           "writes them into BATCHDIR/<name>/"
                         : "--results, --junit and --report take one submission DIR; got " +
                               std::to_string(options->dirs.size()));
-            if (!batch && (options->jobs != 1 || !options->shard.empty() || options->regrade ||
+            const bool sharded = shard->count() > 0;  // --shard "" is a shard, and a bad one
+            if (!batch && (options->jobs != 1 || sharded || options->regrade ||
                            !options->csv.empty() || options->csv_no_header))
               throw InputError(
                   "--jobs, --shard, --regrade, --csv and --csv-no-header need --out "
@@ -89,6 +123,7 @@ Command addGradeCommand(CLI::App& root) {
             grade.whole_run = !options->no_whole_run;
             grade.limits.wall_seconds = options->timeout;
             grade.limits.cpu_seconds = static_cast<std::uint64_t>(options->timeout) + 1;
+            grade.max_file_bytes = options->max_file_bytes;
             grade.toolchain.optimisation = options->optimisation;
             grade.toolchain.cache_dir = options->cache_dir;
             if (batch) {
@@ -97,7 +132,7 @@ Command addGradeCommand(CLI::App& root) {
               batch_options.csv = options->csv;
               batch_options.csv_header = !options->csv_no_header;
               batch_options.jobs = options->jobs;
-              if (!options->shard.empty()) batch_options.shard = grader::parseShard(options->shard);
+              if (sharded) batch_options.shard = grader::parseShard(options->shard);
               batch_options.regrade = options->regrade;
               batch_options.sanitize = options->sanitize;
               batch_options.quiet = options->quiet;

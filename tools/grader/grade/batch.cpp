@@ -19,6 +19,7 @@
 #include "clothref/io/progress.h"
 #include "report.h"
 #include "sanitize.h"
+#include "text.h"
 
 namespace clothref::grader {
 namespace fs = std::filesystem;
@@ -133,7 +134,8 @@ Outputs gradeOne(const BatchEntry& entry, const BatchOptions& options, const Gra
 
 Shard parseShard(const std::string& text) {
   const auto fail = [&] {
-    return InputError("--shard: expected k/n with integers 1 <= k <= n (got '" + text + "')");
+    return InputError("--shard: expected k/n with integers 1 <= k <= n (got '" + safeName(text) +
+                      "')");
   };
   const std::size_t slash = text.find('/');
   if (slash == std::string::npos) throw fail();
