@@ -1,7 +1,11 @@
 // clothref grade DIR...: compile a student's cloth.cpp, sphere.cpp and integrator.cpp against the
 // course stand-in and grade each stub (docs/grading.md). With --out BATCHDIR: a batch (many
 // submissions in parallel, resume, shards, a CSV summary; grader/grade/batch.h).
+#include <filesystem>
 #include <iostream>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "clothref/io/error.h"
 #include "clothref/io/output_file.h"
@@ -143,8 +147,8 @@ Command addGradeCommand(CLI::App& root) {
                 std::cerr << "clothref grade: " << summary.rows.size() << " submissions ("
                           << summary.graded << " graded now, " << summary.skipped
                           << " already graded), " << summary.failed
-                          << " with a verdict other than 'graded'; CSV " << summary.csv.string()
-                          << '\n';
+                          << " with a verdict other than 'graded'; CSV "
+                          << grader::safeName(summary.csv.string()) << '\n';
               return kExitOk;  // every submission has a row, whatever its verdict
             }
             int exit_code = kExitOk;
@@ -154,28 +158,41 @@ Command addGradeCommand(CLI::App& root) {
                 report = grader::gradeSubmission(dir, grade);
                 if (options->sanitize) grader::diagnoseCrashWithSanitizers(dir, report, grade);
               } catch (const InputError& error) {
-                std::cerr << "clothref grade: " << error.what() << '\n';
+                std::cerr << "clothref grade: " << grader::safeName(error.what()) << '\n';
                 exit_code = kExitBadInput;
                 continue;
               }
+              // Every output is rendered first, then written; when one cannot be written (a full
+              // disk) those already written by this run are removed again and no "graded" line
+              // claims success: all of the outputs or none of them.
+              std::vector<std::pair<std::string, std::string>> outputs;  // path, bytes
+              if (!options->results.empty())
+                outputs.emplace_back(options->results,
+                                     grader::resultsJson(report).dump(
+                                         2, ' ', false, nlohmann::json::error_handler_t::replace) +
+                                         "\n");
+              if (!options->junit.empty())
+                outputs.emplace_back(options->junit, grader::junitXml(report));
+              if (!options->report.empty())
+                outputs.emplace_back(options->report, grader::markdownReport(report));
+              std::vector<std::string> written;
+              try {
+                for (const auto& [path, bytes] : outputs) {
+                  OutputFile out(path);
+                  out.stream() << bytes;
+                  out.commit();
+                  written.push_back(path);
+                }
+              } catch (const InputError&) {
+                for (const std::string& path : written) {
+                  std::error_code ignored;
+                  if (std::filesystem::is_regular_file(path, ignored))
+                    std::filesystem::remove(path, ignored);
+                }
+                throw;
+              }
+              if (single && outputs.empty()) std::cout << grader::markdownReport(report);
               if (!options->quiet) std::cerr << grader::summaryLine(report) << '\n';
-              if (!options->results.empty()) {
-                OutputFile out(options->results);
-                out.stream() << grader::resultsJson(report).dump(2) << '\n';
-                out.commit();
-              }
-              if (!options->junit.empty()) {
-                OutputFile out(options->junit);
-                out.stream() << grader::junitXml(report);
-                out.commit();
-              }
-              if (!options->report.empty()) {
-                OutputFile out(options->report);
-                out.stream() << grader::markdownReport(report);
-                out.commit();
-              } else if (single && options->results.empty() && options->junit.empty()) {
-                std::cout << grader::markdownReport(report);
-              }
             }
             return exit_code;
           }};
