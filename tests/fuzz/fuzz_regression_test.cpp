@@ -31,6 +31,7 @@ const Target kTargets[] = {
     {"goldenManifest", fuzz::goldenManifest},
     {"diffTwo", fuzz::diffTwo},
     {"rubric", fuzz::rubric},
+    {"fileFinder", fuzz::fileFinder},
 };
 
 std::vector<fs::path> inputsOf(const std::string& kind, const std::string& target) {

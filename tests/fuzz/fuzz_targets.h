@@ -6,7 +6,13 @@
 // committed corpora and crash inputs in the normal build.
 #pragma once
 
+#include <sys/stat.h>
+
+#include <cstdlib>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <string_view>
@@ -18,6 +24,8 @@
 #include "clothref/scene/scene.h"
 #include "clothref/trace/reader.h"
 #include "grader/grade/rubric.h"
+#include "grader/grade/submission.h"
+#include "grader/grade/text.h"
 
 namespace clothref::fuzz {
 
@@ -78,6 +86,70 @@ inline void diffTwo(std::string_view input) {
     reportToJson(report).dump(2, ' ', false, nlohmann::json::error_handler_t::replace);
     observedTolerances(report).dump(2, ' ', false, nlohmann::json::error_handler_t::replace);
   }
+}
+
+// The grader's file finder over a submission folder the input describes, one entry per line:
+// "f PATH<tab>CONTENT" a file, "d PATH" a folder, "l PATH<tab>TARGET" a symbolic link (any
+// target, "/etc/passwd" or "../.." included), "p PATH" a FIFO. PATH is kept relative ("", "."
+// and ".." components dropped); at most 64 entries. Whatever the tree, a file the finder returns
+// must be a regular file reached from the folder without a link, with exactly its bytes, and the
+// notes valid UTF-8: anything else aborts (a finding).
+inline void fileFinder(std::string_view input) {
+  namespace fs = std::filesystem;
+  char scratch[] = "/tmp/clothref-fuzz-finder-XXXXXX";
+  if (!mkdtemp(scratch)) return;
+  const fs::path root = fs::path(scratch) / "submission";
+  std::error_code error;
+  fs::create_directories(root, error);
+  std::istringstream lines{std::string(input)};
+  int entries = 0;
+  for (std::string line; entries < 64 && std::getline(lines, line); ++entries) {
+    if (line.size() < 3 || line[1] != ' ') continue;
+    const std::size_t tab = line.find('\t');
+    const std::string raw = line.substr(2, tab == std::string::npos ? tab : tab - 2);
+    const std::string rest = tab == std::string::npos ? "" : line.substr(tab + 1, 4096);
+    fs::path relative;
+    for (const fs::path& part : fs::path(raw))
+      if (part != "/" && part != "." && part != ".." && !part.empty()) relative /= part;
+    if (relative.empty()) continue;
+    const fs::path path = root / relative;
+    fs::create_directories(path.parent_path(), error);
+    switch (line[0]) {
+      case 'f':
+        std::ofstream(path, std::ios::binary) << rest;
+        break;
+      case 'd':
+        fs::create_directories(path, error);
+        break;
+      case 'l':
+        fs::create_symlink(rest, path, error);
+        break;
+      case 'p':
+        mkfifo(path.c_str(), 0644);
+        break;
+      default:
+        break;
+    }
+  }
+  const grader::SubmissionFiles files = grader::findSubmissionFiles(root, 1 << 16);
+  for (const auto& [name, found] : files.found) {
+    fs::path walked = root;
+    const fs::path relative = found.lexically_relative(root);
+    if (relative.empty() || *relative.begin() == "..") std::abort();
+    for (const fs::path& part : relative) {
+      walked /= part;
+      struct stat st {};
+      if (lstat(walked.c_str(), &st) != 0 || S_ISLNK(st.st_mode)) std::abort();
+      if (walked != found && !S_ISDIR(st.st_mode)) std::abort();
+      if (walked == found && !S_ISREG(st.st_mode)) std::abort();
+    }
+    std::ifstream in(found, std::ios::binary);
+    const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    if (files.bytes.count(name) == 0 || files.bytes.at(name) != bytes) std::abort();
+  }
+  for (const std::string& note : files.notes)
+    if (!grader::isValidUtf8(note)) std::abort();
+  fs::remove_all(scratch, error);
 }
 
 }  // namespace clothref::fuzz

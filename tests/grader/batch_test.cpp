@@ -199,7 +199,7 @@ TEST(Jobs, SubmissionsShareTheCoresWithoutOversubscribing) {
 TEST(Cli, BadShardOrBatchOptionsWithoutOutAreOneLineExitTwoAndWriteNothing) {
   TempDir temp;
   const fs::path submission = kCorpus / "2022" / "reference";
-  for (const char* shard : {"0/2", "3/2", "x"}) {
+  for (const char* shard : {"0/2", "3/2", "x", "''", "1/", "/2", "1/2/3", "-1/2"}) {
     const auto run = batch({submission}, temp.path() / "out", std::string("--shard ") + shard);
     EXPECT_EQ(run.exit_code, 2) << run.output;
     EXPECT_EQ(lines(run.output).size(), 1u) << run.output;
@@ -209,6 +209,36 @@ TEST(Cli, BadShardOrBatchOptionsWithoutOutAreOneLineExitTwoAndWriteNothing) {
   const auto run = runCli("grade '" + submission.string() + "' --jobs 2");
   EXPECT_EQ(run.exit_code, 2) << run.output;
   EXPECT_NE(run.output.find("--out"), std::string::npos) << run.output;
+}
+
+// --timeout takes seconds in (0, 1 day]: NaN, infinity, 0, negative and 1e30 are one short line.
+TEST(Cli, TimeoutMustBeAPositiveNumberOfSecondsUpToADay) {
+  TempDir temp;
+  const fs::path submission = kCorpus / "2022" / "reference";
+  for (const char* timeout : {"nan", "inf", "0", "-1", "1e30", "86401", "9.3e18", "ten"}) {
+    const auto run = runCli("grade '" + submission.string() + "' --timeout " + timeout +
+                            " --results '" + temp.file("r.json") + "'");
+    EXPECT_EQ(run.exit_code, 2) << timeout << ": " << run.output;
+    EXPECT_EQ(lines(run.output).size(), 1u) << run.output;
+    EXPECT_NE(run.output.find("--timeout"), std::string::npos) << run.output;
+    EXPECT_LT(run.output.size(), 160u) << run.output;
+    EXPECT_FALSE(fs::exists(temp.file("r.json")));
+  }
+}
+
+// --max-file-bytes is a real option: under it every file of the reference is refused (nothing to
+// grade, exit 2, one line); 0 is refused as an option.
+TEST(Cli, MaxFileBytesIsARealOption) {
+  TempDir temp;
+  const fs::path submission = kCorpus / "2022" / "reference";
+  const auto tiny = runCli("grade '" + submission.string() + "' --max-file-bytes 10 --results '" +
+                           temp.file("r.json") + "'");
+  EXPECT_EQ(tiny.exit_code, 2) << tiny.output;
+  EXPECT_NE(tiny.output.find("none of cloth.cpp"), std::string::npos) << tiny.output;
+  EXPECT_FALSE(fs::exists(temp.file("r.json")));
+  const auto zero = runCli("grade '" + submission.string() + "' --max-file-bytes 0");
+  EXPECT_EQ(zero.exit_code, 2) << zero.output;
+  EXPECT_NE(zero.output.find("--max-file-bytes"), std::string::npos) << zero.output;
 }
 
 // A batch: the reference, a mutant, a folder without student files. Every one gets a row with its

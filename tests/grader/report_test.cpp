@@ -1,7 +1,15 @@
-// The writers: Gradescope's results.json fields, JUnit XML that stays well-formed.
+// The writers: Gradescope's results.json fields, JUnit XML that stays well-formed, every output
+// valid UTF-8 whatever bytes a submission put in the report; through the CLI, a grade whose
+// outputs cannot all be written writes none and claims nothing.
 #include "grader/grade/report.h"
 
 #include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "grader/grade/batch.h"
+#include "grader/grade/text.h"
+#include "test_util.h"
 
 namespace clothref::grader {
 namespace {
@@ -41,7 +49,7 @@ TEST(ResultsJson, GradescopeFields) {
 TEST(JunitXml, EscapesFeedback) {
   const std::string xml = junitXml(sampleReport());
   EXPECT_NE(xml.find("failures=\"1\""), std::string::npos);
-  EXPECT_NE(xml.find("expected &lt;1&gt; &amp; got &quot;2&quot; "), std::string::npos) << xml;
+  EXPECT_NE(xml.find("expected &lt;1&gt; &amp; got &quot;2&quot;\\x01"), std::string::npos) << xml;
   EXPECT_EQ(xml.find('\x01'), std::string::npos);
   EXPECT_NE(xml.find("classname=\"RungeKuttaFourth::integrate\" name=\"convergence order\""),
             std::string::npos);
@@ -70,6 +78,159 @@ TEST(AllWriters, StateTheVerdictAndTheIsolation) {
   const std::string markdown = markdownReport(report);
   EXPECT_NE(markdown.find("Verdict: **timed-out**"), std::string::npos);
   EXPECT_NE(markdown.find("Student code ran with: rlimits, uid 65534 <x>."), std::string::npos);
+}
+
+// The bytes real submissions bring: Big5 and CP950 comments, Latin-1, lone continuation bytes,
+// NUL, terminal escapes, C1 controls and U+FFFE, in every text field a report has.
+// One kind per line, as quoted source lines come.
+const std::string kNasty =
+    std::string("big5 \xA4\xA4\xA4\xE5\neuro \xA3\xE1\nlatin1 caf\xE9 au lait\n") +
+    "lone \x80\xBF\nnul " + std::string(1, '\0') +
+    "\nesc \x1B[31m | c1 \xC2\x9B | bell \x07 | fffe \xEF\xBF\xBE";
+
+GradeReport nastyReport() {
+  GradeReport report = sampleReport();
+  report.submission = "sub\n\xFF\x1B]0;x\x07";
+  report.edition_source = kNasty;
+  report.verdict = "crashed";
+  report.isolation = kNasty;
+  UsedFile file;
+  file.name = "cloth.cpp";
+  file.path = "dir \xB3\x5C/" + kNasty + "/cloth.cpp";
+  file.problem = "cloth.cpp:3: error: " + kNasty + "\n    3 | // " + kNasty + "\n";
+  report.files = {file};
+  report.notes = {kNasty, "stderr: " + kNasty};
+  report.tests[1].output = "The probe process crashed.\n\n```\n" + kNasty + "\n```";
+  report.tests[1].check = "check " + kNasty;
+  return report;
+}
+
+// What XML 1.0 allows: tab, newline, carriage return and no other C0 control, valid UTF-8 and no
+// U+FFFE / U+FFFF.
+bool xmlCharactersOk(const std::string& text) {
+  for (unsigned char c : text)
+    if (c < 0x20 && c != '\t' && c != '\n' && c != '\r') return false;
+  return isValidUtf8(text) && text.find("\xEF\xBF\xBE") == std::string::npos &&
+         text.find("\xEF\xBF\xBF") == std::string::npos;
+}
+
+TEST(AllWriters, AnyBytesInValidUtf8OutAndTheReportSaysWhatWasDecoded) {
+  const GradeReport report = nastyReport();
+  // Strict: nlohmann's dump throws on invalid UTF-8, so this is the writer's own doing.
+  std::string json_text;
+  ASSERT_NO_THROW(json_text = resultsJson(report).dump(2));
+  EXPECT_TRUE(isValidUtf8(json_text));
+  const nlohmann::json json = nlohmann::json::parse(json_text);
+  const std::string output = json["output"].get<std::string>();
+  EXPECT_NE(output.find("\xE4\xB8\xAD\xE6\x96\x87"), std::string::npos) << output;  // 中文
+  EXPECT_NE(output.find("lines decoded from Big5 (CP950) to UTF-8"), std::string::npos) << output;
+  EXPECT_NE(output.find("replaced by U+FFFD"), std::string::npos) << output;
+  const std::string xml = junitXml(report);
+  EXPECT_TRUE(xmlCharactersOk(xml)) << xml;
+  EXPECT_NE(xml.find("\xE2\x82\xAC"), std::string::npos);  // CP950's euro sign, decoded
+  for (const std::string& text : {markdownReport(report), summaryLine(report)}) {
+    EXPECT_TRUE(isValidUtf8(text)) << text;
+    EXPECT_EQ(text.find('\x1B'), std::string::npos) << text;
+    EXPECT_EQ(text.find('\0'), std::string::npos) << text;
+    EXPECT_EQ(text.find("\xC2\x9B"), std::string::npos) << text;
+  }
+  EXPECT_EQ(summaryLine(report).find('\n'), std::string::npos);
+  EXPECT_EQ(
+      markdownReport(report).rfind("# Grading report: sub\\x0A\xEF\xBF\xBD\\x1B]0;x\\x07\n", 0), 0u)
+      << markdownReport(report);
+}
+
+// The batch's own outputs: row.json and the CSV from a report and a not-gradable folder name.
+TEST(AllWriters, BatchRowAndCsvAreValidUtf8OnOneLine) {
+  BatchEntry entry{"sub_", "in/\xFF\x1B[2J" + kNasty};
+  const BatchRow row = rowOf(entry, nastyReport());
+  std::string json_text;
+  ASSERT_NO_THROW(json_text = rowJson(row).dump(2));
+  EXPECT_TRUE(isValidUtf8(json_text));
+  const std::string csv = batchCsv({row}, true);
+  EXPECT_TRUE(isValidUtf8(csv)) << csv;
+  EXPECT_EQ(csv.find('\x1B'), std::string::npos) << csv;
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 2) << csv;  // header and one row
+}
+
+// A grade whose JUnit cannot be written (a full device) writes none of its outputs and does not
+// print "graded ... 80 / 80" as if it had: exit 2, one line.
+TEST(Cli, AnOutputThatCannotBeWrittenLeavesNoneAndClaimsNothing) {
+  test::TempDir temp;
+  const auto run = test::runCli(
+      "grade '" + std::string(CLOTHREF_SOURCE_DIR) + "/tools/grader/reference/2022' --results '" +
+      temp.file("r.json") + "' --junit /dev/full --report '" + temp.file("r.md") +
+      "' --no-whole-run --timeout 10 --cache-dir '" + std::string(CLOTHREF_GRADER_CACHE) + "'");
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  EXPECT_EQ(run.output.find("graded"), std::string::npos) << run.output;
+  EXPECT_EQ(std::count(run.output.begin(), run.output.end(), '\n'), 1) << run.output;
+  EXPECT_FALSE(std::filesystem::exists(temp.file("r.json")));
+  EXPECT_FALSE(std::filesystem::exists(temp.file("r.md")));
+  for (const auto& entry : std::filesystem::directory_iterator(temp.path()))
+    ADD_FAILURE() << "left behind: " << entry.path();
+}
+
+// A whole grade of a submission with Big5 comments in every file, a compile error on a Big5 line,
+// a static initialiser writing NUL, escapes and invalid bytes to stderr before it aborts, odd
+// bytes in its folder and a stray file's folder name: single grade (JSON, JUnit, Markdown, stderr)
+// and batch (results.json, report.md, row.json, CSV) are all valid UTF-8, the XML well-formed,
+// the Big5 line decoded.
+TEST(Cli, AnyBytesInTheSubmissionGiveValidOutputsInASingleGradeAndInABatch) {
+  test::TempDir temp;
+  const std::filesystem::path reference =
+      std::filesystem::path(CLOTHREF_SOURCE_DIR) / "tools/grader/reference/2022";
+  const std::filesystem::path dir = temp.path() / "sub\xFF\x1B[31mred";
+  std::filesystem::create_directories(dir / "old\xA4\xA4");
+  const std::string big5 = "// \xA4\xA4\xA4\xE5\xB5\xF9\xB8\xD1\n";  // 中文註解
+  test::writeText(dir / "cloth.cpp", big5 + test::readText(reference / "cloth.cpp"));
+  test::writeText(dir / "old\xA4\xA4" / "cloth.cpp", "// stray\n");
+  test::writeText(dir / "sphere.cpp", big5 + test::readText(reference / "sphere.cpp") +
+                                          "int broken = ; // \xA4\xA4\xA4\xE5\n");
+  test::writeText(
+      dir / "integrator.cpp",
+      big5 + test::readText(reference / "integrator.cpp") +
+          "#include <cstdio>\n#include <cstdlib>\n"
+          "static const int noisy = [] {\n"
+          "  std::fwrite(\"nul \\0 esc \\x1b[2J bad \\xff\\xfe \\xa4\\xa4\\xa4\\xe5\\n\", 1, 27, "
+          "stderr);\n"
+          "  std::abort();\n"
+          "}();\n");
+  const std::string common =
+      " --no-whole-run --timeout 10 --cache-dir '" + std::string(CLOTHREF_GRADER_CACHE) + "'";
+  const auto single = test::runCli("grade '" + dir.string() + "' --results '" +
+                                   temp.file("r.json") + "' --junit '" + temp.file("j.xml") +
+                                   "' --report '" + temp.file("r.md") + "'" + common);
+  ASSERT_EQ(single.exit_code, 0) << single.output;
+  EXPECT_EQ(single.output.find('\x1B'), std::string::npos) << single.output;
+  EXPECT_TRUE(isValidUtf8(single.output)) << single.output;
+  const auto batch =
+      test::runCli("grade '" + dir.string() + "' --out '" + temp.file("batch") + "'" + common);
+  ASSERT_EQ(batch.exit_code, 0) << batch.output;
+  EXPECT_EQ(batch.output.find('\x1B'), std::string::npos) << batch.output;
+  std::filesystem::path folder;
+  for (const auto& entry : std::filesystem::directory_iterator(temp.path() / "batch"))
+    if (entry.is_directory() && entry.path().filename().string()[0] != '.') folder = entry.path();
+  ASSERT_FALSE(folder.empty());
+  for (const std::filesystem::path& file :
+       {std::filesystem::path(temp.file("r.json")), std::filesystem::path(temp.file("j.xml")),
+        std::filesystem::path(temp.file("r.md")), folder / "results.json", folder / "report.md",
+        folder / "row.json", temp.path() / "batch" / "grades.csv"}) {
+    const std::string text = test::readText(file);
+    ASSERT_FALSE(text.empty()) << file;
+    EXPECT_TRUE(xmlCharactersOk(text)) << file << ":\n" << text;
+    EXPECT_EQ(text.find('\x1B'), std::string::npos) << file;
+    if (file.extension() == ".json") {
+      EXPECT_NO_THROW(static_cast<void>(nlohmann::json::parse(text))) << file;
+      EXPECT_NE(text.find("\\\\x1B[31mred"), std::string::npos) << file;  // JSON of "\x1B"
+    }
+  }
+  for (const std::filesystem::path& file :
+       {std::filesystem::path(temp.file("r.json")), std::filesystem::path(temp.file("r.md")),
+        std::filesystem::path(temp.file("j.xml")), folder / "report.md"}) {
+    const std::string text = test::readText(file);
+    EXPECT_NE(text.find("\xE4\xB8\xAD\xE6\x96\x87"), std::string::npos) << file << text;  // 中文
+    EXPECT_NE(text.find("decoded from Big5 (CP950)"), std::string::npos) << file;
+  }
 }
 
 }  // namespace

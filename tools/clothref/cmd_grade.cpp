@@ -1,7 +1,11 @@
 // clothref grade DIR...: compile a student's cloth.cpp, sphere.cpp and integrator.cpp against the
 // course stand-in and grade each stub (docs/grading.md). With --out BATCHDIR: a batch (many
 // submissions in parallel, resume, shards, a CSV summary; grader/grade/batch.h).
+#include <filesystem>
 #include <iostream>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "clothref/io/error.h"
 #include "clothref/io/output_file.h"
@@ -11,8 +15,34 @@
 #include "grader/grade/html_report.h"
 #include "grader/grade/report.h"
 #include "grader/grade/sanitize.h"
+#include "grader/grade/text.h"
 
 namespace clothref::cli {
+namespace {
+
+constexpr double kMaxTimeoutSeconds = 24 * 3600;  // one day: past it a probe is simply stuck
+
+// The user's text in a message: escaped, and cut (a 300-digit number says nothing more).
+std::string shownText(const std::string& text) {
+  const std::string safe = grader::safeName(text);
+  return safe.size() > 32 ? safe.substr(0, 32) + "..." : safe;
+}
+
+// --timeout: seconds in (0, 1 day]. NaN, infinity and huge values would set no limit at all.
+CLI::Validator timeoutSeconds() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        double value = 0;
+        if (!CLI::detail::lexical_cast(text, value))
+          return "expected a number of seconds, got '" + shownText(text) + "'";
+        if (!(value > 0 && value <= kMaxTimeoutSeconds))
+          return "must be > 0 and <= 86400 seconds (got " + shownText(text) + ")";
+        return "";
+      },
+      "seconds, (0, 86400]");
+}
+
+}  // namespace
 
 Command addGradeCommand(CLI::App& root) {
   auto* app = root.add_subcommand(
@@ -24,6 +54,7 @@ Command addGradeCommand(CLI::App& root) {
     bool no_whole_run = false;
     double timeout = 20;
     std::string optimisation = "-O2";
+    std::size_t max_file_bytes = grader::kDefaultMaxSourceBytes;
     // batch
     std::string out, csv, shard;
     int jobs = 1;
@@ -43,8 +74,13 @@ Command addGradeCommand(CLI::App& root) {
   app->add_option("--rubric", options->rubric,
                   "JSON rubric: weights, tolerances, accepted variants")
       ->check(CLI::ExistingFile);
-  app->add_option("--timeout", options->timeout, "wall-clock limit per probe process, seconds")
-      ->check(CLI::PositiveNumber);
+  app->add_option("--timeout", options->timeout,
+                  "wall-clock limit per probe process, seconds (at most 86400)")
+      ->check(timeoutSeconds());
+  app->add_option("--max-file-bytes", options->max_file_bytes,
+                  "largest student file read, bytes (default 16777216); a larger one is refused "
+                  "and graded as missing")
+      ->check(atLeast(1));
   app->add_option("--opt", options->optimisation, "optimisation flag for student code")
       ->check(CLI::IsMember({"-O0", "-O1", "-O2", "-O3"}));
   app->add_option("--cache-dir", options->cache_dir,
@@ -60,8 +96,9 @@ Command addGradeCommand(CLI::App& root) {
                   "report.md; BATCHDIR/grades.csv)");
   app->add_option("--jobs", options->jobs, "batch: submissions graded at once (default 1)")
       ->check(atLeast(1));
-  app->add_option("--shard", options->shard,
-                  "batch: grade only part k of n of the sorted submissions (k/n, 1 <= k <= n)");
+  auto* shard =
+      app->add_option("--shard", options->shard,
+                      "batch: grade only part k of n of the sorted submissions (k/n, 1 <= k <= n)");
   app->add_flag("--regrade", options->regrade,
                 "batch: grade again submissions a previous run already graded");
   app->add_option("--csv", options->csv,
@@ -70,93 +107,104 @@ Command addGradeCommand(CLI::App& root) {
   app->add_flag("--csv-no-header", options->csv_no_header,
                 "batch: no header line in the CSV (for shards 2..n before concatenating)");
   app->add_flag("--quiet", options->quiet, "batch: no progress or summary on stderr");
-  return {app, [options] {
-            const bool batch = !options->out.empty();
-            const bool single = options->dirs.size() == 1 && !batch;
-            if (!single && (!options->results.empty() || !options->junit.empty() ||
-                            !options->report.empty() || !options->html.empty()))
-              throw InputError(
-                  batch ? "--results, --junit, --report and --html are per submission; a batch "
-                          "(--out) writes them into BATCHDIR/<name>/"
-                        : "--results, --junit, --report and --html take one submission DIR; got " +
-                              std::to_string(options->dirs.size()));
-            if (!batch && (options->jobs != 1 || !options->shard.empty() || options->regrade ||
-                           !options->csv.empty() || options->csv_no_header))
-              throw InputError(
-                  "--jobs, --shard, --regrade, --csv and --csv-no-header need --out "
-                  "BATCHDIR (batch grading)");
-            grader::GradeOptions grade;
-            grade.edition = options->edition;
-            if (!options->rubric.empty()) grade.rubric_path = options->rubric;
-            grade.keep_work = options->keep_work;
-            grade.whole_run = !options->no_whole_run;
-            grade.limits.wall_seconds = options->timeout;
-            grade.limits.cpu_seconds = static_cast<std::uint64_t>(options->timeout) + 1;
-            grade.toolchain.optimisation = options->optimisation;
-            grade.toolchain.cache_dir = options->cache_dir;
-            if (batch) {
-              grader::BatchOptions batch_options;
-              batch_options.out_dir = options->out;
-              batch_options.csv = options->csv;
-              batch_options.csv_header = !options->csv_no_header;
-              batch_options.jobs = options->jobs;
-              if (!options->shard.empty()) batch_options.shard = grader::parseShard(options->shard);
-              batch_options.regrade = options->regrade;
-              batch_options.sanitize = options->sanitize;
-              batch_options.quiet = options->quiet;
-              batch_options.grade = grade;
-              std::vector<std::filesystem::path> dirs(options->dirs.begin(), options->dirs.end());
-              const grader::BatchSummary summary = grader::runBatch(dirs, batch_options, std::cerr);
-              if (!options->quiet)
-                std::cerr << "clothref grade: " << summary.rows.size() << " submissions ("
-                          << summary.graded << " graded now, " << summary.skipped
-                          << " already graded), " << summary.failed
-                          << " with a verdict other than 'graded'; CSV " << summary.csv.string()
-                          << '\n';
-              return kExitOk;  // every submission has a row, whatever its verdict
+  return {
+      app, [options, shard] {
+        const bool batch = !options->out.empty();
+        const bool single = options->dirs.size() == 1 && !batch;
+        if (!single && (!options->results.empty() || !options->junit.empty() ||
+                        !options->report.empty() || !options->html.empty()))
+          throw InputError(
+              batch ? "--results, --junit, --report and --html are per submission; a batch "
+                      "(--out) writes them into BATCHDIR/<name>/"
+                    : "--results, --junit, --report and --html take one submission DIR; got " +
+                          std::to_string(options->dirs.size()));
+        const bool sharded = shard->count() > 0;  // --shard "" is a shard, and a bad one
+        if (!batch && (options->jobs != 1 || sharded || options->regrade || !options->csv.empty() ||
+                       options->csv_no_header))
+          throw InputError(
+              "--jobs, --shard, --regrade, --csv and --csv-no-header need --out "
+              "BATCHDIR (batch grading)");
+        grader::GradeOptions grade;
+        grade.edition = options->edition;
+        if (!options->rubric.empty()) grade.rubric_path = options->rubric;
+        grade.keep_work = options->keep_work;
+        grade.whole_run = !options->no_whole_run;
+        grade.limits.wall_seconds = options->timeout;
+        grade.limits.cpu_seconds = static_cast<std::uint64_t>(options->timeout) + 1;
+        grade.max_file_bytes = options->max_file_bytes;
+        grade.toolchain.optimisation = options->optimisation;
+        grade.toolchain.cache_dir = options->cache_dir;
+        if (batch) {
+          grader::BatchOptions batch_options;
+          batch_options.out_dir = options->out;
+          batch_options.csv = options->csv;
+          batch_options.csv_header = !options->csv_no_header;
+          batch_options.jobs = options->jobs;
+          if (sharded) batch_options.shard = grader::parseShard(options->shard);
+          batch_options.regrade = options->regrade;
+          batch_options.sanitize = options->sanitize;
+          batch_options.quiet = options->quiet;
+          batch_options.grade = grade;
+          std::vector<std::filesystem::path> dirs(options->dirs.begin(), options->dirs.end());
+          const grader::BatchSummary summary = grader::runBatch(dirs, batch_options, std::cerr);
+          if (!options->quiet)
+            std::cerr << "clothref grade: " << summary.rows.size() << " submissions ("
+                      << summary.graded << " graded now, " << summary.skipped
+                      << " already graded), " << summary.failed
+                      << " with a verdict other than 'graded'; CSV "
+                      << grader::safeName(summary.csv.string()) << '\n';
+          return kExitOk;  // every submission has a row, whatever its verdict
+        }
+        int exit_code = kExitOk;
+        for (const std::string& dir : options->dirs) {
+          grader::GradeReport report;
+          nlohmann::ordered_json whole_run_view;  // --html's pictures
+          try {
+            report = options->html.empty() ? grader::gradeSubmission(dir, grade)
+                                           : grader::gradeWithWholeRun(dir, grade, whole_run_view);
+            if (options->sanitize) grader::diagnoseCrashWithSanitizers(dir, report, grade);
+          } catch (const InputError& error) {
+            std::cerr << "clothref grade: " << grader::safeName(error.what()) << '\n';
+            exit_code = kExitBadInput;
+            continue;
+          }
+          // Every output is rendered first, then written; when one cannot be written (a full
+          // disk) those already written by this run are removed again and no "graded" line
+          // claims success: all of the outputs or none of them.
+          std::vector<std::pair<std::string, std::string>> outputs;  // path, bytes
+          if (!options->results.empty())
+            outputs.emplace_back(
+                options->results,
+                grader::withHtmlSummary(grader::resultsJson(report), report)
+                        .dump(2, ' ', false, nlohmann::json::error_handler_t::replace) +
+                    "\n");
+          if (!options->html.empty())
+            outputs.emplace_back(options->html, grader::studentReportHtml(report, whole_run_view));
+          if (!options->junit.empty())
+            outputs.emplace_back(options->junit, grader::junitXml(report));
+          if (!options->report.empty())
+            outputs.emplace_back(options->report, grader::markdownReport(report));
+          std::vector<std::string> written;
+          try {
+            for (const auto& [path, bytes] : outputs) {
+              OutputFile out(path);
+              out.stream() << bytes;
+              out.commit();
+              written.push_back(path);
             }
-            int exit_code = kExitOk;
-            for (const std::string& dir : options->dirs) {
-              grader::GradeReport report;
-              nlohmann::ordered_json whole_run_view;  // --html's pictures
-              try {
-                report = options->html.empty()
-                             ? grader::gradeSubmission(dir, grade)
-                             : grader::gradeWithWholeRun(dir, grade, whole_run_view);
-                if (options->sanitize) grader::diagnoseCrashWithSanitizers(dir, report, grade);
-              } catch (const InputError& error) {
-                std::cerr << "clothref grade: " << error.what() << '\n';
-                exit_code = kExitBadInput;
-                continue;
-              }
-              if (!options->quiet) std::cerr << grader::summaryLine(report) << '\n';
-              if (!options->results.empty()) {
-                OutputFile out(options->results);
-                out.stream() << grader::withHtmlSummary(grader::resultsJson(report), report).dump(2)
-                             << '\n';
-                out.commit();
-              }
-              if (!options->html.empty()) {
-                OutputFile out(options->html);
-                out.stream() << grader::studentReportHtml(report, whole_run_view);
-                out.commit();
-              }
-              if (!options->junit.empty()) {
-                OutputFile out(options->junit);
-                out.stream() << grader::junitXml(report);
-                out.commit();
-              }
-              if (!options->report.empty()) {
-                OutputFile out(options->report);
-                out.stream() << grader::markdownReport(report);
-                out.commit();
-              } else if (single && options->results.empty() && options->junit.empty() &&
-                         options->html.empty()) {
-                std::cout << grader::markdownReport(report);
-              }
+          } catch (const InputError&) {
+            for (const std::string& path : written) {
+              std::error_code ignored;
+              if (std::filesystem::is_regular_file(path, ignored))
+                std::filesystem::remove(path, ignored);
             }
-            return exit_code;
-          }};
+            throw;
+          }
+          if (single && outputs.empty()) std::cout << grader::markdownReport(report);
+          if (!options->quiet) std::cerr << grader::summaryLine(report) << '\n';
+        }
+        return exit_code;
+      }};
 }
 
 }  // namespace clothref::cli

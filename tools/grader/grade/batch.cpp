@@ -20,6 +20,7 @@
 #include "html_report.h"
 #include "report.h"
 #include "sanitize.h"
+#include "text.h"
 
 namespace clothref::grader {
 namespace fs = std::filesystem;
@@ -28,6 +29,9 @@ namespace {
 
 constexpr const char* kRowFile = "row.json";
 constexpr const char* kCacheDir = ".cache";  // no submission name starts with a dot
+// The writers already give valid UTF-8 (text.h); should a byte slip through, it becomes U+FFFD
+// rather than an exception that loses the submission's row.
+constexpr auto kReplace = nlohmann::json::error_handler_t::replace;
 
 double since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -50,8 +54,9 @@ std::string number(double value) {
   return out.str();
 }
 
-std::string csvField(const std::string& text) {
-  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
+std::string csvField(const std::string& given) {
+  const std::string text = safeName(given);  // valid UTF-8, one line, no terminal escapes
+  if (text.find_first_of(",\"") == std::string::npos) return text;
   std::string out = "\"";
   for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
   return out + "\"";
@@ -89,22 +94,21 @@ Outputs notGradable(const BatchEntry& entry, const std::string& verdict,
                     const std::string& problem) {
   Outputs out;
   out.row.name = entry.name;
-  out.row.dir = entry.dir.string();
+  out.row.dir = safeName(entry.dir.string());
   out.row.verdict = verdict;
-  out.row.problem = problem;
+  out.row.problem = safeName(problem);
   const std::string text =
       verdict == "not-gradable"
-          ? "The submission could not be graded: " + problem
-          : "The grader failed on this submission (" + problem + "); see the course staff.";
+          ? "The submission could not be graded: " + out.row.problem
+          : "The grader failed on this submission (" + out.row.problem + "); see the course staff.";
   nlohmann::ordered_json results;
   results["score"] = 0;
   results["output"] = text;
   results["output_format"] = "md";
   results["visibility"] = "visible";
   results["tests"] = nlohmann::ordered_json::array();
-  out.results_json = results.dump(2) + "\n";
-  out.report_md =
-      "# Grading report: " + entry.dir.string() + "\n\n**" + verdict + "**. " + text + "\n";
+  out.results_json = results.dump(2, ' ', false, kReplace) + "\n";
+  out.report_md = "# Grading report: " + out.row.dir + "\n\n**" + verdict + "**. " + text + "\n";
   return out;
 }
 
@@ -115,7 +119,8 @@ Outputs gradeOne(const BatchEntry& entry, const BatchOptions& options, const Gra
     if (options.sanitize) diagnoseCrashWithSanitizers(entry.dir, report, grade);
     Outputs out;
     out.row = rowOf(entry, report);
-    out.results_json = withHtmlSummary(resultsJson(report), report).dump(2) + "\n";
+    out.results_json =
+        withHtmlSummary(resultsJson(report), report).dump(2, ' ', false, kReplace) + "\n";
     out.report_md = markdownReport(report);
     out.report_html = studentReportHtml(report, whole_run_view);
     return out;
@@ -130,7 +135,8 @@ Outputs gradeOne(const BatchEntry& entry, const BatchOptions& options, const Gra
 
 Shard parseShard(const std::string& text) {
   const auto fail = [&] {
-    return InputError("--shard: expected k/n with integers 1 <= k <= n (got '" + text + "')");
+    return InputError("--shard: expected k/n with integers 1 <= k <= n (got '" + safeName(text) +
+                      "')");
   };
   const std::size_t slash = text.find('/');
   if (slash == std::string::npos) throw fail();
@@ -187,8 +193,8 @@ std::vector<BatchEntry> batchEntries(const std::vector<fs::path>& dirs) {
         }
       if (!deeper)
         throw InputError("two submissions get the same name '" + name +
-                         "': " + candidates[members[0]].dir.string() + " and " +
-                         candidates[members[1]].dir.string() + " (rename one folder)");
+                         "': " + safeName(candidates[members[0]].dir.string()) + " and " +
+                         safeName(candidates[members[1]].dir.string()) + " (rename one folder)");
     }
     if (!collided) break;
   }
@@ -210,14 +216,14 @@ std::vector<BatchEntry> shardEntries(const std::vector<BatchEntry>& entries, con
 BatchRow rowOf(const BatchEntry& entry, const GradeReport& report) {
   BatchRow row;
   row.name = entry.name;
-  row.dir = entry.dir.string();
+  row.dir = safeName(entry.dir.string());
   row.edition = report.edition;
   row.stub_score = report.stub_score;
   row.stub_max = report.stub_max;
   row.score = report.score;
   row.max_score = report.max_score;
-  row.verdict = report.verdict;
-  row.isolation = report.isolation;
+  row.verdict = safeName(report.verdict);
+  row.isolation = safeName(report.isolation);
   row.seconds = report.seconds.count("total") ? report.seconds.at("total") : 0;
   return row;
 }
@@ -289,7 +295,8 @@ BatchSummary runBatch(const std::vector<fs::path>& dirs, const BatchOptions& opt
   std::error_code error;
   fs::create_directories(options.out_dir, error);
   if (error || !fs::is_directory(options.out_dir, error))
-    throw InputError(options.out_dir.string() + ": cannot create the batch folder (--out)");
+    throw InputError(safeName(options.out_dir.string()) +
+                     ": cannot create the batch folder (--out)");
   BatchSummary summary;
   summary.csv = options.csv;
   if (summary.csv.empty())
@@ -347,7 +354,8 @@ BatchSummary runBatch(const std::vector<fs::path>& dirs, const BatchOptions& opt
         writeText(folder / "results.json", out.results_json);
         writeText(folder / "report.md", out.report_md);
         if (!out.report_html.empty()) writeText(folder / "report.html", out.report_html);
-        writeText(folder / kRowFile, rowJson(out.row).dump(2) + "\n");  // the marker, last
+        writeText(folder / kRowFile,
+                  rowJson(out.row).dump(2, ' ', false, kReplace) + "\n");  // the marker, last
       } catch (...) {
         failure = std::current_exception();
         return;

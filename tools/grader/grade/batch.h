@@ -62,7 +62,8 @@ nlohmann::ordered_json rowJson(const BatchRow& row);
 // Throws InputError naming `where` when a field is missing or has the wrong type.
 BatchRow rowFromJson(const nlohmann::json& json, const std::string& where);
 
-// The CSV (RFC 4180; fields with a comma, quote or line break are quoted): a header line
+// The CSV (RFC 4180; fields with a comma or quote are quoted; every field is valid UTF-8 on one
+// line, control characters and line breaks escaped as in text.h): a header line
 //   submission,edition,<the eight stubs of stubNames()>,total,max,verdict,isolation,seconds
 // when `header`, then one line per row in the order given. A stub the edition does not have
 // (Spheres::collide() in 2024) is an empty cell; numbers are rounded to 0.001.

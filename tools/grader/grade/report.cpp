@@ -3,6 +3,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "text.h"
+
 namespace clothref::grader {
 namespace {
 
@@ -35,6 +37,36 @@ std::string xmlEscape(const std::string& text) {
   return out;
 }
 
+// The report with every text made safe (text.h): valid UTF-8 (Big5 lines decoded, other bytes
+// U+FFFD), control characters escaped, names on one line; plus a note saying what was done. Every
+// writer starts from this, so no byte a submission controls reaches an output unchecked.
+GradeReport cleaned(const GradeReport& given) {
+  GradeReport report = given;
+  TextRepairs repairs;
+  const auto name = [&](std::string& text) { text = safeName(text, &repairs); };
+  const auto text = [&](std::string& value) { value = safeText(value, &repairs); };
+  name(report.submission);
+  text(report.edition_source);
+  name(report.verdict);
+  name(report.isolation);
+  for (UsedFile& file : report.files) {
+    name(file.name);
+    name(file.path);
+    text(file.problem);
+  }
+  for (std::string& note : report.notes) name(note);
+  for (TestResult& test : report.tests) {
+    name(test.stub);
+    name(test.check);
+    text(test.output);
+    for (std::string& id : test.diagnoses) name(id);
+  }
+  if (repairs.any())
+    report.notes.push_back("text from the submission made printable and valid UTF-8 (" +
+                           repairs.describe() + ")");
+  return report;
+}
+
 std::string number(double value) {
   std::ostringstream out;
   out << rounded(value);
@@ -56,12 +88,14 @@ std::string filesSection(const GradeReport& report) {
 
 }  // namespace
 
-std::string summaryLine(const GradeReport& report) {
+std::string summaryLine(const GradeReport& given) {
+  const GradeReport report = cleaned(given);
   return "graded " + report.submission + " (" + std::to_string(report.edition) +
          "): " + number(report.score) + " / " + number(report.max_score);
 }
 
-nlohmann::ordered_json resultsJson(const GradeReport& report) {
+nlohmann::ordered_json resultsJson(const GradeReport& given) {
+  const GradeReport report = cleaned(given);
   nlohmann::ordered_json out;
   out["score"] = rounded(report.score);
   out["execution_time"] = rounded(report.seconds.count("total") ? report.seconds.at("total") : 0);
@@ -106,7 +140,8 @@ nlohmann::ordered_json resultsJson(const GradeReport& report) {
   return out;
 }
 
-std::string junitXml(const GradeReport& report) {
+std::string junitXml(const GradeReport& given) {
+  const GradeReport report = cleaned(given);
   int failures = 0;
   for (const TestResult& t : report.tests) failures += t.passed() ? 0 : 1;
   std::ostringstream out;
@@ -119,8 +154,12 @@ std::string junitXml(const GradeReport& report) {
       << "\"/><property name=\"max_score\" value=\"" << number(report.max_score)
       << "\"/><property name=\"edition\" value=\"" << report.edition
       << "\"/><property name=\"verdict\" value=\"" << xmlEscape(report.verdict)
-      << "\"/><property name=\"isolation\" value=\"" << xmlEscape(report.isolation)
-      << "\"/></properties>\n";
+      << "\"/><property name=\"isolation\" value=\"" << xmlEscape(report.isolation) << "\"/>";
+  // The notes (files chosen or refused, encodings, what text was decoded) on one line.
+  std::string notes;
+  for (const std::string& note : report.notes) notes += (notes.empty() ? "" : " | ") + note;
+  if (!notes.empty()) out << "<property name=\"notes\" value=\"" << xmlEscape(notes) << "\"/>";
+  out << "</properties>\n";
   for (const TestResult& t : report.tests) {
     out << "    <testcase classname=\"" << xmlEscape(t.stub) << "\" name=\"" << xmlEscape(t.check)
         << "\">";
@@ -135,7 +174,8 @@ std::string junitXml(const GradeReport& report) {
   return out.str();
 }
 
-std::string markdownReport(const GradeReport& report) {
+std::string markdownReport(const GradeReport& given) {
+  const GradeReport report = cleaned(given);
   std::ostringstream out;
   out << "# Grading report: " << report.submission << "\n\n";
   out << "Edition " << report.edition << " (" << report.edition_source << "). **Code score "

@@ -1,4 +1,7 @@
-// Writers for a GradeReport: Gradescope results.json, JUnit XML and a Markdown report.
+// Writers for a GradeReport: Gradescope results.json, JUnit XML and a Markdown report. Whatever
+// bytes the report holds (a submission controls many of them), each output is valid UTF-8, the
+// XML is well-formed and no control character reaches a terminal: the writers clean every text
+// with text.h first and add a note saying what was decoded or replaced.
 #pragma once
 #include <nlohmann/json.hpp>
 #include <string>

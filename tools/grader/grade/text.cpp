@@ -56,6 +56,16 @@ bool decodeCp950(std::string_view in, std::string& out) {
   return true;
 }
 
+// U+0080..U+009F, encoded C2 80..C2 9F.
+bool hasC1(std::string_view utf8) {
+  for (std::size_t i = 0; i + 1 < utf8.size(); ++i)
+    if (static_cast<unsigned char>(utf8[i]) == 0xC2 &&
+        static_cast<unsigned char>(utf8[i + 1]) >= 0x80 &&
+        static_cast<unsigned char>(utf8[i + 1]) <= 0x9F)
+      return true;
+  return false;
+}
+
 void appendEscape(std::string& out, char32_t code) {
   char buffer[16];
   if (code < 0x100)
@@ -70,7 +80,8 @@ void appendEscape(std::string& out, char32_t code) {
 std::string cleanLine(std::string_view line, bool escape_layout, TextRepairs* repairs) {
   TextRepairs local;
   std::string decoded;
-  if (!isValidUtf8(line) && decodeCp950(line, decoded) && isValidUtf8(decoded)) {
+  // glibc's CP950 maps a lone 0x80 to U+0080: a line that decodes to C1 controls is not Big5.
+  if (!isValidUtf8(line) && decodeCp950(line, decoded) && isValidUtf8(decoded) && !hasC1(decoded)) {
     ++local.big5_lines;
     line = decoded;
   }
