@@ -61,65 +61,30 @@ struct MethodInfo {
   bool stepped_by_solver = false;
 };
 
+// One row per method; the last field, R(z), as {kind, P's coefficients, Q's (default 1)}, each
+// coefficient {numerator, denominator} of z^0, z^1, ...
+// clang-format off
 inline constexpr std::array<MethodInfo, 6> kMethods{{
-    {Method::Explicit,
-     "explicit",
-     1,
-     1,
-     false,
-     MethodOrigin::Course,
-     "ExplicitEuler",
+    {Method::Explicit, "explicit", 1, 1, false, MethodOrigin::Course, "ExplicitEuler",
      "forward Euler: x += v dt, then v += a dt",
-     {AmplificationKind::Rational, {{{1, 1}, {1, 1}}}}},  // R = 1 + z
-    {Method::Implicit,
-     "implicit",
-     1,
-     2,
-     true,
-     MethodOrigin::Course,
-     "ImplicitEuler",
+     {AmplificationKind::Rational, {{{1, 1}, {1, 1}}}}},                          // 1 + z
+    {Method::Implicit, "implicit", 1, 2, true, MethodOrigin::Course, "ImplicitEuler",
      "the course's one predictor-corrector pass of backward Euler",
-     {AmplificationKind::Rational, {{{1, 1}, {1, 1}, {1, 1}}}}},  // R = 1 + z + z^2
-    {Method::Midpoint,
-     "midpoint",
-     2,
-     2,
-     true,
-     MethodOrigin::Course,
-     "MidpointEuler",
+     {AmplificationKind::Rational, {{{1, 1}, {1, 1}, {1, 1}}}}},                  // 1 + z + z^2
+    {Method::Midpoint, "midpoint", 2, 2, true, MethodOrigin::Course, "MidpointEuler",
      "explicit midpoint: half step, evaluate, full step from the start",
-     {AmplificationKind::Rational, {{{1, 1}, {1, 1}, {1, 2}}}}},  // R = 1 + z + z^2 / 2
-    {Method::Rk4,
-     "rk4",
-     4,
-     4,
-     true,
-     MethodOrigin::Course,
-     "RungeKuttaFourth",
+     {AmplificationKind::Rational, {{{1, 1}, {1, 1}, {1, 2}}}}},                  // 1 + z + z^2/2
+    {Method::Rk4, "rk4", 4, 4, true, MethodOrigin::Course, "RungeKuttaFourth",
      "classical fourth-order Runge-Kutta",
-     // R = 1 + z + z^2 / 2 + z^3 / 6 + z^4 / 24
-     {AmplificationKind::Rational, {{{1, 1}, {1, 1}, {1, 2}, {1, 6}, {1, 24}}}}},
-    {Method::Symplectic,
-     "symplectic",
-     1,
-     1,
-     false,
-     MethodOrigin::Textbook,
-     "",
+     {AmplificationKind::Rational, {{{1, 1}, {1, 1}, {1, 2}, {1, 6}, {1, 24}}}}}, // ... + z^4/24
+    {Method::Symplectic, "symplectic", 1, 1, false, MethodOrigin::Textbook, "",
      "symplectic (semi-implicit) Euler: v += a dt, then x += v dt",
-     {AmplificationKind::SymplecticEuler}},
-    {Method::BackwardEuler,
-     "backward-euler",
-     1,
-     1,
-     false,
-     MethodOrigin::Textbook,
-     "",
+     {AmplificationKind::SymplecticEuler}},                                       // a 2 x 2 matrix
+    {Method::BackwardEuler, "backward-euler", 1, 1, false, MethodOrigin::Textbook, "",
      "backward Euler linearised once per step (Baraff & Witkin): one sparse CG solve per step",
-     // R = 1 / (1 - z): on a linear problem the linearised step is backward Euler itself
-     {AmplificationKind::Rational, {{{1, 1}}}, {{{1, 1}, {-1, 1}}}},
-     true},
+     {AmplificationKind::Rational, {{{1, 1}}}, {{{1, 1}, {-1, 1}}}}, true},      // 1 / (1 - z)
 }};
+// clang-format on
 
 // The row of `method`.
 constexpr const MethodInfo& methodInfo(Method method) {
