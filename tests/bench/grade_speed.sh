@@ -35,7 +35,7 @@ now() { date +%s.%N; }
 median() { python3 -c 'import statistics,sys; print(f"{statistics.median(map(float,sys.argv[1:])):.2f}")' "$@"; }
 
 # 2. One submission, cold then cached.
-one=$work/subs/$(ls "$work/subs" | grep 2022-reference)
+one=$work/subs/$(ls "$work/subs" | grep 2024-reference)
 cold=() cached=()
 for r in $(seq "$single_runs"); do
   rm -rf "$work/cache"

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <set>
 
 #include "test_util.h"
@@ -65,6 +66,30 @@ TEST(ObjectCachePath, DependsOnTheIsolationAndTheCompilerVersion) {
   const std::filesystem::path other_compiler = key();
   const std::set<std::filesystem::path> keys = {none, rlimits, confined, boxed, other_compiler};
   EXPECT_EQ(keys.size(), 5u);
+}
+
+// Work that does not depend on the student's bytes is never repeated: the build made our
+// reference objects (build/grader-prebuilt), so a submission whose files are byte for byte ours,
+// or missing, links them without running a compiler, even with no object cache.
+TEST(BuildProbes, ReferenceObjectsComeFromThePrebuiltFolder) {
+  CourseToolchain toolchain = defaultToolchain();
+  ASSERT_FALSE(toolchain.prebuilt_dir.empty());
+  ASSERT_TRUE(std::filesystem::is_directory(toolchain.prebuilt_dir)) << toolchain.prebuilt_dir;
+  toolchain.cache_dir.clear();
+  SubmissionFiles files;
+  for (const char* name : {"sphere.cpp", "integrator.cpp"}) {  // cloth.cpp missing
+    files.found[name] = toolchain.reference_dir / "2022" / name;
+    files.bytes[name] = test::readText(files.found[name]);
+  }
+  const test::TempDir work;
+  const ProbeBuild build = buildProbes(files, 2022, toolchain, work.path());
+  ASSERT_TRUE(build.ok) << build.problem;
+  ASSERT_EQ(build.files.size(), 3u);
+  EXPECT_EQ(build.files[0].problem, "missing");
+  for (std::size_t k = 1; k < 3; ++k) {
+    EXPECT_TRUE(build.files[k].compiled) << build.files[k].name << ": " << build.files[k].problem;
+    EXPECT_EQ(build.files[k].compile_seconds, 0.0) << build.files[k].name << " was compiled";
+  }
 }
 
 }  // namespace
