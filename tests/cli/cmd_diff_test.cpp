@@ -179,5 +179,29 @@ TEST_F(DiffCli, StandardInputTwiceClosedOrADirectoryIsNamed) {
                  dir_.file("empty.jsonl") + ":1: ", "empty file");
 }
 
+// Control characters in a scene name (an informational header difference) and in a key (an
+// error message) reach the terminal escaped; they used to be echoed raw.
+TEST_F(DiffCli, ControlCharactersInNamesAreEscapedOnTheTerminal) {
+  std::string header = lines_[0];
+  const std::string name = "\"name\":\"small-cloth\"";
+  header.replace(header.find(name), name.size(), "\"name\":\"\\u001b[2J\\u009b31m\\u007f\"");
+  const test::CommandResult info =
+      test::runCli("diff " + withLine("n.jsonl", 0, header) + " " + trace_);
+  EXPECT_EQ(info.exit_code, 0) << info.output;
+  EXPECT_NE(info.output.find("/scene/name: \"\\u001b[2J\\u009b31m\\x7f\" vs \"small-cloth\""),
+            std::string::npos)
+      << info.output;
+  header = lines_[0];
+  header.replace(header.find(name), name.size(), name + ",\"\\u001b]0;owned\\u0007\":1");
+  expectBadInput(withLine("k.jsonl", 0, header) + " " + trace_,
+                 dir_.file("k.jsonl") + ":1: ", "/scene/\\x1b]0;owned\\x07: unknown key");
+  for (const std::string& output :
+       {info.output, test::runCli("diff " + dir_.file("k.jsonl") + " " + trace_).output}) {
+    EXPECT_EQ(output.find('\x1b'), std::string::npos) << output;
+    EXPECT_EQ(output.find('\x7f'), std::string::npos) << output;
+    EXPECT_EQ(output.find("\xc2\x9b"), std::string::npos) << output;
+  }
+}
+
 }  // namespace
 }  // namespace clothref
