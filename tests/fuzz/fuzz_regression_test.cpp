@@ -31,6 +31,7 @@ const Target kTargets[] = {
     {"goldenManifest", fuzz::goldenManifest},
     {"diffTwo", fuzz::diffTwo},
     {"rubric", fuzz::rubric},
+    {"gzipTrace", fuzz::gzipTrace},
 };
 
 std::vector<fs::path> inputsOf(const std::string& kind, const std::string& target) {
