@@ -19,17 +19,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// `text` as one gzip member, by the library's own writer.
-std::string gzipMember(const std::string& text) {
-  std::stringbuf sink;
-  GzipOutputBuffer gzip(sink);
-  std::ostream out(&gzip);
-  out << text;
-  out.flush();
-  EXPECT_TRUE(gzip.finish());
-  return sink.str();
-}
-
 int lineCount(const std::string& text) { return int(std::count(text.begin(), text.end(), '\n')); }
 
 class DiffCli : public ::testing::Test {
@@ -73,8 +62,8 @@ class DiffCli : public ::testing::Test {
 // forever at 100 % CPU).
 TEST_F(DiffCli, MultiMemberGzipReadsLikeZcatAndTrailingBytesAreRefused) {
   const std::size_t cut = text_.find('\n', text_.find('\n', text_.find('\n') + 1) + 1) + 1;
-  const std::string multi = gzipMember(text_.substr(0, cut)) + gzipMember("") +
-                            gzipMember(text_.substr(cut)) + gzipMember("");
+  const std::string multi = test::gzipMember(text_.substr(0, cut)) + test::gzipMember("") +
+                            test::gzipMember(text_.substr(cut)) + test::gzipMember("");
   test::writeText(dir_.file("multi.gz"), multi);
   for (const std::string& args :
        {dir_.file("multi.gz") + " " + trace_, "- " + trace_ + " < " + dir_.file("multi.gz")}) {
@@ -100,7 +89,7 @@ TEST_F(DiffCli, HeaderGzipBombIsRefusedByLengthBeforeParsing) {
   for (int i = 0; i < 60'000'000; ++i) header += "0,";
   header += "0]," + lines_[0].substr(at);
   std::ofstream(dir_.file("bomb.jsonl.gz"), std::ios::binary)
-      << gzipMember(header + "\n" + text_.substr(text_.find('\n') + 1));
+      << test::gzipMember(header + "\n" + text_.substr(text_.find('\n') + 1));
   header.clear();
   header.shrink_to_fit();
   ASSERT_LT(fs::file_size(dir_.file("bomb.jsonl.gz")), 1'000'000u);
