@@ -162,6 +162,8 @@ TEST_F(DiffCli, StandardInputTwiceClosedOrADirectoryIsNamed) {
   expectBadInput("- " + trace_ + " < " + dir_.path().string(),
                  "standard input: ", "a directory, not a trace");
   expectBadInput("- " + trace_ + " <&-", "standard input: ", "closed");
+  // also when a file opened before it would have taken descriptor 0 (and been read as "-")
+  expectBadInput(trace_ + " - <&-", "standard input: ", "closed");
   // an empty file is still called one
   test::writeText(dir_.file("empty.jsonl"), "");
   expectBadInput(dir_.file("empty.jsonl") + " " + trace_,

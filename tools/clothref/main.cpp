@@ -8,6 +8,7 @@
 
 #include "clothref/fast/simd_path.h"
 #include "clothref/io/error.h"
+#include "clothref/io/files.h"
 #include "clothref/io/limits.h"
 #include "clothref/io/output_file.h"
 #include "clothref/io/terminal_text.h"
@@ -19,6 +20,7 @@
 
 int main(int argc, char** argv) {
   using namespace clothref::cli;
+  clothref::holdClosedStandardStreams();  // before any file is opened
   // out of memory anywhere: one line and exit 2 (io/output_file.h), never an abort
   std::set_new_handler([] { clothref::exitOutOfMemory(); });
   CLI::App root{
