@@ -20,6 +20,7 @@
 #include <unistd.h>
 
 #include "clothref/io/error.h"
+#include "clothref/io/gzip_stream.h"
 #include "clothref/record/record.h"
 #include "clothref/trace/format.h"
 #include "clothref/trace/hash.h"
@@ -66,6 +67,18 @@ inline std::string rehashed(const std::vector<std::string>& lines, std::size_t i
   } catch (const InputError&) {
     return lines[index];
   }
+}
+
+// `text` as one gzip member, by the library's own writer (concatenate several for a multi-member
+// stream).
+inline std::string gzipMember(const std::string& text) {
+  std::stringbuf sink;
+  GzipOutputBuffer gzip(sink);
+  std::ostream out(&gzip);
+  out << text;
+  out.flush();
+  EXPECT_TRUE(gzip.finish());
+  return sink.str();
 }
 
 // A method's name as a GoogleTest parameter name (letters, digits and '_' only).

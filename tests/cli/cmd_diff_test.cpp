@@ -19,17 +19,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// `text` as one gzip member, by the library's own writer.
-std::string gzipMember(const std::string& text) {
-  std::stringbuf sink;
-  GzipOutputBuffer gzip(sink);
-  std::ostream out(&gzip);
-  out << text;
-  out.flush();
-  EXPECT_TRUE(gzip.finish());
-  return sink.str();
-}
-
 int lineCount(const std::string& text) { return int(std::count(text.begin(), text.end(), '\n')); }
 
 class DiffCli : public ::testing::Test {
@@ -73,8 +62,8 @@ class DiffCli : public ::testing::Test {
 // forever at 100 % CPU).
 TEST_F(DiffCli, MultiMemberGzipReadsLikeZcatAndTrailingBytesAreRefused) {
   const std::size_t cut = text_.find('\n', text_.find('\n', text_.find('\n') + 1) + 1) + 1;
-  const std::string multi = gzipMember(text_.substr(0, cut)) + gzipMember("") +
-                            gzipMember(text_.substr(cut)) + gzipMember("");
+  const std::string multi = test::gzipMember(text_.substr(0, cut)) + test::gzipMember("") +
+                            test::gzipMember(text_.substr(cut)) + test::gzipMember("");
   test::writeText(dir_.file("multi.gz"), multi);
   for (const std::string& args :
        {dir_.file("multi.gz") + " " + trace_, "- " + trace_ + " < " + dir_.file("multi.gz")}) {
@@ -100,7 +89,7 @@ TEST_F(DiffCli, HeaderGzipBombIsRefusedByLengthBeforeParsing) {
   for (int i = 0; i < 60'000'000; ++i) header += "0,";
   header += "0]," + lines_[0].substr(at);
   std::ofstream(dir_.file("bomb.jsonl.gz"), std::ios::binary)
-      << gzipMember(header + "\n" + text_.substr(text_.find('\n') + 1));
+      << test::gzipMember(header + "\n" + text_.substr(text_.find('\n') + 1));
   header.clear();
   header.shrink_to_fit();
   ASSERT_LT(fs::file_size(dir_.file("bomb.jsonl.gz")), 1'000'000u);
@@ -173,10 +162,36 @@ TEST_F(DiffCli, StandardInputTwiceClosedOrADirectoryIsNamed) {
   expectBadInput("- " + trace_ + " < " + dir_.path().string(),
                  "standard input: ", "a directory, not a trace");
   expectBadInput("- " + trace_ + " <&-", "standard input: ", "closed");
+  // also when a file opened before it would have taken descriptor 0 (and been read as "-")
+  expectBadInput(trace_ + " - <&-", "standard input: ", "closed");
   // an empty file is still called one
   test::writeText(dir_.file("empty.jsonl"), "");
   expectBadInput(dir_.file("empty.jsonl") + " " + trace_,
                  dir_.file("empty.jsonl") + ":1: ", "empty file");
+}
+
+// Control characters in a scene name (an informational header difference) and in a key (an
+// error message) reach the terminal escaped; they used to be echoed raw.
+TEST_F(DiffCli, ControlCharactersInNamesAreEscapedOnTheTerminal) {
+  std::string header = lines_[0];
+  const std::string name = "\"name\":\"small-cloth\"";
+  header.replace(header.find(name), name.size(), "\"name\":\"\\u001b[2J\\u009b31m\\u007f\"");
+  const test::CommandResult info =
+      test::runCli("diff " + withLine("n.jsonl", 0, header) + " " + trace_);
+  EXPECT_EQ(info.exit_code, 0) << info.output;
+  EXPECT_NE(info.output.find("/scene/name: \"\\u001b[2J\\u009b31m\\x7f\" vs \"small-cloth\""),
+            std::string::npos)
+      << info.output;
+  header = lines_[0];
+  header.replace(header.find(name), name.size(), name + ",\"\\u001b]0;owned\\u0007\":1");
+  expectBadInput(withLine("k.jsonl", 0, header) + " " + trace_,
+                 dir_.file("k.jsonl") + ":1: ", "/scene/\\x1b]0;owned\\x07: unknown key");
+  for (const std::string& output :
+       {info.output, test::runCli("diff " + dir_.file("k.jsonl") + " " + trace_).output}) {
+    EXPECT_EQ(output.find('\x1b'), std::string::npos) << output;
+    EXPECT_EQ(output.find('\x7f'), std::string::npos) << output;
+    EXPECT_EQ(output.find("\xc2\x9b"), std::string::npos) << output;
+  }
 }
 
 }  // namespace

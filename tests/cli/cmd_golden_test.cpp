@@ -134,5 +134,22 @@ TEST(GoldenCli, CreateOnAFullDiskLeavesNoSetWithoutAManifest) {
   EXPECT_EQ(left, std::vector<std::string>{});
 }
 
+// A manifest path with escape codes is printed escaped (it used to reach the terminal raw).
+TEST(GoldenCli, ControlCharactersInManifestPathsAreEscaped) {
+  const test::TempDir root;
+  GoldenSet manifest;
+  manifest.traces.push_back(goldenSet().traces.front());
+  manifest.traces.back().file =
+      "traces/\x1b[2J\xc2\x9b"
+      "1m.jsonl";
+  test::writeText(root.path() / "manifest.json", manifestText(manifest));
+  const test::CommandResult run = test::runCli("golden --dir " + root.path().string());
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_NE(run.output.find("MISMATCH trace  traces/\\x1b[2J\\u009b1m.jsonl ("), std::string::npos)
+      << run.output;
+  EXPECT_EQ(run.output.find('\x1b'), std::string::npos);
+  EXPECT_EQ(run.output.find("\xc2\x9b"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace clothref

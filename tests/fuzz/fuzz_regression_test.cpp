@@ -32,6 +32,7 @@ const Target kTargets[] = {
     {"diffTwo", fuzz::diffTwo},
     {"rubric", fuzz::rubric},
     {"fileFinder", fuzz::fileFinder},
+    {"gzipTrace", fuzz::gzipTrace},
 };
 
 std::vector<fs::path> inputsOf(const std::string& kind, const std::string& target) {

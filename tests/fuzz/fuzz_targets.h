@@ -21,6 +21,7 @@
 #include "clothref/golden/golden.h"
 #include "clothref/io/error.h"
 #include "clothref/io/json_input.h"
+#include "clothref/io/limits.h"
 #include "clothref/scene/scene.h"
 #include "clothref/trace/reader.h"
 #include "grader/grade/rubric.h"
@@ -69,6 +70,24 @@ inline void goldenManifest(std::string_view input) {
 inline void rubric(std::string_view input) {
   grader::rubricFromJson(parseJson(input, "rubric.json"), "rubric.json",
                          grader::defaultRubric(2022));
+}
+
+// A trace read through the gzip decoder (the seeds are gzip-compressed traces: one member, several,
+// empty ones): multi-member streams, trailing bytes, truncation, bombs. The line limits are
+// lowered for the call, so a bomb costs at most a few MiB per execution.
+inline void gzipTrace(std::string_view input) {
+  struct Lowered {
+    InputLimits saved = inputLimits();
+    Lowered() {
+      inputLimits().header_bytes = std::size_t(1) << 16;
+      inputLimits().line_bytes = std::size_t(1) << 20;
+    }
+    ~Lowered() { inputLimits() = saved; }
+  } lowered;
+  std::istringstream in{std::string(input)};
+  TraceReader reader(in, "trace.jsonl.gz");
+  TraceStep step;
+  while (reader.next()) reader.parseStep(step);
 }
 
 // Two traces separated by a line "----": diff them both ways and render every report.

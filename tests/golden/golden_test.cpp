@@ -14,7 +14,6 @@
 #include <gtest/gtest.h>
 
 #include "clothref/io/error.h"
-#include "clothref/io/gzip_stream.h"
 #include "clothref/record/world_views.h"
 #include "test_util.h"
 
@@ -307,14 +306,8 @@ TEST(GoldenDirectory, MultiMemberGzipGoldenTraceChecks) {
   const fs::path file = dir / set.traces[0].file;
   const std::string text = test::readText(file);
   const std::size_t half = text.find('\n', text.size() / 2) + 1;
-  auto member = [](const std::string& part) {
-    std::stringbuf sink;
-    GzipOutputBuffer gzip(sink);
-    std::ostream(&gzip) << part;
-    EXPECT_TRUE(gzip.finish());
-    return sink.str();
-  };
-  const std::string multi = member(text.substr(0, half)) + member("") + member(text.substr(half));
+  const std::string multi = test::gzipMember(text.substr(0, half)) + test::gzipMember("") +
+                            test::gzipMember(text.substr(half));
   test::writeText(file, multi);
   EXPECT_EQ(check(dir, set).mismatches, std::vector<std::string>{});
 

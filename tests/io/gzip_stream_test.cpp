@@ -11,19 +11,10 @@
 #include <sstream>
 #include <string>
 
+#include "test_util.h"
+
 namespace clothref {
 namespace {
-
-// One gzip member holding `text`, written by the library's own writer.
-std::string gzipMember(const std::string& text) {
-  std::stringbuf sink;
-  GzipOutputBuffer gzip(sink);
-  std::ostream out(&gzip);
-  out << text;
-  out.flush();
-  EXPECT_TRUE(gzip.finish());
-  return sink.str();
-}
 
 struct ReadResult {
   std::string text;
@@ -64,7 +55,7 @@ std::string incompressible(std::size_t size) {
 }
 
 TEST(GzipStream, OneMemberReadsBack) {
-  const ReadResult result = gunzip(gzipMember("line 1\nline 2\n"));
+  const ReadResult result = gunzip(test::gzipMember("line 1\nline 2\n"));
   EXPECT_EQ(result.error, "");
   EXPECT_EQ(result.text, "line 1\nline 2\n");
 }
@@ -72,24 +63,26 @@ TEST(GzipStream, OneMemberReadsBack) {
 // (head | gzip; tail | gzip) > multi.gz: zcat reads the concatenation; so do we (this used to
 // loop forever at 100 % CPU once the first member ended with input still buffered).
 TEST(GzipStream, ConcatenatedMembersReadAsTheirConcatenation) {
-  const ReadResult two = gunzip(gzipMember("first\n") + gzipMember("second\n"));
+  const ReadResult two = gunzip(test::gzipMember("first\n") + test::gzipMember("second\n"));
   EXPECT_EQ(two.error, "");
   EXPECT_EQ(two.text, "first\nsecond\n");
 
   // empty members anywhere are fine, and contribute nothing
-  const ReadResult empties = gunzip(gzipMember("") + gzipMember("a\n") + gzipMember("") +
-                                    gzipMember("b\n") + gzipMember(""));
+  const ReadResult empties =
+      gunzip(test::gzipMember("") + test::gzipMember("a\n") + test::gzipMember("") +
+             test::gzipMember("b\n") + test::gzipMember(""));
   EXPECT_EQ(empties.error, "");
   EXPECT_EQ(empties.text, "a\nb\n");
 
-  const ReadResult only_empty = gunzip(gzipMember(""));
+  const ReadResult only_empty = gunzip(test::gzipMember(""));
   EXPECT_EQ(only_empty.error, "");
   EXPECT_EQ(only_empty.text, "");
 }
 
 TEST(GzipStream, MembersLongerThanTheInputBufferJoinAcrossRefills) {
   const std::string big = incompressible(150'000);
-  const std::string compressed = gzipMember(big) + gzipMember("tail\n") + gzipMember(big);
+  const std::string compressed =
+      test::gzipMember(big) + test::gzipMember("tail\n") + test::gzipMember(big);
   ASSERT_GT(compressed.size(), 2u * (1u << 16));
   const ReadResult result = gunzip(compressed);
   EXPECT_EQ(result.error, "");
@@ -100,7 +93,7 @@ TEST(GzipStream, MembersLongerThanTheInputBufferJoinAcrossRefills) {
 // Trailing bytes after a member that are not another member: refused, with one clear reason
 // (gzip itself warns and ignores them; a trace with junk after it is not a trace we wrote).
 TEST(GzipStream, TrailingBytesAfterAMemberAreRefused) {
-  const std::string member = gzipMember("data\n");
+  const std::string member = test::gzipMember("data\n");
   for (const std::string& trailer : {std::string(4, '\0'), std::string("trailing text\n"),
                                      std::string("\n"), std::string(1, '\x8b')}) {
     SCOPED_TRACE(testing::PrintToString(trailer));
@@ -110,16 +103,16 @@ TEST(GzipStream, TrailingBytesAfterAMemberAreRefused) {
     EXPECT_EQ(result.text, "data\n");
   }
   // also after a second member, and after an empty one
-  EXPECT_EQ(gunzip(member + gzipMember("more\n") + "x").error,
+  EXPECT_EQ(gunzip(member + test::gzipMember("more\n") + "x").error,
             "trailing bytes after the gzip data (not another gzip member)");
-  EXPECT_EQ(gunzip(member + gzipMember("") + std::string(4, '\0')).error,
+  EXPECT_EQ(gunzip(member + test::gzipMember("") + std::string(4, '\0')).error,
             "trailing bytes after the gzip data (not another gzip member)");
 }
 
 // A member cut short, or a second member that is only its first byte or two, is truncated; a
 // second "member" with the magic but a bad method is corrupt.
 TEST(GzipStream, TruncatedAndCorruptMembersAreErrors) {
-  const std::string member = gzipMember("data\n");
+  const std::string member = test::gzipMember("data\n");
   EXPECT_EQ(gunzip(member.substr(0, member.size() - 3)).error,
             "truncated gzip data (the stream ends before its trailer)");
   EXPECT_EQ(gunzip(member + "\x1f").error,

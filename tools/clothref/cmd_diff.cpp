@@ -11,6 +11,7 @@
 #include "clothref/diff/diff.h"
 #include "clothref/io/error.h"
 #include "clothref/io/output_file.h"
+#include "clothref/io/terminal_text.h"
 #include "commands.h"
 
 namespace clothref::cli {
@@ -80,7 +81,7 @@ int runDiff(const DiffCommandOptions& o) {
     std::cout << reportToJson(report).dump(2, ' ', false, nlohmann::json::error_handler_t::replace)
               << '\n';
   else
-    std::cout << formatReport(report);
+    std::cout << terminalSafe(formatReport(report), true);  // scene names, keys, paths
   std::cout.flush();
   return report.verdict == Verdict::Differ ? kExitDiffer : kExitOk;
 }

@@ -15,6 +15,7 @@
 #include "clothref/io/files.h"
 #include "clothref/io/output_file.h"
 #include "clothref/io/progress.h"
+#include "clothref/io/terminal_text.h"
 #include "commands.h"
 
 #ifndef CLOTHREF_DATA_FROM_BIN
@@ -66,7 +67,7 @@ int runUpdate(const GoldenOptions& options) {
       "clothref golden: wrote {} scenes, {} traces and a manifest with {} hash runs to {}\n",
       summary.scenes, summary.traces, summary.hash_runs, options.golden);
   for (const std::filesystem::path& removed : summary.removed)
-    std::cerr << fmt::format("  removed stale {}\n", removed.string());
+    std::cerr << fmt::format("  removed stale {}\n", terminalSafe(removed.string()));
   return kExitOk;
 }
 
@@ -105,9 +106,10 @@ int runCheck(const GoldenOptions& options) {
         progress.update(++entries);
         if (entry.matched && !options.verbose) return;
         progress.finish();  // a report line must not land inside the terminal's progress line
+        // names and summaries quote manifest paths and scene names: escaped for the terminal
         std::cout << fmt::format("{:<8} {:<6} {}: {}\n", entry.matched ? "ok" : "MISMATCH",
-                                 entry.kind, entry.name, entry.summary);
-        if (!entry.report.empty()) std::cout << indented(entry.report);
+                                 entry.kind, terminalSafe(entry.name), terminalSafe(entry.summary));
+        if (!entry.report.empty()) std::cout << indented(terminalSafe(entry.report, true));
         std::cout.flush();
       });
   progress.finish();

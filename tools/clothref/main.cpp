@@ -8,8 +8,10 @@
 
 #include "clothref/fast/simd_path.h"
 #include "clothref/io/error.h"
+#include "clothref/io/files.h"
 #include "clothref/io/limits.h"
 #include "clothref/io/output_file.h"
+#include "clothref/io/terminal_text.h"
 #include "clothref/scene/scene.h"
 #include "clothref/trace/build_info.h"
 #include "clothref/trace/reader.h"
@@ -18,6 +20,7 @@
 
 int main(int argc, char** argv) {
   using namespace clothref::cli;
+  clothref::holdClosedStandardStreams();  // before any file is opened
   // out of memory anywhere: one line and exit 2 (io/output_file.h), never an abort
   std::set_new_handler([] { clothref::exitOutOfMemory(); });
   CLI::App root{
@@ -119,13 +122,14 @@ int main(int argc, char** argv) {
       return status;
     }
   } catch (const clothref::InputError& error) {
-    std::cerr << "clothref: " << error.what() << '\n';
+    // a message quotes names others control (keys, scene names, paths): escaped, one line
+    std::cerr << "clothref: " << clothref::terminalSafe(error.what()) << '\n';
     return kExitBadInput;
   } catch (const std::bad_alloc&) {
     std::cerr << name << ": out of memory\n";
     return kExitBadInput;
   } catch (const std::exception& error) {
-    std::cerr << name << ": unexpected error: " << error.what() << '\n';
+    std::cerr << name << ": unexpected error: " << clothref::terminalSafe(error.what()) << '\n';
     return kExitBadInput;
   } catch (...) {
     std::cerr << name << ": unexpected error of an unknown kind\n";

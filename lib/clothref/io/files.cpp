@@ -50,10 +50,23 @@ std::string readFile(const std::filesystem::path& path, const std::string& what,
   return text;
 }
 
+namespace {
+bool g_standard_input_closed = false;
+}  // namespace
+
+void holdClosedStandardStreams() {
+  for (int fd = 0; fd <= 2; ++fd) {
+    if (::fcntl(fd, F_GETFD) != -1) continue;
+    // read-only, so a write to a closed stdout or stderr still fails (EBADF) as it would have
+    if (::open("/dev/null", O_RDONLY) != fd) continue;
+    if (fd == 0) g_standard_input_closed = true;
+  }
+}
+
 void requireStreamInput(const std::string& path, const std::string& what) {
   struct stat info {};
   if (path == "-") {
-    if (::fstat(0, &info) != 0)
+    if (g_standard_input_closed || ::fstat(0, &info) != 0)
       throw InputError("standard input: closed (nothing to read a " + what + " from)");
     if (S_ISDIR(info.st_mode)) throw InputError("standard input: a directory, not a " + what);
     return;

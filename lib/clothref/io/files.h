@@ -31,6 +31,12 @@ std::string cannotOpenMessage(const std::filesystem::path& path, const std::stri
 // empty (a build tree, whose programs use the source tree's paths).
 std::filesystem::path installedDataDir(const std::string& data_from_bin);
 
+// Called first thing by the CLI: a closed standard input, output or error is held by /dev/null
+// (read-only), so no file the command opens takes its descriptor (a trace opened as descriptor 1
+// would receive the summary meant for a closed stdout; one opened as 0 would be read for "-").
+// A closed standard input is remembered for requireStreamInput.
+void holdClosedStandardStreams();
+
 // A fresh directory under the system temporary directory, removed with its contents when this
 // goes out of scope. `prefix` names the directory (prefix-XXXXXX).
 class ScratchDir {

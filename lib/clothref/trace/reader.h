@@ -5,8 +5,9 @@
 // nlohmann::json, matched by key); each further line is one recorded step, parsed by a small
 // hand-written parser (std::from_chars) because a DOM per 40 kB line is slow. Keys are matched by
 // name in any order; unknown keys, missing keys, wrong array shapes and truncated lines are errors.
-// Lines longer than inputLimits().line_bytes and headers declaring more particles or steps than the
-// limits allow (io/limits.h) are refused before anything is allocated for them. Outputs:
+// A header line longer than inputLimits().header_bytes, a step line longer than line_bytes, and
+// headers declaring more particles or steps than the limits allow (io/limits.h) are refused before
+// anything is allocated for them. Outputs:
 // TraceHeader; per step the step number, t (seconds, double), the 64-bit state hash and, on
 // request, every body's positions (m) and velocities (m/s) as flat x,y,z arrays (3 per particle) in
 // the header's body order. Float traces are parsed as float (exact bits) and widened. Non-finite

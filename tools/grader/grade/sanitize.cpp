@@ -98,7 +98,10 @@ std::optional<SanitizerFinding> sanitizerFinding(const fs::path& dir, const Grad
   gradeSubmission(dir, sanitized);
 
   std::optional<SanitizerFinding> first;
-  for (const auto& [group, stub] : groupStubs()) {
+  for (const auto& group_stub : groupStubs()) {
+    // named copies: clang 14 cannot capture a structured binding in the lambda below
+    const auto& group = group_stub.first;
+    const auto& stub = group_stub.second;
     const fs::path log = sanitized.keep_work / "probes" / group / "child.stderr";
     std::error_code error;
     if (!fs::exists(log, error)) continue;
