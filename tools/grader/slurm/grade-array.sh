@@ -17,7 +17,8 @@
 #SBATCH --job-name=clothref-grade
 set -euo pipefail
 k=$((SLURM_ARRAY_TASK_ID + 1))
-header=$([ "$k" -gt 1 ] && echo --csv-no-header || true)
+header=""
+if [ "$k" -gt 1 ]; then header=--csv-no-header; fi  # shard 1 writes the CSV header
 # shellcheck disable=SC2086 # GRADE_OPTIONS and header are lists of words
 "${CLOTHREF:-clothref}" grade "${SUBMISSIONS:-submissions}"/*/ --out "${BATCHDIR:-$SCRATCH/batch}" \
   --jobs 2 --shard "$k/$SLURM_ARRAY_TASK_COUNT" $header ${GRADE_OPTIONS:-}
