@@ -13,6 +13,7 @@
 #include "clothref/io/error.h"
 #include "clothref/io/files.h"
 #include "probes.h"
+#include "text.h"
 
 namespace clothref::grader {
 namespace fs = std::filesystem;
@@ -110,6 +111,24 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
   Isolation isolation = detectIsolation();
   isolation.hidden = {options.toolchain.course_dir.parent_path(), options.toolchain.reference_dir,
                       options.toolchain.driver_lib_dir, scratch.path()};
+  // The tool uid must read what compiles read (a checkout under mode-700 /root is unreadable to
+  // it): else compiles keep the grader's uid, and the report says why.
+  if (isolation.tool_uid >= 0) {
+    std::vector<fs::path> folders = {options.toolchain.course_dir, options.toolchain.reference_dir,
+                                     options.toolchain.driver_lib_dir};
+    for (fs::path folder : {options.toolchain.prebuilt_dir, options.toolchain.cache_dir}) {
+      std::error_code error;
+      while (!folder.empty() && !fs::exists(folder, error) && folder != folder.parent_path())
+        folder = folder.parent_path();  // a cache made later: its nearest existing folder
+      if (!folder.empty()) folders.push_back(folder);
+    }
+    std::string unreadable;
+    if (!readableAs(isolation.tool_uid, folders, &unreadable)) {
+      isolation.why_not_tool_uid =
+          "uid " + std::to_string(isolation.tool_uid) + " cannot read " + safeName(unreadable);
+      isolation.tool_uid = -1;
+    }
+  }
   report.isolation = isolation.describe();
   // The unprivileged uid must pass through the scratch folder (not list it) to reach its own.
   if (isolation.uid >= 0)

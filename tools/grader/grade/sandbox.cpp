@@ -1,5 +1,6 @@
 #include "sandbox.h"
 
+#include <fcntl.h>
 #include <sched.h>
 #include <signal.h>
 #include <sys/stat.h>
@@ -7,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdlib>
 #include <mutex>
 #include <optional>
@@ -127,12 +129,50 @@ std::string Isolation::describe() const {
              (tool_uid >= 0
                   ? "; compiles as uid " + std::to_string(tool_uid) +
                         " in a private mount namespace"
-                  : std::string("; compiles with the grader's uid (the host is readable)")) +
+                  : "; compiles with the grader's uid (" +
+                        (why_not_tool_uid.empty() ? std::string() : why_not_tool_uid + "; ") +
+                        "the host is readable)") +
              "; no bubblewrap (" + why_not_bubblewrap + ")";
     case IsolationKind::None:
       break;
   }
   return "rlimits only";
+}
+
+bool readableAs(int uid, const std::vector<fs::path>& folders, std::string* failed) {
+  int channel[2];
+  if (pipe(channel) != 0) return false;
+  const pid_t pid = fork();
+  if (pid < 0) {
+    close(channel[0]);
+    close(channel[1]);
+    return false;
+  }
+  if (pid == 0) {
+    close(channel[0]);
+    if (setgid(static_cast<gid_t>(uid)) != 0 || setuid(static_cast<uid_t>(uid)) != 0) _exit(2);
+    for (std::size_t k = 0; k < folders.size(); ++k) {
+      const int fd = open(folders[k].c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+      if (fd < 0) {
+        const unsigned char index = static_cast<unsigned char>(k);
+        (void)!write(channel[1], &index, 1);
+        _exit(1);
+      }
+      close(fd);
+    }
+    _exit(0);
+  }
+  close(channel[1]);
+  unsigned char index = 0;
+  const bool named = read(channel[0], &index, 1) == 1;
+  close(channel[0]);
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  const bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
+  if (!ok && failed)
+    *failed = named && index < folders.size() ? folders[index].string() : "(could not try)";
+  return ok;
 }
 
 Isolation detectIsolation() {

@@ -33,13 +33,18 @@ struct Isolation {
   // Rlimits: uid and gid of compiles and links (kToolUid when root, -1 = the grader's, which can
   // read the host), in a private mount namespace hiding `hidden` except what a command names.
   int tool_uid = -1;
-  std::string bwrap;                          // bubblewrap executable (Bubblewrap only)
-  std::string why_not_bubblewrap;             // why the detection fell back, for the description
+  std::string why_not_tool_uid;    // why compiles keep the grader's uid as root (e.g. unreadable)
+  std::string bwrap;               // bubblewrap executable (Bubblewrap only)
+  std::string why_not_bubblewrap;  // why the detection fell back, for the description
   std::vector<std::filesystem::path> hidden;  // covered with an empty tmpfs if visible in the box
   // Short exact description for GradeReport::isolation, e.g. "bubblewrap (new net, pid, mount,
   // ipc, uts namespaces; only /usr visible), uid 65534, rlimits".
   std::string describe() const;
 };
+
+// Whether `uid` (and its gid) can open every folder of `folders` (tried in a forked child that
+// drops to it); the first one it cannot open is named in `failed`.
+bool readableAs(int uid, const std::vector<std::filesystem::path>& folders, std::string* failed);
 
 inline constexpr int kNobodyUid = 65534;
 // Compiles and links in the fallback: not the probes' uid, so no student process can write into
