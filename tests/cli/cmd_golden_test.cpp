@@ -110,7 +110,7 @@ TEST(GoldenCli, ManifestThatIsNotAFileIsNamed) {
   std::filesystem::create_directories(root.path() / "fifo");
   ASSERT_EQ(::mkfifo((root.path() / "fifo" / "manifest.json").c_str(), 0600), 0);
   for (const auto& [sub, kind] : {std::pair{"dir", "a directory"}, std::pair{"fifo", "a FIFO"}}) {
-    for (const std::string& update : {"", " --update"}) {
+    for (const std::string update : {"", " --update"}) {
       const test::CommandResult run = test::runCli("golden" + update + " --dir " + root.file(sub));
       EXPECT_EQ(run.exit_code, 2) << run.output;
       EXPECT_EQ(run.output, "clothref: " + root.file(sub) + "/manifest.json: " + kind +

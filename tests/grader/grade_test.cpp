@@ -314,11 +314,13 @@ TEST(CourseCloth, CourseOnlyCodeIsGradedOnTheCourseCloth) {
   const nlohmann::json results = gradeResults(submission, temp);
   EXPECT_EQ(stubScore(results, "ExplicitEuler::integrate"), 5.0);
   EXPECT_EQ(results["extra_data"]["verdict"], "graded");
-  for (const auto& test : results["tests"])
-    if (test["tags"][0] == "ExplicitEuler::integrate")
+  for (const auto& test : results["tests"]) {
+    if (test["tags"][0] == "ExplicitEuler::integrate") {
       EXPECT_NE(test["output"].get<std::string>().find("graded on the course's cloth"),
                 std::string::npos)
           << test["output"];
+    }
+  }
 }
 
 // The symplectic predictor in implicit and midpoint is accepted by default and refused with the

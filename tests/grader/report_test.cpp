@@ -220,7 +220,10 @@ TEST(Cli, AnyBytesInTheSubmissionGiveValidOutputsInASingleGradeAndInABatch) {
     EXPECT_TRUE(xmlCharactersOk(text)) << file << ":\n" << text;
     EXPECT_EQ(text.find('\x1B'), std::string::npos) << file;
     if (file.extension() == ".json") {
-      EXPECT_NO_THROW(static_cast<void>(nlohmann::json::parse(text))) << file;
+      EXPECT_NO_THROW({
+        const nlohmann::json parsed = nlohmann::json::parse(text);
+        EXPECT_FALSE(parsed.is_discarded());
+      }) << file;
       EXPECT_NE(text.find("\\\\x1B[31mred"), std::string::npos) << file;  // JSON of "\x1B"
     }
   }

@@ -425,7 +425,9 @@ ChildRun runChildOnce(const std::vector<std::string>& command,
     return run;
   }
   const ExecArgs exec(argv, run_dir);
-  const ExecLimits how{&limits, 0, isolation.uid};
+  ExecLimits how;
+  how.limits = &limits;
+  how.uid = isolation.uid;
   // The rlimits fallback puts a supervisor between us and the student (superviseChild).
   const bool supervised = !boxed && isolation.kind == IsolationKind::Rlimits &&
                           isolation.containment != Containment::None;
@@ -633,7 +635,8 @@ std::vector<ToolRun> runTools(const std::vector<std::vector<std::string>>& comma
       const ExecArgs exec(
           boxed ? bubblewrapToolArgv(*isolation, commands[next], work_dir) : commands[next],
           work_dir);
-      ExecLimits how{nullptr, wall_seconds, -1};
+      ExecLimits how;
+      how.tool_seconds = wall_seconds;
       if (isolation && isolation->kind == IsolationKind::Rlimits)
         confineTool(*isolation, commands[next], work_dir, how);
       const pid_t pid = fork();
