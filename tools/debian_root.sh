@@ -4,7 +4,8 @@
 #
 #   debian_root_usable              0 when this host can make one (root, mmdebstrap), else prints why
 #   debian_root_make ROOT LOG [PKG,...]   mmdebstrap --variant=apt bookworm ROOT, extra packages
-#   debian_root_mount ROOT          binds /proc, /sys, /dev and copies resolv.conf (for apt)
+#   debian_root_mount ROOT          binds /proc, /sys, /dev, copies resolv.conf (for apt), writes
+#                                   the /etc/hosts an installed system has
 #   debian_root_run ROOT COMMAND    bash -c COMMAND inside, with a clean root environment
 #   debian_root_release ROOT DIR    unmounts what debian_root_mount bound, then removes DIR (which
 #                                   holds ROOT) unless a mount is left or DEBIAN_ROOT_KEEP=1
@@ -39,6 +40,10 @@ debian_root_mount() {
     debian_root_mounts+=("$root/$target")
   done
   cp /etc/resolv.conf "$root/etc/resolv.conf" 2>/dev/null || true
+  # mmdebstrap writes no /etc/hosts; an installed Debian has one, and without `localhost` Selenium
+  # cannot reach chromedriver.
+  [ -e "$root/etc/hosts" ] ||
+    printf '127.0.0.1\tlocalhost\n::1\t\tlocalhost ip6-localhost ip6-loopback\n' >"$root/etc/hosts"
 }
 
 debian_root_run() {

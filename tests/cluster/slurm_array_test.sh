@@ -3,8 +3,8 @@
 # bound to 127.0.0.1, state in a temporary folder) runs tools/grader/slurm/grade-array.sh as an
 # array of 3 shards over a batch of 30 corpus submissions; the shards' CSVs merged as
 # docs/grading.md says must equal a one-machine batch's CSV row for row (the seconds column left
-# out). Exit 77 (skipped) only when Slurm or munge is not installed, or without root (slurmd
-# starts jobs as their user).
+# out). Exit 77 (skipped) only when Slurm or munge is not installed, without root (slurmd
+# starts jobs as their user), or when the array fails inside a chroot.
 # Usage: slurm_array_test.sh CLOTHREF SOURCE_DIR CACHE_DIR
 set -euo pipefail
 clothref=$1 source=$2 cache=$3
@@ -103,8 +103,17 @@ echo "slurm up after $(($(date +%s) - start)) s"
 "$source/tests/bench/make_corpus_batch.sh" "$tmp/subs"
 export CLOTHREF=$clothref SUBMISSIONS=$tmp/subs BATCHDIR=$tmp/batch
 export GRADE_OPTIONS="--cache-dir $cache"
-timeout 200 sbatch --quiet --wait --array=0-2 --output="$tmp/out/task-%a.out" \
-  "$source/tools/grader/slurm/grade-array.sh" || fail "the array did not finish (sbatch --wait)"
+# In a chroot (tools/check_fresh_debian.sh) Slurm 22.05 requeues each task after it exits 0
+# (munged logs "Unauthorized credential for client UID=0"): a skip there, a failure elsewhere.
+in_chroot() { [ "$(stat -c %d:%i /)" != "$(stat -c %d:%i /proc/1/root/. 2>/dev/null)" ]; }
+if ! timeout 200 sbatch --quiet --wait --array=0-2 --output="$tmp/out/task-%a.out" \
+  "$source/tools/grader/slurm/grade-array.sh"; then
+  if in_chroot; then
+    echo "SKIP: in a chroot Slurm requeues the array's tasks instead of finishing them"
+    exit 77
+  fi
+  fail "the array did not finish (sbatch --wait)"
+fi
 echo "array done after $(($(date +%s) - start)) s"
 # merged as docs/grading.md says (shards 2 and 3 wrote no header), word for word
 # shellcheck disable=SC2046  # the folder has no spaces; the docs command is copied as it is

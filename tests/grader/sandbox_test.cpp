@@ -87,7 +87,16 @@ TEST(Isolation, DescriptionsSayWhatRan) {
             "rlimits, uid 65534, private working directory, own pid namespace per run; compiles "
             "with the grader's uid (the host is readable); no bubblewrap (bwrap not installed)");
   isolation.tool_uid = kToolUid;
+  isolation.private_mounts = true;
   EXPECT_NE(isolation.describe().find("; compiles as uid 65533 in a private mount namespace;"),
+            std::string::npos)
+      << isolation.describe();
+  // Where no private mount namespace can be made (a chroot, a container), the line says so.
+  isolation.private_mounts = false;
+  isolation.why_not_private_mounts = "unshare(CLONE_NEWNS) is not allowed";
+  EXPECT_NE(isolation.describe().find("; compiles as uid 65533 without a private mount namespace "
+                                      "(unshare(CLONE_NEWNS) is not allowed; the grader's folders "
+                                      "are hidden only by their permissions);"),
             std::string::npos)
       << isolation.describe();
   isolation.containment = Containment::Subreaper;

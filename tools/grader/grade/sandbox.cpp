@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <sched.h>
 #include <signal.h>
+#include <sys/mount.h>
 #include <sys/stat.h>
 #include <sys/syscall.h>
 #include <sys/wait.h>
@@ -69,6 +70,43 @@ bool canMakePidNamespace() {
   return WIFEXITED(status) && WEXITSTATUS(status) == 0;
 }
 
+}  // namespace
+
+std::string whyNoPrivateMountNamespace() {
+  int channel[2];
+  if (pipe(channel) != 0) return "pipe failed";
+  const pid_t pid = fork();
+  if (pid < 0) {
+    close(channel[0]);
+    close(channel[1]);
+    return "fork failed";
+  }
+  if (pid == 0) {
+    close(channel[0]);
+    // 1: unshare refused (no CAP_SYS_ADMIN), 2: "/" is no mount point (a chroot).
+    unsigned char failed = 0;
+    if (unshare(CLONE_NEWNS) != 0)
+      failed = 1;
+    else if (mount("none", "/", nullptr, MS_REC | MS_PRIVATE, nullptr) != 0)
+      failed = 2;
+    (void)!write(channel[1], &failed, 1);
+    _exit(0);
+  }
+  close(channel[1]);
+  unsigned char failed = 3;
+  const bool answered = read(channel[0], &failed, 1) == 1;
+  close(channel[0]);
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (!answered) return "the check could not run";
+  if (failed == 1) return "unshare(CLONE_NEWNS) is not allowed";
+  if (failed == 2) return "\"/\" is not a mount point (a chroot?)";
+  return "";
+}
+
+namespace {
+
 Isolation detect() {
   const char* forced_env = std::getenv("CLOTHREF_GRADER_ISOLATION");
   const std::string forced = forced_env && *forced_env ? forced_env : "auto";
@@ -79,6 +117,10 @@ Isolation detect() {
   isolation.kind = IsolationKind::Rlimits;
   isolation.uid = geteuid() == 0 ? kNobodyUid : -1;
   isolation.tool_uid = geteuid() == 0 ? kToolUid : -1;
+  if (isolation.tool_uid >= 0) {
+    isolation.why_not_private_mounts = whyNoPrivateMountNamespace();
+    isolation.private_mounts = isolation.why_not_private_mounts.empty();
+  }
   isolation.containment =
       canMakePidNamespace() ? Containment::PidNamespace : Containment::Subreaper;
   if (forced == "rlimits") {
@@ -128,7 +170,11 @@ std::string Isolation::describe() const {
                   : "a subreaper that kills what a run leaves behind") +
              (tool_uid >= 0
                   ? "; compiles as uid " + std::to_string(tool_uid) +
-                        " in a private mount namespace"
+                        (private_mounts ? std::string(" in a private mount namespace")
+                                        : " without a private mount namespace (" +
+                                              why_not_private_mounts +
+                                              "; the grader's folders are hidden only by their "
+                                              "permissions)")
                   : "; compiles with the grader's uid (" +
                         (why_not_tool_uid.empty() ? std::string() : why_not_tool_uid + "; ") +
                         "the host is readable)") +

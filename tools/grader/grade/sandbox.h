@@ -34,6 +34,10 @@ struct Isolation {
   // read the host), in a private mount namespace hiding `hidden` except what a command names.
   int tool_uid = -1;
   std::string why_not_tool_uid;    // why compiles keep the grader's uid as root (e.g. unreadable)
+  // Rlimits: whether a private mount namespace can hide `hidden` from compiles (not in a chroot,
+  // whose root is no mount point, nor in a container without CAP_SYS_ADMIN); the reason if not.
+  bool private_mounts = false;
+  std::string why_not_private_mounts;
   std::string bwrap;               // bubblewrap executable (Bubblewrap only)
   std::string why_not_bubblewrap;  // why the detection fell back, for the description
   std::vector<std::filesystem::path> hidden;  // covered with an empty tmpfs if visible in the box
@@ -45,6 +49,10 @@ struct Isolation {
 // Whether `uid` (and its gid) can open every folder of `folders` (tried in a forked child that
 // drops to it); the first one it cannot open is named in `failed`.
 bool readableAs(int uid, const std::vector<std::filesystem::path>& folders, std::string* failed);
+
+// Whether this process can make a private mount namespace (unshare(CLONE_NEWNS), then "/" made
+// private so no mount leaks to the host), tried once in a forked child; "" if so, else why not.
+std::string whyNoPrivateMountNamespace();
 
 inline constexpr int kNobodyUid = 65534;
 // Compiles and links in the fallback: not the probes' uid, so no student process can write into
