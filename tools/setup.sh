@@ -14,7 +14,7 @@ build=(cmake ninja-build g++ pkg-config libeigen3-dev libfmt-dev nlohmann-json3-
        libxxhash-dev zlib1g-dev)
 tests=(libgtest-dev libgmock-dev libbenchmark-dev)
 charts=(python3 python3-numpy python3-matplotlib)
-pages=(chromium chromium-driver python3-selenium python3-pil)  # the browser tests of the pages
+pages=(chromium chromium-driver python3-selenium python3-pil python3-markdown)  # the browser tests of the pages
 grader=(bubblewrap)
 manpages=(help2man)  # a man page per command, made from --help at build time
 cluster=(slurm-wlm munge)  # the single-node Slurm of the cluster test (ctest -L cluster)

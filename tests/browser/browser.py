@@ -20,13 +20,14 @@ CHROMEDRIVER = '/usr/bin/chromedriver'
 def skip_unless_available():
     missing = [p for p in (CHROMIUM, CHROMEDRIVER) if not os.access(p, os.X_OK)]
     try:
+        import markdown  # noqa: F401
         import selenium  # noqa: F401
         from PIL import Image  # noqa: F401
     except ImportError as error:
         missing.append(f'python module {error.name}')
     if missing:
         print(f'SKIP: {", ".join(missing)} not installed (tools/setup.sh installs chromium, '
-              'chromium-driver, python3-selenium, python3-pil)')
+              'chromium-driver, python3-selenium, python3-pil, python3-markdown)')
         sys.exit(SKIP)
 
 

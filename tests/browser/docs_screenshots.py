@@ -10,7 +10,7 @@ import sys
 from PIL import Image
 
 NAMES = ['view-pair-overlay.png', 'view-pair-side.png', 'report.png', 'report-whole-run.png',
-         'class-index.png']
+         'class-index.png', 'gradescope-results.png']
 
 
 def main(source, target):

@@ -7,8 +7,9 @@ Grades the corpus's 2022 reference with the mutant cloth-normal-reversed's spher
 normal reversed: Spheres::collide(Cloth*) loses points, cause collision-normal-sign) and checks:
 no console message, no network request, the stub table, the failed checks open with the named
 cause, the whole run's viewer mounted side by side with four stills that are not blank, and
-results.json's top-level output is HTML while its tests stay Markdown. Screenshots: report.png,
-report-whole-run.png.
+results.json's top-level output is HTML while its tests stay Markdown. Then the same results.json
+as Gradescope shows it (gradescope_page.py): the total, one block per test, the failed ones red
+with their Markdown rendered. Screenshots: report.png, report-whole-run.png, gradescope-results.png.
 """
 import glob
 import json
@@ -20,6 +21,7 @@ import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import browser  # noqa: E402
+import gradescope_page  # noqa: E402
 
 
 def main():
@@ -76,9 +78,48 @@ def main():
                          ', '.join(f'{d:.0%}' for d in drawn) + ' drawn)')
             b.save_screenshot(os.path.join(options.screenshots, 'report-whole-run.png'))
             browser.check_quiet(b, checks, url, 'report')
+            check_gradescope_page(b, checks, data, os.path.join(tmp, 'gradescope.html'),
+                                  os.path.join(options.screenshots, 'gradescope-results.png'))
         finally:
             b.close()
     checks.finish()
+
+
+def check_gradescope_page(b, checks, data, page, screenshot):
+    """results.json rendered as Gradescope's results page: what the student sees there."""
+    with open(page, 'w', encoding='utf-8') as f:
+        f.write(gradescope_page.render(data))
+    url = b.open(page)
+    tests = data['tests']
+    maximum = sum(t['max_score'] for t in tests)
+    shown = b.js("return document.getElementById('gs-score').textContent")
+    checks.check(shown == f"{data['score']:g} / {maximum:g}",
+                 f'Gradescope page: the total {shown!r} is results.json\'s score over the tests\' max')
+    titles = b.js("return [...document.querySelectorAll('.gs-test .gs-title')].map("
+                  "(t) => t.textContent)")
+    checks.check(len(titles) == len(tests) and all(
+        title.startswith(t['name']) for title, t in zip(titles, tests)),
+                 f'Gradescope page: one block per test, in order ({len(titles)} of {len(tests)})')
+    failed = b.js("return [...document.querySelectorAll('.gs-failed')].map((t) => t.textContent)")
+    lost = [t for t in tests if t['score'] < t['max_score']]
+    checks.check(len(failed) == len(lost) and len(lost) > 0 and
+                 all('collision-normal-sign' in f for f in failed),
+                 f'Gradescope page: {len(failed)} red blocks (tests short of full marks: '
+                 f'{len(lost)}), each naming collision-normal-sign')
+    markup = b.js("return document.querySelectorAll('.gs-test table, .gs-test code, "
+                  ".gs-test strong').length")
+    checks.check(markup > 0, f'Gradescope page: the tests\' Markdown is rendered ({markup} elements)')
+    table = b.js("return document.querySelectorAll('.gs-output table tr').length")
+    files = b.js("return document.querySelectorAll('.gs-output table').length")
+    checks.check(table == 9 + 4 and files == 2,
+                 f'Gradescope page: the HTML output shows the stub and file tables ({files} tables, '
+                 f'{table} rows)')
+    raw = b.js("return document.body.textContent.includes('|---')")
+    checks.check(not raw, 'Gradescope page: no Markdown table left unrendered')
+    # tall enough to show the total, the summary and the first red blocks in one picture
+    b.driver.set_window_size(1200, 2300)
+    b.save_screenshot(screenshot)
+    browser.check_quiet(b, checks, url, 'Gradescope page')
 
 
 if __name__ == '__main__':

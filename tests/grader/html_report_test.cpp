@@ -50,6 +50,16 @@ TEST(HtmlReport, MarkdownBecomesEscapedHtml) {
             "<ul>\n<li>one</li>\n<li>two</li>\n</ul>\n<pre><code>a &lt; b\n</code></pre>\n");
 }
 
+// The summary's file table (report.cpp's filesSection) must not reach Gradescope as raw pipes.
+TEST(HtmlReport, MarkdownTablesBecomeHtmlTables) {
+  const std::string html = markdownToHtml(
+      "before\n| file | used |\n|---|---|\n| cloth.cpp | `a<b` |\n| x.cpp |  |\nafter\n");
+  EXPECT_EQ(html,
+            "<p>before</p>\n<table>\n<tr><th>file</th><th>used</th></tr>\n"
+            "<tr><td>cloth.cpp</td><td><code>a&lt;b</code></td></tr>\n"
+            "<tr><td>x.cpp</td><td></td></tr>\n</table>\n<p>after</p>\n");
+}
+
 TEST(HtmlReport, StudentReportEscapesAndKeepsEveryCheck) {
   const std::string page = studentReportHtml(sampleReport(), nullptr);
   EXPECT_EQ(page.find("<img src=x"), std::string::npos);

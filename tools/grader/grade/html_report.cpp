@@ -7,6 +7,7 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -87,11 +88,25 @@ std::string markdownToHtml(std::string_view markdown) {
   std::string out;
   std::istringstream lines{std::string(markdown)};
   std::string line;
-  bool fence = false, list = false, paragraph = false;
+  bool fence = false, list = false, paragraph = false, table = false;
   const auto close = [&] {
     if (list) out += "</ul>\n";
     if (paragraph) out += "</p>\n";
-    list = paragraph = false;
+    if (table) out += "</table>\n";
+    list = paragraph = table = false;
+  };
+  // "| a | b |" rows: the first is the header, a "|---|" row under it is dropped.
+  const auto cells = [](const std::string& row) {
+    std::vector<std::string> found;
+    std::size_t start = row.find('|') + 1;
+    for (std::size_t bar; (bar = row.find('|', start)) != std::string::npos; start = bar + 1) {
+      const std::string cell = row.substr(start, bar - start);
+      const std::size_t first = cell.find_first_not_of(' ');
+      found.push_back(first == std::string::npos
+                          ? std::string()
+                          : cell.substr(first, cell.find_last_not_of(' ') - first + 1));
+    }
+    return found;
   };
   while (std::getline(lines, line)) {
     if (line.rfind("```", 0) == 0) {
@@ -109,6 +124,21 @@ std::string markdownToHtml(std::string_view markdown) {
       continue;
     }
     const std::size_t indent = line.find_first_not_of(' ');
+    if (line[indent] == '|' && line.find('|', indent + 1) != std::string::npos) {
+      if (line.find_first_not_of("|-: ") == std::string::npos) continue;  // the separator row
+      const bool header = !table;
+      if (!table) close();
+      if (!table) out += "<table>\n";
+      table = true;
+      out += "<tr>";
+      for (const std::string& cell : cells(line))
+        out += (header ? "<th>" : "<td>") + inlineMarkdown(pages::escapeHtml(cell)) +
+               (header ? "</th>" : "</td>");
+      out += "</tr>\n";
+      continue;
+    }
+    if (table) out += "</table>\n";
+    table = false;
     if (line.compare(indent, 2, "- ") == 0) {
       line.erase(0, indent);
       if (paragraph) out += "</p>\n";

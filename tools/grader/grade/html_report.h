@@ -49,7 +49,8 @@ std::string studentReportHtml(const GradeReport& report,
 // their Markdown outputs.
 nlohmann::ordered_json withHtmlSummary(nlohmann::ordered_json results, const GradeReport& report);
 
-// The grader's Markdown (paragraphs, "- " lists, ``` blocks, `code`, **bold**) as HTML; every
+// The grader's Markdown (paragraphs, "- " lists, "| a | b |" tables, ``` blocks, `code`, **bold**)
+// as HTML; every
 // character of the text is escaped first, so nothing in it becomes markup of its own.
 std::string markdownToHtml(std::string_view markdown);
 
