@@ -12,6 +12,8 @@
 #include <set>
 
 #include "corpus.h"
+#include "grader/grade/grade.h"
+#include "grader/grade/probe_util.h"
 #include "test_util.h"
 
 namespace clothref::test {
@@ -337,6 +339,35 @@ TEST(Variants, SymplecticPredictorIsARubricSwitch) {
   EXPECT_LT(stubScore(refused, "MidpointEuler::integrate"), 2.5);
   // explicit-as-symplectic is its own switch: still accepted
   EXPECT_EQ(stubScore(refused, "ExplicitEuler::integrate"), 5.0);
+}
+
+// A probe the grader could not start (fork failed) is the grader's failure: its tests name
+// `grader-error`, never `crashed`, whatever the student printed, and the submission's verdict says
+// so before anything the student's code did.
+TEST(Verdict, AProbeTheGraderCouldNotStartIsAGraderError) {
+  grader::ChildRun run;
+  run.status = grader::ChildStatus::NotStarted;
+  const std::string ours = "The probe process " + run.describe() + ".";
+  EXPECT_EQ(run.verdict(), "grader-error");
+  EXPECT_EQ(grader::util::verdictId(ours), "grader-error");
+  EXPECT_EQ(grader::util::verdictId(ours + "\n\n```\ntimed out\n```"), "grader-error");
+  // the student's stderr (after the first line) chooses nothing
+  run.status = grader::ChildStatus::Crashed;
+  const std::string crash = "The probe process " + run.describe() + ".";
+  EXPECT_EQ(grader::util::verdictId(crash), "crashed");
+  EXPECT_EQ(grader::util::verdictId(crash + "\n\n```\ncould not be started by the grader\n```"),
+            "crashed");
+  EXPECT_EQ(grader::util::verdictId("The probe process timed out after 3 s."), "timed-out");
+
+  grader::GradeReport report;
+  grader::UsedFile broken;
+  broken.name = "cloth.cpp";
+  broken.problem = "error: expected ';'";
+  report.files.push_back(broken);
+  EXPECT_EQ(grader::submissionVerdict(report, {"ok", "crashed"}), "compile-error");
+  EXPECT_EQ(grader::submissionVerdict(report, {"crashed", "grader-error"}), "grader-error");
+  report.files.clear();
+  EXPECT_EQ(grader::submissionVerdict(report, {"ok", "ok"}), "graded");
 }
 
 }  // namespace

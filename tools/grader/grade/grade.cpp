@@ -45,7 +45,18 @@ std::vector<std::string> autoExpressionLines(const std::string& path) {
   return lines;
 }
 
-// The submission's one word: the first of these that happened (docs/grading.md, "Verdicts").
+
+std::string readSource(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+double since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
 std::string submissionVerdict(const GradeReport& report,
                               const std::vector<std::string>& run_verdicts) {
   std::set<std::string> happened(run_verdicts.begin(), run_verdicts.end());
@@ -62,22 +73,11 @@ std::string submissionVerdict(const GradeReport& report,
     for (const std::string& id : t.diagnoses)
       if (id == "non-finite") happened.insert(id);
   for (const char* verdict :
-       {"compile-error", "link-error", "missing-file", "timed-out", "memory-limit", "output-limit",
+       {"grader-error", "compile-error", "link-error", "missing-file", "timed-out", "memory-limit", "output-limit",
         "crashed", "exited-non-zero", "no-answer", "non-finite"})
     if (happened.count(verdict)) return verdict;
   return "graded";
 }
-
-std::string readSource(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
-double since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-}  // namespace
 
 GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
   const auto start = std::chrono::steady_clock::now();

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "build.h"
 #include "child_process.h"
@@ -27,5 +28,12 @@ struct GradeOptions {
 // Throws InputError when the submission cannot be graded at all (not a directory, no student
 // file found, our own reference does not build).
 GradeReport gradeSubmission(const std::filesystem::path& dir, const GradeOptions& options);
+
+// The submission's one word: the first of docs/grading.md's "Verdicts" that happened, from the
+// files that did not build, the probe runs' verdicts (ChildRun::verdict) and the tests' causes.
+// "grader-error" (a probe the grader could not start) comes first: it is ours, and a batch
+// re-grades it.
+std::string submissionVerdict(const GradeReport& report,
+                              const std::vector<std::string>& run_verdicts);
 
 }  // namespace clothref::grader

@@ -64,9 +64,12 @@ inline TestResult failedTest(const std::string& stub, const std::string& check, 
   return t;
 }
 
-// Verdict id for a crashed or stuck child.
+// Cause id for a probe group that failed, from runGroup's `failure`: only its first line, our
+// words (the student's stderr follows it and must not choose the id).
 inline std::string verdictId(const std::string& failure) {
-  if (failure.find("timed out") != std::string::npos) return "timed-out";
+  const std::string first = failure.substr(0, failure.find('\n'));
+  if (first.find("could not be started by the grader") != std::string::npos) return "grader-error";
+  if (first.find("timed out") != std::string::npos) return "timed-out";
   return "crashed";
 }
 
