@@ -4,6 +4,7 @@
 #include "grader/grade/sandbox.h"
 
 #include <gtest/gtest.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -102,6 +103,11 @@ TEST(Isolation, DescriptionsSayWhatRan) {
   isolation.containment = Containment::Subreaper;
   EXPECT_NE(isolation.describe().find("a subreaper that kills what a run leaves behind"),
             std::string::npos);
+  isolation.cgroup_parent = "/sys/fs/cgroup/clothref-grader-1";
+  EXPECT_NE(isolation.describe().find(
+                "private working directory, own cgroup per run (killed when it ends), a subreaper"),
+            std::string::npos)
+      << isolation.describe();
   isolation.kind = IsolationKind::Bubblewrap;
   EXPECT_EQ(isolation.describe().rfind("bubblewrap (new user, net, pid, mount", 0), 0u);
 }
@@ -162,6 +168,12 @@ int processesWith(const std::string& marker) {
   return alive;
 }
 
+// `sleep MARKER` processes: as argv ("sleep\0MARKER", what `sh -c` execs) or inside a shell's
+// command line.
+int sleepers(const std::string& marker) {
+  return processesWith(std::string("sleep\0", 6) + marker) + processesWith("sleep " + marker);
+}
+
 // What the fallback can do here: a pid namespace needs root (or unprivileged user namespaces).
 bool canUse(Containment containment) {
   if (containment == Containment::Subreaper) return true;
@@ -183,11 +195,11 @@ TEST_P(FallbackContainment, NoDetachedProcessOutlivesItsRun) {
       runIsolated(temp, IsolationKind::Rlimits, daemon + " echo started", 10, GetParam());
   EXPECT_EQ(finished.status, ChildStatus::Ok) << finished.describe() << finished.stderr_head;
   EXPECT_LT(finished.seconds, 5);  // the detached ones do not hold the run open either
-  EXPECT_EQ(processesWith("sleep " + marker), 0);
+  EXPECT_EQ(sleepers(marker), 0);
   const ChildRun stuck =
       runIsolated(temp, IsolationKind::Rlimits, daemon + " sleep " + marker, 0.5, GetParam());
   EXPECT_EQ(stuck.status, ChildStatus::TimedOut);
-  EXPECT_EQ(processesWith("sleep " + marker), 0);
+  EXPECT_EQ(sleepers(marker), 0);
 }
 
 // The student's exit code and signal come through the supervisor unchanged.
@@ -209,6 +221,56 @@ INSTANTIATE_TEST_SUITE_P(Modes, FallbackContainment,
                            return info.param == Containment::PidNamespace ? "PidNamespace"
                                                                           : "Subreaper";
                          });
+
+// The cgroup tier alone (no supervisor, no pid namespace): a detached grandchild is gone when the
+// run returns. Without the cgroup the same run leaves it alive (killed here by its pid), so the
+// test sees the difference.
+TEST(Cgroup, ADetachedProcessDiesWithItsRunsCgroup) {
+  std::string why;
+  const std::string parent = cgroupParent(&why);
+  if (parent.empty()) GTEST_SKIP() << "no cgroup tier here: " << why;
+  test::TempDir temp;
+  const std::string marker = "29.1803";
+  // the run ends only once the detached shell has started its first sleep
+  const std::string daemon = "rm -f up; setsid sh -c '(sleep " + marker + " &); touch up; sleep " +
+                             marker + "' >/dev/null 2>&1 & while [ ! -e up ]; do sleep 0.05; done";
+  test::writeText(temp.file("in"), "");
+  fs::permissions(temp.path(), fs::perms::owner_all | fs::perms::others_exec);
+  ChildLimits limits;
+  limits.wall_seconds = 10;
+  limits.isolation.kind = IsolationKind::Rlimits;
+  limits.isolation.containment = Containment::None;
+  limits.isolation.uid = kNobodyUid;
+  const ChildRun loose =
+      runChild({"/bin/sh", "-c", daemon}, temp.path(), temp.file("in"), limits, false, 0);
+  EXPECT_EQ(loose.status, ChildStatus::Ok) << loose.describe();
+  int survivors = 0;  // the detached shell starts its sleeps (up to 5 s on a loaded machine)
+  for (int k = 0; k < 100 && (survivors = sleepers(marker)) < 2; ++k) usleep(50000);
+  // ours to end: every process whose command line holds the marker
+  std::error_code error;
+  for (const auto& entry : fs::directory_iterator("/proc", error)) {
+    std::ifstream in(entry.path() / "cmdline", std::ios::binary);
+    std::string cmdline((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string name = entry.path().filename().string();
+    if ((cmdline.find(std::string("sleep\0", 6) + marker) != std::string::npos ||
+         cmdline.find("sleep " + marker) != std::string::npos) &&
+        name.find_first_not_of("0123456789") == std::string::npos && std::stol(name) > 1)
+      kill(static_cast<pid_t>(std::stol(name)), SIGKILL);
+  }
+  EXPECT_GT(survivors, 0) << "without the cgroup the detached processes should outlive the run";
+
+  limits.isolation.cgroup_parent = parent;
+  const ChildRun held =
+      runChild({"/bin/sh", "-c", daemon}, temp.path(), temp.file("in"), limits, false, 0);
+  EXPECT_EQ(held.status, ChildStatus::Ok) << held.describe();
+  EXPECT_EQ(sleepers(marker), 0);
+  usleep(300000);  // nothing of the run starts later either
+  EXPECT_EQ(sleepers(marker), 0);
+  // and the run's cgroup folder is gone
+  int left = 0;
+  for (const auto& entry : fs::directory_iterator(parent, error)) left += entry.is_directory();
+  EXPECT_EQ(left, 0);
+}
 
 // A whole grade in each isolation mode: the reference, with a static initialiser in cloth.cpp
 // that forks, setsid()s, double-forks and leaves a `sleep` behind in every probe process. The

@@ -13,6 +13,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -309,6 +310,39 @@ bool stopSupervisor(pid_t pid, int& status) {
   return false;
 }
 
+// A run's own cgroup (Isolation::cgroup_parent set): the child joins it first thing after fork;
+// when the run ends, cgroup.kill ends every process in it, whatever it did to detach (setsid,
+// double fork, a new session in another process group), and the empty folder is removed.
+struct RunCgroup {
+  std::string dir;
+  int procs_fd = -1;  // cgroup.procs, opened before fork (no allocation in the child)
+  explicit RunCgroup(const std::string& parent) {
+    if (parent.empty()) return;
+    static std::atomic<unsigned long> next{0};
+    dir = parent + "/run-" + std::to_string(next++);
+    if (mkdir(dir.c_str(), 0700) != 0) {
+      dir.clear();
+      return;
+    }
+    procs_fd = open((dir + "/cgroup.procs").c_str(), O_WRONLY | O_CLOEXEC);
+  }
+  // Child side, before the uid drop: "0" moves the writing process.
+  void join() const {
+    if (procs_fd >= 0) (void)!write(procs_fd, "0", 1);
+  }
+  ~RunCgroup() {
+    if (dir.empty()) return;
+    if (procs_fd >= 0) close(procs_fd);
+    const int kill_fd = open((dir + "/cgroup.kill").c_str(), O_WRONLY | O_CLOEXEC);
+    if (kill_fd >= 0) {
+      (void)!write(kill_fd, "1", 1);
+      close(kill_fd);
+    }
+    // rmdir succeeds once the last process has been reaped by its parent (up to 2 s).
+    for (int k = 0; k < 200 && rmdir(dir.c_str()) != 0 && errno == EBUSY; ++k) usleep(10000);
+  }
+};
+
 void readAvailable(int fd, std::string& into) {
   char buffer[4096];
   for (ssize_t n; (n = read(fd, buffer, sizeof buffer)) > 0;)
@@ -432,6 +466,7 @@ ChildRun runChildOnce(const std::vector<std::string>& command,
   const bool supervised = !boxed && isolation.kind == IsolationKind::Rlimits &&
                           isolation.containment != Containment::None;
   bool in_namespace = supervised && isolation.containment == Containment::PidNamespace;
+  const RunCgroup cgroup(isolation.kind == IsolationKind::None ? "" : isolation.cgroup_parent);
   pid_t pid = -1;
   if (in_namespace) {
     pid = static_cast<pid_t>(syscall(SYS_clone, CLONE_NEWPID | SIGCHLD, 0, 0, 0, 0));
@@ -440,6 +475,7 @@ ChildRun runChildOnce(const std::vector<std::string>& command,
   if (!in_namespace) pid = fork();
   const int answer_fd = expect_answer ? pipe_fds[1] : -1;
   if (pid == 0) {
+    cgroup.join();
     if (supervised) superviseChild(exec, in_fd, out_fd, err_fd, answer_fd, how, in_namespace);
     execChild(exec, in_fd, out_fd, err_fd, answer_fd, info_fds[1], how);
   }

@@ -11,6 +11,8 @@
 
 #include <cerrno>
 #include <cstdlib>
+#include <cstring>
+#include <fstream>
 #include <mutex>
 #include <optional>
 #include <regex>
@@ -107,6 +109,71 @@ std::string whyNoPrivateMountNamespace() {
 
 namespace {
 
+// Our cgroup v2 folder: "<cgroup2 mount><our cgroup>" from /proc/self/mounts and /proc/self/cgroup.
+std::string ownCgroupFolder() {
+  std::ifstream mounts("/proc/self/mounts");
+  std::string device, point, type, rest, mount_point;
+  while (mounts >> device >> point >> type && std::getline(mounts, rest))
+    if (type == "cgroup2") {
+      mount_point = point;
+      break;
+    }
+  if (mount_point.empty()) return {};
+  std::ifstream groups("/proc/self/cgroup");
+  for (std::string line; std::getline(groups, line);)
+    if (line.rfind("0::", 0) == 0) return mount_point + (line.size() > 4 ? line.substr(3) : "");
+  return {};
+}
+
+// Whether a forked child can move itself into `folder` (the "no internal processes" rule of
+// cgroup v2 forbids it where the parent hands controllers down).
+bool canJoin(const std::string& folder) {
+  const int procs = open((folder + "/cgroup.procs").c_str(), O_WRONLY | O_CLOEXEC);
+  if (procs < 0) return false;
+  const pid_t pid = fork();
+  if (pid == 0) _exit(write(procs, "0", 1) == 1 ? 0 : 1);
+  close(procs);
+  if (pid < 0) return false;
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  return WIFEXITED(status) && WEXITSTATUS(status) == 0;
+}
+
+struct CgroupParent {
+  std::string path, why;
+  CgroupParent() {
+    if (geteuid() != 0) {
+      why = "not root";
+      return;
+    }
+    const std::string own = ownCgroupFolder();
+    if (own.empty()) {
+      why = "no cgroup v2 mount";
+      return;
+    }
+    const std::string candidate = own + "/clothref-grader-" + std::to_string(getpid());
+    if (mkdir(candidate.c_str(), 0700) != 0 && errno != EEXIST) {
+      why = "cannot make a cgroup in " + own + " (" + std::strerror(errno) + ")";
+      return;
+    }
+    const std::string trial = candidate + "/check";
+    if (access((candidate + "/cgroup.kill").c_str(), W_OK) != 0)
+      why = "no cgroup.kill (Linux < 5.14)";
+    else if (mkdir(trial.c_str(), 0700) != 0 || !canJoin(trial))
+      why = "a process cannot join a cgroup in " + own;
+    rmdir(trial.c_str());
+    if (why.empty())
+      path = candidate;
+    else
+      rmdir(candidate.c_str());
+  }
+  // Empty by then: every run's cgroup is removed when its run ends.
+  ~CgroupParent() {
+    if (!path.empty()) rmdir(path.c_str());
+  }
+};
+
 Isolation detect() {
   const char* forced_env = std::getenv("CLOTHREF_GRADER_ISOLATION");
   const std::string forced = forced_env && *forced_env ? forced_env : "auto";
@@ -117,6 +184,7 @@ Isolation detect() {
   isolation.kind = IsolationKind::Rlimits;
   isolation.uid = geteuid() == 0 ? kNobodyUid : -1;
   isolation.tool_uid = geteuid() == 0 ? kToolUid : -1;
+  isolation.cgroup_parent = cgroupParent(&isolation.why_no_cgroup);
   if (isolation.tool_uid >= 0) {
     isolation.why_not_private_mounts = whyNoPrivateMountNamespace();
     isolation.private_mounts = isolation.why_not_private_mounts.empty();
@@ -157,14 +225,21 @@ Isolation detect() {
 
 }  // namespace
 
+std::string cgroupParent(std::string* why) {
+  static const CgroupParent parent;
+  if (why) *why = parent.why;
+  return parent.path;
+}
+
 std::string Isolation::describe() const {
   const std::string user = uid >= 0 ? "uid " + std::to_string(uid) : "grader's uid (not root)";
   switch (kind) {
     case IsolationKind::Bubblewrap:
       return "bubblewrap (new user, net, pid, mount, ipc, uts namespaces; only /usr visible), " +
-             user + ", rlimits";
+             user + ", rlimits" + (cgroup_parent.empty() ? "" : ", own cgroup per run");
     case IsolationKind::Rlimits:
       return "rlimits, " + user + ", private working directory, " +
+             (cgroup_parent.empty() ? "" : "own cgroup per run (killed when it ends), ") +
              (containment == Containment::PidNamespace
                   ? "own pid namespace per run"
                   : "a subreaper that kills what a run leaves behind") +

@@ -41,6 +41,11 @@ struct Isolation {
   std::string bwrap;               // bubblewrap executable (Bubblewrap only)
   std::string why_not_bubblewrap;  // why the detection fell back, for the description
   std::vector<std::filesystem::path> hidden;  // covered with an empty tmpfs if visible in the box
+  // Root with a cgroup v2 tree that has cgroup.kill (Linux >= 5.14): a folder of ours in it; each
+  // run gets its own cgroup below, and every process in it is killed when the run ends, however
+  // it detached itself. Empty: no cgroup tier (`why_no_cgroup` says why).
+  std::string cgroup_parent;
+  std::string why_no_cgroup;
   // Short exact description for GradeReport::isolation, e.g. "bubblewrap (new net, pid, mount,
   // ipc, uts namespaces; only /usr visible), uid 65534, rlimits".
   std::string describe() const;
@@ -53,6 +58,11 @@ bool readableAs(int uid, const std::vector<std::filesystem::path>& folders, std:
 // Whether this process can make a private mount namespace (unshare(CLONE_NEWNS), then "/" made
 // private so no mount leaks to the host), tried once in a forked child; "" if so, else why not.
 std::string whyNoPrivateMountNamespace();
+
+// The cgroup tier's folder for this grader process (made once, removed at exit), or "" with the
+// reason in `why`: not root, no cgroup v2 mount, no cgroup.kill, or a process cannot join a child
+// cgroup there (tried in a forked child).
+std::string cgroupParent(std::string* why);
 
 inline constexpr int kNobodyUid = 65534;
 // Compiles and links in the fallback: not the probes' uid, so no student process can write into
