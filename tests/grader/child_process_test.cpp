@@ -143,8 +143,7 @@ TEST(RunTools, FallbackCompilesCannotReadHostFilesNorHiddenFolders) {
   EXPECT_NE(confined[0].output.find("secret.txt"), std::string::npos) << confined[0].output;
   const std::string no_private_mounts = whyNoPrivateMountNamespace();
   if (!no_private_mounts.empty())
-    GTEST_SKIP() << "the hidden-folder half needs a private mount namespace: "
-                 << no_private_mounts;
+    GTEST_SKIP() << "the hidden-folder half needs a private mount namespace: " << no_private_mounts;
   EXPECT_FALSE(confined[1].ok);
   EXPECT_NE(confined[1].output.find("No such file"), std::string::npos) << confined[1].output;
   EXPECT_FALSE(fs::exists(work / "incbin.o"));

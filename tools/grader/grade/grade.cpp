@@ -45,7 +45,6 @@ std::vector<std::string> autoExpressionLines(const std::string& path) {
   return lines;
 }
 
-
 std::string readSource(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
@@ -73,8 +72,8 @@ std::string submissionVerdict(const GradeReport& report,
     for (const std::string& id : t.diagnoses)
       if (id == "non-finite") happened.insert(id);
   for (const char* verdict :
-       {"grader-error", "compile-error", "link-error", "missing-file", "timed-out", "memory-limit", "output-limit",
-        "crashed", "exited-non-zero", "no-answer", "non-finite"})
+       {"grader-error", "compile-error", "link-error", "missing-file", "timed-out", "memory-limit",
+        "output-limit", "crashed", "exited-non-zero", "no-answer", "non-finite"})
     if (happened.count(verdict)) return verdict;
   return "graded";
 }

@@ -245,11 +245,11 @@ std::string Isolation::describe() const {
                   : "a subreaper that kills what a run leaves behind") +
              (tool_uid >= 0
                   ? "; compiles as uid " + std::to_string(tool_uid) +
-                        (private_mounts ? std::string(" in a private mount namespace")
-                                        : " without a private mount namespace (" +
-                                              why_not_private_mounts +
-                                              "; the grader's folders are hidden only by their "
-                                              "permissions)")
+                        (private_mounts
+                             ? std::string(" in a private mount namespace")
+                             : " without a private mount namespace (" + why_not_private_mounts +
+                                   "; the grader's folders are hidden only by their "
+                                   "permissions)")
                   : "; compiles with the grader's uid (" +
                         (why_not_tool_uid.empty() ? std::string() : why_not_tool_uid + "; ") +
                         "the host is readable)") +

@@ -33,13 +33,13 @@ struct Isolation {
   // Rlimits: uid and gid of compiles and links (kToolUid when root, -1 = the grader's, which can
   // read the host), in a private mount namespace hiding `hidden` except what a command names.
   int tool_uid = -1;
-  std::string why_not_tool_uid;    // why compiles keep the grader's uid as root (e.g. unreadable)
+  std::string why_not_tool_uid;  // why compiles keep the grader's uid as root (e.g. unreadable)
   // Rlimits: whether a private mount namespace can hide `hidden` from compiles (not in a chroot,
   // whose root is no mount point, nor in a container without CAP_SYS_ADMIN); the reason if not.
   bool private_mounts = false;
   std::string why_not_private_mounts;
-  std::string bwrap;               // bubblewrap executable (Bubblewrap only)
-  std::string why_not_bubblewrap;  // why the detection fell back, for the description
+  std::string bwrap;                          // bubblewrap executable (Bubblewrap only)
+  std::string why_not_bubblewrap;             // why the detection fell back, for the description
   std::vector<std::filesystem::path> hidden;  // covered with an empty tmpfs if visible in the box
   // Root with a cgroup v2 tree that has cgroup.kill (Linux >= 5.14): a folder of ours in it; each
   // run gets its own cgroup below, and every process in it is killed when the run ends, however
