@@ -40,10 +40,11 @@ debian_root_mount() {
     debian_root_mounts+=("$root/$target")
   done
   cp /etc/resolv.conf "$root/etc/resolv.conf" 2>/dev/null || true
-  # mmdebstrap writes no /etc/hosts; an installed Debian has one, and without `localhost` Selenium
-  # cannot reach chromedriver.
+  # mmdebstrap writes no /etc/hosts; an installed Debian has one (localhost, and its host name on
+  # 127.0.1.1): without them Selenium cannot reach chromedriver and munge cannot find its origin.
   [ -e "$root/etc/hosts" ] ||
-    printf '127.0.0.1\tlocalhost\n::1\t\tlocalhost ip6-localhost ip6-loopback\n' >"$root/etc/hosts"
+    printf '127.0.0.1\tlocalhost\n127.0.1.1\t%s\n::1\t\tlocalhost ip6-localhost ip6-loopback\n' \
+      "$(cat "$root/etc/hostname" 2>/dev/null || hostname)" >"$root/etc/hosts"
 }
 
 debian_root_run() {
