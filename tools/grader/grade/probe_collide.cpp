@@ -4,6 +4,7 @@
 // Three spheres are added once; unused ones and the rest of the cloth are parked far away, so
 // each case touches only the bodies it names and the loop order cannot matter.
 #include <functional>
+#include <iterator>
 #include <set>
 
 #include "clothref/core/cloth.h"
@@ -262,31 +263,24 @@ Vec4<double> momentum(const State& s, const Outcome& o) {
   return total;
 }
 
-// The check tables (collideChecks()), rows as the enums above.
+// The check tables (collideChecks()): the names in the enums' order, each check worth 1.
+constexpr const char* kClothCheckNames[] = {
+    "approaching pair", "separating pair",  "several spheres",  "sphere at index 2",
+    "fixed particle",   "deep penetration", "touching exactly", "momentum conserved"};
+constexpr const char* kSphereCheckNames[] = {
+    "approaching pair", "separating pair",  "three spheres in a chain", "pair without sphere 0",
+    "deep penetration", "touching exactly", "unequal masses",           "momentum conserved"};
+static_assert(std::size(kClothCheckNames) == kClothMomentum + 1);
+static_assert(std::size(kSphereCheckNames) == kSpheresMomentum + 1);
+
 std::vector<PlannedTest> checkTable(bool sphere_sphere) {
-  if (sphere_sphere) {
-    const std::string& stub = stubName(Stub::CollideSpheres);
-    std::vector<PlannedTest> checks(kSpheresMomentum + 1);
-    checks[kSpheresApproaching] = {stub, "approaching pair", 1};
-    checks[kSpheresSeparating] = {stub, "separating pair", 1};
-    checks[kChain] = {stub, "three spheres in a chain", 1};
-    checks[kPairWithoutSphere0] = {stub, "pair without sphere 0", 1};
-    checks[kSpheresDeep] = {stub, "deep penetration", 1};
-    checks[kSpheresTouching] = {stub, "touching exactly", 1};
-    checks[kUnequalMasses] = {stub, "unequal masses", 1};
-    checks[kSpheresMomentum] = {stub, "momentum conserved", 1};
-    return checks;
-  }
-  const std::string& stub = stubName(Stub::CollideCloth);
-  std::vector<PlannedTest> checks(kClothMomentum + 1);
-  checks[kClothApproaching] = {stub, "approaching pair", 1};
-  checks[kClothSeparating] = {stub, "separating pair", 1};
-  checks[kSeveralSpheres] = {stub, "several spheres", 1};
-  checks[kSphereAtIndex2] = {stub, "sphere at index 2", 1};
-  checks[kFixedParticle] = {stub, "fixed particle", 1};
-  checks[kClothDeep] = {stub, "deep penetration", 1};
-  checks[kClothTouching] = {stub, "touching exactly", 1};
-  checks[kClothMomentum] = {stub, "momentum conserved", 1};
+  const std::string& stub = stubName(sphere_sphere ? Stub::CollideSpheres : Stub::CollideCloth);
+  std::vector<PlannedTest> checks;
+  for (const char* name :
+       sphere_sphere
+           ? std::vector<const char*>(std::begin(kSphereCheckNames), std::end(kSphereCheckNames))
+           : std::vector<const char*>(std::begin(kClothCheckNames), std::end(kClothCheckNames)))
+    checks.push_back({stub, name, 1});
   return checks;
 }
 
