@@ -633,11 +633,9 @@ bool near(const Eigen::Vector4d& w, const Eigen::Vector4d& target) {
   return (w - target).cwiseAbs().maxCoeff() < 1e-3;
 }
 
-// Likely causes of a wrong first step: the numeric signatures of the known mistakes, refined by
-// the simulateOneStep() count and the source (integer literals divided). Adds notes to `output`.
-std::vector<std::string> diagnoseOneStep(const ProbeContext& context, const IntegratorRun& run,
-                                         std::string& output) {
-  const Method method = run.method;
+// The known mistakes of `method` that change the first step, as (cause id, its step): the
+// student's numbers equal to one of these name that cause.
+std::vector<std::pair<std::string, Step>> oneStepSignatures(Method method) {
   std::vector<std::pair<std::string, Step>> signatures = {
       {"only-first-body", clothrefStep(method, 1)}};
   if (method == Method::Explicit) {
@@ -671,6 +669,35 @@ std::vector<std::string> diagnoseOneStep(const ProbeContext& context, const Inte
         {"rk4-stage-from-wrong-increment", variantStep(method, Variant::RkStageFromNewVelocity)});
     signatures.push_back({"rk4-stages-discarded", variantStep(method, Variant::RkStagesDiscarded)});
   }
+  return signatures;
+}
+
+// RK4 whose first step matches no signature: right stages, other weights? Fits both updates on
+// the course's stages, says what they fit in `output`, and returns the cause ("" = none).
+std::string rk4WeightCause(const IntegratorRun& run, const std::string& source,
+                           std::string& output) {
+  const auto [x, v] = fitRk4Weights(run.random, run.actual);
+  const Eigen::Vector4d course(1.0 / 6, 1.0 / 3, 1.0 / 3, 1.0 / 6);
+  const Eigen::Vector4d zero = Eigen::Vector4d::Zero();
+  const bool missing_term = (x.fits && near(x.w, zero)) || (v.fits && near(v.w, zero)) ||
+                            (x.fits && x.w[0] == 0 && near(x.w, {0, 1.0 / 3, 1.0 / 3, 0}));
+  for (const auto& [what, fit] : {std::pair{"position", x}, std::pair{"velocity", v}})
+    if (fit.fits && !near(fit.w, course))
+      output += "\nYour " + std::string(what) + " update fits x0 + " + util::num(fit.w[0]) +
+                " k1 + " + util::num(fit.w[1]) + " k2 + " + util::num(fit.w[2]) + " k3 + " +
+                util::num(fit.w[3]) + " k4 (the course: 1/6, 1/3, 1/3, 1/6).\n";
+  // A weight of zero where the course has 1/6 is integer division only when the source has it.
+  if (missing_term && hasIntegerDivision(source, 6)) return "integer-division-rk4";
+  if ((x.fits && !near(x.w, course)) || (v.fits && !near(v.w, course))) return "rk4-wrong-weights";
+  return "";
+}
+
+// Likely causes of a wrong first step: the numeric signatures of the known mistakes, refined by
+// the simulateOneStep() count and the source (integer literals divided). Adds notes to `output`.
+std::vector<std::string> diagnoseOneStep(const ProbeContext& context, const IntegratorRun& run,
+                                         std::string& output) {
+  const Method method = run.method;
+  const std::vector<std::pair<std::string, Step>> signatures = oneStepSignatures(method);
   std::vector<std::string> ids;
   const auto add = [&](const std::string& id) {
     if (std::find(ids.begin(), ids.end(), id) == ids.end()) ids.push_back(id);
@@ -689,22 +716,8 @@ std::vector<std::string> diagnoseOneStep(const ProbeContext& context, const Inte
   }
 
   if (ids.empty() && method == Method::Rk4) {
-    // Right stages, other weights? Fit both updates on the course's stages.
-    const auto [x, v] = fitRk4Weights(run.random, run.actual);
-    const Eigen::Vector4d course(1.0 / 6, 1.0 / 3, 1.0 / 3, 1.0 / 6);
-    const Eigen::Vector4d zero = Eigen::Vector4d::Zero();
-    const bool missing_term = (x.fits && near(x.w, zero)) || (v.fits && near(v.w, zero)) ||
-                              (x.fits && x.w[0] == 0 && near(x.w, {0, 1.0 / 3, 1.0 / 3, 0}));
-    for (const auto& [what, fit] : {std::pair{"position", x}, std::pair{"velocity", v}})
-      if (fit.fits && !near(fit.w, course))
-        output += "\nYour " + std::string(what) + " update fits x0 + " + util::num(fit.w[0]) +
-                  " k1 + " + util::num(fit.w[1]) + " k2 + " + util::num(fit.w[2]) + " k3 + " +
-                  util::num(fit.w[3]) + " k4 (the course: 1/6, 1/3, 1/3, 1/6).\n";
-    // A weight of zero where the course has 1/6 is integer division only when the source has it.
-    if (missing_term && hasIntegerDivision(source, 6))
-      add("integer-division-rk4");
-    else if ((x.fits && !near(x.w, course)) || (v.fits && !near(v.w, course)))
-      add("rk4-wrong-weights");
+    const std::string id = rk4WeightCause(run, source, output);
+    if (!id.empty()) add(id);
   }
   const auto& after = run.answer.f(key::perCase(key::kDtAfter, 0));
   if (!after.empty() && after[0] != run.random.dt) add("deltatime-mutated");
