@@ -94,6 +94,14 @@ TEST_P(Corpus, LosesPointsExactlyInTheExpectedStubsWithTheExpectedDiagnoses) {
     EXPECT_TRUE(shown.count(id.get<std::string>())) << "diagnosis " << id << " not shown";
   if (expected["kind"] == "correct") {
     EXPECT_DOUBLE_EQ(results["score"].get<double>(), 80.0);
+    // The tests the probes made are their check tables' rows, in order: the tests a stub gets
+    // when its file does not compile (plannedTests) are the same names.
+    std::vector<std::string> made, planned;
+    for (const auto& test : results["tests"]) made.push_back(test["name"].get<std::string>());
+    for (const grader::PlannedTest& p :
+         grader::plannedTests(results["extra_data"]["edition"].get<int>()))
+      planned.push_back(p.stub + ": " + p.check);
+    EXPECT_EQ(made, planned);
   }
   if (expected.contains("compile_errors")) {
     for (const auto& file : expected["compile_errors"])

@@ -3,7 +3,7 @@
 // stdin, calls the student's stubs of that group, and writes one ProbeMessage with the outputs to
 // fd 3. It never computes a score or a reference result: those live in the grader process.
 //
-// Groups (request text "group"):
+// Groups (request text key::kGroup; names and keys: bridge/probe_keys.h):
 //   springs          Cloth() and its springs (N = particlesPerEdge of this build)
 //   forces           Cloth::computeSpringForce on given states and OUR spring set
 //   collide-cloth    Spheres::collide(Cloth*) on crafted states
@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "../bridge/probe_keys.h"
 #include "../bridge/probe_protocol.h"
 // std only: the one header of clothref the course side may include (docs/layout.md)
 #include "../../../lib/clothref/formula/course_formulas.h"
@@ -34,6 +35,9 @@
 namespace {
 
 using probe::ProbeMessage;
+namespace key = probe::key;
+namespace group = probe::group;
+using key::perCase;
 
 // Copies a 4 x n column-major float array in or out of a Particles matrix.
 void load(Eigen::Ref<Eigen::Matrix4Xf> target, const std::vector<float>& values) {
@@ -49,13 +53,15 @@ void loadMass(Particles& particles, const std::vector<float>& masses) {
     particles.mass(static_cast<int>(i)) = masses[i];
 }
 
-std::string key(const std::string& name, int k) { return name + "." + std::to_string(k); }
-
-std::vector<Spring> springsFrom(const ProbeMessage& in, const std::string& prefix) {
-  const auto& start = in.i(prefix + "start");
-  const auto& end = in.i(prefix + "end");
-  const auto& type = in.i(prefix + "type");
-  const auto& rest = in.f(prefix + "rest");
+// The spring set sent under the spring keys: once (k < 0) or as case k.
+std::vector<Spring> springsFrom(const ProbeMessage& in, int k) {
+  const auto name = [k](const char* spring_key) {
+    return k < 0 ? std::string(spring_key) : perCase(spring_key, k);
+  };
+  const auto& start = in.i(name(key::kSpringStart));
+  const auto& end = in.i(name(key::kSpringEnd));
+  const auto& type = in.i(name(key::kSpringType));
+  const auto& rest = in.f(name(key::kSpringRest));
   std::vector<Spring> springs;
   for (size_t s = 0; s < start.size() && s < end.size() && s < rest.size(); ++s)
     springs.emplace_back(
@@ -74,29 +80,29 @@ void probeSprings(const ProbeMessage&, ProbeMessage& out) {
     type.push_back(static_cast<std::int64_t>(spring.type()));
     rest.push_back(spring.length());
   }
-  out.ints["n"] = {particlesPerEdge};
-  out.ints["start"] = start;
-  out.ints["end"] = end;
-  out.ints["type"] = type;
-  out.floats["rest"] = rest;
-  out.floats["position"] = save(cloth.particles().position());
+  out.ints[key::kParticlesPerEdge] = {particlesPerEdge};
+  out.ints[key::kSpringStart] = start;
+  out.ints[key::kSpringEnd] = end;
+  out.ints[key::kSpringType] = type;
+  out.floats[key::kSpringRest] = rest;
+  out.floats[key::kClothPos] = save(cloth.particles().position());
 }
 
 void probeForces(const ProbeMessage& in, ProbeMessage& out) {
   Cloth cloth;
   // Our spring set, never the student's: a wrong initializeSpring must not fail the forces.
-  cloth.springs() = springsFrom(in, "s.");
-  springCoef = in.scalar("spring_coef");
-  damperCoef = in.scalar("damper_coef");
-  const int cases = static_cast<int>(in.scalarInt("cases"));
+  cloth.springs() = springsFrom(in, -1);
+  springCoef = in.scalar(key::kSpringCoef);
+  damperCoef = in.scalar(key::kDamperCoef);
+  const int cases = static_cast<int>(in.scalarInt(key::kCases));
   Particles& p = cloth.particles();
   for (int k = 0; k < cases; ++k) {
-    load(p.position(), in.f(key("pos", k)));
-    load(p.velocity(), in.f(key("vel", k)));
-    load(p.acceleration(), in.f(key("acc", k)));
-    loadMass(p, in.f(key("mass", k)));
+    load(p.position(), in.f(perCase(key::kClothPos, k)));
+    load(p.velocity(), in.f(perCase(key::kClothVel, k)));
+    load(p.acceleration(), in.f(perCase(key::kClothAcc, k)));
+    loadMass(p, in.f(perCase(key::kClothMass, k)));
     cloth.computeSpringForce();
-    out.floats[key("acc", k)] = save(p.acceleration());
+    out.floats[perCase(key::kClothAcc, k)] = save(p.acceleration());
   }
 }
 
@@ -105,21 +111,21 @@ void probeForces(const ProbeMessage& in, ProbeMessage& out) {
 void probeCollide(const ProbeMessage& in, ProbeMessage& out, bool sphereSphere) {
   Cloth cloth;
   Spheres& spheres = Spheres::initSpheres();
-  const auto& radii = in.f("radius");
+  const auto& radii = in.f(key::kSphereRadius);
   for (size_t s = 0; s < radii.size(); ++s)
     spheres.addSphere(Eigen::Vector4f(100.0f * float(s + 1), 100, 0, 1), radii[s]);
-  const int cases = static_cast<int>(in.scalarInt("cases"));
+  const int cases = static_cast<int>(in.scalarInt(key::kCases));
   Particles& c = cloth.particles();
   Particles& s = spheres.particles();
   for (int k = 0; k < cases; ++k) {
-    load(c.position(), in.f(key("cloth.pos", k)));
-    load(c.velocity(), in.f(key("cloth.vel", k)));
+    load(c.position(), in.f(perCase(key::kClothPos, k)));
+    load(c.velocity(), in.f(perCase(key::kClothVel, k)));
     c.acceleration().setZero();
-    loadMass(c, in.f(key("cloth.mass", k)));
-    load(s.position(), in.f(key("sph.pos", k)));
-    load(s.velocity(), in.f(key("sph.vel", k)));
+    loadMass(c, in.f(perCase(key::kClothMass, k)));
+    load(s.position(), in.f(perCase(key::kSpherePos, k)));
+    load(s.velocity(), in.f(perCase(key::kSphereVel, k)));
     s.acceleration().setZero();
-    loadMass(s, in.f(key("sph.mass", k)));
+    loadMass(s, in.f(perCase(key::kSphereMass, k)));
 #ifdef CLOTHREF_GRADER_EDITION_2024
     (void)sphereSphere;
     spheres.collide(&cloth);
@@ -129,10 +135,10 @@ void probeCollide(const ProbeMessage& in, ProbeMessage& out, bool sphereSphere) 
     else
       spheres.collide(&cloth);
 #endif
-    out.floats[key("cloth.pos", k)] = save(c.position());
-    out.floats[key("cloth.vel", k)] = save(c.velocity());
-    out.floats[key("sph.pos", k)] = save(s.position());
-    out.floats[key("sph.vel", k)] = save(s.velocity());
+    out.floats[perCase(key::kClothPos, k)] = save(c.position());
+    out.floats[perCase(key::kClothVel, k)] = save(c.velocity());
+    out.floats[perCase(key::kSpherePos, k)] = save(s.position());
+    out.floats[perCase(key::kSphereVel, k)] = save(s.velocity());
   }
 }
 
@@ -215,37 +221,39 @@ const Integrator& integratorFor(std::int64_t method) {
 }
 
 void probeIntegrate(const ProbeMessage& in, ProbeMessage& out) {
-  const Integrator& integrator = integratorFor(in.scalarInt("method"));
-  const int cases = static_cast<int>(in.scalarInt("cases"));
+  const Integrator& integrator = integratorFor(in.scalarInt(key::kMethod));
+  const int cases = static_cast<int>(in.scalarInt(key::kCases));
   for (int k = 0; k < cases; ++k) {
-    const auto& clothMass = in.f(key("c.mass", k));
-    const auto& sphereMass = in.f(key("s.mass", k));
+    const auto& clothMass = in.f(perCase(key::kClothMass, k));
+    const auto& sphereMass = in.f(perCase(key::kSphereMass, k));
     MiniWorld w{Particles(static_cast<int>(clothMass.size())),
                 Particles(static_cast<int>(sphereMass.size())),
                 {},
                 {}};
-    load(w.cloth.position(), in.f(key("c.pos", k)));
-    load(w.cloth.velocity(), in.f(key("c.vel", k)));
+    load(w.cloth.position(), in.f(perCase(key::kClothPos, k)));
+    load(w.cloth.velocity(), in.f(perCase(key::kClothVel, k)));
     loadMass(w.cloth, clothMass);
-    load(w.spheres.position(), in.f(key("s.pos", k)));
-    load(w.spheres.velocity(), in.f(key("s.vel", k)));
+    load(w.spheres.position(), in.f(perCase(key::kSpherePos, k)));
+    load(w.spheres.velocity(), in.f(perCase(key::kSphereVel, k)));
     loadMass(w.spheres, sphereMass);
-    w.springs = springsFrom(in, key("sp", k) + ".");
-    w.radius = in.f(key("s.rad", k));
-    const auto& params = in.f(key("params", k));  // ks, kd, viscous, gx, gy, gz, e_cloth, e_sphere
+    w.springs = springsFrom(in, k);
+    w.radius = in.f(perCase(key::kSphereRadius, k));
+    const auto& params =
+        in.f(perCase(key::kParams, k));  // ks, kd, viscous, gx, gy, gz, e_cloth, e_sphere
     w.spring_coef = params.at(0);
     w.damper_coef = params.at(1);
     w.viscous = params.at(2);
     w.gravity = Eigen::Vector4f(params.at(3), params.at(4), params.at(5), 0);
     w.e_cloth = params.at(6);
     w.e_sphere = params.at(7);
-    const auto& flags = in.i(key("flags", k));  // sphere gravity, cloth contact, sphere contact
+    const auto& flags =
+        in.i(perCase(key::kFlags, k));  // sphere gravity, cloth contact, sphere contact
     w.sphere_gravity = flags.at(0) != 0;
     w.cloth_contact = flags.at(1) != 0;
     w.sphere_contact = flags.at(2) != 0;
-    const float dt = in.scalar(key("dt", k));
-    const std::int64_t steps = in.scalarInt(key("steps", k), 1);
-    const std::int64_t stride = in.scalarInt(key("stride", k), 0);
+    const float dt = in.scalar(perCase(key::kDt, k));
+    const std::int64_t steps = in.scalarInt(perCase(key::kSteps, k), 1);
+    const std::int64_t stride = in.scalarInt(perCase(key::kStride, k), 0);
     std::int64_t calls = 0;
     std::vector<Particles*> bodies{&w.cloth, &w.spheres};
     std::function<void(void)> simulateOneStep = [&] {
@@ -264,13 +272,13 @@ void probeIntegrate(const ProbeMessage& in, ProbeMessage& out) {
         trajectory.insert(trajectory.end(), x.begin(), x.end());
       }
     }
-    out.floats[key("c.pos", k)] = save(w.cloth.position());
-    out.floats[key("c.vel", k)] = save(w.cloth.velocity());
-    out.floats[key("s.pos", k)] = save(w.spheres.position());
-    out.floats[key("s.vel", k)] = save(w.spheres.velocity());
-    out.floats[key("dt_after", k)] = {dtAfter};
-    out.ints[key("calls", k)] = {calls};
-    out.floats[key("trajectory", k)] = trajectory;
+    out.floats[perCase(key::kClothPos, k)] = save(w.cloth.position());
+    out.floats[perCase(key::kClothVel, k)] = save(w.cloth.velocity());
+    out.floats[perCase(key::kSpherePos, k)] = save(w.spheres.position());
+    out.floats[perCase(key::kSphereVel, k)] = save(w.spheres.velocity());
+    out.floats[perCase(key::kDtAfter, k)] = {dtAfter};
+    out.ints[perCase(key::kCalls, k)] = {calls};
+    out.floats[perCase(key::kTrajectory, k)] = trajectory;
   }
 }
 
@@ -286,10 +294,10 @@ void probeWholeRun(const ProbeMessage& in, ProbeMessage& out) {
   spheres.addSphere(Eigen::Vector4f(-0.75f, 1, 0.75f, 1), 0.5f);
   spheres.addSphere(Eigen::Vector4f(0.75f, 1, 0.75f, 1), 0.5f);
 #endif
-  const Integrator& integrator = integratorFor(in.scalarInt("method"));
-  deltaTime = in.scalar("dt", 1e-4f);
-  const std::int64_t steps = in.scalarInt("steps", 100);
-  const std::int64_t stride = std::max<std::int64_t>(1, in.scalarInt("stride", 10));
+  const Integrator& integrator = integratorFor(in.scalarInt(key::kMethod));
+  deltaTime = in.scalar(key::kDt, 1e-4f);
+  const std::int64_t steps = in.scalarInt(key::kSteps, 100);
+  const std::int64_t stride = std::max<std::int64_t>(1, in.scalarInt(key::kStride, 10));
   std::vector<Particles*> particles{&cloth.particles(), &spheres.particles()};
   std::function<void(void)> simulateOneStep = [&] {
     cloth.computeExternalForce();
@@ -335,11 +343,11 @@ void probeWholeRun(const ProbeMessage& in, ProbeMessage& out) {
     integrator.integrate(particles, simulateOneStep);
     if (step % stride == 0 || step == steps) record();
   }
-  out.floats["cloth.pos"] = clothX;
-  out.floats["cloth.vel"] = clothV;
-  out.floats["sph.pos"] = sphereX;
-  out.floats["sph.vel"] = sphereV;
-  out.ints["sphere_capacity"] = {spheres.particles().getCapacity()};
+  out.floats[key::kClothPos] = clothX;
+  out.floats[key::kClothVel] = clothV;
+  out.floats[key::kSpherePos] = sphereX;
+  out.floats[key::kSphereVel] = sphereV;
+  out.ints[key::kSphereCapacity] = {spheres.particles().getCapacity()};
 }
 
 bool writeAll(int fd, const std::string& data) {
@@ -364,23 +372,23 @@ int main() {
   }
   ProbeMessage out;
   out.nonce = in->nonce;
-  const std::string group = in->text("group");
-  if (group == "springs")
+  const std::string name = in->text(key::kGroup);
+  if (name == group::kSprings)
     probeSprings(*in, out);
-  else if (group == "forces")
+  else if (name == group::kForces)
     probeForces(*in, out);
-  else if (group == "collide-cloth")
+  else if (name == group::kCollideCloth)
     probeCollide(*in, out, false);
-  else if (group == "collide-spheres")
+  else if (name == group::kCollideSpheres)
     probeCollide(*in, out, true);
-  else if (group == "integrate")
+  else if (name == group::kIntegrate)
     probeIntegrate(*in, out);
-  else if (group == "whole-run")
+  else if (name == group::kWholeRun)
     probeWholeRun(*in, out);
   else {
-    std::fprintf(stderr, "probe driver: unknown group '%s'\n", group.c_str());
+    std::fprintf(stderr, "probe driver: unknown group '%s'\n", name.c_str());
     return 70;
   }
-  out.texts["group"] = group;
+  out.texts[key::kGroup] = name;
   return writeAll(probe::kResultFd, probe::encodeMessage(out)) ? 0 : 71;
 }

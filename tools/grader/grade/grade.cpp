@@ -78,21 +78,18 @@ std::string submissionVerdict(const GradeReport& report,
   return "graded";
 }
 
-GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
-  GradeReport report;
-  report.submission = dir.string();
-  const SubmissionFiles files = findSubmissionFiles(dir, options.max_file_bytes);
-  if (files.found.empty())
-    throw InputError(dir.string() + ": none of cloth.cpp, sphere.cpp, integrator.cpp found");
-  report.notes = files.notes;
+namespace {
+
+// The edition the probes assume: forced, else detected from the files, else 2022; the report
+// says which and why (a forced edition that disagrees with the files is worth a line).
+void chooseEdition(const SubmissionFiles& files, int forced, GradeReport& report) {
   std::string why;
   const int detected = detectEdition(files, why);
-  if (options.edition) {
-    report.edition = options.edition;
+  if (forced) {
+    report.edition = forced;
     report.edition_source =
         "forced with --edition" +
-        (detected && detected != options.edition
+        (detected && detected != forced
              ? " (the files look like " + std::to_string(detected) + ": " + why + ")"
              : std::string());
   } else {
@@ -100,22 +97,21 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
     report.edition_source =
         detected ? "detected: " + why : "not detected (" + why + "); assumed 2022";
   }
-  Rubric rubric = defaultRubric(report.edition);
-  if (options.rubric_path) rubric = loadRubric(*options.rubric_path, rubric);
-  const Catalogue catalogue =
-      loadCatalogue(options.toolchain.course_dir.parent_path() / "diagnoses.json");
+}
 
-  ScratchDir scratch("clothref-grade");
-  // Student processes see none of our files: the course side, the reference, our build, scratch.
+// How student processes are confined: they see none of our files (the course side, the
+// reference, our build, scratch), and compiles run as the tool uid only where it can read what
+// they read.
+Isolation isolationFor(const CourseToolchain& toolchain, const fs::path& scratch) {
   Isolation isolation = detectIsolation();
-  isolation.hidden = {options.toolchain.course_dir.parent_path(), options.toolchain.reference_dir,
-                      options.toolchain.driver_lib_dir, scratch.path()};
+  isolation.hidden = {toolchain.course_dir.parent_path(), toolchain.reference_dir,
+                      toolchain.driver_lib_dir, scratch};
   // The tool uid must read what compiles read (a checkout under mode-700 /root is unreadable to
   // it): else compiles keep the grader's uid, and the report says why.
   if (isolation.tool_uid >= 0) {
-    std::vector<fs::path> folders = {options.toolchain.course_dir, options.toolchain.reference_dir,
-                                     options.toolchain.driver_lib_dir};
-    for (fs::path folder : {options.toolchain.prebuilt_dir, options.toolchain.cache_dir}) {
+    std::vector<fs::path> folders = {toolchain.course_dir, toolchain.reference_dir,
+                                     toolchain.driver_lib_dir};
+    for (fs::path folder : {toolchain.prebuilt_dir, toolchain.cache_dir}) {
       std::error_code error;
       while (!folder.empty() && !fs::exists(folder, error) && folder != folder.parent_path())
         folder = folder.parent_path();  // a cache made later: its nearest existing folder
@@ -128,19 +124,15 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
       isolation.tool_uid = -1;
     }
   }
-  report.isolation = isolation.describe();
-  // The unprivileged uid must pass through the scratch folder (not list it) to reach its own.
-  if (isolation.uid >= 0)
-    fs::permissions(scratch.path(),
-                    fs::perms::owner_all | fs::perms::group_exec | fs::perms::others_exec);
-  CourseToolchain toolchain = options.toolchain;
-  toolchain.isolation = isolation;
-  const ProbeBuild build = buildProbes(files, report.edition, toolchain, scratch.path());
-  report.files = build.files;
-  report.seconds["compile"] = build.compile_seconds;
-  report.seconds["link"] = build.link_seconds;
-  if (!build.ok) throw InputError(dir.string() + ": cannot grade: " + build.problem);
+  return isolation;
+}
 
+// What every probe needs: the edition, rubric, catalogue, the linked probes, the limits and the
+// student's compiled sources (patterns in them refine a measured finding).
+ProbeContext probeContext(const GradeReport& report, const Rubric& rubric,
+                          const Catalogue& catalogue, const ProbeBuild& build,
+                          const Isolation& isolation, const fs::path& scratch,
+                          const GradeOptions& options) {
   ProbeContext context;
   context.edition = report.edition;
   context.rubric = rubric;
@@ -148,17 +140,22 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
   context.probe = build.probe;
   context.probe_small = build.small_ok ? build.probe_small : fs::path();
   context.small_problem = build.small_problem;
-  context.work_dir = scratch.path() / "probes";
+  context.work_dir = scratch / "probes";
   context.limits = options.limits;
   context.limits.isolation = isolation;
   context.limits.log = std::make_shared<RunLog>();
   context.seed = options.seed;
   for (const UsedFile& used : build.files)
     if (used.compiled) context.sources[used.name] = readSource(used.path);
+  return context;
+}
 
-  // Stubs whose file is not the student's: every planned test gets the compile verdict.
-  std::map<std::string, std::string> unavailable;  // stub -> verdict text
-  for (const UsedFile& used : build.files) {
+// Stubs whose file is not the student's (missing, or it does not compile or link): stub -> the
+// verdict text every planned test of that stub gets instead of running.
+std::map<std::string, std::string> unavailableStubs(const std::vector<UsedFile>& files,
+                                                    const Catalogue& catalogue) {
+  std::map<std::string, std::string> unavailable;
+  for (const UsedFile& used : files) {
     if (used.compiled) continue;
     const bool link_error = used.problem.rfind("link error", 0) == 0;
     const std::string text =
@@ -172,16 +169,20 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
                            used.problem + "```\n\n" + catalogue.cause("compile-error");
     for (const auto& stub : stubsOfFile(used.name)) unavailable[stub] = text;
   }
+  return unavailable;
+}
 
-  const auto probe_start = std::chrono::steady_clock::now();
-  const std::vector<ProbeGroup> groups = probeGroups(report.edition, options.whole_run);
-
+// Runs the probe groups of stubs that can run, `jobs` at a time (each group is its own child
+// processes); results in the groups' order whatever order they finish in.
+std::vector<std::vector<TestResult>> runProbeGroups(
+    const std::vector<ProbeGroup>& groups, const ProbeContext& context,
+    const std::map<std::string, std::string>& unavailable, int jobs) {
   std::vector<std::vector<TestResult>> results(groups.size());
   std::vector<std::future<void>> running;
   for (std::size_t g = 0; g < groups.size(); ++g) {
     const bool skip = !groups[g].stub.empty() && unavailable.count(groups[g].stub);
     if (skip) continue;
-    if (static_cast<int>(running.size()) >= std::max(1, options.probe_jobs)) {
+    if (static_cast<int>(running.size()) >= std::max(1, jobs)) {
       running.front().get();
       running.erase(running.begin());
     }
@@ -189,28 +190,35 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
         std::async(std::launch::async, [&, g] { results[g] = groups[g].run(context); }));
   }
   for (auto& r : running) r.get();
-  report.seconds["probes"] = since(probe_start);
+  return results;
+}
 
-  for (const PlannedTest& planned : plannedTests(report.edition)) {
+// The planned tests of unavailable stubs: zero points, the compile verdict as their output.
+std::vector<TestResult> unavailableTests(int edition,
+                                         const std::map<std::string, std::string>& unavailable) {
+  std::vector<TestResult> tests;
+  for (const PlannedTest& planned : plannedTests(edition)) {
     auto it = unavailable.find(planned.stub);
     if (it == unavailable.end()) continue;
     TestResult t = makeTest(planned.stub, planned.check, planned.weight);
     t.output = it->second;
     t.diagnoses = {"compile-error"};
-    report.tests.push_back(t);
+    tests.push_back(t);
   }
-  for (auto& group : results)
-    for (auto& t : group) report.tests.push_back(std::move(t));
-  // A crash next to an `auto` Eigen expression over temporaries: the likely cause (a pattern
-  // alone, without the crash, names nothing).
-  for (const UsedFile& used : build.files) {
+  return tests;
+}
+
+// A crash next to an `auto` Eigen expression over temporaries: the likely cause (a pattern
+// alone, without the crash, names nothing).
+void addDanglingAutoCauses(const std::vector<UsedFile>& files, const fs::path& scratch,
+                           const Catalogue& catalogue, std::vector<TestResult>& tests) {
+  for (const UsedFile& used : files) {
     if (!used.compiled) continue;
     // The copy in the scratch folder: the student's path is never opened again.
     const auto lines = autoExpressionLines(
-        (scratch.path() / ("src-" + used.name.substr(0, used.name.size() - 4)) / used.name)
-            .string());
+        (scratch / ("src-" + used.name.substr(0, used.name.size() - 4)) / used.name).string());
     if (lines.empty()) continue;
-    for (TestResult& t : report.tests) {
+    for (TestResult& t : tests) {
       const auto stubs = stubsOfFile(used.name);
       if (t.passed() || std::find(stubs.begin(), stubs.end(), t.stub) == stubs.end()) continue;
       const bool crashed =
@@ -221,25 +229,76 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
       for (std::size_t k = 0; k < lines.size() && k < 3; ++k) t.output += "- " + lines[k] + "\n";
     }
   }
-  // Course order of stubs, then the order the probes produced.
-  std::stable_sort(report.tests.begin(), report.tests.end(),
-                   [](const TestResult& a, const TestResult& b) {
-                     const auto rank = [](const std::string& stub) {
-                       const auto& names = stubNames();
-                       return std::find(names.begin(), names.end(), stub) - names.begin();
-                     };
-                     return rank(a.stub) < rank(b.stub);
-                   });
+}
+
+// Course order of stubs, then the order the probes produced.
+void sortInCourseOrder(std::vector<TestResult>& tests) {
+  std::stable_sort(tests.begin(), tests.end(), [](const TestResult& a, const TestResult& b) {
+    const auto rank = [](const std::string& stub) {
+      const auto& names = stubNames();
+      return std::find(names.begin(), names.end(), stub) - names.begin();
+    };
+    return rank(a.stub) < rank(b.stub);
+  });
+}
+
+// --keep-work: a copy of the scratch folder for debugging; a failed copy is a note, not an error.
+void keepWork(const fs::path& scratch, const fs::path& keep_work, GradeReport& report) {
+  std::error_code error;
+  fs::create_directories(keep_work, error);
+  fs::copy(scratch, keep_work, fs::copy_options::recursive | fs::copy_options::overwrite_existing,
+           error);
+  if (error)
+    report.notes.push_back("--keep-work: could not copy the scratch folder: " + error.message());
+}
+
+}  // namespace
+
+GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  GradeReport report;
+  report.submission = dir.string();
+  const SubmissionFiles files = findSubmissionFiles(dir, options.max_file_bytes);
+  if (files.found.empty())
+    throw InputError(dir.string() + ": none of cloth.cpp, sphere.cpp, integrator.cpp found");
+  report.notes = files.notes;
+  chooseEdition(files, options.edition, report);
+  Rubric rubric = defaultRubric(report.edition);
+  if (options.rubric_path) rubric = loadRubric(*options.rubric_path, rubric);
+  const Catalogue catalogue =
+      loadCatalogue(options.toolchain.course_dir.parent_path() / "diagnoses.json");
+
+  ScratchDir scratch("clothref-grade");
+  const Isolation isolation = isolationFor(options.toolchain, scratch.path());
+  report.isolation = isolation.describe();
+  // The unprivileged uid must pass through the scratch folder (not list it) to reach its own.
+  if (isolation.uid >= 0)
+    fs::permissions(scratch.path(),
+                    fs::perms::owner_all | fs::perms::group_exec | fs::perms::others_exec);
+  CourseToolchain toolchain = options.toolchain;
+  toolchain.isolation = isolation;
+  const ProbeBuild build = buildProbes(files, report.edition, toolchain, scratch.path());
+  report.files = build.files;
+  report.seconds["compile"] = build.compile_seconds;
+  report.seconds["link"] = build.link_seconds;
+  if (!build.ok) throw InputError(dir.string() + ": cannot grade: " + build.problem);
+
+  const ProbeContext context =
+      probeContext(report, rubric, catalogue, build, isolation, scratch.path(), options);
+  const std::map<std::string, std::string> unavailable = unavailableStubs(build.files, catalogue);
+  const auto probe_start = std::chrono::steady_clock::now();
+  auto results = runProbeGroups(probeGroups(report.edition, options.whole_run), context,
+                                unavailable, options.probe_jobs);
+  report.seconds["probes"] = since(probe_start);
+
+  report.tests = unavailableTests(report.edition, unavailable);
+  for (auto& group : results)
+    for (auto& t : group) report.tests.push_back(std::move(t));
+  addDanglingAutoCauses(build.files, scratch.path(), catalogue, report.tests);
+  sortInCourseOrder(report.tests);
   applyRubric(rubric, report);
   report.verdict = submissionVerdict(report, context.limits.log->verdicts);
-  if (!options.keep_work.empty()) {
-    std::error_code error;
-    fs::create_directories(options.keep_work, error);
-    fs::copy(scratch.path(), options.keep_work,
-             fs::copy_options::recursive | fs::copy_options::overwrite_existing, error);
-    if (error)
-      report.notes.push_back("--keep-work: could not copy the scratch folder: " + error.message());
-  }
+  if (!options.keep_work.empty()) keepWork(scratch.path(), options.keep_work, report);
   report.seconds["total"] = since(start);
   return report;
 }

@@ -4,6 +4,7 @@
 // Three spheres are added once; unused ones and the rest of the cloth are parked far away, so
 // each case touches only the bodies it names and the loop order cannot matter.
 #include <functional>
+#include <iterator>
 #include <set>
 
 #include "clothref/core/cloth.h"
@@ -104,8 +105,30 @@ State baseState(int edition) {
   return s;
 }
 
+// Rows of the check tables (checkTable()): one case each, then momentum over them all.
+enum ClothCheck {
+  kClothApproaching,
+  kClothSeparating,
+  kSeveralSpheres,
+  kSphereAtIndex2,
+  kFixedParticle,
+  kClothDeep,
+  kClothTouching,
+  kClothMomentum
+};
+enum SphereCheck {
+  kSpheresApproaching,
+  kSpheresSeparating,
+  kChain,
+  kPairWithoutSphere0,
+  kSpheresDeep,
+  kSpheresTouching,
+  kUnequalMasses,
+  kSpheresMomentum
+};
+
 struct Case {
-  std::string check;
+  int check;  // a row of the check table
   State state;
   std::vector<int> spheres, particles;  // the bodies the case places (for the report)
   bool free_bodies = true;              // momentum must be conserved
@@ -121,22 +144,21 @@ Vec4<float> V(float x, float y, float z) { return Vec4<float>(x, y, z, 0); }
 
 std::vector<Case> clothCases(int edition) {
   std::vector<Case> cases;
-  const auto make = [&](std::string check, std::vector<int> spheres, std::vector<int> particles,
+  const auto make = [&](ClothCheck check, std::vector<int> spheres, std::vector<int> particles,
                         const std::function<void(State&)>& setup, bool free_bodies = true) {
-    Case c{std::move(check), baseState(edition), std::move(spheres), std::move(particles),
-           free_bodies};
+    Case c{check, baseState(edition), std::move(spheres), std::move(particles), free_bodies};
     setup(c.state);
     cases.push_back(std::move(c));
   };
-  make("approaching pair", {0}, {312}, [](State& s) {
+  make(kClothApproaching, {0}, {312}, [](State& s) {
     place(s, true, 0, P(0.1f, 0.42f, -0.05f), V(0.3f, -2, 0.1f));
     place(s, false, 312, P(0, 0, 0), V(0.2f, 0.5f, -0.1f));
   });
-  make("separating pair", {0}, {312}, [](State& s) {
+  make(kClothSeparating, {0}, {312}, [](State& s) {
     place(s, true, 0, P(0.05f, 0.45f, 0), V(0, 1.5f, 0.2f));
     place(s, false, 312, P(0, 0, 0), V(0, -0.3f, 0));
   });
-  make("several spheres", {0, 1, 2}, {100, 200, 312}, [](State& s) {
+  make(kSeveralSpheres, {0, 1, 2}, {100, 200, 312}, [](State& s) {
     place(s, false, 100, P(-5, 0, 0), V(0, 0, 0));
     place(s, false, 200, P(5, 0, 0), V(0, 0.1f, 0));
     place(s, false, 312, P(0, 0, 5), V(0, 0, 0));
@@ -144,22 +166,22 @@ std::vector<Case> clothCases(int edition) {
     place(s, true, 1, P(4.9f, 0.45f, 0.05f), V(0.5f, -1, 0));
     place(s, true, 2, P(0, 0.9f, 5.2f), V(0, -0.5f, 0.3f));
   });
-  make("sphere at index 2", {2}, {312}, [](State& s) {
+  make(kSphereAtIndex2, {2}, {312}, [](State& s) {
     place(s, true, 2, P(0.3f, 0.85f, 0), V(0, -1, 0));
     place(s, false, 312, P(0, 0, 0), V(0, 0, 0));
   });
   make(
-      "fixed particle", {0}, {0},
+      kFixedParticle, {0}, {0},
       [](State& s) {
         place(s, false, 0, P(0, 0, 0), V(0, 0, 0));
         place(s, true, 0, P(0, 0.45f, 0.05f), V(0.2f, -1, 0));
       },
       false);
-  make("deep penetration", {0}, {312}, [](State& s) {
+  make(kClothDeep, {0}, {312}, [](State& s) {
     place(s, true, 0, P(0.05f, 0.1f, 0.02f), V(0, -1, 0.5f));
     place(s, false, 312, P(0, 0, 0), V(0, 0.2f, 0));
   });
-  make("touching exactly", {0}, {312}, [](State& s) {
+  make(kClothTouching, {0}, {312}, [](State& s) {
     place(s, true, 0, P(0, 0.5f, 0), V(0, -1, 0));
     place(s, false, 312, P(0, 0, 0), V(0, 0, 0));
   });
@@ -168,38 +190,38 @@ std::vector<Case> clothCases(int edition) {
 
 std::vector<Case> sphereCases(int edition) {
   std::vector<Case> cases;
-  const auto make = [&](std::string check, std::vector<int> spheres,
+  const auto make = [&](SphereCheck check, std::vector<int> spheres,
                         const std::function<void(State&)>& setup) {
-    Case c{std::move(check), baseState(edition), std::move(spheres), {}, true};
+    Case c{check, baseState(edition), std::move(spheres), {}, true};
     setup(c.state);
     cases.push_back(std::move(c));
   };
-  make("approaching pair", {0, 1}, [](State& s) {
+  make(kSpheresApproaching, {0, 1}, [](State& s) {
     place(s, true, 0, P(0, 0, 0), V(1, 0.2f, 0));
     place(s, true, 1, P(0.9f, 0.1f, 0), V(-0.5f, 0, 0.3f));
   });
-  make("separating pair", {0, 1}, [](State& s) {
+  make(kSpheresSeparating, {0, 1}, [](State& s) {
     place(s, true, 0, P(0, 0, 0), V(-1, 0, 0));
     place(s, true, 1, P(0.95f, 0, 0), V(0.5f, 0, 0));
   });
-  make("three spheres in a chain", {0, 1, 2}, [](State& s) {
+  make(kChain, {0, 1, 2}, [](State& s) {
     place(s, true, 0, P(0, 0, 0), V(1, 0, 0));
     place(s, true, 1, P(0.95f, 0, 0), V(0, 0, 0));
     place(s, true, 2, P(2.4f, 0.05f, 0), V(-1, 0, 0));
   });
-  make("pair without sphere 0", {1, 2}, [](State& s) {
+  make(kPairWithoutSphere0, {1, 2}, [](State& s) {
     place(s, true, 1, P(0, 0, 0), V(0.5f, 0, 0));
     place(s, true, 2, P(1.4f, 0.2f, 0), V(-0.5f, 0, 0.1f));
   });
-  make("deep penetration", {0, 1}, [](State& s) {
+  make(kSpheresDeep, {0, 1}, [](State& s) {
     place(s, true, 0, P(0, 0, 0), V(0.3f, 0, 0));
     place(s, true, 1, P(0.3f, 0.05f, 0.02f), V(-0.3f, 0, 0));
   });
-  make("touching exactly", {0, 1}, [](State& s) {
+  make(kSpheresTouching, {0, 1}, [](State& s) {
     place(s, true, 0, P(0, 0, 0), V(1, 0, 0));
     place(s, true, 1, P(1, 0, 0), V(0, 0, 0));
   });
-  make("unequal masses", {0, 2}, [](State& s) {
+  make(kUnequalMasses, {0, 2}, [](State& s) {
     place(s, true, 0, P(0, 0, 0), V(2, 0, 0));
     place(s, true, 2, P(1.45f, 0.1f, 0), V(0, 0, 0));
   });
@@ -241,29 +263,50 @@ Vec4<double> momentum(const State& s, const Outcome& o) {
   return total;
 }
 
+// The check tables (collideChecks()): the names in the enums' order, each check worth 1.
+constexpr const char* kClothCheckNames[] = {
+    "approaching pair", "separating pair",  "several spheres",  "sphere at index 2",
+    "fixed particle",   "deep penetration", "touching exactly", "momentum conserved"};
+constexpr const char* kSphereCheckNames[] = {
+    "approaching pair", "separating pair",  "three spheres in a chain", "pair without sphere 0",
+    "deep penetration", "touching exactly", "unequal masses",           "momentum conserved"};
+static_assert(std::size(kClothCheckNames) == kClothMomentum + 1);
+static_assert(std::size(kSphereCheckNames) == kSpheresMomentum + 1);
+
+std::vector<PlannedTest> checkTable(bool sphere_sphere) {
+  const std::string& stub = stubName(sphere_sphere ? Stub::CollideSpheres : Stub::CollideCloth);
+  std::vector<PlannedTest> checks;
+  for (const char* name :
+       sphere_sphere
+           ? std::vector<const char*>(std::begin(kSphereCheckNames), std::end(kSphereCheckNames))
+           : std::vector<const char*>(std::begin(kClothCheckNames), std::end(kClothCheckNames)))
+    checks.push_back({stub, name, 1});
+  return checks;
+}
+
 std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_sphere) {
-  const std::string stub = stubName(sphere_sphere ? Stub::CollideSpheres : Stub::CollideCloth);
+  const std::vector<PlannedTest> checks = checkTable(sphere_sphere);
   const float e = sphere_sphere ? 0.8f : 0.0f;
   const double rel = context.rubric.tolerances.collide_rel;
   std::vector<Case> cases =
       sphere_sphere ? sphereCases(context.edition) : clothCases(context.edition);
   probe::ProbeMessage request;
-  request.texts["group"] = sphere_sphere ? "collide-spheres" : "collide-cloth";
-  request.ints["cases"] = {static_cast<std::int64_t>(cases.size())};
-  request.floats["radius"] = std::vector<float>(std::begin(kRadii), std::end(kRadii));
+  const char* group_name = sphere_sphere ? group::kCollideSpheres : group::kCollideCloth;
+  request.texts[key::kGroup] = group_name;
+  request.ints[key::kCases] = {static_cast<std::int64_t>(cases.size())};
+  request.floats[key::kSphereRadius] = std::vector<float>(std::begin(kRadii), std::end(kRadii));
   for (std::size_t k = 0; k < cases.size(); ++k) {
-    const std::string n = "." + std::to_string(k);
+    const int n = static_cast<int>(k);
     const State& s = cases[k].state;
-    request.floats["cloth.pos" + n] = util::flat(s.cloth.particles.position);
-    request.floats["cloth.vel" + n] = util::flat(s.cloth.particles.velocity);
-    request.floats["cloth.mass" + n] = util::flat(s.cloth.particles.mass);
-    request.floats["sph.pos" + n] = util::flat(s.spheres.particles.position);
-    request.floats["sph.vel" + n] = util::flat(s.spheres.particles.velocity);
-    request.floats["sph.mass" + n] = util::flat(s.spheres.particles.mass);
+    request.floats[key::perCase(key::kClothPos, n)] = util::flat(s.cloth.particles.position);
+    request.floats[key::perCase(key::kClothVel, n)] = util::flat(s.cloth.particles.velocity);
+    request.floats[key::perCase(key::kClothMass, n)] = util::flat(s.cloth.particles.mass);
+    request.floats[key::perCase(key::kSpherePos, n)] = util::flat(s.spheres.particles.position);
+    request.floats[key::perCase(key::kSphereVel, n)] = util::flat(s.spheres.particles.velocity);
+    request.floats[key::perCase(key::kSphereMass, n)] = util::flat(s.spheres.particles.mass);
   }
   std::string failure;
-  const auto answer =
-      util::runGroup(context, context.probe, request.texts["group"], request, failure);
+  const auto answer = util::runGroup(context, context.probe, group_name, request, failure);
   std::vector<std::pair<ContactMistake, const char*>> signatures = {
       {ContactMistake::NoApproachCheck, "no-approach-check"},
       {ContactMistake::RestitutionFull, "restitution-full-velocity"},
@@ -294,14 +337,14 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
     if (!answer) {
       const std::string id = util::verdictId(failure);
       tests.push_back(util::failedTest(
-          stub, c.check, 1, failure + "\n\n" + context.catalogue->cause(id, true), {id}));
+          checks[c.check], failure + "\n\n" + context.catalogue->cause(id, true), {id}));
       continue;
     }
-    const std::string n = "." + std::to_string(k);
-    const Outcome actual{util::matrix(answer->f("cloth.pos" + n), kN * kN),
-                         util::matrix(answer->f("cloth.vel" + n), kN * kN),
-                         util::matrix(answer->f("sph.pos" + n), 3),
-                         util::matrix(answer->f("sph.vel" + n), 3)};
+    const int n = static_cast<int>(k);
+    const Outcome actual{util::matrix(answer->f(key::perCase(key::kClothPos, n)), kN * kN),
+                         util::matrix(answer->f(key::perCase(key::kClothVel, n)), kN * kN),
+                         util::matrix(answer->f(key::perCase(key::kSpherePos, n)), 3),
+                         util::matrix(answer->f(key::perCase(key::kSphereVel, n)), 3)};
     State reference = c.state;
     if (sphere_sphere)
       collide(reference.spheres, e, 0.15f);
@@ -320,12 +363,12 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
                  c.state.cloth.particles.velocity.col(q).cast<double>().norm();
       if (!((after - before).norm() <= 1e-5 * (1 + scale))) {
         momentum_ok = false;
-        momentum_report += "- " + c.check + ": total momentum before " +
+        momentum_report += "- " + checks[c.check].check + ": total momentum before " +
                            util::vec3(before.cast<float>()) + ", after your call " +
                            util::vec3(after.cast<float>()) + "\n";
       }
     }
-    TestResult t = makeTest(stub, c.check, 1);
+    TestResult t = util::test(checks[c.check]);
     if (distance(actual, expected) <= rel) {
       t.fraction = 1;
       t.output = "Velocities and positions of every body match.";
@@ -369,7 +412,7 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
     if (t.diagnoses.empty()) {
       if (!util::finite(util::flat(actual.sphere_v)) || !util::finite(util::flat(actual.cloth_v)))
         t.diagnoses.push_back("non-finite");
-      else if (!sphere_sphere && c.check == "fixed particle" &&
+      else if (!sphere_sphere && c.check == kFixedParticle &&
                actual.cloth_v.col(0) != c.state.cloth.particles.velocity.col(0))
         t.diagnoses.push_back("fixed-particle-massless");
     }
@@ -408,7 +451,7 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
     }
   }
   if (answer) {
-    TestResult t = makeTest(stub, "momentum conserved", 1);
+    TestResult t = util::test(checks.back());
     t.fraction = momentum_ok ? 1 : 0;
     if (momentum_ok) {
       t.output = "Total momentum (sum of m v) is unchanged by every contact between free bodies.";
@@ -421,13 +464,15 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
     tests.push_back(t);
   } else {
     const std::string id = util::verdictId(failure);
-    tests.push_back(util::failedTest(stub, "momentum conserved", 1,
+    tests.push_back(util::failedTest(checks.back(),
                                      failure + "\n\n" + context.catalogue->cause(id, true), {id}));
   }
   return tests;
 }
 
 }  // namespace
+
+std::vector<PlannedTest> collideChecks(bool sphere_sphere) { return checkTable(sphere_sphere); }
 
 std::vector<TestResult> probeCollideCloth(const ProbeContext& context) {
   return probeContacts(context, false);

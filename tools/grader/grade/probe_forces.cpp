@@ -93,13 +93,23 @@ Mismatch compare(const Mat4X<float>& actual, const Mat4X<float>& expected,
   return m;
 }
 
+// Rows of forcesChecks(), the probe's check table: one case each.
+enum ForceCheck { kRandom, kMoving, kAccumulates, kFixedAndHeavy };
+
 struct Case {
-  std::string check;
+  ForceCheck check;
   Cloth<float> cloth;
   Mat4X<float> acc0;
 };
 
 }  // namespace
+
+std::vector<PlannedTest> forcesChecks() {
+  return {{kStub, "random perturbed state", 1},
+          {kStub, "moving state (damper)", 1},
+          {kStub, "accumulates into existing accelerations", 1},
+          {kStub, "fixed and heavy particles", 1}};
+}
 
 std::vector<TestResult> probeForces(const ProbeContext& context) {
   const double rel = context.rubric.tolerances.force_rel;
@@ -118,19 +128,19 @@ std::vector<TestResult> probeForces(const ProbeContext& context) {
   };
   std::vector<Case> cases;
   {  // perturbed positions, at rest, nothing accumulated yet
-    Case c{"random perturbed state", base, Mat4X<float>::Zero(4, kN * kN)};
+    Case c{kRandom, base, Mat4X<float>::Zero(4, kN * kN)};
     noise(c.cloth.particles.position, 0.03f, true);
     cases.push_back(c);
   }
   {  // stretched and moving: the damper matters
-    Case c{"moving state (damper)", base, Mat4X<float>::Zero(4, kN * kN)};
+    Case c{kMoving, base, Mat4X<float>::Zero(4, kN * kN)};
     c.cloth.particles.position.topRows(3) *= 1.05f;
     noise(c.cloth.particles.position, 0.02f, true);
     noise(c.cloth.particles.velocity, 1.0f, false);
     cases.push_back(c);
   }
   {  // gravity and drag already in the accelerations: the springs must add to them
-    Case c{"accumulates into existing accelerations", base, Mat4X<float>::Zero(4, kN * kN)};
+    Case c{kAccumulates, base, Mat4X<float>::Zero(4, kN * kN)};
     noise(c.cloth.particles.position, 0.03f, true);
     noise(c.cloth.particles.velocity, 0.5f, false);
     for (int i = 0; i < kN * kN; ++i)
@@ -141,7 +151,7 @@ std::vector<TestResult> probeForces(const ProbeContext& context) {
     cases.push_back(c);
   }
   {  // some interior particles fixed (mass 0), others heavy or light
-    Case c{"fixed and heavy particles", base, Mat4X<float>::Zero(4, kN * kN)};
+    Case c{kFixedAndHeavy, base, Mat4X<float>::Zero(4, kN * kN)};
     noise(c.cloth.particles.position, 0.03f, true);
     noise(c.cloth.particles.velocity, 0.5f, false);
     std::uniform_int_distribution<int> pick(0, 9);
@@ -155,37 +165,39 @@ std::vector<TestResult> probeForces(const ProbeContext& context) {
   }
 
   probe::ProbeMessage request;
-  request.texts["group"] = "forces";
-  request.ints["cases"] = {static_cast<std::int64_t>(cases.size())};
-  request.floats["spring_coef"] = {base.spring_coef};
-  request.floats["damper_coef"] = {base.damper_coef};
+  request.texts[key::kGroup] = group::kForces;
+  request.ints[key::kCases] = {static_cast<std::int64_t>(cases.size())};
+  request.floats[key::kSpringCoef] = {base.spring_coef};
+  request.floats[key::kDamperCoef] = {base.damper_coef};
   for (const auto& s : base.springs) {
-    request.ints["s.start"].push_back(s.start);
-    request.ints["s.end"].push_back(s.end);
-    request.ints["s.type"].push_back(static_cast<std::int64_t>(s.type));
-    request.floats["s.rest"].push_back(s.rest_length);
+    request.ints[key::kSpringStart].push_back(s.start);
+    request.ints[key::kSpringEnd].push_back(s.end);
+    request.ints[key::kSpringType].push_back(static_cast<std::int64_t>(s.type));
+    request.floats[key::kSpringRest].push_back(s.rest_length);
   }
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const auto& p = cases[k].cloth.particles;
-    const std::string n = std::to_string(k);
-    request.floats["pos." + n] = util::flat(p.position);
-    request.floats["vel." + n] = util::flat(p.velocity);
-    request.floats["acc." + n] = util::flat(cases[k].acc0);
-    request.floats["mass." + n] = util::flat(p.mass);
+    const int n = static_cast<int>(k);
+    request.floats[key::perCase(key::kClothPos, n)] = util::flat(p.position);
+    request.floats[key::perCase(key::kClothVel, n)] = util::flat(p.velocity);
+    request.floats[key::perCase(key::kClothAcc, n)] = util::flat(cases[k].acc0);
+    request.floats[key::perCase(key::kClothMass, n)] = util::flat(p.mass);
   }
   std::string failure;
-  const auto answer = util::runGroup(context, context.probe, "forces", request, failure);
+  const auto answer = util::runGroup(context, context.probe, group::kForces, request, failure);
+  const std::vector<PlannedTest> checks = forcesChecks();
   std::vector<TestResult> tests;
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const Case& c = cases[k];
     if (!answer) {
       const std::string id = util::verdictId(failure);
       tests.push_back(util::failedTest(
-          kStub, c.check, 1, failure + "\n\n" + context.catalogue->cause(id, true), {id}));
+          checks[c.check], failure + "\n\n" + context.catalogue->cause(id, true), {id}));
       continue;
     }
-    TestResult t = makeTest(kStub, c.check, 1);
-    const Mat4X<float> actual = util::matrix(answer->f("acc." + std::to_string(k)), kN * kN);
+    TestResult t = util::test(checks[c.check]);
+    const Mat4X<float> actual =
+        util::matrix(answer->f(key::perCase(key::kClothAcc, static_cast<int>(k))), kN * kN);
     const Mat4X<float> expected = forces(c.cloth, c.acc0, ForceMistake::None);
     const auto scale = scales(c.cloth, c.acc0);
     const Mismatch m = compare(actual, expected, scale, rel);
@@ -200,7 +212,7 @@ std::vector<TestResult> probeForces(const ProbeContext& context) {
     const auto& p = c.cloth.particles;
     t.output =
         "State: the 25 x 25 course cloth with our springs (k_s = " + util::num(base.spring_coef) +
-        ", k_d = " + util::num(base.damper_coef) + "), " + c.check + ". " +
+        ", k_d = " + util::num(base.damper_coef) + "), " + checks[c.check].check + ". " +
         std::to_string(m.count) + " of " + std::to_string(kN * kN) +
         " particles differ. Worst, particle " + std::to_string(i) + " (row " +
         std::to_string(i / kN) + ", col " + std::to_string(i % kN) + "):\n\n" + "- position " +

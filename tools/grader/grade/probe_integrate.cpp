@@ -316,36 +316,35 @@ double stabilityLimit(Method method) {
 
 void addSystem(probe::ProbeMessage& m, int k, const System& s, std::int64_t steps,
                std::int64_t stride) {
-  const std::string n = "." + std::to_string(k);
-  m.floats["c.pos" + n] = util::flat(s.cloth.particles.position);
-  m.floats["c.vel" + n] = util::flat(s.cloth.particles.velocity);
-  m.floats["c.mass" + n] = util::flat(s.cloth.particles.mass);
-  m.floats["s.pos" + n] = util::flat(s.spheres.particles.position);
-  m.floats["s.vel" + n] = util::flat(s.spheres.particles.velocity);
-  m.floats["s.mass" + n] = util::flat(s.spheres.particles.mass);
-  m.floats["s.rad" + n] = s.spheres.radius;
-  const std::string sp = "sp" + n + ".";
+  const auto at = [k](const char* name) { return key::perCase(name, k); };
+  m.floats[at(key::kClothPos)] = util::flat(s.cloth.particles.position);
+  m.floats[at(key::kClothVel)] = util::flat(s.cloth.particles.velocity);
+  m.floats[at(key::kClothMass)] = util::flat(s.cloth.particles.mass);
+  m.floats[at(key::kSpherePos)] = util::flat(s.spheres.particles.position);
+  m.floats[at(key::kSphereVel)] = util::flat(s.spheres.particles.velocity);
+  m.floats[at(key::kSphereMass)] = util::flat(s.spheres.particles.mass);
+  m.floats[at(key::kSphereRadius)] = s.spheres.radius;
   for (const auto& spring : s.cloth.springs) {
-    m.ints[sp + "start"].push_back(spring.start);
-    m.ints[sp + "end"].push_back(spring.end);
-    m.ints[sp + "type"].push_back(static_cast<std::int64_t>(spring.type));
-    m.floats[sp + "rest"].push_back(spring.rest_length);
+    m.ints[at(key::kSpringStart)].push_back(spring.start);
+    m.ints[at(key::kSpringEnd)].push_back(spring.end);
+    m.ints[at(key::kSpringType)].push_back(static_cast<std::int64_t>(spring.type));
+    m.floats[at(key::kSpringRest)].push_back(spring.rest_length);
   }
-  m.floats["params" + n] = {s.cloth.spring_coef, s.cloth.damper_coef, s.viscous, s.gravity[0],
-                            s.gravity[1],        s.gravity[2],        0.0f,      0.8f};
-  m.ints["flags" + n] = {s.sphere_gravity ? 1 : 0, s.contact ? 1 : 0, 0};
-  m.floats["dt" + n] = {s.dt};
-  m.ints["steps" + n] = {steps};
-  m.ints["stride" + n] = {stride};
+  m.floats[at(key::kParams)] = {s.cloth.spring_coef, s.cloth.damper_coef, s.viscous, s.gravity[0],
+                                s.gravity[1],        s.gravity[2],        0.0f,      0.8f};
+  m.ints[at(key::kFlags)] = {s.sphere_gravity ? 1 : 0, s.contact ? 1 : 0, 0};
+  m.floats[at(key::kDt)] = {s.dt};
+  m.ints[at(key::kSteps)] = {steps};
+  m.ints[at(key::kStride)] = {stride};
 }
 
 System answerSystem(const probe::ProbeMessage& a, int k, const System& like) {
-  const std::string n = "." + std::to_string(k);
+  const auto at = [k](const char* name) { return key::perCase(name, k); };
   System s = like;
-  s.cloth.particles.position = util::matrix(a.f("c.pos" + n), like.cloth.particles.size());
-  s.cloth.particles.velocity = util::matrix(a.f("c.vel" + n), like.cloth.particles.size());
-  s.spheres.particles.position = util::matrix(a.f("s.pos" + n), like.spheres.size());
-  s.spheres.particles.velocity = util::matrix(a.f("s.vel" + n), like.spheres.size());
+  s.cloth.particles.position = util::matrix(a.f(at(key::kClothPos)), like.cloth.particles.size());
+  s.cloth.particles.velocity = util::matrix(a.f(at(key::kClothVel)), like.cloth.particles.size());
+  s.spheres.particles.position = util::matrix(a.f(at(key::kSpherePos)), like.spheres.size());
+  s.spheres.particles.velocity = util::matrix(a.f(at(key::kSphereVel)), like.spheres.size());
   return s;
 }
 
@@ -492,8 +491,8 @@ bool runIntegrator(const ProbeContext& context, int index, bool course_size, Int
 
   // Case 0: one step on the random state. Cases 1..: the convergence ladder. Last: stability.
   probe::ProbeMessage request;
-  request.texts["group"] = "integrate";
-  request.ints["method"] = {index};
+  request.texts[key::kGroup] = group::kIntegrate;
+  request.ints[key::kMethod] = {index};
   addSystem(request, 0, run.random, 1, 0);
   for (std::size_t k = 0; k < run.dts.size(); ++k) {
     const std::int64_t steps = std::llround(run.end_time / run.dts[k]);
@@ -506,12 +505,13 @@ bool runIntegrator(const ProbeContext& context, int index, bool course_size, Int
   const std::int64_t stable_stride = std::max<std::int64_t>(1, stable_steps / 100);
   addSystem(request, run.stable_case, springSystem(float(run.stable_dt), run.spring_particles),
             stable_steps, stable_stride);
-  request.ints["cases"] = {run.stable_case + 1};
+  request.ints[key::kCases] = {run.stable_case + 1};
 
   ProbeContext quiet = context;
   if (!log) quiet.limits.log = nullptr;  // a crash that the course-size retry may still grade
   const auto answer = util::runGroup(
-      quiet, context.probe, "integrate-" + std::to_string(index) + (course_size ? "-course" : ""),
+      quiet, context.probe,
+      std::string(group::kIntegrate) + "-" + std::to_string(index) + (course_size ? "-course" : ""),
       request, failure, &child);
   if (!answer) return false;
   run.answer = *answer;
@@ -633,11 +633,9 @@ bool near(const Eigen::Vector4d& w, const Eigen::Vector4d& target) {
   return (w - target).cwiseAbs().maxCoeff() < 1e-3;
 }
 
-// Likely causes of a wrong first step: the numeric signatures of the known mistakes, refined by
-// the simulateOneStep() count and the source (integer literals divided). Adds notes to `output`.
-std::vector<std::string> diagnoseOneStep(const ProbeContext& context, const IntegratorRun& run,
-                                         std::string& output) {
-  const Method method = run.method;
+// The known mistakes of `method` that change the first step, as (cause id, its step): the
+// student's numbers equal to one of these name that cause.
+std::vector<std::pair<std::string, Step>> oneStepSignatures(Method method) {
   std::vector<std::pair<std::string, Step>> signatures = {
       {"only-first-body", clothrefStep(method, 1)}};
   if (method == Method::Explicit) {
@@ -671,6 +669,35 @@ std::vector<std::string> diagnoseOneStep(const ProbeContext& context, const Inte
         {"rk4-stage-from-wrong-increment", variantStep(method, Variant::RkStageFromNewVelocity)});
     signatures.push_back({"rk4-stages-discarded", variantStep(method, Variant::RkStagesDiscarded)});
   }
+  return signatures;
+}
+
+// RK4 whose first step matches no signature: right stages, other weights? Fits both updates on
+// the course's stages, says what they fit in `output`, and returns the cause ("" = none).
+std::string rk4WeightCause(const IntegratorRun& run, const std::string& source,
+                           std::string& output) {
+  const auto [x, v] = fitRk4Weights(run.random, run.actual);
+  const Eigen::Vector4d course(1.0 / 6, 1.0 / 3, 1.0 / 3, 1.0 / 6);
+  const Eigen::Vector4d zero = Eigen::Vector4d::Zero();
+  const bool missing_term = (x.fits && near(x.w, zero)) || (v.fits && near(v.w, zero)) ||
+                            (x.fits && x.w[0] == 0 && near(x.w, {0, 1.0 / 3, 1.0 / 3, 0}));
+  for (const auto& [what, fit] : {std::pair{"position", x}, std::pair{"velocity", v}})
+    if (fit.fits && !near(fit.w, course))
+      output += "\nYour " + std::string(what) + " update fits x0 + " + util::num(fit.w[0]) +
+                " k1 + " + util::num(fit.w[1]) + " k2 + " + util::num(fit.w[2]) + " k3 + " +
+                util::num(fit.w[3]) + " k4 (the course: 1/6, 1/3, 1/3, 1/6).\n";
+  // A weight of zero where the course has 1/6 is integer division only when the source has it.
+  if (missing_term && hasIntegerDivision(source, 6)) return "integer-division-rk4";
+  if ((x.fits && !near(x.w, course)) || (v.fits && !near(v.w, course))) return "rk4-wrong-weights";
+  return "";
+}
+
+// Likely causes of a wrong first step: the numeric signatures of the known mistakes, refined by
+// the simulateOneStep() count and the source (integer literals divided). Adds notes to `output`.
+std::vector<std::string> diagnoseOneStep(const ProbeContext& context, const IntegratorRun& run,
+                                         std::string& output) {
+  const Method method = run.method;
+  const std::vector<std::pair<std::string, Step>> signatures = oneStepSignatures(method);
   std::vector<std::string> ids;
   const auto add = [&](const std::string& id) {
     if (std::find(ids.begin(), ids.end(), id) == ids.end()) ids.push_back(id);
@@ -689,28 +716,14 @@ std::vector<std::string> diagnoseOneStep(const ProbeContext& context, const Inte
   }
 
   if (ids.empty() && method == Method::Rk4) {
-    // Right stages, other weights? Fit both updates on the course's stages.
-    const auto [x, v] = fitRk4Weights(run.random, run.actual);
-    const Eigen::Vector4d course(1.0 / 6, 1.0 / 3, 1.0 / 3, 1.0 / 6);
-    const Eigen::Vector4d zero = Eigen::Vector4d::Zero();
-    const bool missing_term = (x.fits && near(x.w, zero)) || (v.fits && near(v.w, zero)) ||
-                              (x.fits && x.w[0] == 0 && near(x.w, {0, 1.0 / 3, 1.0 / 3, 0}));
-    for (const auto& [what, fit] : {std::pair{"position", x}, std::pair{"velocity", v}})
-      if (fit.fits && !near(fit.w, course))
-        output += "\nYour " + std::string(what) + " update fits x0 + " + util::num(fit.w[0]) +
-                  " k1 + " + util::num(fit.w[1]) + " k2 + " + util::num(fit.w[2]) + " k3 + " +
-                  util::num(fit.w[3]) + " k4 (the course: 1/6, 1/3, 1/3, 1/6).\n";
-    // A weight of zero where the course has 1/6 is integer division only when the source has it.
-    if (missing_term && hasIntegerDivision(source, 6))
-      add("integer-division-rk4");
-    else if ((x.fits && !near(x.w, course)) || (v.fits && !near(v.w, course)))
-      add("rk4-wrong-weights");
+    const std::string id = rk4WeightCause(run, source, output);
+    if (!id.empty()) add(id);
   }
-  const auto& after = run.answer.f("dt_after.0");
+  const auto& after = run.answer.f(key::perCase(key::kDtAfter, 0));
   if (!after.empty() && after[0] != run.random.dt) add("deltatime-mutated");
 
   // simulateOneStep calls during integrate: 0 (explicit), 1 (implicit, midpoint), 3 (RK4).
-  const auto& calls_out = run.answer.i("calls.0");
+  const auto& calls_out = run.answer.i(key::perCase(key::kCalls, 0));
   const std::int64_t calls = calls_out.empty() ? -1 : calls_out[0];
   const std::int64_t expected_calls = method == Method::Rk4        ? 3
                                       : method == Method::Explicit ? 0
@@ -811,7 +824,7 @@ TestResult checkEveryBody(const ProbeContext& context, const IntegratorRun& run,
 
 TestResult checkDeltaTime(const ProbeContext& context, const IntegratorRun& run) {
   TestResult t = makeTest(run.stub, kChecks[2].name, kChecks[2].weight);
-  const auto& after = run.answer.f("dt_after.0");
+  const auto& after = run.answer.f(key::perCase(key::kDtAfter, 0));
   const float dt_after = after.empty() ? std::nanf("") : after[0];
   t.fraction = dt_after == run.random.dt ? 1 : 0;
   t.output = t.fraction == 1
@@ -844,8 +857,9 @@ TestResult checkOrder(const ProbeContext& context, const IntegratorRun& run,
   std::vector<double> student_errors, reference_errors;
   for (std::size_t k = 0; k < run.dts.size(); ++k) {
     const std::int64_t steps = std::llround(run.end_time / run.dts[k]);
-    student_errors.push_back(trajectoryError(run.answer.f("trajectory." + std::to_string(k + 1)),
-                                             run.dts[k], run.strides[k], run.spring_particles));
+    student_errors.push_back(
+        trajectoryError(run.answer.f(key::perCase(key::kTrajectory, int(k) + 1)), run.dts[k],
+                        run.strides[k], run.spring_particles));
     reference_errors.push_back(referenceError(run.method, run.dts[k], steps, run.strides[k]));
   }
   bool usable = true;
@@ -877,7 +891,7 @@ TestResult checkOrder(const ProbeContext& context, const IntegratorRun& run,
 TestResult checkStability(const ProbeContext& context, const IntegratorRun& run,
                           const TestResult& one) {
   TestResult stable = makeTest(run.stub, kChecks[5].name, kChecks[5].weight);
-  const auto& trajectory = run.answer.f("trajectory." + std::to_string(run.stable_case));
+  const auto& trajectory = run.answer.f(key::perCase(key::kTrajectory, run.stable_case));
   const std::size_t per_record = 4 * std::size_t(run.spring_particles);
   double amplitude = 0;
   for (std::size_t r = 0; r + per_record <= trajectory.size(); r += per_record) {
@@ -914,7 +928,6 @@ std::vector<PlannedTest> integratorChecks(int method) {
 
 std::vector<TestResult> probeIntegrator(const ProbeContext& context, int index) {
   const Method method = kMethods[index];
-  const std::string stub = stubName(integratorStub(index));
   IntegratorRun run;
   std::string failure;
   ChildRun child;
@@ -940,11 +953,9 @@ std::vector<TestResult> probeIntegrator(const ProbeContext& context, int index) 
   std::vector<TestResult> tests;
   if (!ok) {
     const std::string id = util::verdictId(failure);
-    for (const CheckInfo& info : kChecks)
-      if (!info.needs_backup || method != Method::Explicit)
-        tests.push_back(util::failedTest(stub, info.name, info.weight,
-                                         failure + "\n\n" + context.catalogue->cause(id, true),
-                                         {id}));
+    for (const PlannedTest& check : integratorChecks(index))
+      tests.push_back(
+          util::failedTest(check, failure + "\n\n" + context.catalogue->cause(id, true), {id}));
     return tests;
   }
   const TestResult one = checkOneStep(context, run);

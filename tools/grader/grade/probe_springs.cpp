@@ -16,6 +16,9 @@ namespace {
 const std::string& kStub = stubName(Stub::InitializeSpring);
 const char* kTypeNames[] = {"STRUCTURAL", "SHEAR", "BEND"};
 
+// Rows of springsChecks(), the probe's check table.
+enum SpringCheck { kConnections, kRestLengths, kTypeLabels, kSecondSize };
+
 struct SpringSet {
   // (lower index, higher index) -> every (rest length, type) pushed for that pair.
   std::map<std::pair<int, int>, std::vector<std::pair<float, int>>> pairs;
@@ -37,10 +40,10 @@ SpringSet referenceSprings(int n, int edition) {
 
 std::optional<SpringSet> studentSprings(const probe::ProbeMessage& answer, int n,
                                         std::string& problem) {
-  const auto& start = answer.i("start");
-  const auto& end = answer.i("end");
-  const auto& type = answer.i("type");
-  const auto& rest = answer.f("rest");
+  const auto& start = answer.i(key::kSpringStart);
+  const auto& end = answer.i(key::kSpringEnd);
+  const auto& type = answer.i(key::kSpringType);
+  const auto& rest = answer.f(key::kSpringRest);
   if (start.size() != end.size() || start.size() != type.size() || start.size() != rest.size()) {
     problem = "the probe returned inconsistent spring arrays";
     return std::nullopt;
@@ -183,32 +186,36 @@ std::string causes(const ProbeContext& context, const std::vector<std::string>& 
 
 }  // namespace
 
+std::vector<PlannedTest> springsChecks() {
+  return {{kStub, "connections at N = 25", 2},
+          {kStub, "rest lengths at N = 25", 1},
+          {kStub, "type labels at N = 25", 1},
+          {kStub, "all springs at N = " + std::to_string(kSecondParticlesPerEdge), 1}};
+}
+
 std::vector<TestResult> probeSprings(const ProbeContext& context) {
   std::vector<TestResult> tests;
   const double rest_rel = context.rubric.tolerances.rest_length_rel;
   probe::ProbeMessage request;
-  request.texts["group"] = "springs";
+  request.texts[key::kGroup] = group::kSprings;
   std::string failure;
-  auto answer = util::runGroup(context, context.probe, "springs", request, failure);
-  const char* checks[] = {"connections at N = 25", "rest lengths at N = 25",
-                          "type labels at N = 25"};
-  const double weights[] = {2, 1, 1};
+  auto answer = util::runGroup(context, context.probe, group::kSprings, request, failure);
+  const std::vector<PlannedTest> checks = springsChecks();
   std::optional<SpringSet> student;
   const SpringSet reference = referenceSprings(25, context.edition);
   if (answer) student = studentSprings(*answer, 25, failure);
   bool big_ok = false;
   if (!student) {
     const std::string id = answer ? "wrong-spring-endpoints" : util::verdictId(failure);
-    for (int k = 0; k < 3; ++k)
-      tests.push_back(util::failedTest(kStub, checks[k], weights[k],
-                                       failure + "\n\n" + context.catalogue->cause(id, true),
-                                       {id}));
+    for (int k : {kConnections, kRestLengths, kTypeLabels})
+      tests.push_back(
+          util::failedTest(checks[k], failure + "\n\n" + context.catalogue->cause(id, true), {id}));
   } else {
     const Comparison c = compare(*student, reference, 25, rest_rel);
     const std::string state =
         "The course cloth: 25 x 25 particles, built by your `Cloth()` "
         "(your `initializeVertex` and `initializeSpring`).\n\n";
-    TestResult connections = makeTest(kStub, checks[0], weights[0]);
+    TestResult connections = util::test(checks[kConnections]);
     const int errors = c.missing + c.extra + c.duplicates;
     connections.fraction =
         errors == 0 ? 1.0 : std::max(0.0, 1.0 - double(errors) / reference.count);
@@ -232,7 +239,7 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
     }
     tests.push_back(connections);
 
-    TestResult rest = makeTest(kStub, checks[1], weights[1]);
+    TestResult rest = util::test(checks[kRestLengths]);
     rest.fraction = c.matched && c.wrong_rest == 0 ? 1.0 : 0.0;
     if (c.wrong_rest || !c.matched) {
       rest.output = state + std::to_string(c.wrong_rest) + " of " + std::to_string(c.matched) +
@@ -250,7 +257,7 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
     }
     tests.push_back(rest);
 
-    TestResult labels = makeTest(kStub, checks[2], weights[2]);
+    TestResult labels = util::test(checks[kTypeLabels]);
     labels.fraction = c.matched && c.wrong_type == 0 ? 1.0 : 0.0;
     if (c.wrong_type || !c.matched) {
       labels.output = state + std::to_string(c.wrong_type) + " of " + std::to_string(c.matched) +
@@ -271,8 +278,7 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
 
   // The second size: hard-coded 25s show up here.
   const int n = kSecondParticlesPerEdge;
-  const std::string check = "all springs at N = " + std::to_string(n);
-  TestResult small = makeTest(kStub, check, 1);
+  TestResult small = util::test(checks[kSecondSize]);
   const std::string state =
       "A " + std::to_string(n) + " x " + std::to_string(n) +
       " cloth (your cloth.cpp compiled again with particlesPerEdge = " + std::to_string(n) +

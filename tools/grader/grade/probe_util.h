@@ -9,8 +9,15 @@
 #include <string>
 #include <vector>
 
+#include "../bridge/probe_keys.h"
 #include "clothref/core/types.h"
 #include "probes.h"
+
+namespace clothref::grader {
+// The protocol's names (bridge/probe_keys.h), short in the probe files.
+namespace key = probe::key;
+namespace group = probe::group;
+}  // namespace clothref::grader
 
 namespace clothref::grader::util {
 
@@ -51,13 +58,15 @@ inline std::optional<probe::ProbeMessage> runGroup(
   return std::nullopt;
 }
 
+// The test of one row of a probe's check table (its name and weight are written only there).
+inline TestResult test(const PlannedTest& check) {
+  return makeTest(check.stub, check.check, check.weight);
+}
+
 // A test of the group that could not run: zero points, the verdict as output.
-inline TestResult failedTest(const std::string& stub, const std::string& check, double weight,
-                             const std::string& why, const std::vector<std::string>& diagnoses) {
-  TestResult t;
-  t.stub = stub;
-  t.check = check;
-  t.weight = weight;
+inline TestResult failedTest(const PlannedTest& check, const std::string& why,
+                             const std::vector<std::string>& diagnoses) {
+  TestResult t = test(check);
   t.fraction = 0;
   t.output = why;
   t.diagnoses = diagnoses;

@@ -51,12 +51,10 @@ struct PlannedTest {
 };
 std::vector<PlannedTest> plannedTests(int edition);
 
-// The integrator probe's checks for `method` (0..3), in report order.
-std::vector<PlannedTest> integratorChecks(int method);
-
 // The probe groups of an edition, in the order they run: the one table of probes. Each group is
-// one child process. Adding a probe: a row here (probes.cpp), its probe_<name>.cpp, and its
-// group in driver/probe_driver.cpp (docs/grading.md, "Adding a probe").
+// one child process. Adding a probe: a row here (probes.cpp), its probe_<name>.cpp, its group in
+// driver/probe_driver.cpp and its names in bridge/probe_keys.h (docs/grading.md, "Adding a
+// probe").
 struct ProbeGroup {
   std::string stub;                 // the course stub it grades; "" = information only
   std::vector<PlannedTest> checks;  // its tests, for a stub whose file could not be used

@@ -32,18 +32,18 @@ std::vector<TestResult> probeWholeRun(const ProbeContext& context) {
   settings.steps = 200;
   settings.stride = 20;
   probe::ProbeMessage request;
-  request.texts["group"] = "whole-run";
-  request.ints["method"] = {0};
-  request.floats["dt"] = {float(settings.dt)};
-  request.ints["steps"] = {settings.steps};
-  request.ints["stride"] = {settings.stride};
+  request.texts[key::kGroup] = group::kWholeRun;
+  request.ints[key::kMethod] = {0};
+  request.floats[key::kDt] = {float(settings.dt)};
+  request.ints[key::kSteps] = {settings.steps};
+  request.ints[key::kStride] = {settings.stride};
   std::string failure;
-  const auto answer = util::runGroup(context, context.probe, "whole-run", request, failure);
+  const auto answer = util::runGroup(context, context.probe, group::kWholeRun, request, failure);
   if (!answer) {
     t.output = "Your full simulation did not finish: " + failure;
     return {t};
   }
-  const auto dir = context.work_dir / "whole-run";
+  const auto dir = context.work_dir / group::kWholeRun;
   const auto reference_path = dir / "reference.jsonl";
   const auto student_path = dir / "student.jsonl";
   {
@@ -54,11 +54,11 @@ std::vector<TestResult> probeWholeRun(const ProbeContext& context) {
     World<float> world = makeWorld<float>(*scene, Method::Explicit, settings.dt);
     const int cloth_n = world.cloth ? world.cloth->particles.size() : 0;
     const int sphere_n = world.spheres ? world.spheres->size() : 0;
-    const int capacity = static_cast<int>(answer->scalarInt("sphere_capacity", sphere_n));
-    const auto& cx = answer->f("cloth.pos");
-    const auto& cv = answer->f("cloth.vel");
-    const auto& sx = answer->f("sph.pos");
-    const auto& sv = answer->f("sph.vel");
+    const int capacity = static_cast<int>(answer->scalarInt(key::kSphereCapacity, sphere_n));
+    const auto& cx = answer->f(key::kClothPos);
+    const auto& cv = answer->f(key::kClothVel);
+    const auto& sx = answer->f(key::kSpherePos);
+    const auto& sv = answer->f(key::kSphereVel);
     std::string text = traceHeader(*scene, settings).dump() + "\n";
     std::int64_t record = 0;
     for (std::int64_t s = 0; s <= settings.steps; ++s) {
