@@ -8,12 +8,14 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <set>
 
 #include "corpus.h"
 #include "grader/grade/grade.h"
 #include "grader/grade/probe_util.h"
+#include "grader/grade/probes.h"
 #include "test_util.h"
 
 namespace clothref::test {
@@ -321,9 +323,23 @@ TEST(CourseCloth, CourseOnlyCodeIsGradedOnTheCourseCloth) {
       "    p->velocity() += p->acceleration() * deltaTime;\n"
       "  }\n"
       "  particles[0]->velocity(particlesPerEdge * particlesPerEdge - 1).setZero();\n");
-  const nlohmann::json results = gradeResults(submission, temp);
+  const nlohmann::json results =
+      gradeResults(submission, temp, "--keep-work '" + temp.file("work") + "'");
   EXPECT_EQ(stubScore(results, "ExplicitEuler::integrate"), 5.0);
   EXPECT_EQ(results["extra_data"]["verdict"], "graded");
+  // Every folder a probe ran in, the course-size retry's among them, is one the sanitizer reads
+  // (--sanitize quotes a crash from the folder's stderr) and names the stub it grades.
+  std::map<std::string, std::string> known;
+  for (const auto& [folder, stub] : grader::probeFolders()) known[folder] = stub;
+  std::set<std::string> made;
+  std::error_code error;
+  for (const auto& entry : fs::directory_iterator(temp.path() / "work" / "probes", error))
+    made.insert(entry.path().filename().string());
+  EXPECT_TRUE(made.count(grader::integratorFolder(0, true))) << ::testing::PrintToString(made);
+  for (const std::string& folder : made) {
+    EXPECT_TRUE(known.count(folder)) << folder << " is not in probeFolders()";
+  }
+  EXPECT_EQ(known[grader::integratorFolder(0, true)], "ExplicitEuler::integrate");
   for (const auto& test : results["tests"]) {
     if (test["tags"][0] == "ExplicitEuler::integrate") {
       EXPECT_NE(test["output"].get<std::string>().find("graded on the course's cloth"),

@@ -509,10 +509,8 @@ bool runIntegrator(const ProbeContext& context, int index, bool course_size, Int
 
   ProbeContext quiet = context;
   if (!log) quiet.limits.log = nullptr;  // a crash that the course-size retry may still grade
-  const auto answer = util::runGroup(
-      quiet, context.probe,
-      std::string(group::kIntegrate) + "-" + std::to_string(index) + (course_size ? "-course" : ""),
-      request, failure, &child);
+  const auto answer = util::runGroup(quiet, context.probe, integratorFolder(index, course_size),
+                                     request, failure, &child);
   if (!answer) return false;
   run.answer = *answer;
   run.actual = answerSystem(run.answer, 0, run.random);

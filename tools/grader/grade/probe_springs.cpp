@@ -291,7 +291,7 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
   } else {
     std::string small_failure;
     auto small_answer =
-        util::runGroup(context, context.probe_small, "springs-small", request, small_failure);
+        util::runGroup(context, context.probe_small, kSpringsSmallFolder, request, small_failure);
     std::optional<SpringSet> small_set;
     if (small_answer) small_set = studentSprings(*small_answer, n, small_failure);
     if (!small_set) {

@@ -3,6 +3,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "../bridge/probe_keys.h"
 #include "clothref/io/error.h"
 #include "clothref/io/json_input.h"
 
@@ -61,6 +62,27 @@ std::vector<ProbeGroup> probeGroups(int edition, bool whole_run) {
                       [k](const ProbeContext& context) { return probeIntegrator(context, k); }});
   if (whole_run) groups.push_back({"", {}, probeWholeRun});
   return groups;
+}
+
+std::string integratorFolder(int method, bool course_size) {
+  return std::string(probe::group::kIntegrate) + "-" + std::to_string(method) +
+         (course_size ? "-course" : "");
+}
+
+std::vector<std::pair<std::string, std::string>> probeFolders() {
+  namespace group = probe::group;
+  const std::string& springs = stubName(Stub::InitializeSpring);
+  std::vector<std::pair<std::string, std::string>> folders = {
+      {group::kSprings, springs},
+      {kSpringsSmallFolder, springs},
+      {group::kForces, stubName(Stub::ComputeSpringForce)},
+      {group::kCollideCloth, stubName(Stub::CollideCloth)},
+      {group::kCollideSpheres, stubName(Stub::CollideSpheres)}};
+  for (int k = 0; k < 4; ++k)
+    for (const bool course_size : {false, true})
+      folders.push_back({integratorFolder(k, course_size), stubName(integratorStub(k))});
+  folders.push_back({group::kWholeRun, ""});
+  return folders;
 }
 
 std::vector<PlannedTest> plannedTests(int edition) {

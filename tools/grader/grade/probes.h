@@ -62,4 +62,11 @@ struct ProbeGroup {
 };
 std::vector<ProbeGroup> probeGroups(int edition, bool whole_run);
 
+// The folders under the work dir that the probes run their children in (one child each), with
+// the stub each grades ("" = information only), in run order: the group names, the springs'
+// second size and each integrator with its course-size retry. The sanitizer reads their stderr.
+std::string integratorFolder(int method, bool course_size);
+std::vector<std::pair<std::string, std::string>> probeFolders();
+inline constexpr const char* kSpringsSmallFolder = "springs-small";
+
 }  // namespace clothref::grader

@@ -6,23 +6,12 @@
 #include <vector>
 
 #include "clothref/io/files.h"
+#include "probes.h"
 
 namespace clothref::grader {
 namespace fs = std::filesystem;
 
 namespace {
-
-// The probe groups' folders (probes.cpp and friends name them), in the order they are searched,
-// and the stub each grades.
-const std::vector<std::pair<std::string, std::string>>& groupStubs() {
-  static const std::vector<std::pair<std::string, std::string>> groups = {
-      {"springs", "Cloth::initializeSpring"},         {"springs-small", "Cloth::initializeSpring"},
-      {"forces", "Cloth::computeSpringForce"},        {"collide-cloth", "Spheres::collide(Cloth*)"},
-      {"collide-spheres", "Spheres::collide()"},      {"integrate-0", "ExplicitEuler::integrate"},
-      {"integrate-1", "ImplicitEuler::integrate"},    {"integrate-2", "MidpointEuler::integrate"},
-      {"integrate-3", "RungeKuttaFourth::integrate"}, {"whole-run", ""}};
-  return groups;
-}
 
 bool isReportStart(const std::string& line) {
   return line.find("ERROR: AddressSanitizer") != std::string::npos ||
@@ -98,7 +87,7 @@ std::optional<SanitizerFinding> sanitizerFinding(const fs::path& dir, const Grad
   gradeSubmission(dir, sanitized);
 
   std::optional<SanitizerFinding> first;
-  for (const auto& group_stub : groupStubs()) {
+  for (const auto& group_stub : probeFolders()) {
     // named copies: clang 14 cannot capture a structured binding in the lambda below
     const auto& group = group_stub.first;
     const auto& stub = group_stub.second;
