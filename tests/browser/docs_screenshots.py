@@ -9,8 +9,8 @@ import sys
 
 from PIL import Image
 
-NAMES = ['view-pair-overlay.png', 'view-pair-side.png', 'report.png', 'report-whole-run.png',
-         'class-index.png', 'gradescope-results.png']
+NAMES = ['view-pair-overlay.png', 'view-pair-side.png', 'report.png', 'report-sketch.png',
+         'report-whole-run.png', 'class-index.png', 'gradescope-results.png']
 
 
 def main(source, target):

@@ -6,10 +6,10 @@ Usage: report_page_test.py --cli build/bin/clothref --source SOURCE_DIR --cache 
 Grades the corpus's 2022 reference with the mutant cloth-normal-reversed's sphere.cpp (collision
 normal reversed: Spheres::collide(Cloth*) loses points, cause collision-normal-sign) and checks:
 no console message, no network request, the stub table, the failed checks open with the named
-cause, the whole run's viewer mounted side by side with four stills that are not blank, and
+cause and a picture of the state it tried, the whole run's viewer mounted side by side with four stills that are not blank, and
 results.json's top-level output is HTML while its tests stay Markdown. Then the same results.json
 as Gradescope shows it (gradescope_page.py): the total, one block per test, the failed ones red
-with their Markdown rendered. Screenshots: report.png, report-whole-run.png, gradescope-results.png.
+with their Markdown rendered. Screenshots: report.png, report-sketch.png, report-whole-run.png, gradescope-results.png.
 """
 import glob
 import json
@@ -60,6 +60,19 @@ def main():
                           "(d) => d.querySelector('summary').textContent)")
             checks.check(len(failed) > 0 and all('collision-normal-sign' in f for f in failed),
                          f'{len(failed)} failed checks open, each naming collision-normal-sign')
+            # each failed collision check pictures the state it tried: one static SVG, drawn
+            sketches = b.js("return [...document.querySelectorAll('details.gr-check[open]')].map("
+                            "(d) => d.querySelectorAll('svg.gr-sketch').length)")
+            checks.check(sketches and all(n == 1 for n in sketches),
+                         f'a picture of the state tried in each failed check ({sketches})')
+            if sketches:
+                b.js("document.querySelector('details.gr-check[open] svg.gr-sketch')"
+                     ".scrollIntoView()")
+                sketch = browser.non_background_fraction(
+                    b.element_image('details.gr-check[open] svg.gr-sketch'))
+                checks.check(sketch > 0.02, f'the first picture is drawn ({sketch:.0%})')
+                b.save_screenshot(os.path.join(options.screenshots, 'report-sketch.png'))
+                b.js("window.scrollTo(0, 0)")
             passed = b.js("return document.querySelectorAll('details.gr-check:not([open])').length")
             checks.check(passed > 20, f'{passed} passed checks, folded')
             b.save_screenshot(os.path.join(options.screenshots, 'report.png'))

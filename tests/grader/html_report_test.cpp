@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -58,6 +60,91 @@ TEST(HtmlReport, MarkdownTablesBecomeHtmlTables) {
             "<p>before</p>\n<table>\n<tr><th>file</th><th>used</th></tr>\n"
             "<tr><td>cloth.cpp</td><td><code>a&lt;b</code></td></tr>\n"
             "<tr><td>x.cpp</td><td></td></tr>\n</table>\n<p>after</p>\n");
+}
+
+std::size_t countOf(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+// A failed collision check's state: one circle per sphere, a dot per particle, three arrows per
+// body, nothing but static SVG; a check without a sketch gets no picture.
+TEST(HtmlReport, AFailedCollisionCheckGetsASmallPictureOfTheStateTried) {
+  Sketch sketch;
+  sketch.bodies.push_back({"sphere 0",
+                           {0.1f, 0.42f, -0.05f},
+                           0.5f,
+                           {0.3f, -2, 0.1f},
+                           {0.3f, -1.98f, 0.1f},
+                           {0.3f, -2, 0.1f}});
+  sketch.bodies.push_back({"particle 312",
+                           {0, 0, 0},
+                           0,
+                           {0.2f, 0.5f, -0.1f},
+                           {-0.35f, -1.8f, 0.17f},
+                           {0.2f, 0.5f, -0.1f}});
+  const std::string svg = stateSketchSvg(sketch);
+  ASSERT_EQ(svg.rfind("<svg ", 0), 0u) << svg;
+  EXPECT_EQ(countOf(svg, "<circle "), 2u);
+  EXPECT_EQ(countOf(svg, "r=\"3\""), 1u);  // the particle's dot
+  EXPECT_EQ(countOf(svg, "<line "), 6u);
+  EXPECT_EQ(countOf(svg, "marker-end=\"url(#gr-yours)\""), 2u);
+  EXPECT_NE(svg.find(">particle 312</text>"), std::string::npos);
+  EXPECT_EQ(svg.find("<script"), std::string::npos);
+  EXPECT_EQ(svg.find("nan"), std::string::npos);
+  // a non-finite velocity loses its arrow, never the picture; a non-finite position, the picture
+  sketch.bodies[1].v_actual = {std::nanf(""), 0, 0};
+  const std::string without_arrow = stateSketchSvg(sketch);
+  EXPECT_EQ(countOf(without_arrow, "<line "), 5u);
+  EXPECT_EQ(without_arrow.find("nan"), std::string::npos);
+  sketch.bodies[1].x = {std::nanf(""), 0, 0};
+  EXPECT_EQ(stateSketchSvg(sketch), "");
+  EXPECT_EQ(stateSketchSvg(Sketch{}), "");
+
+  GradeReport report = sampleReport();
+  ASSERT_FALSE(report.tests.empty());
+  const std::string without = studentReportHtml(report, nullptr);
+  EXPECT_EQ(without.find("gr-sketch"), std::string::npos);
+  sketch.bodies.pop_back();
+  report.tests.back().sketch = sketch;
+  const std::string with = studentReportHtml(report, nullptr);
+  EXPECT_EQ(countOf(with, "<svg class=\"gr-sketch\""), 1u);
+  EXPECT_EQ(with.find("<script"), std::string::npos);
+}
+
+// A failed springs check: the grid's dots and one line per spring that differs, each kind in its
+// own style and counted in the legend; springs outside the cloth are left to the text.
+TEST(HtmlReport, AFailedSpringsCheckGetsTheGridWithTheSpringsThatDiffer) {
+  Sketch sketch;
+  sketch.grid = 4;
+  sketch.missing = {{0, 5}, {1, 6}};
+  sketch.unexpected = {{0, 2}, {3, 99}};  // 99 is outside a 4 x 4 cloth
+  sketch.differing = {{4, 5}};
+  sketch.differing_means = "wrong <label>";
+  const std::string svg = stateSketchSvg(sketch);
+  ASSERT_EQ(svg.rfind("<svg ", 0), 0u) << svg;
+  EXPECT_EQ(countOf(svg, "<circle "), 16u);
+  // one path per kind, one "M" per spring drawn
+  const auto springsDrawn = [&](const std::string& kind) {
+    const std::string start = "<path class=\"gr-" + kind + "\" d=\"";
+    const std::size_t at = svg.find(start);
+    if (at == std::string::npos) return std::size_t{0};
+    const std::size_t from = at + start.size();
+    return countOf(svg.substr(from, svg.find('"', from) - from), "M");
+  };
+  EXPECT_EQ(springsDrawn("missing"), 2u);
+  EXPECT_EQ(springsDrawn("unexpected"), 1u);
+  EXPECT_EQ(springsDrawn("differing"), 1u);
+  EXPECT_NE(svg.find("missing (2)"), std::string::npos) << svg;
+  EXPECT_NE(svg.find("only yours (2)"), std::string::npos) << svg;
+  EXPECT_NE(svg.find("wrong &lt;label&gt; (1)"), std::string::npos) << svg;
+  EXPECT_EQ(svg.find("<label>"), std::string::npos);
+  // a passed check (no grid, no bodies) and a cloth too large to draw get none
+  sketch.grid = 0;
+  EXPECT_EQ(stateSketchSvg(sketch), "");
+  sketch.grid = 1000;
+  EXPECT_EQ(stateSketchSvg(sketch), "");
 }
 
 TEST(HtmlReport, StudentReportEscapesAndKeepsEveryCheck) {

@@ -3,6 +3,7 @@
 #include <stdlib.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -82,7 +83,132 @@ const char* kReportStyle = R"(
 .gr-check pre { background: #f6f8fa; padding: 6px; overflow-x: auto; }
 )";
 
+// The opening of a sketch's <svg> and its arrow-head markers, one per colour.
+std::string sketchSvgStart(double width, double height, const char* label,
+                           const std::vector<std::pair<std::string, std::string>>& markers) {
+  std::string out = fmt::format(
+      R"(<svg class="gr-sketch" xmlns="http://www.w3.org/2000/svg" width="{0}" height="{1}" )"
+      R"(viewBox="0 0 {0} {1}" role="img" aria-label="{2}"><defs>)",
+      width, height, label);
+  for (const auto& [name, colour] : markers)
+    out += fmt::format(
+        R"(<marker id="gr-{0}" viewBox="0 0 8 8" refX="7" refY="4" markerWidth="6" )"
+        R"(markerHeight="6" orient="auto"><path d="M0,0 L8,4 L0,8 z" fill="{1}"/></marker>)",
+        name, colour);
+  return out + "</defs>";
+}
+
+std::string bodiesSvg(const std::vector<SketchBody>& bodies) {
+  constexpr double kWidth = 320, kHeight = 230, kMargin = 14, kLegend = 30;
+  // Arrow scale: the fastest velocity spans 40 % of the bodies' extent (at least 0.2 m).
+  double lo_x = 1e30, hi_x = -1e30, lo_y = 1e30, hi_y = -1e30, fastest = 0;
+  for (const SketchBody& b : bodies) {
+    if (!std::isfinite(b.x[0]) || !std::isfinite(b.x[1]) || !std::isfinite(b.radius))
+      return {};  // a body we cannot place: the text says where it was
+    lo_x = std::min(lo_x, double(b.x[0] - b.radius));
+    hi_x = std::max(hi_x, double(b.x[0] + b.radius));
+    lo_y = std::min(lo_y, double(b.x[1] - b.radius));
+    hi_y = std::max(hi_y, double(b.x[1] + b.radius));
+    for (const auto& v : {b.v, b.v_expected, b.v_actual})
+      if (std::isfinite(v[0]) && std::isfinite(v[1]))
+        fastest = std::max(fastest, std::hypot(double(v[0]), double(v[1])));
+  }
+  const double extent = std::max({hi_x - lo_x, hi_y - lo_y, 0.2});
+  const double arrow = fastest > 0 ? 0.4 * extent / fastest : 0;
+  // Room for the arrows around the bodies, then one metres-to-pixels scale for both axes.
+  lo_x -= 0.4 * extent, hi_x += 0.4 * extent, lo_y -= 0.4 * extent, hi_y += 0.4 * extent;
+  const double scale = std::min((kWidth - 2 * kMargin) / (hi_x - lo_x),
+                                (kHeight - 2 * kMargin - kLegend) / (hi_y - lo_y));
+  const auto px = [&](double x) { return kMargin + (x - lo_x) * scale; };
+  const auto py = [&](double y) { return kHeight - kLegend - kMargin - (y - lo_y) * scale; };
+  const std::array<std::pair<std::string, std::string>, 3> kinds = {
+      {{"before", "#888"}, {"course", "#2a7a2a"}, {"yours", "#c0392b"}}};
+  std::string out =
+      sketchSvgStart(kWidth, kHeight, "the state tried", {kinds.begin(), kinds.end()});
+  // Bodies first, then every arrow, then the labels: nothing hides a label or an arrow.
+  for (const SketchBody& b : bodies)
+    out += b.radius > 0
+               ? fmt::format(R"(<circle cx="{:.1f}" cy="{:.1f}" r="{:.1f}" fill="#dce8f5" )"
+                             R"(stroke="#5b7fa6" fill-opacity="0.8"/>)",
+                             px(b.x[0]), py(b.x[1]), b.radius * scale)
+               : fmt::format(R"(<circle cx="{:.1f}" cy="{:.1f}" r="3" fill="#333"/>)", px(b.x[0]),
+                             py(b.x[1]));
+  for (const SketchBody& b : bodies) {
+    const std::array<const std::array<float, 3>*, 3> velocities = {&b.v, &b.v_expected,
+                                                                   &b.v_actual};
+    for (std::size_t k = 0; k < kinds.size(); ++k) {
+      const auto& v = *velocities[k];
+      if (!std::isfinite(v[0]) || !std::isfinite(v[1])) continue;  // NaN loses its arrow only
+      out += fmt::format(R"(<line x1="{:.1f}" y1="{:.1f}" x2="{:.1f}" y2="{:.1f}" stroke="{}" )"
+                         R"svg(stroke-width="2" marker-end="url(#gr-{})"/>)svg",
+                         px(b.x[0]), py(b.x[1]), px(b.x[0] + v[0] * arrow),
+                         py(b.x[1] + v[1] * arrow), kinds[k].second, kinds[k].first);
+    }
+  }
+  // A sphere's label at its centre (its number alone where the circle is small), a particle's
+  // beside its dot.
+  for (const SketchBody& b : bodies) {
+    const bool sphere = b.radius > 0;
+    const bool roomy = b.radius * scale > 28;
+    const std::string label = sphere && !roomy ? b.label.substr(b.label.rfind(' ') + 1) : b.label;
+    out += fmt::format(R"(<text x="{:.1f}" y="{:.1f}" font-size="10" fill="#333"{}>{}</text>)",
+                       px(b.x[0]) + (sphere ? 0 : 4), py(b.x[1]) + (sphere ? 12 : -4),
+                       sphere ? R"( text-anchor="middle")" : "", pages::escapeHtml(label));
+  }
+  out += fmt::format(
+      R"(<text x="{0}" y="{1}" font-size="10"><tspan fill="#888">&#8594; velocity before</tspan> )"
+      R"(<tspan fill="#2a7a2a">&#8594; after the course's collide</tspan></text>)"
+      R"(<text x="{0}" y="{2}" font-size="10"><tspan fill="#c0392b">&#8594; after yours</tspan> )"
+      R"(<tspan fill="#555">(front view: x right, y up)</tspan></text></svg>)",
+      kMargin, kHeight - 20, kHeight - 6);
+  return out;
+}
+
+std::string springsSvg(const Sketch& sketch) {
+  const int n = sketch.grid;
+  constexpr double kSide = 260, kMargin = 12, kLegend = 48;
+  const double cell = (kSide - 2 * kMargin) / std::max(1, n - 1);
+  const auto px = [&](int index) { return kMargin + (index % n) * cell; };
+  const auto py = [&](int index) { return kMargin + (index / n) * cell; };
+  std::string out = sketchSvgStart(kSide, kSide + kLegend, "the springs that differ", {});
+  // Every particle as a dot, row 0 at the top as the course numbers them (i * n + j).
+  for (int index = 0; index < n * n; ++index)
+    out += fmt::format(R"(<circle cx="{:.1f}" cy="{:.1f}" r="1.5" fill="#999"/>)", px(index),
+                       py(index));
+  // One path per kind (a spring is "Mx yLx y"): a page stays small when every spring is wrong.
+  const auto springs = [&](const std::vector<std::array<int, 2>>& pairs, const char* kind,
+                           const char* style) {
+    std::string path;
+    for (const auto& [a, b] : pairs)
+      if (a >= 0 && b >= 0 && a < n * n && b < n * n)  // outside the cloth: only in the text
+        path += fmt::format("M{:.1f} {:.1f}L{:.1f} {:.1f}", px(a), py(a), px(b), py(b));
+    if (!path.empty())
+      out += fmt::format(R"(<path class="gr-{}" d="{}" fill="none" {}/>)", kind, path, style);
+  };
+  springs(sketch.missing, "missing",
+          R"(stroke="#2a7a2a" stroke-width="1.5" stroke-dasharray="3,2")");
+  springs(sketch.unexpected, "unexpected", R"(stroke="#c0392b" stroke-width="1.5")");
+  springs(sketch.differing, "differing", R"(stroke="#d68910" stroke-width="2")");
+  out += fmt::format(
+      R"(<text x="{0}" y="{1}" font-size="10"><tspan fill="#2a7a2a">- - missing ({4})</tspan> )"
+      R"(<tspan fill="#c0392b">&#8212; only yours ({5})</tspan></text>)"
+      R"(<text x="{0}" y="{2}" font-size="10" fill="#d68910">&#8212; {6} ({7})</text>)"
+      R"(<text x="{0}" y="{3}" font-size="10" fill="#555">{8} x {8} cloth, row 0 at the top</text>)"
+      R"(</svg>)",
+      kMargin, kSide + kLegend - 34, kSide + kLegend - 20, kSide + kLegend - 6,
+      sketch.missing.size(), sketch.unexpected.size(), pages::escapeHtml(sketch.differing_means),
+      sketch.differing.size(), n);
+  return out;
+}
+
 }  // namespace
+
+std::string stateSketchSvg(const Sketch& sketch) {
+  if (!sketch.bodies.empty()) return bodiesSvg(sketch.bodies);
+  // A grid past this size would be dots only; the text lists the springs.
+  if (sketch.grid >= 2 && sketch.grid <= 100) return springsSvg(sketch);
+  return {};
+}
 
 std::string markdownToHtml(std::string_view markdown) {
   std::string out;
@@ -281,7 +407,7 @@ std::string studentReportHtml(const GradeReport& report,
                              : " \xE2\x80\x94 " + number(t.score) + " / " + number(t.max_score));
     for (const std::string& cause : t.diagnoses)
       body += "<span class=\"gr-cause\">" + e(cause) + "</span>";
-    body += "</summary>\n" + markdownToHtml(t.output) + "</details>\n";
+    body += "</summary>\n" + stateSketchSvg(t.sketch) + markdownToHtml(t.output) + "</details>\n";
   }
   std::string viewer;
   if (!whole_run_view.is_null()) {

@@ -49,6 +49,15 @@ std::string studentReportHtml(const GradeReport& report,
 // their Markdown outputs.
 nlohmann::ordered_json withHtmlSummary(nlohmann::ordered_json results, const GradeReport& report);
 
+// The state a failed check tried, as a small static SVG (no script, no text from the student);
+// "" for an empty sketch. A collision check: the bodies seen from the front (x right, y up),
+// spheres as circles, cloth particles as dots, and from each body its velocity before the call
+// (grey), after the course's collide (green) and after the student's (red), all arrows on one
+// scale. A springs check: the n x n cloth as dots, row 0 at the top, and the springs the course
+// has and the student lacks (green, dashed), that only the student has (red), and that differ
+// (orange).
+std::string stateSketchSvg(const Sketch& sketch);
+
 // The grader's Markdown (paragraphs, "- " lists, "| a | b |" tables, ``` blocks, `code`, **bold**)
 // as HTML; every
 // character of the text is escaped first, so nothing in it becomes markup of its own.

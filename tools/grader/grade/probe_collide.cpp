@@ -387,6 +387,21 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
                   ", v " + util::vec3(ve.col(index)) + "\n  - actual   x " +
                   util::vec3(xa.col(index)) + ", v " + util::vec3(va.col(index)) + "\n";
     };
+    const auto sketch = [&](const std::string& label, const Mat4X<float>& x0,
+                            const Mat4X<float>& v0, float radius, const Mat4X<float>& ve,
+                            const Mat4X<float>& va, int q) {
+      const auto xyz = [q](const Mat4X<float>& m) {
+        return std::array<float, 3>{m(0, q), m(1, q), m(2, q)};
+      };
+      t.sketch.bodies.push_back({label, xyz(x0), radius, xyz(v0), xyz(ve), xyz(va)});
+    };
+    for (int q : c.spheres)
+      sketch("sphere " + std::to_string(q), c.state.spheres.particles.position,
+             c.state.spheres.particles.velocity, c.state.spheres.radius[q], expected.sphere_v,
+             actual.sphere_v, q);
+    for (int q : c.particles)
+      sketch("particle " + std::to_string(q), c.state.cloth.particles.position,
+             c.state.cloth.particles.velocity, 0, expected.cloth_v, actual.cloth_v, q);
     for (int q : c.spheres)
       line("sphere", q, c.state.spheres.particles.position, c.state.spheres.particles.velocity,
            c.state.spheres.particles.mass[q], expected.sphere_x, expected.sphere_v, actual.sphere_x,

@@ -89,10 +89,18 @@ struct Comparison {
   std::map<int, std::vector<double>> rest_ratio_by_type;  // student / reference rest, per ref type
   std::map<std::pair<int, int>, int> label_swaps;         // (ref type, student type) -> count
   std::vector<std::string> diagnoses;
+  Sketch connections_sketch, rest_sketch, type_sketch;  // the pairs behind each count, drawn
 };
 
 Comparison compare(const SpringSet& student, const SpringSet& reference, int n, double rest_rel) {
   Comparison c;
+  for (Sketch* sketch : {&c.connections_sketch, &c.rest_sketch, &c.type_sketch}) sketch->grid = n;
+  c.connections_sketch.differing_means = "pushed more than once";
+  c.rest_sketch.differing_means = "wrong rest length";
+  c.type_sketch.differing_means = "wrong type label";
+  const auto pairOf = [](std::pair<int, int> pair) {
+    return std::array<int, 2>{pair.first, pair.second};
+  };
   for (const auto& [pair, entries] : reference.pairs) {
     const std::string fam = family(pair, n);
     ++c.family_size[fam];
@@ -100,6 +108,7 @@ Comparison compare(const SpringSet& student, const SpringSet& reference, int n, 
     if (it == student.pairs.end()) {
       ++c.missing;
       ++c.missing_by_family[fam];
+      c.connections_sketch.missing.push_back(pairOf(pair));
       if (c.connection_examples.size() < 3)
         c.connection_examples.push_back("missing: " + pairText(pair, n) + ", a " + fam + " spring");
       continue;
@@ -107,6 +116,7 @@ Comparison compare(const SpringSet& student, const SpringSet& reference, int n, 
     ++c.matched;
     if (it->second.size() > 1) {
       c.duplicates += static_cast<int>(it->second.size()) - 1;
+      c.connections_sketch.differing.push_back(pairOf(pair));
       if (c.connection_examples.size() < 3)
         c.connection_examples.push_back("pushed " + std::to_string(it->second.size()) +
                                         " times: " + pairText(pair, n));
@@ -116,6 +126,7 @@ Comparison compare(const SpringSet& student, const SpringSet& reference, int n, 
     c.rest_ratio_by_type[ref_type].push_back(double(rest) / double(ref_rest));
     if (!(std::abs(double(rest) - double(ref_rest)) <= rest_rel * double(ref_rest))) {
       ++c.wrong_rest;
+      c.rest_sketch.differing.push_back(pairOf(pair));
       if (c.rest_examples.size() < 3)
         c.rest_examples.push_back(pairText(pair, n) + " (" + kTypeNames[ref_type] +
                                   "): expected rest length " + util::num(ref_rest) + ", got " +
@@ -124,6 +135,7 @@ Comparison compare(const SpringSet& student, const SpringSet& reference, int n, 
     if (type != ref_type) {
       ++c.wrong_type;
       ++c.label_swaps[{ref_type, type}];
+      c.type_sketch.differing.push_back(pairOf(pair));
       if (c.type_examples.size() < 3)
         c.type_examples.push_back(pairText(pair, n) + ": expected " + kTypeNames[ref_type] +
                                   ", got " + (type >= 0 && type < 3 ? kTypeNames[type] : "?"));
@@ -132,6 +144,7 @@ Comparison compare(const SpringSet& student, const SpringSet& reference, int n, 
   for (const auto& [pair, entries] : student.pairs) {
     if (reference.pairs.count(pair)) continue;
     c.extra += static_cast<int>(entries.size());
+    c.connections_sketch.unexpected.push_back(pairOf(pair));
     const std::string fam = family(pair, n);
     ++c.extra_by_family[fam.empty() ? "not a grid neighbour of any type" : fam];
     if (c.connection_examples.size() < 4)
@@ -233,6 +246,7 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
       for (const auto& id : c.diagnoses)
         if (id == "missing-springs" || id == "duplicate-springs" || id == "wrong-spring-endpoints")
           connections.diagnoses.push_back(id);
+      connections.sketch = c.connections_sketch;
     } else {
       connections.output = "All " + std::to_string(reference.count) +
                            " springs connect the right particles (order ignored).";
@@ -252,6 +266,7 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
       for (const auto& id : c.diagnoses)
         if (id == "shear-rest-length" || id == "bend-rest-length" || id == "approximate-sqrt2")
           rest.diagnoses.push_back(id);
+      if (c.wrong_rest) rest.sketch = c.rest_sketch;
     } else {
       rest.output = "Every spring's rest length matches the initial distance of its ends.";
     }
@@ -268,7 +283,10 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
             (swap.second >= 0 && swap.second < 3 ? kTypeNames[swap.second] : "?") + "\n";
       for (const auto& e : c.type_examples) labels.output += "- e.g. " + e + "\n";
       labels.output += causes(context, c.diagnoses, {"swapped-spring-types"});
-      if (c.wrong_type) labels.diagnoses.push_back("swapped-spring-types");
+      if (c.wrong_type) {
+        labels.diagnoses.push_back("swapped-spring-types");
+        labels.sketch = c.type_sketch;
+      }
     } else {
       labels.output = "Every spring has the right type label.";
     }
@@ -315,6 +333,11 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
                        std::to_string(c.wrong_rest) + " wrong rest lengths, " +
                        std::to_string(c.wrong_type) + " wrong labels.\n\n";
         for (const auto& e : c.connection_examples) small.output += "- " + e + "\n";
+        small.sketch = c.connections_sketch;
+        small.sketch.differing_means = "duplicated, wrong rest length or label";
+        for (const Sketch* more : {&c.rest_sketch, &c.type_sketch})
+          small.sketch.differing.insert(small.sketch.differing.end(), more->differing.begin(),
+                                        more->differing.end());
         if (big_ok) {
           small.output += "\n" + context.catalogue->cause("hard-coded-n25") + "\n";
           small.diagnoses.push_back("hard-coded-n25");

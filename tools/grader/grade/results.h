@@ -2,6 +2,7 @@
 // report for a submission. Plain data; the writers (report.h) turn it into results.json, JUnit
 // and Markdown.
 #pragma once
+#include <array>
 #include <map>
 #include <string>
 #include <vector>
@@ -66,6 +67,30 @@ inline std::vector<std::string> stubsOfFile(const std::string& file) {
   return stubs;
 }
 
+// One body of the state a failed collision check set up, for the report's small picture.
+struct SketchBody {
+  std::string label;                  // "sphere 0", "particle 312"
+  std::array<float, 3> x{};           // position before the call, m
+  float radius = 0;                   // m; 0 for a cloth particle (drawn as a dot)
+  std::array<float, 3> v{};           // velocity before the call, m/s
+  std::array<float, 3> v_expected{};  // after the course's collide, m/s
+  std::array<float, 3> v_actual{};    // after the student's, m/s
+};
+
+// The state a failed check tried, as data for the HTML report's small picture (html_report.h
+// draws it); empty for a check that passed or has nothing to draw.
+struct Sketch {
+  // A collision check: the bodies it set up.
+  std::vector<SketchBody> bodies;
+  // A springs check: an n x n cloth (grid = n, 0 = none) and the springs, as (lower, higher)
+  // particle indices (row-major), that the course has and the student lacks, that only the
+  // student has, and that both have but differ in rest length or type label.
+  int grid = 0;
+  std::vector<std::array<int, 2>> missing, unexpected, differing;
+  std::string differing_means = "differs";  // legend of `differing`: "wrong rest length", ...
+  bool empty() const { return bodies.empty() && grid == 0; }
+};
+
 struct TestResult {
   std::string stub;            // course name of the stub, e.g. "RungeKuttaFourth::integrate"
   std::string check;           // what is checked, e.g. "convergence order"
@@ -76,6 +101,7 @@ struct TestResult {
   bool informational = false;  // never scored (e.g. the whole-run comparison)
   std::string output;          // Markdown: state tried, expected vs actual, likely cause
   std::vector<std::string> diagnoses;  // catalogue ids named in the output
+  Sketch sketch;                       // the state tried, when a collision or springs check failed
   std::string name() const { return stub + ": " + check; }
   bool passed() const { return fraction >= 1.0; }
 };
