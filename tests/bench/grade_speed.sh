@@ -24,9 +24,9 @@ trap 'rm -rf "$work"' EXIT
 
 # 1. The 30 distinct submissions.
 "$root/tests/bench/make_corpus_batch.sh" "$work/subs" --distinct
-count=$(ls "$work/subs" | wc -l)
+count=$(find "$work/subs" -mindepth 1 -maxdepth 1 -type d | wc -l)
 distinct=$(md5sum "$work"/subs/*/*.cpp | cut -d' ' -f1 | sort -u | wc -l)
-files=$(ls "$work"/subs/*/*.cpp | wc -l)
+files=$(find "$work/subs" -mindepth 2 -maxdepth 2 -name "*.cpp" | wc -l)
 echo "submissions: $count, files: $files, distinct files: $distinct"
 [ "$distinct" -eq "$files" ] || { echo "grade_speed: two submissions share a file" >&2; exit 1; }
 
@@ -35,7 +35,7 @@ now() { date +%s.%N; }
 median() { python3 -c 'import statistics,sys; print(f"{statistics.median(map(float,sys.argv[1:])):.2f}")' "$@"; }
 
 # 2. One submission, cold then cached.
-one=$work/subs/$(ls "$work/subs" | grep 2024-reference)
+one=$(echo "$work"/subs/*2024-reference)
 cold=() cached=()
 for r in $(seq "$single_runs"); do
   rm -rf "$work/cache"

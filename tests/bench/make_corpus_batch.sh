@@ -11,7 +11,8 @@ corpus=$root/tests/grader/submissions
 out=$1
 distinct=${2:-}
 n=0
-names=$(cd "$corpus" && { ls -d 2024/*/ | head -13; ls -d 2022/*/ | head -17; } | sed 's:/$::')
+names=$(cd "$corpus" && { printf '%s\n' 2024/*/ | head -13; printf '%s\n' 2022/*/ | head -17; } |
+  sed 's:/$::')
 for name in $names; do
   n=$((n + 1))
   target=$out/$(printf '%02d' "$n")-${name//\//-}
