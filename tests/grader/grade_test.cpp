@@ -5,12 +5,17 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <stdexcept>
 
 #include "corpus.h"
 #include "grader/grade/grade.h"
@@ -121,6 +126,60 @@ INSTANTIATE_TEST_SUITE_P(Submissions, Corpus, ::testing::ValuesIn(corpusCases())
                              if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
                            return name;
                          });
+
+// A group that runs long (a loop until its time limit) holds one worker, never the groups behind
+// it: here the first group waits for the last to run, which a pool that waits for its oldest job
+// before starting the next never lets happen (the wait would end on its 20 s bound, unreleased).
+TEST(ProbeGroups, ALongGroupDoesNotHoldBackTheGroupsBehindIt) {
+  std::mutex mutex;
+  std::condition_variable changed;
+  bool last_ran = false;
+  std::vector<grader::ProbeGroup> groups;
+  groups.push_back({"first", {}, [&](const grader::ProbeContext&) {
+                      std::unique_lock<std::mutex> lock(mutex);
+                      const bool released = changed.wait_for(lock, std::chrono::seconds(20),
+                                                             [&] { return last_ran; });
+                      return std::vector<grader::TestResult>{
+                          grader::makeTest("first", released ? "released" : "held", 1)};
+                    }});
+  for (const char* name : {"second", "third", "skipped", "last"})
+    groups.push_back({name, {}, [&, name](const grader::ProbeContext&) {
+                        if (std::string(name) == "last") {
+                          std::lock_guard<std::mutex> lock(mutex);
+                          last_ran = true;
+                          changed.notify_all();
+                        }
+                        return std::vector<grader::TestResult>{grader::makeTest(name, "ran", 1)};
+                      }});
+  const auto results =
+      grader::runProbeGroups(groups, grader::ProbeContext{}, {{"skipped", "no file"}}, 2);
+  ASSERT_EQ(results.size(), groups.size());
+  ASSERT_EQ(results[0].size(), 1u);
+  EXPECT_EQ(results[0][0].check, "released");
+  EXPECT_TRUE(results[3].empty());  // unavailable: not run
+  for (std::size_t g : {1u, 2u, 4u}) {
+    ASSERT_EQ(results[g].size(), 1u) << g;
+    EXPECT_EQ(results[g][0].stub, groups[g].stub);
+  }
+}
+
+// An exception a group throws reaches the caller once every group has ended.
+TEST(ProbeGroups, AnExceptionReachesTheCallerAfterEveryGroupEnded) {
+  std::atomic<int> ran{0};
+  std::vector<grader::ProbeGroup> groups;
+  groups.push_back(
+      {"throws", {}, [&](const grader::ProbeContext&) -> std::vector<grader::TestResult> {
+         ++ran;
+         throw std::runtime_error("no fork");
+       }});
+  for (int k = 0; k < 3; ++k)
+    groups.push_back({"fine", {}, [&](const grader::ProbeContext&) {
+                        ++ran;
+                        return std::vector<grader::TestResult>{};
+                      }});
+  EXPECT_THROW(grader::runProbeGroups(groups, grader::ProbeContext{}, {}, 2), std::runtime_error);
+  EXPECT_EQ(ran.load(), 4);
+}
 
 // The whole-run check is information only, and the reference reproduces clothref bit for bit.
 TEST(WholeRun, ReferenceIsIdenticalToClothrefAndNeverScored) {

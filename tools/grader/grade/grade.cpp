@@ -3,12 +3,14 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
+#include <exception>
 #include <fstream>
-#include <future>
 #include <random>
 #include <regex>
 #include <set>
+#include <thread>
 
 #include "clothref/io/error.h"
 #include "clothref/io/files.h"
@@ -174,25 +176,6 @@ std::map<std::string, std::string> unavailableStubs(const std::vector<UsedFile>&
 
 // Runs the probe groups of stubs that can run, `jobs` at a time (each group is its own child
 // processes); results in the groups' order whatever order they finish in.
-std::vector<std::vector<TestResult>> runProbeGroups(
-    const std::vector<ProbeGroup>& groups, const ProbeContext& context,
-    const std::map<std::string, std::string>& unavailable, int jobs) {
-  std::vector<std::vector<TestResult>> results(groups.size());
-  std::vector<std::future<void>> running;
-  for (std::size_t g = 0; g < groups.size(); ++g) {
-    const bool skip = !groups[g].stub.empty() && unavailable.count(groups[g].stub);
-    if (skip) continue;
-    if (static_cast<int>(running.size()) >= std::max(1, jobs)) {
-      running.front().get();
-      running.erase(running.begin());
-    }
-    running.push_back(
-        std::async(std::launch::async, [&, g] { results[g] = groups[g].run(context); }));
-  }
-  for (auto& r : running) r.get();
-  return results;
-}
-
 // The planned tests of unavailable stubs: zero points, the compile verdict as their output.
 std::vector<TestResult> unavailableTests(int edition,
                                          const std::map<std::string, std::string>& unavailable) {
@@ -253,6 +236,32 @@ void keepWork(const fs::path& scratch, const fs::path& keep_work, GradeReport& r
 }
 
 }  // namespace
+
+std::vector<std::vector<TestResult>> runProbeGroups(
+    const std::vector<ProbeGroup>& groups, const ProbeContext& context,
+    const std::map<std::string, std::string>& unavailable, int jobs) {
+  std::vector<std::vector<TestResult>> results(groups.size());
+  std::vector<std::exception_ptr> errors(groups.size());
+  // `jobs` workers take the groups in order, each the next one as soon as it is free: a group that
+  // runs into its time limit holds one worker, never the start of the groups behind it.
+  std::atomic<std::size_t> next{0};
+  const auto worker = [&] {
+    for (std::size_t g = next++; g < groups.size(); g = next++) {
+      if (!groups[g].stub.empty() && unavailable.count(groups[g].stub)) continue;
+      try {
+        results[g] = groups[g].run(context);
+      } catch (...) {
+        errors[g] = std::current_exception();
+      }
+    }
+  };
+  std::vector<std::thread> workers;
+  for (int k = 0; k < std::max(1, jobs); ++k) workers.emplace_back(worker);
+  for (std::thread& w : workers) w.join();
+  for (const std::exception_ptr& error : errors)
+    if (error) std::rethrow_exception(error);
+  return results;
+}
 
 GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
   const auto start = std::chrono::steady_clock::now();

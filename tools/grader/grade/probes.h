@@ -62,6 +62,13 @@ struct ProbeGroup {
 };
 std::vector<ProbeGroup> probeGroups(int edition, bool whole_run);
 
+// Runs the groups on `jobs` workers, in order, each worker taking the next group when it is free;
+// groups whose stub is in `unavailable` are skipped (their results stay empty). Results by group,
+// in the groups' order; an exception a group throws is rethrown once all have ended.
+std::vector<std::vector<TestResult>> runProbeGroups(
+    const std::vector<ProbeGroup>& groups, const ProbeContext& context,
+    const std::map<std::string, std::string>& unavailable, int jobs);
+
 // The folders under the work dir that the probes run their children in (one child each), with
 // the stub each grades ("" = information only), in run order: the group names, the springs'
 // second size and each integrator with its course-size retry. The sanitizer reads their stderr.
