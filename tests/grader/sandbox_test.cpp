@@ -113,6 +113,25 @@ TEST(Isolation, DescriptionsSayWhatRan) {
 }
 
 // Each TEST runs in its own process under ctest, so the cached detection sees this variable.
+// Whether the compilers' uid can open the folders a compile needs: a folder only root may enter
+// is named; open ones pass. Needs root (to drop to another uid), as the grader's check does.
+TEST(ReadableAs, NamesTheFirstFolderTheUidCannotOpen) {
+  if (geteuid() != 0) GTEST_SKIP() << "needs root to drop to uid 65534";
+  test::TempDir temp;
+  const fs::path closed = temp.path() / "closed";
+  fs::create_directories(closed);
+  fs::permissions(closed, fs::perms::owner_all, fs::perm_options::replace);
+  fs::permissions(temp.path(),
+                  fs::perms::owner_all | fs::perms::others_exec | fs::perms::group_exec,
+                  fs::perm_options::replace);
+  std::string failed;
+  EXPECT_TRUE(readableAs(65534, {"/", "/usr"}, &failed)) << failed;
+  EXPECT_FALSE(readableAs(65534, {"/usr", closed, "/"}, &failed));
+  EXPECT_EQ(failed, closed.string());
+  EXPECT_FALSE(readableAs(65534, {temp.path() / "missing"}, &failed));
+  EXPECT_EQ(failed, (temp.path() / "missing").string());
+}
+
 TEST(DetectIsolation, TheVariableForcesTheFallback) {
   setenv("CLOTHREF_GRADER_ISOLATION", "rlimits", 1);
   const Isolation isolation = detectIsolation();

@@ -13,9 +13,11 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <functional>
 #include <mutex>
 #include <optional>
 #include <regex>
+#include <stdexcept>
 
 #include "child_process.h"
 #include "clothref/io/error.h"
@@ -72,38 +74,46 @@ bool canMakePidNamespace() {
   return WIFEXITED(status) && WEXITSTATUS(status) == 0;
 }
 
-}  // namespace
-
-std::string whyNoPrivateMountNamespace() {
+// What a forked child finds out: `in_child` runs in the child (which exits right after) and
+// returns one byte; nullopt when the child could not be started or died before answering.
+std::optional<unsigned char> askChild(const std::function<unsigned char()>& in_child) {
   int channel[2];
-  if (pipe(channel) != 0) return "pipe failed";
+  if (pipe(channel) != 0) return std::nullopt;
   const pid_t pid = fork();
   if (pid < 0) {
     close(channel[0]);
     close(channel[1]);
-    return "fork failed";
+    return std::nullopt;
   }
   if (pid == 0) {
     close(channel[0]);
-    // 1: unshare refused (no CAP_SYS_ADMIN), 2: "/" is no mount point (a chroot).
-    unsigned char failed = 0;
-    if (unshare(CLONE_NEWNS) != 0)
-      failed = 1;
-    else if (mount("none", "/", nullptr, MS_REC | MS_PRIVATE, nullptr) != 0)
-      failed = 2;
-    (void)!write(channel[1], &failed, 1);
+    const unsigned char answer = in_child();
+    (void)!write(channel[1], &answer, 1);
     _exit(0);
   }
   close(channel[1]);
-  unsigned char failed = 3;
-  const bool answered = read(channel[0], &failed, 1) == 1;
+  unsigned char answer = 0;
+  const bool answered = read(channel[0], &answer, 1) == 1;
   close(channel[0]);
   int status = 0;
   while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
-  if (!answered) return "the check could not run";
-  if (failed == 1) return "unshare(CLONE_NEWNS) is not allowed";
-  if (failed == 2) return "\"/\" is not a mount point (a chroot?)";
+  if (!answered) return std::nullopt;
+  return answer;
+}
+
+}  // namespace
+
+std::string whyNoPrivateMountNamespace() {
+  // 1: unshare refused (no CAP_SYS_ADMIN), 2: "/" is no mount point (a chroot).
+  const auto failed = askChild([]() -> unsigned char {
+    if (unshare(CLONE_NEWNS) != 0) return 1;
+    if (mount("none", "/", nullptr, MS_REC | MS_PRIVATE, nullptr) != 0) return 2;
+    return 0;
+  });
+  if (!failed) return "the check could not run";
+  if (*failed == 1) return "unshare(CLONE_NEWNS) is not allowed";
+  if (*failed == 2) return "\"/\" is not a mount point (a chroot?)";
   return "";
 }
 
@@ -261,38 +271,24 @@ std::string Isolation::describe() const {
 }
 
 bool readableAs(int uid, const std::vector<fs::path>& folders, std::string* failed) {
-  int channel[2];
-  if (pipe(channel) != 0) return false;
-  const pid_t pid = fork();
-  if (pid < 0) {
-    close(channel[0]);
-    close(channel[1]);
-    return false;
-  }
-  if (pid == 0) {
-    close(channel[0]);
-    if (setgid(static_cast<gid_t>(uid)) != 0 || setuid(static_cast<uid_t>(uid)) != 0) _exit(2);
+  // The child answers the index of the first folder the uid cannot open, folders.size() when it
+  // opens them all (a handful: the course, reference, driver, prebuilt and cache folders), or
+  // kNoUid when it cannot become the uid.
+  constexpr unsigned char kNoUid = 255;
+  if (folders.size() >= kNoUid) throw std::logic_error("readableAs: too many folders");
+  const auto first_closed = askChild([&]() -> unsigned char {
+    if (setgid(static_cast<gid_t>(uid)) != 0 || setuid(static_cast<uid_t>(uid)) != 0) return kNoUid;
     for (std::size_t k = 0; k < folders.size(); ++k) {
       const int fd = open(folders[k].c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-      if (fd < 0) {
-        const unsigned char index = static_cast<unsigned char>(k);
-        (void)!write(channel[1], &index, 1);
-        _exit(1);
-      }
+      if (fd < 0) return static_cast<unsigned char>(k);
       close(fd);
     }
-    _exit(0);
-  }
-  close(channel[1]);
-  unsigned char index = 0;
-  const bool named = read(channel[0], &index, 1) == 1;
-  close(channel[0]);
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
-  const bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
+    return static_cast<unsigned char>(folders.size());
+  });
+  const bool ok = first_closed && *first_closed == folders.size();
   if (!ok && failed)
-    *failed = named && index < folders.size() ? folders[index].string() : "(could not try)";
+    *failed = first_closed && *first_closed < folders.size() ? folders[*first_closed].string()
+                                                             : "(could not try)";
   return ok;
 }
 
