@@ -167,7 +167,7 @@ Spread collideNanoseconds(const std::vector<World<float>>& snapshots, bool use_f
         fast::collideSpheresWithCloth<float>(
             {s.position.data(), s.velocity.data(), s.inverse_mass.data(), w.spheres->radius.data(),
              s.size(), c.position.data(), c.velocity.data(), c.inverse_mass.data(), c.size()},
-            physics.restitution_cloth, physics.correction, w.execution.simd);
+            physics.restitution_cloth, physics.correction, w.execution.simd, w.execution.contacts);
       else
         collide(*w.spheres, *w.cloth, physics.restitution_cloth, physics.correction);
       pairs += std::int64_t(s.size()) * c.size();
