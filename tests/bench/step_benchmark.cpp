@@ -88,7 +88,7 @@ void collideOver(benchmark::State& state, bool use_fast) {
         fast::collideSpheresWithCloth<float>(
             {s.position.data(), s.velocity.data(), s.inverse_mass.data(), w.spheres->radius.data(),
              s.size(), c.position.data(), c.velocity.data(), c.inverse_mass.data(), c.size()},
-            physics.restitution_cloth, physics.correction, w.execution.simd);
+            physics.restitution_cloth, physics.correction, w.execution.simd, w.execution.contacts);
       } else {
         collide(*w.spheres, *w.cloth, physics.restitution_cloth, physics.correction);
       }

@@ -56,12 +56,14 @@ long expectSameBits(const Spheres<T>& spheres, const Cloth<T>& cloth, T restitut
   Spheres<T> oracle_spheres = spheres;
   Cloth<T> oracle_cloth = cloth;
   collide(oracle_spheres, oracle_cloth, restitution, T(0.15));
+  // one workspace per path for the whole test program, reused across cloth sizes as a world's is
+  static fast::ContactWorkspace workspaces[std::size(fast::kAllSimdPaths)];
   long tested = -1;
   for (fast::SimdPath path : supportedPaths()) {
     Spheres<T> fast_spheres = spheres;
     Cloth<T> fast_cloth = cloth;
-    const long path_tested = fast::collideSpheresWithCloth(contactBodies(fast_spheres, fast_cloth),
-                                                           restitution, T(0.15), path);
+    const long path_tested = fast::collideSpheresWithCloth(
+        contactBodies(fast_spheres, fast_cloth), restitution, T(0.15), path, workspaces[int(path)]);
     EXPECT_EQ(differingBits(fast_spheres.particles, oracle_spheres.particles), 0)
         << fast::simdPathName(path);
     EXPECT_EQ(differingBits(fast_cloth.particles, oracle_cloth.particles), 0)
@@ -152,6 +154,44 @@ TYPED_TEST(SphereClothContacts, NonFiniteStatesMatchTheOracle) {
   cloth.particles.position(0, 20) = std::numeric_limits<T>::infinity();
   spheres.particles.position(2, 1) = std::numeric_limits<T>::quiet_NaN();
   expectSameBits(spheres, cloth, T(0));
+}
+
+TYPED_TEST(SphereClothContacts, NonFiniteWLanesMatchTheOracle) {
+  // the float filter folds w into x, y and z (x + w * 0) instead of squaring it: a NaN or infinite
+  // w must still reach the exact test, which takes a NaN length as a contact
+  using T = TypeParam;
+  for (T bad : {std::numeric_limits<T>::quiet_NaN(), std::numeric_limits<T>::infinity(),
+                -std::numeric_limits<T>::infinity()}) {
+    std::mt19937_64 random(11);
+    Spheres<T> spheres;
+    Cloth<T> cloth;
+    randomScene(random, 9, 2, spheres, cloth);
+    // far from both spheres, so only the w lane can make these pairs reach the exact test
+    cloth.particles.position.col(3) = Vec4<T>(T(50), T(50), T(50), bad);
+    cloth.particles.position.col(70) = Vec4<T>(T(-50), T(50), T(50), bad);
+    SCOPED_TRACE(::testing::Message() << "cloth w " << bad);
+    expectSameBits(spheres, cloth, T(0.8));
+    spheres.particles.position(3, 1) = bad;
+    SCOPED_TRACE("and sphere 1's w");
+    expectSameBits(spheres, cloth, T(0.8));
+  }
+}
+
+TYPED_TEST(SphereClothContacts, LongRunsOfTouchingPairsMatchTheOracle) {
+  // touching pairs one after another, in full filter blocks and the last, partial one: a sphere
+  // under a flat cloth reaching every particle at first; each contact moves the centre down, so
+  // the filter re-flags after each (about 40 of 64 to 108 of 529 pairs touch)
+  using T = TypeParam;
+  std::mt19937_64 random(13);
+  for (int n : {8, 11, 16, 23}) {
+    Spheres<T> spheres;
+    Cloth<T> cloth;
+    randomScene(random, n, 1, spheres, cloth);
+    spheres.radius[0] = T(3.5);
+    spheres.particles.position.col(0) = Vec4<T>(T(0), T(-2.5), T(0), T(0));
+    SCOPED_TRACE(::testing::Message() << n << " x " << n);
+    EXPECT_GT(expectSameBits(spheres, cloth, T(0.8)), 2 * n);  // more than two cloth rows' worth
+  }
 }
 
 TYPED_TEST(SphereClothContacts, FarPairsAreSkipped) {

@@ -144,9 +144,10 @@ Spread springNanoseconds(const std::vector<World<float>>& snapshots, bool use_fa
 }
 
 // Nanoseconds per sphere-particle pair of one sphere-cloth collide, averaged over the snapshots
-// (all restored before each repetition's timed pass).
+// (all restored before each repetition's timed pass), on `path` (not the snapshots' own path,
+// which is the process default).
 Spread collideNanoseconds(const std::vector<World<float>>& snapshots, bool use_fast,
-                          int repetitions) {
+                          fast::SimdPath path, int repetitions) {
   std::vector<double> samples;
   if (snapshots.empty() || !snapshots[0].cloth || !snapshots[0].spheres) return {};
   std::vector<World<float>> work = snapshots;
@@ -167,7 +168,7 @@ Spread collideNanoseconds(const std::vector<World<float>>& snapshots, bool use_f
         fast::collideSpheresWithCloth<float>(
             {s.position.data(), s.velocity.data(), s.inverse_mass.data(), w.spheres->radius.data(),
              s.size(), c.position.data(), c.velocity.data(), c.inverse_mass.data(), c.size()},
-            physics.restitution_cloth, physics.correction, w.execution.simd);
+            physics.restitution_cloth, physics.correction, path, w.execution.contacts);
       else
         collide(*w.spheres, *w.cloth, physics.restitution_cloth, physics.correction);
       pairs += std::int64_t(s.size()) * c.size();
@@ -219,7 +220,7 @@ Figures measure(const Scene& scene, double duration, bool use_fast, fast::SimdPa
         stepMicroseconds(scene, duration, method, use_fast, path, threads, repetitions);
   const std::vector<World<float>> snapshots = runSnapshots(scene, duration);
   figures.spring_ns = springNanoseconds(snapshots, use_fast, path, threads, repetitions);
-  figures.collide_ns_per_pair = collideNanoseconds(snapshots, use_fast, repetitions);
+  figures.collide_ns_per_pair = collideNanoseconds(snapshots, use_fast, path, repetitions);
   for (int n : kGridSizes)
     figures.spring_ns_by_n[n] = gridSpringNanoseconds(scene, n, use_fast, path, 1, repetitions);
   return figures;

@@ -74,7 +74,7 @@ void simulateOneStep(World<T>& world) {
           s.size(),          c.position.data(), c.velocity.data(),     c.inverse_mass.data(),
           c.size()};
       fast::collideSpheresWithCloth(contact, physics.restitution_cloth, physics.correction,
-                                    execution.simd);
+                                    execution.simd, execution.contacts);
     } else {
       collide(*world.spheres, *world.cloth, physics.restitution_cloth, physics.correction);
     }

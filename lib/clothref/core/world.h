@@ -50,6 +50,7 @@ struct Execution {
   int threads = 1;    // spring sweep threads; only grids of N >= 100 use more
   bool grid = false;  // the cloth's springs are the course grid's stencils
   fast::GridSpringWorkspace<T> springs;
+  fast::ContactWorkspace contacts;  // the sphere-cloth contact filter's copy of the positions
   std::shared_ptr<fast::ThreadPool> pool;  // when threads > 1 and the grid is big enough
   bool prepared = false;                   // grid detection and buffers done (setExecution)
 };

@@ -1,49 +1,46 @@
-// The contact filter on AVX2: two particles (4 lanes each) per instruction, eight per loop.
+// The contact filter on AVX2: eight particles per instruction.
 #include <immintrin.h>
-
-#include "clothref/fast/contact_filter.h"
-
-namespace clothref::fast {
 
 namespace {
 
-// Lane 0 of each 128-bit half gets (x^2 + z^2) + (y^2 + w^2) of c - x for two particles.
-inline __m256 squaredDistances(__m256 c, const float* x) {
-  const __m256 n = _mm256_sub_ps(c, _mm256_loadu_ps(x));
-  const __m256 squares = _mm256_mul_ps(n, n);
-  const __m256 pairs = _mm256_add_ps(squares, _mm256_permute_ps(squares, 0x4E));  // x+z, y+w
-  return _mm256_add_ps(pairs, _mm256_permute_ps(pairs, 0xB1));
-}
-
-// Bits 0 and 4 of the sign mask: the lane-0 results of the two particles.
-constexpr int kParticleLanes = 0x11;
+struct Batch {
+  static constexpr int kLanes = 8;
+  using V = __m256;
+  static V load(const float* p) { return _mm256_loadu_ps(p); }
+  static void store(float* p, V v) { _mm256_storeu_ps(p, v); }
+  static V broadcast(float a) { return _mm256_set1_ps(a); }
+  static V add(V a, V b) { return _mm256_add_ps(a, b); }
+  static V sub(V a, V b) { return _mm256_sub_ps(a, b); }
+  static V mul(V a, V b) { return _mm256_mul_ps(a, b); }
+  static unsigned notGreater(V a, V b) {
+    return unsigned(_mm256_movemask_ps(_mm256_cmp_ps(a, b, _CMP_NGT_UQ)));
+  }
+  // particles p[0..7] (4 lanes each) to c[0] = their x, ..., c[3] = their w: rows j and j + 4
+  // share a register, then each 128-bit half is transposed as _MM_TRANSPOSE4_PS does
+  static void transpose(const float* p, V c[4]) {
+    V r[4];
+    for (int k = 0; k < 4; ++k)
+      r[k] = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(p + 4 * k)),
+                                  _mm_loadu_ps(p + 16 + 4 * k), 1);
+    const V xy01 = _mm256_unpacklo_ps(r[0], r[1]), xy23 = _mm256_unpacklo_ps(r[2], r[3]);
+    const V zw01 = _mm256_unpackhi_ps(r[0], r[1]), zw23 = _mm256_unpackhi_ps(r[2], r[3]);
+    c[0] = _mm256_shuffle_ps(xy01, xy23, 0x44);
+    c[1] = _mm256_shuffle_ps(xy01, xy23, 0xEE);
+    c[2] = _mm256_shuffle_ps(zw01, zw23, 0x44);
+    c[3] = _mm256_shuffle_ps(zw01, zw23, 0xEE);
+  }
+};
 
 }  // namespace
 
-int findContactCandidateAvx2(const float* center, float reach_squared, const float* positions,
-                             int begin, int end) {
-  const __m128 c128 = _mm_loadu_ps(center);
-  const __m256 c = _mm256_insertf128_ps(_mm256_castps128_ps256(c128), c128, 1);
-  const __m256 reach = _mm256_set1_ps(reach_squared);
-  int j = begin;
-  for (; j + 8 <= end; j += 8) {
-    const float* x = positions + 4 * j;
-    // not greater: smaller, equal or NaN
-    const int m0 = _mm256_movemask_ps(_mm256_cmp_ps(squaredDistances(c, x), reach, _CMP_NGT_UQ));
-    const int m1 =
-        _mm256_movemask_ps(_mm256_cmp_ps(squaredDistances(c, x + 8), reach, _CMP_NGT_UQ));
-    const int m2 =
-        _mm256_movemask_ps(_mm256_cmp_ps(squaredDistances(c, x + 16), reach, _CMP_NGT_UQ));
-    const int m3 =
-        _mm256_movemask_ps(_mm256_cmp_ps(squaredDistances(c, x + 24), reach, _CMP_NGT_UQ));
-    if (((m0 | m1 | m2 | m3) & kParticleLanes) == 0) continue;
-    const int masks[4] = {m0, m1, m2, m3};
-    for (int q = 0; q < 4; ++q) {
-      const unsigned bits = unsigned(masks[q] & kParticleLanes);
-      if (bits) return j + 2 * q + __builtin_ctz(bits) / 4;
-    }
-  }
-  return findContactCandidateSse2(center, reach_squared, positions, j, end);
+#include "clothref/fast/contact_filter_impl.h"
+
+namespace clothref::fast {
+
+void copyContactPositionsAvx2(const float* positions, int particles, float* x, float* y, float* z) {
+  copyContactPositionsImpl(positions, particles, x, y, z);
 }
+
+long scanContactsAvx2(const ContactScan& scan) { return scanContactsImpl(scan); }
 
 }  // namespace clothref::fast

@@ -1,54 +1,50 @@
-// The contact filter on AVX-512F: four particles (4 lanes each) per instruction, sixteen per loop.
-// The maskz forms with a full mask are the plain instructions; GCC 12 warns on the plain
-// intrinsics' undefined pass-through operand.
+// The contact filter on AVX-512F: sixteen particles per instruction.
 #include <immintrin.h>
-
-#include "clothref/fast/contact_filter.h"
-
-namespace clothref::fast {
 
 namespace {
 
-// Lane 0 of every 128-bit group gets (x^2 + z^2) + (y^2 + w^2) of c - x for four particles.
-inline __m512 squaredDistances(__m512 c, const float* x) {
-  const __m512 n = _mm512_sub_ps(c, _mm512_loadu_ps(x));
-  const __m512 squares = _mm512_mul_ps(n, n);
-  const __m512 pairs =
-      _mm512_add_ps(squares, _mm512_maskz_permute_ps(0xFFFF, squares, 0x4E));  // x+z, y+w
-  return _mm512_add_ps(pairs, _mm512_maskz_permute_ps(0xFFFF, pairs, 0xB1));
-}
-
-// Bits 0, 4, 8, 12: the lane-0 results of the four particles.
-constexpr __mmask16 kParticleLanes = 0x1111;
+struct Batch {
+  static constexpr int kLanes = 16;
+  using V = __m512;
+  static V load(const float* p) { return _mm512_loadu_ps(p); }
+  static void store(float* p, V v) { _mm512_storeu_ps(p, v); }
+  static V broadcast(float a) { return _mm512_set1_ps(a); }
+  static V add(V a, V b) { return _mm512_add_ps(a, b); }
+  static V sub(V a, V b) { return _mm512_sub_ps(a, b); }
+  static V mul(V a, V b) { return _mm512_mul_ps(a, b); }
+  static unsigned notGreater(V a, V b) { return _mm512_cmp_ps_mask(a, b, _CMP_NGT_UQ); }
+  // particles p[0..15] (4 lanes each) to c[0] = their x, ..., c[3] = their w: two rounds of
+  // two-source permutes (x and y, z and w of eight particles, then of sixteen)
+  static void transpose(const float* p, V c[4]) {
+    const __m512i xy8 = _mm512_setr_epi32(0, 4, 8, 12, 16, 20, 24, 28, 1, 5, 9, 13, 17, 21, 25, 29);
+    const __m512i zw8 =
+        _mm512_setr_epi32(2, 6, 10, 14, 18, 22, 26, 30, 3, 7, 11, 15, 19, 23, 27, 31);
+    const __m512i low16 = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 16, 17, 18, 19, 20, 21, 22, 23);
+    const __m512i high16 =
+        _mm512_setr_epi32(8, 9, 10, 11, 12, 13, 14, 15, 24, 25, 26, 27, 28, 29, 30, 31);
+    const V r0 = load(p), r1 = load(p + 16), r2 = load(p + 32), r3 = load(p + 48);
+    const V xy_low = _mm512_permutex2var_ps(r0, xy8, r1);
+    const V zw_low = _mm512_permutex2var_ps(r0, zw8, r1);
+    const V xy_high = _mm512_permutex2var_ps(r2, xy8, r3);
+    const V zw_high = _mm512_permutex2var_ps(r2, zw8, r3);
+    c[0] = _mm512_permutex2var_ps(xy_low, low16, xy_high);
+    c[1] = _mm512_permutex2var_ps(xy_low, high16, xy_high);
+    c[2] = _mm512_permutex2var_ps(zw_low, low16, zw_high);
+    c[3] = _mm512_permutex2var_ps(zw_low, high16, zw_high);
+  }
+};
 
 }  // namespace
 
-int findContactCandidateAvx512(const float* center, float reach_squared, const float* positions,
-                               int begin, int end) {
-  const __m512 c = _mm512_maskz_broadcast_f32x4(0xFFFF, _mm_loadu_ps(center));
-  const __m512 reach = _mm512_set1_ps(reach_squared);
-  int j = begin;
-  for (; j + 16 <= end; j += 16) {
-    const float* x = positions + 4 * j;
-    // not greater: smaller, equal or NaN
-    const __mmask16 m0 = _mm512_cmp_ps_mask(squaredDistances(c, x), reach, _CMP_NGT_UQ);
-    const __mmask16 m1 = _mm512_cmp_ps_mask(squaredDistances(c, x + 16), reach, _CMP_NGT_UQ);
-    const __mmask16 m2 = _mm512_cmp_ps_mask(squaredDistances(c, x + 32), reach, _CMP_NGT_UQ);
-    const __mmask16 m3 = _mm512_cmp_ps_mask(squaredDistances(c, x + 48), reach, _CMP_NGT_UQ);
-    if (((m0 | m1 | m2 | m3) & kParticleLanes) == 0) continue;
-    const __mmask16 masks[4] = {m0, m1, m2, m3};
-    for (int q = 0; q < 4; ++q) {
-      const unsigned bits = masks[q] & kParticleLanes;
-      if (bits) return j + 4 * q + __builtin_ctz(bits) / 4;
-    }
-  }
-  for (; j + 4 <= end; j += 4) {
-    const unsigned bits =
-        _mm512_cmp_ps_mask(squaredDistances(c, positions + 4 * j), reach, _CMP_NGT_UQ) &
-        kParticleLanes;
-    if (bits) return j + __builtin_ctz(bits) / 4;
-  }
-  return findContactCandidateSse2(center, reach_squared, positions, j, end);
+#include "clothref/fast/contact_filter_impl.h"
+
+namespace clothref::fast {
+
+void copyContactPositionsAvx512(const float* positions, int particles, float* x, float* y,
+                                float* z) {
+  copyContactPositionsImpl(positions, particles, x, y, z);
 }
+
+long scanContactsAvx512(const ContactScan& scan) { return scanContactsImpl(scan); }
 
 }  // namespace clothref::fast

@@ -1,22 +1,38 @@
-// The contact filter on SSE2: one particle (its 4 lanes) per instruction.
+// The contact filter on SSE2: four particles per instruction, the x86-64 baseline.
 #include <immintrin.h>
 
-#include "clothref/fast/contact_filter.h"
+namespace {
+
+struct Batch {
+  static constexpr int kLanes = 4;
+  using V = __m128;
+  static V load(const float* p) { return _mm_loadu_ps(p); }
+  static void store(float* p, V v) { _mm_storeu_ps(p, v); }
+  static V broadcast(float a) { return _mm_set1_ps(a); }
+  static V add(V a, V b) { return _mm_add_ps(a, b); }
+  static V sub(V a, V b) { return _mm_sub_ps(a, b); }
+  static V mul(V a, V b) { return _mm_mul_ps(a, b); }
+  static unsigned notGreater(V a, V b) { return unsigned(_mm_movemask_ps(_mm_cmpngt_ps(a, b))); }
+  // particles p[0..3] (4 lanes each) to c[0] = their x, ..., c[3] = their w
+  static void transpose(const float* p, V c[4]) {
+    c[0] = load(p);
+    c[1] = load(p + 4);
+    c[2] = load(p + 8);
+    c[3] = load(p + 12);
+    _MM_TRANSPOSE4_PS(c[0], c[1], c[2], c[3]);
+  }
+};
+
+}  // namespace
+
+#include "clothref/fast/contact_filter_impl.h"
 
 namespace clothref::fast {
 
-int findContactCandidateSse2(const float* center, float reach_squared, const float* positions,
-                             int begin, int end) {
-  const __m128 c = _mm_loadu_ps(center);
-  const __m128 reach = _mm_set_ss(reach_squared);
-  for (int j = begin; j < end; ++j) {
-    const __m128 n = _mm_sub_ps(c, _mm_loadu_ps(positions + 4 * j));
-    const __m128 squares = _mm_mul_ps(n, n);
-    const __m128 pairs = _mm_add_ps(squares, _mm_movehl_ps(squares, squares));  // x+z, y+w
-    const __m128 sum = _mm_add_ss(pairs, _mm_shuffle_ps(pairs, pairs, 1));
-    if (!_mm_comigt_ss(sum, reach)) return j;  // not greater: smaller, equal or NaN
-  }
-  return end;
+void copyContactPositionsSse2(const float* positions, int particles, float* x, float* y, float* z) {
+  copyContactPositionsImpl(positions, particles, x, y, z);
 }
+
+long scanContactsSse2(const ContactScan& scan) { return scanContactsImpl(scan); }
 
 }  // namespace clothref::fast

@@ -9,7 +9,7 @@
 // Eigen's 4-wide reductions use for a Vector4: a squared length or dot product is
 // (lane 0 + lane 2) + (lane 1 + lane 3); normalize() divides by sqrt(squared length) and leaves a
 // zero vector alone. No FMA (the project builds with -ffp-contract=off). Where a copy must remain
-// (the SIMD lanes of fast/spring_kernels_impl.h and fast/contact_filter_*.cpp, the student-shaped
+// (the SIMD lanes of fast/spring_kernels_impl.h and fast/contact_filter_impl.h, the student-shaped
 // files of tools/grader/reference/), docs/design.md lists it with the test that proves it
 // bit-equal.
 #pragma once
