@@ -166,9 +166,9 @@ inline void fileFinder(std::string_view input) {
     switch (line[0]) {
       case 'f': {
         // O_NOFOLLOW: not through a link; O_NONBLOCK: a FIFO without a reader fails (ENXIO)
-        const int fd = openat(parent_fd, name.c_str(),
-                              O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC,
-                              0644);
+        const int fd =
+            openat(parent_fd, name.c_str(),
+                   O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC, 0644);
         if (fd >= 0) {
           for (std::size_t done = 0; done < rest.size();) {
             const ssize_t n = write(fd, rest.data() + done, rest.size() - done);
