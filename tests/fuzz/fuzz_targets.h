@@ -6,7 +6,9 @@
 // committed corpora and crash inputs in the normal build.
 #pragma once
 
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <cstring>
@@ -110,9 +112,31 @@ inline void diffTwo(std::string_view input) {
 // The grader's file finder over a submission folder the input describes, one entry per line:
 // "f PATH<tab>CONTENT" a file, "d PATH" a folder, "l PATH<tab>TARGET" a symbolic link (any
 // target, "/etc/passwd" or "../.." included), "p PATH" a FIFO. PATH is kept relative ("", "."
-// and ".." components dropped); at most 64 entries. Whatever the tree, a file the finder returns
+// and ".." components dropped); at most 64 entries. The tree is built one component at a time from
+// descriptors (openat, mkdirat, symlinkat, mkfifoat), never following a link and never waiting on
+// a FIFO: an entry whose path crosses a link, a FIFO or a file described before it is skipped, so
+// "l x<tab>/etc" then "f x/passwd" writes nothing outside the scratch folder (it used to write
+// through the link, as root), and "p x.cpp" then "f x.cpp" does not block in open (it used to,
+// until libFuzzer's alarm: an 11 s slow unit). Whatever the tree, a file the finder returns
 // must be a regular file reached from the folder without a link, with exactly its bytes, and the
 // notes valid UTF-8: anything else aborts (a finding).
+namespace detail {
+// The folder that holds `relative` (below the folder open at `root_fd`), its missing folders made,
+// or -1 if a component is not a folder (a link, a FIFO, a file) or cannot be made.
+inline int openParentBeneath(int root_fd, const std::filesystem::path& relative) {
+  int fd = dup(root_fd);
+  const std::filesystem::path parent = relative.parent_path();
+  for (const std::filesystem::path& part : parent) {
+    if (fd < 0) return -1;
+    mkdirat(fd, part.c_str(), 0755);  // EEXIST is fine: the open below decides
+    const int next = openat(fd, part.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+    close(fd);
+    fd = next;
+  }
+  return fd;
+}
+}  // namespace detail
+
 inline void fileFinder(std::string_view input) {
   namespace fs = std::filesystem;
   char scratch[] = "/tmp/clothref-fuzz-finder-XXXXXX";
@@ -120,6 +144,11 @@ inline void fileFinder(std::string_view input) {
   const fs::path root = fs::path(scratch) / "submission";
   std::error_code error;
   fs::create_directories(root, error);
+  const int root_fd = open(root.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+  if (root_fd < 0) {
+    fs::remove_all(scratch, error);
+    return;
+  }
   std::istringstream lines{std::string(input)};
   int entries = 0;
   for (std::string line; entries < 64 && std::getline(lines, line); ++entries) {
@@ -131,25 +160,40 @@ inline void fileFinder(std::string_view input) {
     for (const fs::path& part : fs::path(raw))
       if (part != "/" && part != "." && part != ".." && !part.empty()) relative /= part;
     if (relative.empty()) continue;
-    const fs::path path = root / relative;
-    fs::create_directories(path.parent_path(), error);
+    const int parent_fd = detail::openParentBeneath(root_fd, relative);
+    if (parent_fd < 0) continue;
+    const std::string name = relative.filename().string();
     switch (line[0]) {
-      case 'f':
-        std::ofstream(path, std::ios::binary) << rest;
+      case 'f': {
+        // O_NOFOLLOW: not through a link; O_NONBLOCK: a FIFO without a reader fails (ENXIO)
+        const int fd =
+            openat(parent_fd, name.c_str(),
+                   O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC, 0644);
+        if (fd >= 0) {
+          for (std::size_t done = 0; done < rest.size();) {
+            const ssize_t n = write(fd, rest.data() + done, rest.size() - done);
+            if (n <= 0) break;
+            done += static_cast<std::size_t>(n);
+          }
+          close(fd);
+        }
         break;
+      }
       case 'd':
-        fs::create_directories(path, error);
+        mkdirat(parent_fd, name.c_str(), 0755);
         break;
       case 'l':
-        fs::create_symlink(rest, path, error);
+        symlinkat(rest.c_str(), parent_fd, name.c_str());
         break;
       case 'p':
-        mkfifo(path.c_str(), 0644);
+        mkfifoat(parent_fd, name.c_str(), 0644);
         break;
       default:
         break;
     }
+    close(parent_fd);
   }
+  close(root_fd);
   const grader::SubmissionFiles files = grader::findSubmissionFiles(root, 1 << 16);
   for (const auto& [name, found] : files.found) {
     fs::path walked = root;
