@@ -132,6 +132,33 @@ TEST(ReadableAs, NamesTheFirstFolderTheUidCannotOpen) {
   EXPECT_EQ(failed, (temp.path() / "missing").string());
 }
 
+// Grades held at once get distinct uids, slot 0 the usual pair; a released slot is taken again.
+TEST(UidLease, GradesHeldAtOnceRunAsDistinctUidsAndASlotIsReused) {
+  std::vector<UidLease> held;
+  for (int k = 0; k < 3; ++k) held.push_back(leaseUids());
+  std::set<int> uids;
+  for (const UidLease& lease : held) {
+    uids.insert(lease.uid);
+    uids.insert(lease.tool_uid);
+    EXPECT_GE(lease.tool_uid, 65000);
+    EXPECT_LE(lease.uid, kNobodyUid);
+  }
+  EXPECT_EQ(uids.size(), 6u);  // no uid twice, probe or tool
+  ASSERT_EQ(held.size(), 3u);
+  EXPECT_EQ(held[0].uid, kNobodyUid);
+  EXPECT_EQ(held[0].tool_uid, kToolUid);
+  const int second = held[1].uid;
+  held[1].hold.reset();  // that grade ended
+  const UidLease next = leaseUids();
+  EXPECT_EQ(next.uid, second);
+  // a copy of the lease keeps the slot: only the last one frees it
+  std::shared_ptr<const void> copy = held[0].hold;
+  held[0].hold.reset();
+  EXPECT_NE(leaseUids().uid, kNobodyUid);
+  copy.reset();
+  EXPECT_EQ(leaseUids().uid, kNobodyUid);
+}
+
 TEST(DetectIsolation, TheVariableForcesTheFallback) {
   setenv("CLOTHREF_GRADER_ISOLATION", "rlimits", 1);
   const Isolation isolation = detectIsolation();

@@ -108,6 +108,14 @@ Isolation isolationFor(const CourseToolchain& toolchain, const fs::path& scratch
   Isolation isolation = detectIsolation();
   isolation.hidden = {toolchain.course_dir.parent_path(), toolchain.reference_dir,
                       toolchain.driver_lib_dir, scratch};
+  // Uids of this grade's own in the fallback: a submission graded beside it in a batch runs as
+  // others (bubblewrap keeps them apart by namespaces).
+  if (isolation.kind == IsolationKind::Rlimits && isolation.uid >= 0) {
+    const UidLease lease = leaseUids();
+    isolation.uid = lease.uid;
+    if (isolation.tool_uid >= 0) isolation.tool_uid = lease.tool_uid;
+    isolation.uid_lease = lease.hold;
+  }
   // The tool uid must read what compiles read (a checkout under mode-700 /root is unreadable to
   // it): else compiles keep the grader's uid, and the report says why.
   if (isolation.tool_uid >= 0) {

@@ -5,6 +5,7 @@
 // CLOTHREF_GRADER_ISOLATION (auto | bubblewrap | rlimits) forces a layer, so tests cover both.
 #pragma once
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -46,6 +47,9 @@ struct Isolation {
   // it detached itself. Empty: no cgroup tier (`why_no_cgroup` says why).
   std::string cgroup_parent;
   std::string why_no_cgroup;
+  // Rlimits as root: holds `uid` and `tool_uid` for this grade alone (leaseUids()) until the last
+  // copy of this Isolation is gone.
+  std::shared_ptr<const void> uid_lease;
   // Short exact description for GradeReport::isolation, e.g. "bubblewrap (new net, pid, mount,
   // ipc, uts namespaces; only /usr visible), uid 65534, rlimits".
   std::string describe() const;
@@ -68,6 +72,18 @@ inline constexpr int kNobodyUid = 65534;
 // Compiles and links in the fallback: not the probes' uid, so no student process can write into
 // a scratch folder or replace a probe executable.
 inline constexpr int kToolUid = 65533;
+
+// The uids of one grade in the fallback. A batch grades several submissions at once, and two
+// probes under one uid could write into each other's folders (or signal each other), so each grade
+// holds its own pair until `hold` is released: slot 0 is (kNobodyUid, kToolUid), slot k is
+// (kNobodyUid - 2k, kToolUid - 2k), inside Debian's reserved uids 65000-65533. The lowest free
+// slot is taken; kUidSlots at once at the most (more throws).
+struct UidLease {
+  int uid = kNobodyUid, tool_uid = kToolUid;
+  std::shared_ptr<const void> hold;
+};
+inline constexpr int kUidSlots = 256;
+UidLease leaseUids();
 
 // The isolation for this grader process: probes bubblewrap once (same uid drop and flags as a
 // real run, command /bin/true) and caches the answer. Throws InputError for an unknown
