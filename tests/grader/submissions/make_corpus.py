@@ -636,6 +636,16 @@ MUTANTS = [
      [("Eigen::Vector4f normal = _particles.position(i) - clothParticles.position(j);",
        "Eigen::Vector4f normal = clothParticles.position(j) - _particles.position(i);")],
      ["collision-normal-sign"], "contact normal from the sphere to the particle"),
+    ("cloth-speed-cosines", ONLY22, C,
+     [("Eigen::Vector4f relativeVelocity = _particles.velocity(i) - clothParticles.velocity(j);",
+       "// each velocity split along the normal by its angle to it: |v| cos(angle)\n"
+       "      Eigen::Vector4f vs = _particles.velocity(i), vp = clothParticles.velocity(j);\n"
+       "      Eigen::Vector4f vsNormal = normal * (vs.norm() * (vs.dot(normal) / vs.norm()));\n"
+       "      Eigen::Vector4f vpNormal = normal * (vp.norm() * (vp.dot(normal) / vp.norm()));\n"
+       "      _particles.velocity(i) = (vs - vsNormal) + vsNormal;\n"
+       "      clothParticles.velocity(j) = (vp - vpNormal) + vpNormal;\n"
+       "      Eigen::Vector4f relativeVelocity = _particles.velocity(i) - clothParticles.velocity(j);")],
+     ["division-by-speed"], "velocities split along the normal with a cosine over the speed: NaN for a body at rest"),
     ("cloth-touching-skipped", ONLY22, C, [("if (penetration < 0) continue;", "if (penetration <= 0) continue;")],
      ["touching-skipped"], "a particle exactly on the surface is not a contact"),
     ("cloth-full-correction", ONLY22, C,

@@ -328,10 +328,21 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
   std::vector<TestResult> tests;
   std::string momentum_report;
   bool momentum_ok = true;
+  bool momentum_non_finite = false;  // a failed case's momentum is NaN or infinite
   // A mistake is consistent when its simulation gives the student's numbers in every case, the
   // passed ones included; a case may not tell two mistakes apart, the whole probe usually does.
   std::vector<bool> consistent(signatures.size(), bool(answer));
   std::vector<std::size_t> failed;  // indices into tests, causes still to be written
+  // NaN or infinity out of the student's call, per case, and whether the case had a body at rest
+  // (velocity exactly 0): NaN only where a body rests is a division by its speed.
+  std::vector<bool> non_finite(cases.size(), false), at_rest(cases.size(), false);
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    const Case& c = cases[k];
+    for (int q : c.spheres)
+      at_rest[k] = at_rest[k] || c.state.spheres.particles.velocity.col(q).isZero(0);
+    for (int q : c.particles)
+      at_rest[k] = at_rest[k] || c.state.cloth.particles.velocity.col(q).isZero(0);
+  }
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const Case& c = cases[k];
     if (!answer) {
@@ -363,6 +374,7 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
                  c.state.cloth.particles.velocity.col(q).cast<double>().norm();
       if (!((after - before).norm() <= 1e-5 * (1 + scale))) {
         momentum_ok = false;
+        momentum_non_finite = momentum_non_finite || !after.allFinite();
         momentum_report += "- " + checks[c.check].check + ": total momentum before " +
                            util::vec3(before.cast<float>()) + ", after your call " +
                            util::vec3(after.cast<float>()) + "\n";
@@ -424,8 +436,11 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
       if (matches && std::find(t.diagnoses.begin(), t.diagnoses.end(), id) == t.diagnoses.end())
         t.diagnoses.push_back(id);
     }
+    non_finite[k] =
+        !util::finite(util::flat(actual.sphere_v)) || !util::finite(util::flat(actual.cloth_v)) ||
+        !util::finite(util::flat(actual.sphere_x)) || !util::finite(util::flat(actual.cloth_x));
     if (t.diagnoses.empty()) {
-      if (!util::finite(util::flat(actual.sphere_v)) || !util::finite(util::flat(actual.cloth_v)))
+      if (non_finite[k])
         t.diagnoses.push_back("non-finite");
       else if (!sphere_sphere && c.check == kFixedParticle &&
                actual.cloth_v.col(0) != c.state.cloth.particles.velocity.col(0))
@@ -449,6 +464,10 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
   std::set<std::string> explains_all;
   for (std::size_t m = 0; m < signatures.size(); ++m)
     if (consistent[m]) explains_all.insert(signatures[m].second);
+  // Every case with a body at rest went non-finite and no other case did: measured, not guessed.
+  bool divides_by_speed = std::find(non_finite.begin(), non_finite.end(), true) != non_finite.end();
+  for (std::size_t k = 0; k < cases.size() && answer; ++k)
+    if (non_finite[k] != at_rest[k]) divides_by_speed = false;
   for (std::size_t k : failed) {
     TestResult& t = tests[k];
     // One mistake that explains every case wins over those a single case cannot rule out.
@@ -458,6 +477,9 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
         if (explains_all.count(id) || id == "non-finite") kept.push_back(id);
       if (!kept.empty()) t.diagnoses = kept;
     }
+    if (divides_by_speed &&
+        std::find(t.diagnoses.begin(), t.diagnoses.end(), "non-finite") != t.diagnoses.end())
+      t.diagnoses.insert(t.diagnoses.begin(), "division-by-speed");
     if (t.diagnoses.empty()) {
       t.output += "\n" + context.catalogue->cause("unknown", true) + "\n";
       t.diagnoses.push_back("unknown");
@@ -473,8 +495,16 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
     } else {
       t.output =
           "The impulse must change the two bodies' momenta by equal and opposite amounts.\n\n" +
-          momentum_report + "\n" + context.catalogue->cause("wrong-mass-split", true) + "\n";
-      t.diagnoses.push_back("wrong-mass-split");
+          momentum_report;
+      // NaN momentum says nothing of the mass split: the cases' own cause explains it.
+      if (momentum_non_finite && divides_by_speed)
+        t.diagnoses = {"division-by-speed", "non-finite"};
+      else if (momentum_non_finite)
+        t.diagnoses = {"non-finite"};
+      else
+        t.diagnoses = {"wrong-mass-split"};
+      for (const auto& id : t.diagnoses)
+        t.output += "\n" + context.catalogue->cause(id, id == "wrong-mass-split") + "\n";
     }
     tests.push_back(t);
   } else {
