@@ -108,8 +108,8 @@ Isolation isolationFor(const CourseToolchain& toolchain, const fs::path& scratch
   Isolation isolation = detectIsolation();
   isolation.hidden = {toolchain.course_dir.parent_path(), toolchain.reference_dir,
                       toolchain.driver_lib_dir, scratch};
-  // Uids of this grade's own in the fallback: a submission graded beside it in a batch runs as
-  // others (bubblewrap keeps them apart by namespaces).
+  // This grade's own uids in the fallback: a submission graded beside it in a batch runs as
+  // others (bubblewrap keeps them apart by namespaces instead).
   if (isolation.kind == IsolationKind::Rlimits && isolation.uid >= 0) {
     const UidLease lease = leaseUids();
     isolation.uid = lease.uid;
@@ -182,8 +182,6 @@ std::map<std::string, std::string> unavailableStubs(const std::vector<UsedFile>&
   return unavailable;
 }
 
-// Runs the probe groups of stubs that can run, `jobs` at a time (each group is its own child
-// processes); results in the groups' order whatever order they finish in.
 // The planned tests of unavailable stubs: zero points, the compile verdict as their output.
 std::vector<TestResult> unavailableTests(int edition,
                                          const std::map<std::string, std::string>& unavailable) {
