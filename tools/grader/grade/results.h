@@ -88,7 +88,6 @@ struct Sketch {
   int grid = 0;
   std::vector<std::array<int, 2>> missing, unexpected, differing;
   std::string differing_means = "differs";  // legend of `differing`: "wrong rest length", ...
-  bool empty() const { return bodies.empty() && grid == 0; }
 };
 
 struct TestResult {
