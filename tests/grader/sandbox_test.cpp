@@ -157,6 +157,22 @@ TEST(UidLease, GradesHeldAtOnceRunAsDistinctUidsAndASlotIsReused) {
   EXPECT_NE(leaseUids().uid, kNobodyUid);
   copy.reset();
   EXPECT_EQ(leaseUids().uid, kNobodyUid);
+
+  // The isolation line names the scheme, not the pair: a batch's CSV must not depend on which
+  // submission got which slot.
+  const auto leased = [](const UidLease& lease) {
+    Isolation isolation;
+    isolation.kind = IsolationKind::Rlimits;
+    isolation.containment = Containment::PidNamespace;
+    isolation.uid = lease.uid;
+    isolation.tool_uid = lease.tool_uid;
+    isolation.uid_lease = lease.hold;
+    return isolation.describe();
+  };
+  const UidLease one = leaseUids(), other = leaseUids();
+  ASSERT_NE(one.uid, other.uid);
+  EXPECT_EQ(leased(one), leased(other));
+  EXPECT_EQ(leased(one).find(std::to_string(other.uid)), std::string::npos) << leased(one);
 }
 
 TEST(DetectIsolation, TheVariableForcesTheFallback) {

@@ -129,8 +129,7 @@ Isolation isolationFor(const CourseToolchain& toolchain, const fs::path& scratch
     }
     std::string unreadable;
     if (!readableAs(isolation.tool_uid, folders, &unreadable)) {
-      isolation.why_not_tool_uid =
-          "uid " + std::to_string(isolation.tool_uid) + " cannot read " + safeName(unreadable);
+      isolation.why_not_tool_uid = "the compiles' uid cannot read " + safeName(unreadable);
       isolation.tool_uid = -1;
     }
   }

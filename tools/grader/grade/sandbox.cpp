@@ -243,7 +243,13 @@ std::string cgroupParent(std::string* why) {
 }
 
 std::string Isolation::describe() const {
-  const std::string user = uid >= 0 ? "uid " + std::to_string(uid) : "grader's uid (not root)";
+  // A leased pair depends on what else was graded at the time: the line names the scheme, not the
+  // number, so a batch's CSV is the same whichever submission got which pair.
+  const std::string user = uid < 0     ? "grader's uid (not root)"
+                           : uid_lease ? "a uid of its own (65534 down)"
+                                       : "uid " + std::to_string(uid);
+  const std::string tool_user =
+      uid_lease ? "its own second uid (65533 down)" : "uid " + std::to_string(tool_uid);
   switch (kind) {
     case IsolationKind::Bubblewrap:
       return "bubblewrap (new user, net, pid, mount, ipc, uts namespaces; only /usr visible), " +
@@ -255,7 +261,7 @@ std::string Isolation::describe() const {
                   ? "own pid namespace per run"
                   : "a subreaper that kills what a run leaves behind") +
              (tool_uid >= 0
-                  ? "; compiles as uid " + std::to_string(tool_uid) +
+                  ? "; compiles as " + tool_user +
                         (private_mounts
                              ? std::string(" in a private mount namespace")
                              : " without a private mount namespace (" + why_not_private_mounts +
@@ -284,10 +290,15 @@ UidLease leaseUids() {
   UidLease lease;
   lease.uid = kNobodyUid - 2 * slot;
   lease.tool_uid = kToolUid - 2 * slot;
-  // Released when the last holder lets go: the slot is free for the next grade.
-  lease.hold = std::shared_ptr<const void>(nullptr, [slot](const void*) {
-    std::lock_guard<std::mutex> release_lock(mutex);
-    taken[std::size_t(slot)] = false;
+  // Released when the last holder lets go: the slot is free for the next grade. (A non-null
+  // pointer, so that a held lease tests true.)
+  lease.hold = std::shared_ptr<const void>(new int(slot), [](const void* held) {
+    const int* freed = static_cast<const int*>(held);
+    {
+      std::lock_guard<std::mutex> release_lock(mutex);
+      taken[std::size_t(*freed)] = false;
+    }
+    delete freed;
   });
   return lease;
 }
