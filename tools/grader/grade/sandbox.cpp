@@ -245,11 +245,13 @@ std::string cgroupParent(std::string* why) {
 std::string Isolation::describe() const {
   // A leased pair depends on what else was graded at the time: the line names the scheme, not the
   // number, so a batch's CSV is the same whichever submission got which pair.
-  const std::string user = uid < 0     ? "grader's uid (not root)"
-                           : uid_lease ? "a uid of its own (65534 down)"
-                                       : "uid " + std::to_string(uid);
-  const std::string tool_user =
-      uid_lease ? "its own second uid (65533 down)" : "uid " + std::to_string(tool_uid);
+  const std::string user = uid < 0 ? "grader's uid (not root)"
+                           : uid_lease
+                               ? "a uid of its own (" + std::to_string(kNobodyUid) + " down)"
+                               : "uid " + std::to_string(uid);
+  const std::string tool_user = uid_lease
+                                    ? "its own second uid (" + std::to_string(kToolUid) + " down)"
+                                    : "uid " + std::to_string(tool_uid);
   switch (kind) {
     case IsolationKind::Bubblewrap:
       return "bubblewrap (new user, net, pid, mount, ipc, uts namespaces; only /usr visible), " +
