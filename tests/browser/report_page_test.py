@@ -1,5 +1,5 @@
 """`clothref grade --html`, the report a student reads, in headless Chromium (ctest browser_report;
-tools/grader/grade/html_report.cpp, tools/pages/assets/report.html).
+tools/grader/grade/report/html_report.cpp, tools/pages/assets/report.html).
 
 Usage: report_page_test.py --cli build/bin/clothref --source SOURCE_DIR --cache DIR --screenshots DIR
 

@@ -19,8 +19,8 @@
 
 #include "corpus.h"
 #include "grader/grade/grade.h"
-#include "grader/grade/probe_util.h"
-#include "grader/grade/probes.h"
+#include "grader/grade/probes/util.h"
+#include "grader/grade/probes/probes.h"
 #include "test_util.h"
 
 namespace clothref::test {

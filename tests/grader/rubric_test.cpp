@@ -8,7 +8,7 @@
 #include <map>
 
 #include "clothref/io/error.h"
-#include "grader/grade/probes.h"
+#include "grader/grade/probes/probes.h"
 #include "test_util.h"
 
 namespace clothref::grader {

@@ -12,9 +12,9 @@
 #include "commands.h"
 #include "grader/grade/batch.h"
 #include "grader/grade/grade.h"
-#include "grader/grade/html_report.h"
-#include "grader/grade/report.h"
-#include "grader/grade/sanitize.h"
+#include "grader/grade/report/html_report.h"
+#include "grader/grade/report/outputs.h"
+#include "grader/grade/run/sanitize.h"
 #include "grader/grade/text.h"
 
 namespace clothref::cli {

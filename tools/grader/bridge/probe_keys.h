@@ -1,5 +1,5 @@
 // The probe protocol's names, the one table of them: the group names and the ProbeMessage keys
-// (probe_protocol.h) that the grader (grade/probe_*.cpp, whole_run.cpp) and the driver
+// (probe_protocol.h) that the grader (grade/probes/) and the driver
 // (driver/probe_driver.cpp) exchange. Both sides are built together, so the names are internal;
 // a key written anywhere else is a bug. Std only: the course side includes it too.
 //

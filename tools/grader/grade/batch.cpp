@@ -1,4 +1,4 @@
-#include "batch.h"
+#include "grader/grade/batch.h"
 
 #include <algorithm>
 #include <atomic>
@@ -17,10 +17,10 @@
 #include "clothref/io/json_input.h"
 #include "clothref/io/output_file.h"
 #include "clothref/io/progress.h"
-#include "html_report.h"
-#include "report.h"
-#include "sanitize.h"
-#include "text.h"
+#include "grader/grade/report/html_report.h"
+#include "grader/grade/report/outputs.h"
+#include "grader/grade/run/sanitize.h"
+#include "grader/grade/text.h"
 
 namespace clothref::grader {
 namespace fs = std::filesystem;

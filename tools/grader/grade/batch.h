@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "grade.h"
+#include "grader/grade/grade.h"
 
 namespace clothref::grader {
 

@@ -1,4 +1,4 @@
-#include "grade.h"
+#include "grader/grade/grade.h"
 
 #include <unistd.h>
 
@@ -14,8 +14,8 @@
 
 #include "clothref/io/error.h"
 #include "clothref/io/files.h"
-#include "probes.h"
-#include "text.h"
+#include "grader/grade/probes/probes.h"
+#include "grader/grade/text.h"
 
 namespace clothref::grader {
 namespace fs = std::filesystem;

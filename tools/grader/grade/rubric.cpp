@@ -1,4 +1,4 @@
-#include "rubric.h"
+#include "grader/grade/rubric.h"
 
 #include <algorithm>
 #include <cmath>

@@ -14,7 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "results.h"
+#include "grader/grade/results.h"
 
 namespace clothref::grader {
 

@@ -1,4 +1,4 @@
-#include "text.h"
+#include "grader/grade/text.h"
 
 #include <iconv.h>
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <system_error>
 
-#include "grader/grade/build.h"
+#include "grader/grade/run/build.h"
 
 int main(int argc, char** argv) {
   namespace fs = std::filesystem;

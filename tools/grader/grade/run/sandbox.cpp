@@ -1,4 +1,4 @@
-#include "sandbox.h"
+#include "grader/grade/run/sandbox.h"
 
 #include <fcntl.h>
 #include <sched.h>
@@ -20,7 +20,7 @@
 #include <regex>
 #include <stdexcept>
 
-#include "child_process.h"
+#include "grader/grade/run/child_process.h"
 #include "clothref/io/error.h"
 #include "clothref/io/files.h"
 

@@ -1,4 +1,4 @@
-#include "sanitize.h"
+#include "grader/grade/run/sanitize.h"
 
 #include <algorithm>
 #include <regex>
@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "clothref/io/files.h"
-#include "probes.h"
+#include "grader/grade/probes/probes.h"
 
 namespace clothref::grader {
 namespace fs = std::filesystem;

@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "child_process.h"
-#include "results.h"
-#include "rubric.h"
+#include "grader/grade/run/child_process.h"
+#include "grader/grade/results.h"
+#include "grader/grade/rubric.h"
 
 namespace clothref::grader {
 

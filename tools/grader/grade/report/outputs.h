@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "results.h"
+#include "grader/grade/results.h"
 
 namespace clothref::grader {
 

@@ -10,7 +10,7 @@
 #include "clothref/scene/make_world.h"
 #include "clothref/scene/scene.h"
 #include "clothref/trace/format.h"
-#include "probe_util.h"
+#include "grader/grade/probes/util.h"
 
 namespace clothref::grader {
 

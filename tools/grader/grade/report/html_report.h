@@ -20,8 +20,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "batch.h"
-#include "grade.h"
+#include "grader/grade/batch.h"
+#include "grader/grade/grade.h"
 
 namespace clothref::grader {
 

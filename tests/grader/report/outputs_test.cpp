@@ -1,7 +1,7 @@
 // The writers: Gradescope's results.json fields, JUnit XML that stays well-formed, every output
 // valid UTF-8 whatever bytes a submission put in the report; through the CLI, a grade whose
 // outputs cannot all be written writes none and claims nothing.
-#include "grader/grade/report.h"
+#include "grader/grade/report/outputs.h"
 
 #include <gtest/gtest.h>
 

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "../bridge/probe_keys.h"
+#include "grader/bridge/probe_keys.h"
 #include "clothref/core/types.h"
-#include "probes.h"
+#include "grader/grade/probes/probes.h"
 
 namespace clothref::grader {
 // The protocol's names (bridge/probe_keys.h), short in the probe files.

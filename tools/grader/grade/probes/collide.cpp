@@ -9,7 +9,7 @@
 
 #include "clothref/core/cloth.h"
 #include "clothref/core/spheres.h"
-#include "probe_util.h"
+#include "grader/grade/probes/util.h"
 
 namespace clothref::grader {
 namespace {

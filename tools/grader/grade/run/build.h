@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "results.h"
-#include "sandbox.h"
-#include "submission.h"
+#include "grader/grade/results.h"
+#include "grader/grade/run/sandbox.h"
+#include "grader/grade/run/submission.h"
 
 namespace clothref::grader {
 

@@ -1,6 +1,6 @@
 // Quoting the compiler: the first error with its context, without scratch paths. The object
 // cache's key: another compiler version or another isolation is another object.
-#include "grader/grade/build.h"
+#include "grader/grade/run/build.h"
 
 #include <gtest/gtest.h>
 

@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "../bridge/probe_protocol.h"
-#include "sandbox.h"
+#include "grader/bridge/probe_protocol.h"
+#include "grader/grade/run/sandbox.h"
 
 namespace clothref::grader {
 

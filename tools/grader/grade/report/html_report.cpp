@@ -1,4 +1,4 @@
-#include "html_report.h"
+#include "grader/grade/report/html_report.h"
 
 #include <stdlib.h>
 

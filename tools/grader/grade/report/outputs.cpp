@@ -1,9 +1,9 @@
-#include "report.h"
+#include "grader/grade/report/outputs.h"
 
 #include <cmath>
 #include <sstream>
 
-#include "text.h"
+#include "grader/grade/text.h"
 
 namespace clothref::grader {
 namespace {

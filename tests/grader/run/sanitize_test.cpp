@@ -1,6 +1,6 @@
-// --sanitize (grader/grade/sanitize.h): finding and cleaning the first sanitizer report, and the
+// --sanitize (grader/grade/run/sanitize.h): finding and cleaning the first sanitizer report, and the
 // corpus mutant whose `auto` Eigen expression dangles, rebuilt with ASan, quoted in its report.
-#include "grader/grade/sanitize.h"
+#include "grader/grade/run/sanitize.h"
 
 #include <gtest/gtest.h>
 

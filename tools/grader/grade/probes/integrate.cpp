@@ -17,7 +17,7 @@
 #include "clothref/scene/scene.h"
 #include "clothref/verify/analytic.h"
 #include "clothref/verify/verify.h"
-#include "probe_util.h"
+#include "grader/grade/probes/util.h"
 
 namespace clothref::grader {
 namespace {

@@ -1,5 +1,5 @@
 // Finding the three files in submissions of any shape, and detecting the edition.
-#include "grader/grade/submission.h"
+#include "grader/grade/run/submission.h"
 
 #include <gtest/gtest.h>
 

@@ -6,9 +6,9 @@
 #include <map>
 #include <set>
 
-#include "build.h"
+#include "grader/grade/run/build.h"
 #include "clothref/core/cloth.h"
-#include "probe_util.h"
+#include "grader/grade/probes/util.h"
 
 namespace clothref::grader {
 namespace {

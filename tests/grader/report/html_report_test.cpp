@@ -1,7 +1,7 @@
-// The grader's pages (tools/grader/grade/html_report.cpp): the student's report, the Gradescope
+// The grader's pages (tools/grader/grade/report/html_report.cpp): the student's report, the Gradescope
 // summary and the class overview escape what a student controls, keep every check, and are built
 // from the batch's files alone. In a real browser: tests/browser/.
-#include "grader/grade/html_report.h"
+#include "grader/grade/report/html_report.h"
 
 #include <gtest/gtest.h>
 

@@ -1,9 +1,9 @@
-#include "probes.h"
+#include "grader/grade/probes/probes.h"
 
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "../bridge/probe_keys.h"
+#include "grader/bridge/probe_keys.h"
 #include "clothref/io/error.h"
 #include "clothref/io/json_input.h"
 

@@ -1,4 +1,4 @@
-#include "submission.h"
+#include "grader/grade/run/submission.h"
 
 #include <dirent.h>
 #include <fcntl.h>
@@ -14,7 +14,7 @@
 #include <sstream>
 
 #include "clothref/io/error.h"
-#include "text.h"
+#include "grader/grade/text.h"
 
 namespace clothref::grader {
 namespace {

@@ -8,7 +8,7 @@
 #include <optional>
 #include <string>
 
-#include "grade.h"
+#include "grader/grade/grade.h"
 
 namespace clothref::grader {
 

@@ -5,7 +5,7 @@
 #include <random>
 
 #include "clothref/core/cloth.h"
-#include "probe_util.h"
+#include "grader/grade/probes/util.h"
 
 namespace clothref::grader {
 namespace {

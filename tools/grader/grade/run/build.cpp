@@ -1,4 +1,4 @@
-#include "build.h"
+#include "grader/grade/run/build.h"
 
 #include <unistd.h>
 
@@ -13,7 +13,7 @@
 #include <set>
 #include <sstream>
 
-#include "child_process.h"
+#include "grader/grade/run/child_process.h"
 #include "clothref/io/files.h"
 
 #ifndef CLOTHREF_GRADER_COURSE_DIR

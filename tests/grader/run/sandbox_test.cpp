@@ -1,7 +1,7 @@
 // The sandbox: the bubblewrap command line shows the student only /usr, its program and its own
 // folder; a child in the fallback runs as uid 65534 with a process limit in a private folder; in
 // bubblewrap it has no network, its own pid namespace, and a timeout leaves nothing alive.
-#include "grader/grade/sandbox.h"
+#include "grader/grade/run/sandbox.h"
 
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -14,7 +14,7 @@
 #include <sstream>
 
 #include "clothref/io/error.h"
-#include "grader/grade/child_process.h"
+#include "grader/grade/run/child_process.h"
 #include "test_util.h"
 
 namespace clothref::grader {

@@ -1,6 +1,6 @@
 // Child processes: every way a child can fail gets its own verdict, and only a frame on fd 3
 // with the request's nonce counts as an answer.
-#include "grader/grade/child_process.h"
+#include "grader/grade/run/child_process.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "child_process.h"
+#include "grader/grade/run/child_process.h"
 
 #include <fcntl.h>
 #include <grp.h>
