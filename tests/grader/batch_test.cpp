@@ -149,12 +149,12 @@ TEST(Csv, HeaderHasEveryStubRowsQuoteAndMissingStubsAreEmpty) {
   row.stub_max = {{"Cloth::initializeSpring", 10}, {"RungeKuttaFourth::integrate", 15}};
   row.score = 22.5;
   row.max_score = 25;
-  row.verdict = "graded";
+  row.verdict = grader::Verdict::Graded;
   row.isolation = "bubblewrap (net, pid), rlimits";
   row.seconds = 12.34;
   BatchRow refused;
   refused.name = "bob";
-  refused.verdict = "not-gradable";
+  refused.verdict = grader::Verdict::NotGradable;
   refused.problem = "no file";
   const std::string csv = batchCsv({row, refused}, true);
   const auto written = lines(csv);
@@ -177,7 +177,7 @@ TEST(Csv, RowJsonRoundTripsAndRefusesAStranger) {
   row.stub_max = {{"Spheres::collide()", 10}};
   row.score = 4;
   row.max_score = 10;
-  row.verdict = "crashed";
+  row.verdict = grader::Verdict::Crashed;
   row.isolation = "rlimits only";
   row.seconds = 3.5;
   const BatchRow back = rowFromJson(nlohmann::json::parse(rowJson(row).dump()), "row.json");

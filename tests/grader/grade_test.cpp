@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <csignal>
 #include <condition_variable>
 #include <filesystem>
 #include <fstream>
@@ -426,31 +427,55 @@ TEST(Variants, SymplecticPredictorIsARubricSwitch) {
 
 // A probe the grader could not start (fork failed) is the grader's failure: its tests name
 // `grader-error`, never `crashed`, whatever the student printed, and the submission's verdict says
-// so before anything the student's code did.
+// so before anything the student's code did. Verdicts travel as the enum, never read back from
+// words: a probe stopped at the CPU limit (SIGXCPU) is timed-out in its cause too.
 TEST(Verdict, AProbeTheGraderCouldNotStartIsAGraderError) {
+  using grader::Verdict;
   grader::ChildRun run;
   run.status = grader::ChildStatus::NotStarted;
-  const std::string ours = "The probe process " + run.describe() + ".";
-  EXPECT_EQ(run.verdict(), "grader-error");
-  EXPECT_EQ(grader::util::verdictId(ours), "grader-error");
-  EXPECT_EQ(grader::util::verdictId(ours + "\n\n```\ntimed out\n```"), "grader-error");
-  // the student's stderr (after the first line) chooses nothing
+  run.stderr_head = "timed out\n";  // the student's stderr chooses nothing
+  EXPECT_EQ(run.verdict(), Verdict::GraderError);
+  EXPECT_EQ((grader::util::ProbeFailure{run.verdict(), run.describe()}.causeId()), "grader-error");
   run.status = grader::ChildStatus::Crashed;
-  const std::string crash = "The probe process " + run.describe() + ".";
-  EXPECT_EQ(grader::util::verdictId(crash), "crashed");
-  EXPECT_EQ(grader::util::verdictId(crash + "\n\n```\ncould not be started by the grader\n```"),
-            "crashed");
-  EXPECT_EQ(grader::util::verdictId("The probe process timed out after 3 s."), "timed-out");
+  run.signal = SIGSEGV;
+  run.stderr_head = "could not be started by the grader\n";
+  EXPECT_EQ(run.verdict(), Verdict::Crashed);
+  EXPECT_EQ((grader::util::ProbeFailure{run.verdict(), run.describe()}.causeId()), "crashed");
+  run.signal = SIGXCPU;
+  EXPECT_EQ(run.verdict(), Verdict::TimedOut);
+  EXPECT_EQ((grader::util::ProbeFailure{run.verdict(), run.describe()}.causeId()), "timed-out");
+  EXPECT_NE(run.describe().find("timed out"), std::string::npos) << run.describe();
 
   grader::GradeReport report;
   grader::UsedFile broken;
   broken.name = "cloth.cpp";
+  broken.status = Verdict::CompileError;
   broken.problem = "error: expected ';'";
   report.files.push_back(broken);
-  EXPECT_EQ(grader::submissionVerdict(report, {"ok", "crashed"}), "compile-error");
-  EXPECT_EQ(grader::submissionVerdict(report, {"crashed", "grader-error"}), "grader-error");
+  EXPECT_EQ(grader::submissionVerdict(report, {Verdict::Graded, Verdict::Crashed}),
+            Verdict::CompileError);
+  EXPECT_EQ(grader::submissionVerdict(report, {Verdict::Crashed, Verdict::GraderError}),
+            Verdict::GraderError);
   report.files.clear();
-  EXPECT_EQ(grader::submissionVerdict(report, {"ok", "ok"}), "graded");
+  EXPECT_EQ(grader::submissionVerdict(report, {Verdict::Graded, Verdict::Graded}),
+            Verdict::Graded);
+}
+
+// The table of verdicts is the one place their words are written: each word reads back as its
+// verdict, in the table's order (the order a submission's verdict is chosen in).
+TEST(Verdict, EveryWordReadsBackAsItsVerdict) {
+  using grader::Verdict;
+  ASSERT_EQ(grader::verdictTable().size(), std::size_t(Verdict::Graded) + 1);
+  for (std::size_t k = 0; k < grader::verdictTable().size(); ++k) {
+    const grader::VerdictInfo& info = grader::verdictTable()[k];
+    EXPECT_EQ(std::size_t(info.verdict), k) << info.id;
+    Verdict back = Verdict::Graded;
+    EXPECT_TRUE(grader::verdictFromId(info.id, back)) << info.id;
+    EXPECT_EQ(back, info.verdict) << info.id;
+  }
+  Verdict unchanged = Verdict::Crashed;
+  EXPECT_FALSE(grader::verdictFromId("aborted", unchanged));
+  EXPECT_EQ(unchanged, Verdict::Crashed);
 }
 
 }  // namespace

@@ -23,8 +23,8 @@ GradeReport sampleReport() {
   report.submission = "subs/<img src=x onerror=alert(1)>";
   report.edition = 2022;
   report.edition_source = "detected";
-  report.files = {{"cloth.cpp", "src/<b>cloth.cpp", true, "", 0},
-                  {"sphere.cpp", "", false, "missing", 0}};
+  report.files = {{"cloth.cpp", "src/<b>cloth.cpp", true, Verdict::Graded, "", 0},
+                  {"sphere.cpp", "", false, Verdict::MissingFile, "missing", 0}};
   report.notes = {"non-UTF-8 bytes \xFF in integrator.cpp"};
   TestResult pass = makeTest("Cloth::initializeSpring", "connections at N = 25", 1);
   pass.fraction = 1;
@@ -189,7 +189,7 @@ TEST(HtmlReport, ClassPageFromTheBatchFolders) {
   const test::TempDir dir;
   BatchRow a;
   a.name = "alice";
-  a.verdict = "graded";
+  a.verdict = grader::Verdict::Graded;
   a.score = 5;
   BatchRow b = a;
   b.name = "bob";  // no results.json: a row without checks

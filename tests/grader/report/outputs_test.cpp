@@ -65,7 +65,7 @@ TEST(MarkdownReport, FailedChecksComeWithTheirFeedback) {
 
 TEST(AllWriters, StateTheVerdictAndTheIsolation) {
   GradeReport report = sampleReport();
-  report.verdict = "timed-out";
+  report.verdict = grader::Verdict::TimedOut;
   report.isolation = "rlimits, uid 65534 <x>";
   const auto json = resultsJson(report);
   EXPECT_EQ(json["extra_data"]["verdict"], "timed-out");
@@ -92,7 +92,7 @@ GradeReport nastyReport() {
   GradeReport report = sampleReport();
   report.submission = "sub\n\xFF\x1B]0;x\x07";
   report.edition_source = kNasty;
-  report.verdict = "crashed";
+  report.verdict = grader::Verdict::Crashed;
   report.isolation = kNasty;
   UsedFile file;
   file.name = "cloth.cpp";

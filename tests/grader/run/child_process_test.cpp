@@ -33,24 +33,24 @@ TEST(RunChild, Verdicts) {
 
 TEST(RunChild, OneWordVerdicts) {
   test::TempDir temp;
-  EXPECT_EQ(runShell(temp, "exit 3").verdict(), "exited-non-zero");
-  EXPECT_EQ(runShell(temp, "kill -SEGV $$").verdict(), "crashed");
-  EXPECT_EQ(runShell(temp, "kill -XCPU $$").verdict(), "timed-out");
-  EXPECT_EQ(runShell(temp, "kill -XFSZ $$").verdict(), "output-limit");
+  EXPECT_EQ(runShell(temp, "exit 3").verdict(), Verdict::ExitedNonZero);
+  EXPECT_EQ(runShell(temp, "kill -SEGV $$").verdict(), Verdict::Crashed);
+  EXPECT_EQ(runShell(temp, "kill -XCPU $$").verdict(), Verdict::TimedOut);
+  EXPECT_EQ(runShell(temp, "kill -XFSZ $$").verdict(), Verdict::OutputLimit);
   EXPECT_EQ(runShell(temp,
                      "echo \"terminate called after throwing an instance of "
                      "'std::bad_alloc'\" >&2; kill -ABRT $$")
                 .verdict(),
-            "memory-limit");
-  EXPECT_EQ(runShell(temp, "true").verdict(), "no-answer");
-  EXPECT_EQ(runShell(temp, "sleep 30", 0.3).verdict(), "timed-out");
+            Verdict::MemoryLimit);
+  EXPECT_EQ(runShell(temp, "true").verdict(), Verdict::NoAnswer);
+  EXPECT_EQ(runShell(temp, "sleep 30", 0.3).verdict(), Verdict::TimedOut);
 }
 
 TEST(RunChild, LimitsBite) {
   test::TempDir temp;
   // 64 MiB of output: the file-size limit stops it (SIGXFSZ), the grader's disk is safe.
   const ChildRun flood = runShell(temp, "exec yes flood-flood-flood-flood-flood");
-  EXPECT_EQ(flood.verdict(), "output-limit") << flood.describe();
+  EXPECT_EQ(flood.verdict(), Verdict::OutputLimit) << flood.describe();
   EXPECT_LE(std::filesystem::file_size(temp.file("child.stdout")), 64u << 20);
   std::ofstream(temp.file("in"), std::ios::trunc) << "";
   ChildLimits limits;
@@ -63,7 +63,7 @@ TEST(RunChild, LimitsBite) {
   std::getline(std::ifstream(temp.file("child.stderr")), line);
   EXPECT_EQ(line, "1048576");  // KiB
   ASSERT_EQ(limits.log->verdicts.size(), 1u);
-  EXPECT_EQ(limits.log->verdicts[0], "exited-non-zero");
+  EXPECT_EQ(limits.log->verdicts[0], Verdict::ExitedNonZero);
 }
 
 TEST(RunChild, PrintingAFrameOnStdoutIsNotAnAnswer) {

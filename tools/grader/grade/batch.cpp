@@ -76,7 +76,7 @@ std::optional<BatchRow> finishedRow(const fs::path& folder) {
   if (!fs::exists(path, error)) return std::nullopt;
   try {
     BatchRow row = rowFromJson(readJsonFile(path.string(), "batch row"), path.string());
-    if (row.verdict == "grader-error") return std::nullopt;
+    if (row.verdict == Verdict::GraderError) return std::nullopt;
     return row;
   } catch (const InputError&) {
     return std::nullopt;
@@ -90,7 +90,7 @@ struct Outputs {
   std::string report_html;  // empty when not graded
 };
 
-Outputs notGradable(const BatchEntry& entry, const std::string& verdict,
+Outputs notGradable(const BatchEntry& entry, Verdict verdict,
                     const std::string& problem) {
   Outputs out;
   out.row.name = entry.name;
@@ -98,7 +98,7 @@ Outputs notGradable(const BatchEntry& entry, const std::string& verdict,
   out.row.verdict = verdict;
   out.row.problem = safeName(problem);
   const std::string text =
-      verdict == "not-gradable"
+      verdict == Verdict::NotGradable
           ? "The submission could not be graded: " + out.row.problem
           : "The grader failed on this submission (" + out.row.problem + "); see the course staff.";
   nlohmann::ordered_json results;
@@ -108,7 +108,7 @@ Outputs notGradable(const BatchEntry& entry, const std::string& verdict,
   results["visibility"] = "visible";
   results["tests"] = nlohmann::ordered_json::array();
   out.results_json = results.dump(2, ' ', false, kReplace) + "\n";
-  out.report_md = "# Grading report: " + out.row.dir + "\n\n**" + verdict + "**. " + text + "\n";
+  out.report_md = "# Grading report: " + out.row.dir + "\n\n**" + verdictId(verdict) + "**. " + text + "\n";
   return out;
 }
 
@@ -125,9 +125,9 @@ Outputs gradeOne(const BatchEntry& entry, const BatchOptions& options, const Gra
     out.report_html = studentReportHtml(report, whole_run_view);
     return out;
   } catch (const InputError& error) {
-    return notGradable(entry, "not-gradable", error.what());
+    return notGradable(entry, Verdict::NotGradable, error.what());
   } catch (const std::exception& error) {
-    return notGradable(entry, "grader-error", error.what());
+    return notGradable(entry, Verdict::GraderError, error.what());
   }
 }
 
@@ -222,7 +222,7 @@ BatchRow rowOf(const BatchEntry& entry, const GradeReport& report) {
   row.stub_max = report.stub_max;
   row.score = report.score;
   row.max_score = report.max_score;
-  row.verdict = safeName(report.verdict);
+  row.verdict = report.verdict;
   row.isolation = safeName(report.isolation);
   row.seconds = report.seconds.count("total") ? report.seconds.at("total") : 0;
   return row;
@@ -237,7 +237,7 @@ nlohmann::ordered_json rowJson(const BatchRow& row) {
   json["stub_max"] = row.stub_max;
   json["total"] = row.score;
   json["max"] = row.max_score;
-  json["verdict"] = row.verdict;
+  json["verdict"] = verdictId(row.verdict);
   json["isolation"] = row.isolation;
   json["problem"] = row.problem;
   json["seconds"] = row.seconds;
@@ -254,7 +254,8 @@ BatchRow rowFromJson(const nlohmann::json& json, const std::string& where) {
     row.stub_max = json.at("stub_max").get<std::map<std::string, double>>();
     row.score = json.at("total").get<double>();
     row.max_score = json.at("max").get<double>();
-    row.verdict = json.at("verdict").get<std::string>();
+    if (!verdictFromId(json.at("verdict").get<std::string>(), row.verdict))
+      throw InputError(where + ": not a batch row (unknown verdict)");
     row.isolation = json.at("isolation").get<std::string>();
     row.problem = json.at("problem").get<std::string>();
     row.seconds = json.at("seconds").get<double>();
@@ -281,7 +282,7 @@ std::string batchCsv(const std::vector<BatchRow>& rows, bool header) {
     seconds.setf(std::ios::fixed);
     seconds.precision(1);
     seconds << row.seconds;
-    out += "," + number(row.score) + "," + number(row.max_score) + "," + csvField(row.verdict) +
+    out += "," + number(row.score) + "," + number(row.max_score) + "," + csvField(verdictId(row.verdict)) +
            "," + csvField(row.isolation) + "," + seconds.str() + "\n";
   }
   return out;
@@ -361,7 +362,7 @@ BatchSummary runBatch(const std::vector<fs::path>& dirs, const BatchOptions& opt
         return;
       }
       ++done;
-      if (out.row.verdict != "graded") ++failed;
+      if (out.row.verdict != Verdict::Graded) ++failed;
       const double eta = since(start) / done * static_cast<double>(pending.size() - done);
       progress.update(done, std::to_string(failed) + " failed, ETA " + formatDuration(eta));
     }
@@ -379,7 +380,7 @@ BatchSummary runBatch(const std::vector<fs::path>& dirs, const BatchOptions& opt
   for (const BatchEntry& entry : selected) {
     const fs::path path = options.out_dir / entry.name / kRowFile;
     BatchRow row = rowFromJson(readJsonFile(path.string(), "batch row"), path.string());
-    if (row.verdict != "graded") ++summary.failed;
+    if (row.verdict != Verdict::Graded) ++summary.failed;
     summary.rows.push_back(std::move(row));
   }
   writeText(summary.csv, batchCsv(summary.rows, options.csv_header));

@@ -50,9 +50,9 @@ struct BatchRow {
   int edition = 0;                                     // 0 when not gradable
   std::map<std::string, double> stub_score, stub_max;  // per course stub (stubNames())
   double score = 0, max_score = 0;
-  // GradeReport::verdict, or "not-gradable" (the grader refused the directory: no student file,
-  // our reference not building) or "grader-error" (an unexpected error of ours).
-  std::string verdict;
+  // GradeReport::verdict, or NotGradable (the grader refused the directory: no student file,
+  // our reference not building) or GraderError (an unexpected error of ours).
+  Verdict verdict = Verdict::Graded;
   std::string isolation;
   std::string problem;  // why it is not gradable, else empty
   double seconds = 0;   // wall time of grading this submission
@@ -86,7 +86,7 @@ struct BatchSummary {
   std::vector<BatchRow> rows;  // the shard's submissions, sorted by name
   int graded = 0;              // graded by this run
   int skipped = 0;             // already graded (row.json found)
-  int failed = 0;              // rows whose verdict is not "graded"
+  int failed = 0;              // rows whose verdict is not Graded
   std::filesystem::path csv;
 };
 

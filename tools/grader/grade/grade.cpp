@@ -58,26 +58,14 @@ double since(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-std::string submissionVerdict(const GradeReport& report,
-                              const std::vector<std::string>& run_verdicts) {
-  std::set<std::string> happened(run_verdicts.begin(), run_verdicts.end());
-  for (const UsedFile& used : report.files) {
-    if (used.compiled) continue;
-    if (used.problem == "missing")
-      happened.insert("missing-file");
-    else if (used.problem.rfind("link error", 0) == 0)
-      happened.insert("link-error");
-    else
-      happened.insert("compile-error");
-  }
+Verdict submissionVerdict(const GradeReport& report, const std::vector<Verdict>& run_verdicts) {
+  std::vector<Verdict> happened = run_verdicts;
+  for (const UsedFile& used : report.files)
+    if (!used.compiled) happened.push_back(used.status);
   for (const TestResult& t : report.tests)
     for (const std::string& id : t.diagnoses)
-      if (id == "non-finite") happened.insert(id);
-  for (const char* verdict :
-       {"grader-error", "compile-error", "link-error", "missing-file", "timed-out", "memory-limit",
-        "output-limit", "crashed", "exited-non-zero", "no-answer", "non-finite"})
-    if (happened.count(verdict)) return verdict;
-  return "graded";
+      if (id == "non-finite") happened.push_back(Verdict::NonFinite);
+  return worstVerdict(happened);
 }
 
 namespace {
@@ -166,9 +154,9 @@ std::map<std::string, std::string> unavailableStubs(const std::vector<UsedFile>&
   std::map<std::string, std::string> unavailable;
   for (const UsedFile& used : files) {
     if (used.compiled) continue;
-    const bool link_error = used.problem.rfind("link error", 0) == 0;
+    const bool link_error = used.status == Verdict::LinkError;
     const std::string text =
-        used.problem == "missing"
+        used.status == Verdict::MissingFile
             ? used.name + " was not found in the submission; its stubs get no points."
         : link_error ? used.name +
                            " compiles but does not link (a function it must define is "

@@ -29,11 +29,9 @@ struct GradeOptions {
 // file found, our own reference does not build).
 GradeReport gradeSubmission(const std::filesystem::path& dir, const GradeOptions& options);
 
-// The submission's one word: the first of docs/grading.md's "Verdicts" that happened, from the
-// files that did not build, the probe runs' verdicts (ChildRun::verdict) and the tests' causes.
-// "grader-error" (a probe the grader could not start) comes first: it is ours, and a batch
-// re-grades it.
-std::string submissionVerdict(const GradeReport& report,
-                              const std::vector<std::string>& run_verdicts);
+// The submission's verdict: the first of verdictTable() that happened, from the files that did
+// not build, the probe runs' verdicts (ChildRun::verdict) and the tests' causes. GraderError (a
+// probe the grader could not start) comes first: it is ours, and a batch re-grades it.
+Verdict submissionVerdict(const GradeReport& report, const std::vector<Verdict>& run_verdicts);
 
 }  // namespace clothref::grader

@@ -9,6 +9,66 @@
 
 namespace clothref::grader {
 
+// What happened to a submission, or to one probe run: one word each (CSV, results.json, JUnit),
+// in the order a submission's verdict is chosen (the first that happened wins; docs/grading.md,
+// "Verdicts"). Verdicts travel as this enum; the words are written only from the table below and
+// read back only through it (a batch's row.json).
+enum class Verdict {
+  GraderError,    // our failure (a sandbox, fork, pipe or file of ours): never the student's
+  NotGradable,    // batch only: the grader refused the folder (no student file, ...)
+  CompileError,   // a student file does not compile (our reference linked in its place)
+  LinkError,      // a student file compiles but the probe does not link with it
+  MissingFile,    // one of the three files is not in the submission
+  TimedOut,       // a probe hit the wall or CPU time limit
+  MemoryLimit,    // a probe died of std::bad_alloc under the address-space limit
+  OutputLimit,    // a probe was stopped by the file-size limit
+  Crashed,        // a probe was killed by another signal
+  ExitedNonZero,  // a probe exited with a non-zero code
+  NoAnswer,       // a probe exited 0 without a valid answer
+  NonFinite,      // a probe answered with NaN or infinity
+  Graded          // every probe answered with finite numbers (a run: it finished cleanly)
+};
+
+struct VerdictInfo {
+  Verdict verdict;
+  const char* id;  // the one word
+};
+
+// The one table of verdicts, in the order above.
+inline const std::vector<VerdictInfo>& verdictTable() {
+  static const std::vector<VerdictInfo> table = {
+      {Verdict::GraderError, "grader-error"},   {Verdict::NotGradable, "not-gradable"},
+      {Verdict::CompileError, "compile-error"}, {Verdict::LinkError, "link-error"},
+      {Verdict::MissingFile, "missing-file"},   {Verdict::TimedOut, "timed-out"},
+      {Verdict::MemoryLimit, "memory-limit"},   {Verdict::OutputLimit, "output-limit"},
+      {Verdict::Crashed, "crashed"},            {Verdict::ExitedNonZero, "exited-non-zero"},
+      {Verdict::NoAnswer, "no-answer"},         {Verdict::NonFinite, "non-finite"},
+      {Verdict::Graded, "graded"}};
+  return table;
+}
+
+inline const char* verdictId(Verdict verdict) {
+  return verdictTable()[static_cast<std::size_t>(verdict)].id;
+}
+
+// The verdict a word names; false when it names none.
+inline bool verdictFromId(const std::string& id, Verdict& verdict) {
+  for (const VerdictInfo& info : verdictTable())
+    if (id == info.id) {
+      verdict = info.verdict;
+      return true;
+    }
+  return false;
+}
+
+// The first of `happened` in the table's order; Graded when none.
+inline Verdict worstVerdict(const std::vector<Verdict>& happened) {
+  Verdict worst = Verdict::Graded;
+  for (Verdict v : happened)
+    if (static_cast<int>(v) < static_cast<int>(worst)) worst = v;
+  return worst;
+}
+
 // The graded stubs, in the course's order.
 enum class Stub {
   InitializeSpring,
@@ -117,7 +177,9 @@ struct UsedFile {
   std::string name;       // cloth.cpp, sphere.cpp, integrator.cpp
   std::string path;       // as found below the submission directory, or empty when missing
   bool compiled = false;  // false: our reference version was linked in its place
-  std::string problem;    // compile or link error (first error quoted), or "missing"
+  // Why it was not used (compiled = false): MissingFile, CompileError or LinkError.
+  Verdict status = Verdict::Graded;
+  std::string problem;  // the compile or link error (first error quoted), or "missing"
   double compile_seconds = 0;
 };
 
@@ -131,10 +193,9 @@ struct GradeReport {
   double score = 0, max_score = 0;
   std::map<std::string, double> stub_score, stub_max;  // per course stub
   std::map<std::string, double> seconds;               // "compile", "link", "probes", "total"
-  // One-word outcome for batch summaries (CSV): "graded" when every probe group answered, else
-  // the worst thing that happened ("compile-error", "link-error", "crashed", "timed-out", ...;
-  // the full list and its order are in docs/grading.md, "Verdicts").
-  std::string verdict = "graded";
+  // The outcome for batch summaries (CSV): Graded when every probe group answered, else the
+  // worst thing that happened (the first of verdictTable() that happened).
+  Verdict verdict = Verdict::Graded;
   // Which isolation the student processes had, e.g. "bubblewrap (net, pid, mount namespaces),
   // uid 65534, rlimits" or "rlimits only" (docs/grading.md, "Sandbox").
   std::string isolation;

@@ -305,7 +305,7 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
     request.floats[key::perCase(key::kSphereVel, n)] = util::flat(s.spheres.particles.velocity);
     request.floats[key::perCase(key::kSphereMass, n)] = util::flat(s.spheres.particles.mass);
   }
-  std::string failure;
+  util::ProbeFailure failure;
   const auto answer = util::runGroup(context, context.probe, group_name, request, failure);
   std::vector<std::pair<ContactMistake, const char*>> signatures = {
       {ContactMistake::NoApproachCheck, "no-approach-check"},
@@ -346,9 +346,9 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const Case& c = cases[k];
     if (!answer) {
-      const std::string id = util::verdictId(failure);
+      const std::string id = failure.causeId();
       tests.push_back(util::failedTest(
-          checks[c.check], failure + "\n\n" + context.catalogue->cause(id, true), {id}));
+          checks[c.check], failure.text + "\n\n" + context.catalogue->cause(id, true), {id}));
       continue;
     }
     const int n = static_cast<int>(k);
@@ -501,9 +501,9 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
     }
     tests.push_back(t);
   } else {
-    const std::string id = util::verdictId(failure);
+    const std::string id = failure.causeId();
     tests.push_back(util::failedTest(checks.back(),
-                                     failure + "\n\n" + context.catalogue->cause(id, true), {id}));
+                                     failure.text + "\n\n" + context.catalogue->cause(id, true), {id}));
   }
   return tests;
 }

@@ -183,16 +183,16 @@ std::vector<TestResult> probeForces(const ProbeContext& context) {
     request.floats[key::perCase(key::kClothAcc, n)] = util::flat(cases[k].acc0);
     request.floats[key::perCase(key::kClothMass, n)] = util::flat(p.mass);
   }
-  std::string failure;
+  util::ProbeFailure failure;
   const auto answer = util::runGroup(context, context.probe, group::kForces, request, failure);
   const std::vector<PlannedTest> checks = forcesChecks();
   std::vector<TestResult> tests;
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const Case& c = cases[k];
     if (!answer) {
-      const std::string id = util::verdictId(failure);
+      const std::string id = failure.causeId();
       tests.push_back(util::failedTest(
-          checks[c.check], failure + "\n\n" + context.catalogue->cause(id, true), {id}));
+          checks[c.check], failure.text + "\n\n" + context.catalogue->cause(id, true), {id}));
       continue;
     }
     TestResult t = util::test(checks[c.check]);

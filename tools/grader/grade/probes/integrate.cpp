@@ -464,7 +464,7 @@ struct IntegratorRun {
 // Builds the request for `index` (small systems, or the course's cloth when `course_size`) and runs
 // it. Returns false with `failure` set when the child did not answer.
 bool runIntegrator(const ProbeContext& context, int index, bool course_size, IntegratorRun& run,
-                   std::string& failure, ChildRun& child, bool log) {
+                   util::ProbeFailure& failure, ChildRun& child, bool log) {
   run.index = index;
   run.method = kMethods[index];
   run.stub = stubName(integratorStub(index));
@@ -927,33 +927,34 @@ std::vector<PlannedTest> integratorChecks(int method) {
 std::vector<TestResult> probeIntegrator(const ProbeContext& context, int index) {
   const Method method = kMethods[index];
   IntegratorRun run;
-  std::string failure;
+  util::ProbeFailure failure;
   ChildRun child;
   std::string note;  // why the course-size cloth was used
   bool ok = runIntegrator(context, index, false, run, failure, child, false);
-  if (!ok && util::verdictId(failure) == "crashed") {
+  if (!ok && failure.verdict == Verdict::Crashed) {
     // Code written for the course's cloth (e.g. indexing particlesPerEdge into it) crashes on the
     // small probe cloth: grade it on the course's cloth instead, and say so.
     note = "On the 4 x 4 probe cloth the probe process " + child.describe() +
            " (code written for the course's 25 x 25 cloth?), so this stub was graded on the "
            "course's cloth and spheres.\n\n";
-    std::string again;
+    util::ProbeFailure again;
     IntegratorRun course;
     ok = runIntegrator(context, index, true, course, again, child, true);
     if (ok)
       run = std::move(course);
     else
-      failure = "On the 4 x 4 probe cloth: " + failure + "\n\nOn the course's cloth: " + again;
+      failure = {again.verdict, "On the 4 x 4 probe cloth: " + failure.text +
+                                  "\n\nOn the course's cloth: " + again.text};
   } else if (!ok && context.limits.log) {
     std::lock_guard<std::mutex> lock(context.limits.log->mutex);
     context.limits.log->verdicts.push_back(child.verdict());
   }
   std::vector<TestResult> tests;
   if (!ok) {
-    const std::string id = util::verdictId(failure);
+    const std::string id = failure.causeId();
     for (const PlannedTest& check : integratorChecks(index))
       tests.push_back(
-          util::failedTest(check, failure + "\n\n" + context.catalogue->cause(id, true), {id}));
+          util::failedTest(check, failure.text + "\n\n" + context.catalogue->cause(id, true), {id}));
     return tests;
   }
   const TestResult one = checkOneStep(context, run);

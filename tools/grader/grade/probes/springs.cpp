@@ -211,18 +211,18 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
   const double rest_rel = context.rubric.tolerances.rest_length_rel;
   probe::ProbeMessage request;
   request.texts[key::kGroup] = group::kSprings;
-  std::string failure;
+  util::ProbeFailure failure;
   auto answer = util::runGroup(context, context.probe, group::kSprings, request, failure);
   const std::vector<PlannedTest> checks = springsChecks();
   std::optional<SpringSet> student;
   const SpringSet reference = referenceSprings(25, context.edition);
-  if (answer) student = studentSprings(*answer, 25, failure);
+  if (answer) student = studentSprings(*answer, 25, failure.text);
   bool big_ok = false;
   if (!student) {
-    const std::string id = answer ? "wrong-spring-endpoints" : util::verdictId(failure);
+    const std::string id = answer ? "wrong-spring-endpoints" : failure.causeId();
     for (int k : {kConnections, kRestLengths, kTypeLabels})
       tests.push_back(
-          util::failedTest(checks[k], failure + "\n\n" + context.catalogue->cause(id, true), {id}));
+          util::failedTest(checks[k], failure.text + "\n\n" + context.catalogue->cause(id, true), {id}));
   } else {
     const Comparison c = compare(*student, reference, 25, rest_rel);
     const std::string state =
@@ -307,13 +307,13 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
                                                   : context.small_problem);
     small.fraction = 0;
   } else {
-    std::string small_failure;
+    util::ProbeFailure small_failure;
     auto small_answer =
         util::runGroup(context, context.probe_small, kSpringsSmallFolder, request, small_failure);
     std::optional<SpringSet> small_set;
-    if (small_answer) small_set = studentSprings(*small_answer, n, small_failure);
+    if (small_answer) small_set = studentSprings(*small_answer, n, small_failure.text);
     if (!small_set) {
-      small.output = state + small_failure + "\n";
+      small.output = state + small_failure.text + "\n";
       if (big_ok) {
         // Right at 25 and springs to particles a 10 x 10 cloth does not have: measured. A crash
         // at 10 is only suggestive.

@@ -43,18 +43,33 @@ inline std::string vec3(const Eigen::Ref<const Eigen::Vector4f>& v) {
   return "(" + num(v[0]) + ", " + num(v[1]) + ", " + num(v[2]) + ")";
 }
 
+// Why a probe group has no usable answer: the run's verdict (never read back from words) and the
+// text for the report (the verdict line, then the first lines of stderr).
+struct ProbeFailure {
+  Verdict verdict = Verdict::Graded;
+  std::string text;
+  // The catalogue id of the cause: grader-error (ours), timed-out (wall or CPU limit), or crashed
+  // for every other way the process ended.
+  std::string causeId() const {
+    if (verdict == Verdict::GraderError) return "grader-error";
+    if (verdict == Verdict::TimedOut) return "timed-out";
+    return "crashed";
+  }
+};
+
 // Runs `request` in a fresh folder under the context's work dir. On failure returns nullopt and
-// sets `failure` to the verdict line (with the first lines of stderr).
+// fills `failure`.
 inline std::optional<probe::ProbeMessage> runGroup(
     const ProbeContext& context, const std::filesystem::path& executable, const std::string& folder,
-    probe::ProbeMessage request, std::string& failure, ChildRun* run_out = nullptr) {
+    probe::ProbeMessage request, ProbeFailure& failure, ChildRun* run_out = nullptr) {
   const auto dir = context.work_dir / folder;
   std::filesystem::create_directories(dir);
   ChildRun run = runProbe(executable, std::move(request), dir, context.limits);
   if (run_out) *run_out = run;
   if (run.status == ChildStatus::Ok) return run.answer;
-  failure = "The probe process " + run.describe() + ".";
-  if (!run.stderr_head.empty()) failure += "\n\n```\n" + run.stderr_head + "```";
+  failure.verdict = run.verdict();
+  failure.text = "The probe process " + run.describe() + ".";
+  if (!run.stderr_head.empty()) failure.text += "\n\n```\n" + run.stderr_head + "```";
   return std::nullopt;
 }
 
@@ -71,15 +86,6 @@ inline TestResult failedTest(const PlannedTest& check, const std::string& why,
   t.output = why;
   t.diagnoses = diagnoses;
   return t;
-}
-
-// Cause id for a probe group that failed, from runGroup's `failure`: only its first line, our
-// words (the student's stderr follows it and must not choose the id).
-inline std::string verdictId(const std::string& failure) {
-  const std::string first = failure.substr(0, failure.find('\n'));
-  if (first.find("could not be started by the grader") != std::string::npos) return "grader-error";
-  if (first.find("timed out") != std::string::npos) return "timed-out";
-  return "crashed";
 }
 
 inline bool finite(const std::vector<float>& v) {

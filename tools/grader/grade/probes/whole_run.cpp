@@ -37,10 +37,10 @@ std::vector<TestResult> probeWholeRun(const ProbeContext& context) {
   request.floats[key::kDt] = {float(settings.dt)};
   request.ints[key::kSteps] = {settings.steps};
   request.ints[key::kStride] = {settings.stride};
-  std::string failure;
+  util::ProbeFailure failure;
   const auto answer = util::runGroup(context, context.probe, group::kWholeRun, request, failure);
   if (!answer) {
-    t.output = "Your full simulation did not finish: " + failure;
+    t.output = "Your full simulation did not finish: " + failure.text;
     return {t};
   }
   const auto dir = context.work_dir / group::kWholeRun;

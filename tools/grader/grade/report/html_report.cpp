@@ -330,7 +330,7 @@ GradeReport gradeWithWholeRun(const fs::path& dir, const GradeOptions& options,
 nlohmann::ordered_json withHtmlSummary(nlohmann::ordered_json results, const GradeReport& report) {
   std::string out = "<p><strong>Score " + number(report.score) + " / " + number(report.max_score) +
                     "</strong> (edition " + std::to_string(report.edition) + ", verdict " +
-                    pages::escapeHtml(report.verdict) +
+                    std::string(verdictId(report.verdict)) +
                     ")</p>\n<table>\n<tr><th>stub</th>"
                     "<th>points</th><th>checks passed</th></tr>\n";
   for (const std::string& stub : stubNames()) {
@@ -364,7 +364,7 @@ std::string studentReportHtml(const GradeReport& report,
   const auto e = [](const std::string& text) { return pages::escapeHtml(text); };
   std::string body = "<p><strong>Score " + number(report.score) + " / " + number(report.max_score) +
                      "</strong>. Edition " + std::to_string(report.edition) + " (" +
-                     e(report.edition_source) + "). Verdict: " + e(report.verdict) + ".</p>\n";
+                     e(report.edition_source) + "). Verdict: " + std::string(verdictId(report.verdict)) + ".</p>\n";
   body +=
       "<table class=\"gr-table gr-files\"><tr><th>file</th><th>found at</th><th>used</th></tr>\n";
   for (const UsedFile& f : report.files)

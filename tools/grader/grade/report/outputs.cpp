@@ -47,7 +47,6 @@ GradeReport cleaned(const GradeReport& given) {
   const auto text = [&](std::string& value) { value = safeText(value, &repairs); };
   name(report.submission);
   text(report.edition_source);
-  name(report.verdict);
   name(report.isolation);
   for (UsedFile& file : report.files) {
     name(file.name);
@@ -101,7 +100,7 @@ nlohmann::ordered_json resultsJson(const GradeReport& given) {
   out["execution_time"] = rounded(report.seconds.count("total") ? report.seconds.at("total") : 0);
   std::string summary = "Edition " + std::to_string(report.edition) + " (" + report.edition_source +
                         "). Code score " + number(report.score) + " / " + number(report.max_score) +
-                        ". Verdict: " + report.verdict + ".\n\n" + filesSection(report);
+                        ". Verdict: " + verdictId(report.verdict) + ".\n\n" + filesSection(report);
   if (!report.isolation.empty()) summary += "\nStudent code ran with: " + report.isolation + ".\n";
   for (const auto& note : report.notes) summary += "\n- " + note;
   out["output"] = summary;
@@ -126,7 +125,7 @@ nlohmann::ordered_json resultsJson(const GradeReport& given) {
   out["tests"] = tests;
   nlohmann::ordered_json extra;
   extra["edition"] = report.edition;
-  extra["verdict"] = report.verdict;
+  extra["verdict"] = verdictId(report.verdict);
   extra["isolation"] = report.isolation;
   nlohmann::ordered_json files = nlohmann::ordered_json::array();
   for (const UsedFile& f : report.files)
@@ -153,7 +152,7 @@ std::string junitXml(const GradeReport& given) {
   out << "    <properties><property name=\"score\" value=\"" << number(report.score)
       << "\"/><property name=\"max_score\" value=\"" << number(report.max_score)
       << "\"/><property name=\"edition\" value=\"" << report.edition
-      << "\"/><property name=\"verdict\" value=\"" << xmlEscape(report.verdict)
+      << "\"/><property name=\"verdict\" value=\"" << verdictId(report.verdict)
       << "\"/><property name=\"isolation\" value=\"" << xmlEscape(report.isolation) << "\"/>";
   // The notes (files chosen or refused, encodings, what text was decoded) on one line.
   std::string notes;
@@ -180,7 +179,7 @@ std::string markdownReport(const GradeReport& given) {
   out << "# Grading report: " << report.submission << "\n\n";
   out << "Edition " << report.edition << " (" << report.edition_source << "). **Code score "
       << number(report.score) << " / " << number(report.max_score) << "**. Verdict: **"
-      << report.verdict << "**.\n\n";
+      << verdictId(report.verdict) << "**.\n\n";
   if (!report.isolation.empty()) out << "Student code ran with: " << report.isolation << ".\n\n";
   out << "| stub | score |\n|---|---|\n";
   for (const auto& stub : stubNames())

@@ -432,6 +432,7 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseTo
     used.name = name;
     auto found = files.found.find(name);
     if (found == files.found.end()) {
+      used.status = Verdict::MissingFile;
       used.problem = "missing";
       build.files.push_back(used);
       continue;
@@ -466,7 +467,10 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseTo
       if (used.name == names[k]) {
         used.compiled = runs[k].ok;
         used.compile_seconds = runs[k].seconds;
-        if (!runs[k].ok) used.problem = firstCompilerError(runs[k].output, used.name);
+        if (!runs[k].ok) {
+          used.status = Verdict::CompileError;
+          used.problem = firstCompilerError(runs[k].output, used.name);
+        }
       }
   }
 
@@ -532,6 +536,7 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseTo
     ToolRun retry = link(swapped, build.probe);
     if (retry.ok) {
       used.compiled = false;
+      used.status = Verdict::LinkError;
       used.problem = "link error: " + error;
       objects = swapped;
       linked = retry;

@@ -358,12 +358,12 @@ std::string ChildRun::describe() const {
       out << "finished";
       break;
     case ChildStatus::Crashed:
-      if (verdict() == "memory-limit")
+      if (verdict() == Verdict::MemoryLimit)
         out << "ran out of memory (address-space limit; std::bad_alloc, then abort)";
-      else if (verdict() == "output-limit")
+      else if (verdict() == Verdict::OutputLimit)
         out << "was stopped for writing too much output (file-size limit, SIGXFSZ)";
-      else if (verdict() == "timed-out")
-        out << "was stopped at the CPU time limit (SIGXCPU)";
+      else if (verdict() == Verdict::TimedOut)
+        out << "timed out: stopped at the CPU time limit (SIGXCPU)";
       else
         out << "crashed (" << signalName(signal) << ")";
       break;
@@ -383,33 +383,33 @@ std::string ChildRun::describe() const {
   return out.str();
 }
 
-std::string ChildRun::verdict() const {
+Verdict ChildRun::verdict() const {
   switch (status) {
     case ChildStatus::Ok:
       // An answer with NaN or infinity: the run worked, the numbers did not.
       if (answer)
         for (const auto& [key, values] : answer->floats)
           for (float value : values)
-            if (!std::isfinite(value)) return "non-finite";
-      return "ok";
+            if (!std::isfinite(value)) return Verdict::NonFinite;
+      return Verdict::Graded;
     case ChildStatus::TimedOut:
-      return "timed-out";
+      return Verdict::TimedOut;
     case ChildStatus::ExitedNonZero:
-      return "exited-non-zero";
+      return Verdict::ExitedNonZero;
     case ChildStatus::NoAnswer:
-      return "no-answer";
+      return Verdict::NoAnswer;
     case ChildStatus::NotStarted:
-      return "grader-error";
+      return Verdict::GraderError;
     case ChildStatus::Crashed:
       break;
   }
-  if (signal == SIGXCPU) return "timed-out";
-  if (signal == SIGXFSZ) return "output-limit";
+  if (signal == SIGXCPU) return Verdict::TimedOut;
+  if (signal == SIGXFSZ) return Verdict::OutputLimit;
   // The C++ runtime's last words when `new` fails under RLIMIT_AS (the student could print them
   // too: that only changes this word, never a score).
   if (signal == SIGABRT && stderr_head.find("std::bad_alloc") != std::string::npos)
-    return "memory-limit";
-  return "crashed";
+    return Verdict::MemoryLimit;
+  return Verdict::Crashed;
 }
 
 namespace {

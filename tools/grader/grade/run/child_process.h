@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "grader/bridge/probe_protocol.h"
+#include "grader/grade/results.h"
 #include "grader/grade/run/sandbox.h"
 
 namespace clothref::grader {
@@ -23,7 +24,7 @@ namespace clothref::grader {
 // name the worst thing that happened to a submission.
 struct RunLog {
   std::mutex mutex;
-  std::vector<std::string> verdicts;  // ChildRun::verdict() of each run, in completion order
+  std::vector<Verdict> verdicts;  // ChildRun::verdict() of each run, in completion order
 };
 
 struct ChildLimits {
@@ -56,10 +57,11 @@ struct ChildRun {
   std::optional<probe::ProbeMessage> answer;
   // One line for a report: "crashed (SIGSEGV)", "timed out after 20 s", ...
   std::string describe() const;
-  // One word (docs/grading.md, "Verdicts"): "ok", "timed-out" (wall or CPU limit),
-  // "memory-limit" (std::bad_alloc under the address-space limit), "output-limit" (file size),
-  // "crashed", "exited-non-zero", "no-answer", "grader-error" (NotStarted).
-  std::string verdict() const;
+  // What the run means for the submission (docs/grading.md, "Verdicts"): Graded (it finished and
+  // answered with finite numbers), NonFinite, TimedOut (wall or CPU limit), MemoryLimit
+  // (std::bad_alloc under the address-space limit), OutputLimit (file size), Crashed,
+  // ExitedNonZero, NoAnswer, GraderError (NotStarted: ours).
+  Verdict verdict() const;
 };
 
 // Runs `command` (argv; argv[0] a path) in `work_dir` with `stdin_file` as stdin, a clean

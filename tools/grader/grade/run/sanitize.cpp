@@ -30,7 +30,7 @@ std::string cleanLine(std::string line) {
 }  // namespace
 
 bool hasCrash(const GradeReport& report) {
-  if (report.verdict == "crashed" || report.verdict == "aborted") return true;
+  if (report.verdict == Verdict::Crashed) return true;
   return std::any_of(report.tests.begin(), report.tests.end(), [](const TestResult& t) {
     return std::find(t.diagnoses.begin(), t.diagnoses.end(), "crashed") != t.diagnoses.end();
   });
