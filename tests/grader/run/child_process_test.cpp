@@ -132,8 +132,10 @@ TEST(RunTools, FallbackCompilesCannotReadHostFilesNorHiddenFolders) {
   EXPECT_TRUE(open[1].ok) << open[1].output;
   Isolation isolation;
   isolation.kind = IsolationKind::Rlimits;
-  isolation.tool_uid = kToolUid;
-  isolation.hidden = {hidden};
+  const UidLease lease = leaseUids();
+  isolation.tool_uid = lease.tool_uid;
+  isolation.private_mounts = whyNoPrivateMountNamespace().empty();
+  isolation.ours = {hidden};
   fs::remove(work / "incbin.o");
   fs::remove(work / "include.o");
   const auto confined = runTools(commands, work, 2, 60, &isolation);

@@ -319,6 +319,45 @@ fs::path objectCachePath(const CourseToolchain& t, const std::vector<std::string
   return cachePath(t, command, source, work_dir, t.trusted_sources);
 }
 
+std::vector<fs::path> ourFolders(const CourseToolchain& t) {
+  std::vector<fs::path> candidates;
+  const auto add = [&](const fs::path& path) {
+    if (!path.empty()) candidates.push_back(fs::absolute(path).lexically_normal());
+  };
+  std::error_code error;
+  const fs::path course = fs::absolute(t.course_dir).lexically_normal();
+  const fs::path checkout = course.parent_path().parent_path().parent_path();
+  add(fs::is_directory(checkout / "lib" / "clothref", error) ? checkout
+                                                               : course.parent_path().parent_path());
+  add(t.reference_dir);
+  if (!t.prebuilt_dir.empty()) add(fs::absolute(t.prebuilt_dir).parent_path());
+  if (!t.driver_lib_dir.empty())
+    add(fs::absolute(t.driver_lib_dir).lexically_normal().parent_path().parent_path());
+  add(t.cache_dir);
+  const auto system = [&](const fs::path& path) {
+    static const char* const folders[] = {"/",     "/usr",       "/usr/local", "/usr/share",
+                                          "/opt",  "/home",      "/root",      "/tmp",
+                                          "/var",  "/var/tmp",   "/etc",       "/srv",
+                                          "/run",  "/dev/shm",   "/mnt",       "/media"};
+    for (const char* folder : folders)
+      if (path == fs::path(folder)) return true;
+    return path == fs::temp_directory_path(error).lexically_normal() || !path.has_relative_path();
+  };
+  const auto under = [](const fs::path& path, const fs::path& root) {
+    const std::string p = path.string(), r = root.string();
+    return p == r || (p.size() > r.size() && p.compare(0, r.size(), r) == 0 && p[r.size()] == '/');
+  };
+  std::vector<fs::path> ours;
+  for (const fs::path& path : candidates) {
+    if (system(path)) continue;
+    bool inside = false;
+    for (const fs::path& other : candidates)
+      inside = inside || (other != path && !system(other) && under(path, other));
+    if (!inside && std::find(ours.begin(), ours.end(), path) == ours.end()) ours.push_back(path);
+  }
+  return ours;
+}
+
 CourseToolchain defaultToolchain() {
   CourseToolchain t;
   // An install keeps the course side in <prefix>/share/clothref/grader; a build tree uses the
@@ -423,7 +462,8 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseTo
   const std::string ed = std::to_string(edition);
   const auto stem = [](const std::string& name) { return name.substr(0, name.size() - 4); };
 
-  const fs::path pch = precompiledHeader(toolchain, edition, work_dir);
+  fs::path pch = precompiledHeader(toolchain, edition, work_dir);
+  if (toolchain.kit && !pch.empty()) pch = kitHeader(*toolchain.kit, pch);
   // 1. Student files, each alone in its folder; plus cloth.cpp at the second size.
   std::vector<std::vector<std::string>> commands;
   std::vector<std::string> names;
@@ -474,17 +514,22 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseTo
       }
   }
 
-  // 2. Our reference version for every file that is missing or did not compile.
+  // 2. Our reference version for every file that is missing or did not compile: our own source,
+  // compiled (when nothing prebuilt matches) with the grader's uid, which alone may read it, and
+  // keyed as our prebuilt objects are. No student compile runs in this folder after it.
+  CourseToolchain ours = toolchain;
+  ours.isolation = Isolation{};
+  ours.trusted_sources = true;
   commands.clear();
   names.clear();
   for (const UsedFile& used : build.files) {
     if (used.compiled) continue;
     const fs::path reference = toolchain.reference_dir / ed / used.name;
-    commands.push_back(compileCommand(toolchain, edition, reference,
+    commands.push_back(compileCommand(ours, edition, reference,
                                       work_dir / (stem(used.name) + ".o"), 25, pch));
     names.push_back(used.name);
   }
-  runs = compileAll(toolchain, commands, work_dir);
+  runs = compileAll(ours, commands, work_dir);
   for (std::size_t k = 0; k < runs.size(); ++k)
     if (!runs[k].ok) {
       build.problem = "our reference " + names[k] + " for " + ed +
@@ -527,9 +572,9 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseTo
     if (!used.compiled) continue;
     const std::string error = firstCompilerError(linked.output, used.name);
     std::vector<std::string> ref =
-        compileCommand(toolchain, edition, toolchain.reference_dir / ed / used.name,
+        compileCommand(ours, edition, ours.reference_dir / ed / used.name,
                        work_dir / (stem(used.name) + "-ref.o"), 25, pch);
-    if (!compileAll(toolchain, {ref}, work_dir).front().ok) continue;
+    if (!compileAll(ours, {ref}, work_dir).front().ok) continue;
     std::vector<fs::path> swapped = objects;
     for (auto& o : swapped)
       if (o.filename() == stem(used.name) + ".o") o = work_dir / (stem(used.name) + "-ref.o");

@@ -27,6 +27,10 @@ struct RunLog {
   std::vector<Verdict> verdicts;  // ChildRun::verdict() of each run, in completion order
 };
 
+inline constexpr std::uint64_t kRunDiskBytes = 128ull << 20;
+inline constexpr double kDiskCheckSeconds = 0.02;
+inline constexpr std::uint64_t kKeptOutputBytes = 64ull << 10;
+
 struct ChildLimits {
   double wall_seconds = 20;                        // killed (whole process group) after this
   std::uint64_t cpu_seconds = 20;                  // RLIMIT_CPU
@@ -34,6 +38,13 @@ struct ChildLimits {
   std::uint64_t file_size_bytes = 64ull << 20;     // RLIMIT_FSIZE (stdout/stderr floods)
   std::uint64_t open_files = 64;                   // RLIMIT_NOFILE
   std::uint64_t processes = 64;       // RLIMIT_NPROC (counts the uid's processes; not for root)
+  // Files a run may hold at once: its folder, stdout, stderr and, outside bubblewrap, what its uid
+  // owns in the shared temporary folders; checked every kDiskCheckSeconds, the run is stopped
+  // past it (DiskLimit). Two runs of a submission at once: twice this per submission.
+  std::uint64_t disk_bytes = kRunDiskBytes;
+  // Keep what the run wrote in its folder after it ends (--keep-work); else it is removed, and
+  // stdout and stderr are cut to their first kKeptOutputBytes.
+  bool keep_files = false;
   Isolation isolation;                // uid drop, private folder, bubblewrap (default: none)
   std::vector<std::string> launcher;  // extra argv prefix, empty = none
   std::shared_ptr<RunLog> log;        // when set, every run's verdict is appended
@@ -43,9 +54,11 @@ enum class ChildStatus {
   Ok,             // exited 0 and answered with a well-formed frame carrying our nonce
   Crashed,        // killed by a signal (segfault, abort, CPU limit, ...)
   TimedOut,       // wall-clock limit reached
+  DiskLimit,      // stopped for holding more than ChildLimits::disk_bytes of files
   ExitedNonZero,  // exited with a non-zero code
   NoAnswer,       // exited 0 but sent no valid answer (missing, malformed, wrong nonce)
-  NotStarted      // the grader could not start it (fork failed): our failure, not the student's
+  NotStarted      // the grader could not start it (fork, pipe, a file or a mount of ours failed):
+                  // our failure, not the student's
 };
 
 struct ChildRun {
@@ -55,6 +68,11 @@ struct ChildRun {
   double seconds = 0;       // wall time
   std::string stderr_head;  // first lines of the child's stderr (for the report)
   std::optional<probe::ProbeMessage> answer;
+  // NotStarted: what failed on our side (for the staff), and whether it was the uid's process
+  // slots being taken (retried for longer: another run's fork bomb holds them for a while).
+  std::string grader_problem;
+  bool waiting_for_slot = false;
+  std::uint64_t disk_limit_bytes = 0;  // the limit a DiskLimit run passed
   // One line for a report: "crashed (SIGSEGV)", "timed out after 20 s", ...
   std::string describe() const;
   // What the run means for the submission (docs/grading.md, "Verdicts"): Graded (it finished and
@@ -79,14 +97,16 @@ ChildRun runProbe(const std::filesystem::path& executable, probe::ProbeMessage r
 // A compiler or linker run: exit status and the combined output.
 struct ToolRun {
   bool ok = false;
+  bool ours = false;  // the grader failed (could not start it, bubblewrap failed): not a verdict
   std::string output;
   double seconds = 0;
 };
 // Runs several tool commands at once (at most `jobs` in parallel); results in command order. A
-// command the grader cannot start (fork fails) is a failed run whose output says so.
-// With an `isolation` of kind Bubblewrap each command runs in bubblewrap seeing only /usr, the
-// work dir and the paths it names (sandbox.h); every run has CPU (wall + 1 s), address-space
-// (kToolAddressSpace) and file-size (kToolFileSize) limits.
+// command the grader could not start (fork, pipes, the child's set-up, bubblewrap) is tried once
+// more, then is a failed run marked `ours`, whose output says what failed.
+// With an `isolation` each command runs as its tool uid (never root: sandbox.h); of kind
+// Bubblewrap in bubblewrap seeing only /usr, the work dir and the paths it names; every run has
+// CPU (wall + 1 s), address-space (kToolAddressSpace) and file-size (kToolFileSize) limits.
 std::vector<ToolRun> runTools(const std::vector<std::vector<std::string>>& commands,
                               const std::filesystem::path& work_dir, int jobs, double wall_seconds,
                               const Isolation* isolation = nullptr);
