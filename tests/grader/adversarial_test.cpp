@@ -207,8 +207,9 @@ TEST_P(Adversarial, GetsItsVerdictAndTheAttackFails) {
       }
     }
   }
-  if (expected.contains("score"))
+  if (expected.contains("score")) {
     EXPECT_DOUBLE_EQ(results["score"].get<double>(), expected["score"].get<double>());
+  }
   if (expected.value("no_files_left", false)) {
     for (const char* shared : {"/tmp", "/var/tmp", "/dev/shm"}) {
       std::error_code error;

@@ -327,6 +327,9 @@ BatchSummary runBatch(const std::vector<fs::path>& dirs, const BatchOptions& opt
   // Without --cache-dir a batch still shares compiled objects and the precompiled header
   // between its submissions (and with its own reruns): in BATCHDIR/.cache.
   if (grade.toolchain.cache_dir.empty()) grade.toolchain.cache_dir = options.out_dir / kCacheDir;
+  // No student's code may read the batch folder (the others' results) or another's submission.
+  grade.private_paths.push_back(options.out_dir);
+  for (const BatchEntry& entry : selected) grade.private_paths.push_back(entry.dir);
 
   Progress progress("clothref grade", static_cast<std::int64_t>(pending.size()), "submissions",
                     progressStyleForStderr(options.quiet), progress_out);
