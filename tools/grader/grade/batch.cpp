@@ -19,7 +19,6 @@
 #include "clothref/io/progress.h"
 #include "grader/grade/report/html_report.h"
 #include "grader/grade/report/outputs.h"
-#include "grader/grade/run/sanitize.h"
 #include "grader/grade/text.h"
 
 namespace clothref::grader {
@@ -112,11 +111,10 @@ Outputs notGradable(const BatchEntry& entry, Verdict verdict,
   return out;
 }
 
-Outputs gradeOne(const BatchEntry& entry, const BatchOptions& options, const GradeOptions& grade) {
+Outputs gradeOne(const BatchEntry& entry, const GradeOptions& grade) {
   try {
     nlohmann::ordered_json whole_run_view;  // the pictures of report.html (html_report.h)
     GradeReport report = gradeWithWholeRun(entry.dir, grade, whole_run_view);
-    if (options.sanitize) diagnoseCrashWithSanitizers(entry.dir, report, grade);
     Outputs out;
     out.row = rowOf(entry, report);
     out.results_json =
@@ -348,7 +346,7 @@ BatchSummary runBatch(const std::vector<fs::path>& dirs, const BatchOptions& opt
       if (k >= pending.size()) return;
       const BatchEntry& entry = *pending[k];
       const auto graded_start = std::chrono::steady_clock::now();
-      Outputs out = gradeOne(entry, options, grade);
+      Outputs out = gradeOne(entry, grade);
       out.row.seconds = since(graded_start);
       std::lock_guard<std::mutex> lock(mutex);
       try {

@@ -77,7 +77,6 @@ struct BatchOptions {
   int cores = 0;          // cores to share between them; 0 = std::thread::hardware_concurrency()
   Shard shard;            // which part of the sorted submissions this run grades
   bool regrade = false;   // grade again even when row.json exists
-  bool sanitize = false;  // rebuild crashing submissions with sanitizers (sanitize.h)
   bool quiet = false;     // no progress on stderr
   GradeOptions grade;     // per submission (probe_jobs and toolchain.jobs are set from cores/jobs)
 };

@@ -217,7 +217,9 @@ void addDanglingAutoCauses(const std::vector<UsedFile>& files, const fs::path& s
       const auto stubs = stubsOfFile(used.name);
       if (t.passed() || std::find(stubs.begin(), stubs.end(), t.stub) == stubs.end()) continue;
       const bool crashed =
-          std::find(t.diagnoses.begin(), t.diagnoses.end(), "crashed") != t.diagnoses.end();
+          std::find(t.diagnoses.begin(), t.diagnoses.end(), "crashed") != t.diagnoses.end() ||
+          std::find(t.diagnoses.begin(), t.diagnoses.end(), "undefined-behaviour") !=
+              t.diagnoses.end();
       if (!crashed) continue;
       t.diagnoses.push_back("dangling-auto-expression");
       t.output += "\n" + catalogue.cause("dangling-auto-expression") + " In " + used.name + ":\n\n";
@@ -319,8 +321,10 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
   report.seconds["link"] = build.link_seconds;
   if (!build.ok) throw InputError(dir.string() + ": cannot grade: " + build.problem);
 
-  const ProbeContext context =
+  ProbeContext context =
       probeContext(report, rubric, catalogue, build, files, isolation, scratch, options);
+  SanitizedProbes sanitizer(files, report.edition, toolchain, scratch, context.limits);
+  if (!options.toolchain.sanitize) context.sanitizer = &sanitizer;
   const std::map<std::string, std::string> unavailable = unavailableStubs(build.files, catalogue);
   const auto probe_start = std::chrono::steady_clock::now();
   auto results = runProbeGroups(probeGroups(report.edition, options.whole_run), context,

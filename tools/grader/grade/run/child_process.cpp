@@ -6,6 +6,7 @@
 #include <sched.h>
 #include <signal.h>
 #include <sys/mount.h>
+#include <sys/personality.h>
 #include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
@@ -81,13 +82,19 @@ std::string signalName(int signal) {
 // argv and env are built before fork: after fork in a threaded grader only async-signal-safe
 // calls are allowed (no allocation).
 struct ExecArgs {
-  std::vector<std::string> strings;
-  std::vector<char*> argv;
+  std::vector<std::string> strings, environment;
+  std::vector<char*> argv, envp;
   std::string dir;
-  explicit ExecArgs(const std::vector<std::string>& command, const std::filesystem::path& where)
-      : strings(command), dir(where.string()) {
+  // A clean environment: nothing of the grader's leaks into student code; `extra` adds to it.
+  ExecArgs(const std::vector<std::string>& command, const std::filesystem::path& where,
+           const std::vector<std::string>& extra = {})
+      : strings(command), environment{"PATH=/usr/local/bin:/usr/bin:/bin", "LC_ALL=C"},
+        dir(where.string()) {
     for (std::string& a : strings) argv.push_back(a.data());
     argv.push_back(nullptr);
+    environment.insert(environment.end(), extra.begin(), extra.end());
+    for (std::string& e : environment) envp.push_back(e.data());
+    envp.push_back(nullptr);
   }
 };
 
@@ -251,12 +258,11 @@ void place(int fd, int target) {
       setupFailed(kSetupUid);
   }
   prctl(PR_SET_NO_NEW_PRIVS, 1, 0, 0, 0);  // no set-uid program gives the privileges back
-  // A clean environment: nothing of the grader's leaks into student code.
-  char path_env[] = "PATH=/usr/local/bin:/usr/bin:/bin";
-  char lang_env[] = "LC_ALL=C";
-  char* env[] = {path_env, lang_env, nullptr};
-  execve(exec.argv[0], exec.argv.data(), env);
-  if (errno == ENOENT) execvpe(exec.argv[0], exec.argv.data(), env);
+  // The same addresses on every run (kept through bubblewrap's exec, which is not set-uid): what
+  // undefined behaviour reads then depends on the run's variant only (ChildLimits::variant).
+  if (how.limits && how.limits->fixed_layout) personality(ADDR_NO_RANDOMIZE);
+  execve(exec.argv[0], exec.argv.data(), exec.envp.data());
+  if (errno == ENOENT) execvpe(exec.argv[0], exec.argv.data(), exec.envp.data());
   // The uid's process slots are taken (another run's fork bomb): the caller retries.
   setupFailed(errno == EAGAIN ? kSetupNoSlot : kSetupExec);
 }
@@ -471,6 +477,9 @@ std::string ChildRun::describe() const {
       out << "was stopped for holding more than " << (disk_limit_bytes >> 20)
           << " MiB of files (the disk limit of a probe)";
       break;
+    case ChildStatus::Varies:
+      out << "gave different results in two runs of the same input";
+      break;
     case ChildStatus::ExitedNonZero:
       out << "exited with code " << exit_code;
       break;
@@ -497,6 +506,8 @@ Verdict ChildRun::verdict() const {
       return Verdict::TimedOut;
     case ChildStatus::DiskLimit:
       return Verdict::OutputLimit;
+    case ChildStatus::Varies:
+      return Verdict::ResultsVary;
     case ChildStatus::ExitedNonZero:
       return Verdict::ExitedNonZero;
     case ChildStatus::NoAnswer:
@@ -612,7 +623,7 @@ ChildRun runChildOnce(const std::vector<std::string>& command,
     return notStarted(files_fault || pipe_fault ? setupFailureText(kSetupInjected)
                                                 : "cannot set up the child's files or pipes");
   }
-  const ExecArgs exec(argv, run_dir);
+  const ExecArgs exec(argv, run_dir, limits.environment);
   ExecLimits how;
   how.limits = &limits;
   how.uid = isolation.uid;
@@ -835,6 +846,19 @@ ChildRun runChild(const std::vector<std::string>& command, const std::filesystem
   return run;
 }
 
+std::vector<std::vector<std::string>> probeVariants() {
+  return {{}, {"MALLOC_PERTURB_=165", "CLOTHREF_PROBE_VARIANT=" + std::string(1021, 'b')}};
+}
+
+bool sameAnswer(const probe::ProbeMessage& a, const probe::ProbeMessage& b) {
+  if (a.ints != b.ints || a.texts != b.texts || a.floats.size() != b.floats.size()) return false;
+  for (auto x = a.floats.begin(), y = b.floats.begin(); x != a.floats.end(); ++x, ++y)
+    if (x->first != y->first || x->second.size() != y->second.size() ||
+        std::memcmp(x->second.data(), y->second.data(), x->second.size() * sizeof(float)) != 0)
+      return false;
+  return true;
+}
+
 ChildRun runProbe(const std::filesystem::path& executable, probe::ProbeMessage request,
                   const std::filesystem::path& work_dir, const ChildLimits& limits) {
   std::random_device entropy;
@@ -847,6 +871,46 @@ ChildRun runProbe(const std::filesystem::path& executable, probe::ProbeMessage r
   }
   chmod(request_path.c_str(), 0600);
   return runChild({executable.string()}, work_dir, request_path, limits, true, request.nonce);
+}
+
+ChildRun runProbeTwice(const std::filesystem::path& executable, const probe::ProbeMessage& request,
+                       const std::filesystem::path& work_dir, const ChildLimits& limits) {
+  ChildLimits variant = limits;
+  variant.fixed_layout = true;
+  variant.log = nullptr;  // one verdict for the pair, below
+  const std::vector<std::vector<std::string>> variants = probeVariants();
+  variant.environment = variants[0];
+  ChildRun first = runProbe(executable, request, work_dir, variant);
+  const bool repeat = first.status == ChildStatus::Ok || first.status == ChildStatus::Crashed ||
+                      first.status == ChildStatus::ExitedNonZero ||
+                      first.status == ChildStatus::NoAnswer;
+  if (repeat) {
+    variant.environment = variants[1];
+    const ChildRun second = runProbe(executable, request, work_dir, variant);
+    const bool alike =
+        second.status == first.status &&
+        (first.status == ChildStatus::Ok ? first.answer && second.answer &&
+                                               sameAnswer(*first.answer, *second.answer)
+                                         : first.verdict() == second.verdict() &&
+                                               first.signal == second.signal &&
+                                               first.exit_code == second.exit_code);
+    if (second.status == ChildStatus::NotStarted) {
+      first = second;  // ours: the pair is not decided
+    } else if (!alike) {
+      const std::string how = "first run: " + first.describe() + "; second run: " +
+                              second.describe() + (first.status == second.status ?
+                              " with different numbers" : "") + "\n";
+      first.status = ChildStatus::Varies;
+      first.answer.reset();
+      first.stderr_head = how + (first.stderr_head.empty() ? second.stderr_head
+                                                           : first.stderr_head);
+    }
+  }
+  if (limits.log) {
+    std::lock_guard<std::mutex> lock(limits.log->mutex);
+    limits.log->verdicts.push_back(first.verdict());
+  }
+  return first;
 }
 
 std::vector<ToolRun> runTools(const std::vector<std::vector<std::string>>& commands,

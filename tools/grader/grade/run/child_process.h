@@ -45,6 +45,11 @@ struct ChildLimits {
   // Keep what the run wrote in its folder after it ends (--keep-work); else it is removed, and
   // stdout and stderr are cut to their first kKeptOutputBytes.
   bool keep_files = false;
+  // The same address layout on every run (no ASLR), and these variables added to the child's
+  // clean environment: a probe is run twice with two fixed variants (probeVariants()), so what
+  // undefined behaviour reads differs between the two and nowhere else.
+  bool fixed_layout = false;
+  std::vector<std::string> environment;
   Isolation isolation;                // uid drop, private folder, bubblewrap (default: none)
   std::vector<std::string> launcher;  // extra argv prefix, empty = none
   std::shared_ptr<RunLog> log;        // when set, every run's verdict is appended
@@ -55,6 +60,7 @@ enum class ChildStatus {
   Crashed,        // killed by a signal (segfault, abort, CPU limit, ...)
   TimedOut,       // wall-clock limit reached
   DiskLimit,      // stopped for holding more than ChildLimits::disk_bytes of files
+  Varies,         // its two runs (probeVariants()) did not end alike: undefined behaviour
   ExitedNonZero,  // exited with a non-zero code
   NoAnswer,       // exited 0 but sent no valid answer (missing, malformed, wrong nonce)
   NotStarted      // the grader could not start it (fork, pipe, a file or a mount of ours failed):
@@ -89,10 +95,27 @@ ChildRun runChild(const std::vector<std::string>& command, const std::filesystem
                   const std::filesystem::path& stdin_file, const ChildLimits& limits,
                   bool expect_answer, std::uint64_t request_nonce);
 
+// The two variants a scored probe runs in, both with a fixed address layout: the first as the
+// student would run it, the second with freed memory filled (MALLOC_PERTURB_) and the stack moved
+// (a longer environment). A stub that reads memory it does not own (a dangling `auto` Eigen
+// expression, a freed buffer) answers differently in the two; a correct one cannot.
+std::vector<std::vector<std::string>> probeVariants();
+
+// Whether two answers are the same to the bit (NaN payloads included).
+bool sameAnswer(const probe::ProbeMessage& a, const probe::ProbeMessage& b);
+
 // Sends `request` (its nonce is set here, fresh and random) to the probe executable and returns
 // the run. The request is written to a file in `work_dir` first.
 ChildRun runProbe(const std::filesystem::path& executable, probe::ProbeMessage request,
                   const std::filesystem::path& work_dir, const ChildLimits& limits);
+
+// A scored probe: `request` run in both probeVariants() with a fixed address layout, so that the
+// answer is a function of the files alone. The rule (docs/grading.md, "One submission, one
+// score"): both ended alike (the same answer to the bit, or the same failure) -> the first run;
+// otherwise the run is Varies, whatever either answered, and its checks fail. A first run stopped
+// at a limit (time, output, disk) or not started is not repeated. One verdict goes to the log.
+ChildRun runProbeTwice(const std::filesystem::path& executable, const probe::ProbeMessage& request,
+                       const std::filesystem::path& work_dir, const ChildLimits& limits);
 
 // A compiler or linker run: exit status and the combined output.
 struct ToolRun {

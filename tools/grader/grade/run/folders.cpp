@@ -316,8 +316,14 @@ GradeScratch::GradeScratch(int probe_uid, int tool_uid)
 
 GradeScratch::~GradeScratch() { removeTree(root_); }
 
-fs::path GradeScratch::publish(const fs::path& built) const {
-  const fs::path target = bin() / built.filename();
+fs::path GradeScratch::extraBuild(const std::string& name) const {
+  const fs::path folder = root_ / name;
+  makeFolder(folder, probe_uid_ >= 0 ? tool_uid_ : -1, 0700);
+  return folder;
+}
+
+fs::path GradeScratch::publish(const fs::path& built, const std::string& name) const {
+  const fs::path target = bin() / (name.empty() ? built.filename().string() : name);
   const int in = open(built.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
   if (in < 0) fail(built, "cannot read the linked probe");
   const int out = open(target.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0500);
@@ -335,7 +341,6 @@ fs::path GradeScratch::publish(const fs::path& built) const {
   ok = ok && fchmod(out, probe_uid_ >= 0 ? 0550 : 0500) == 0;
   close(out);
   if (!ok) fail(target, "cannot write the probe");
-  (void)tool_uid_;
   return target;
 }
 

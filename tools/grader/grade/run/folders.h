@@ -31,8 +31,13 @@ class GradeScratch {
   std::filesystem::path bin() const { return root_ / "bin"; }
   std::filesystem::path probes() const { return root_ / "probes"; }
 
-  // Copies the linked probe `built` (in build/) to bin/<name>, runnable by the probe uid only.
-  std::filesystem::path publish(const std::filesystem::path& built) const;
+  // Copies the linked probe `built` (in build/) to bin/<name> (default: its own name), runnable
+  // by the probe uid only.
+  std::filesystem::path publish(const std::filesystem::path& built,
+                                const std::string& name = "") const;
+
+  // Another folder like build/ (the tool uid's, 0700), e.g. for the sanitizer's second build.
+  std::filesystem::path extraBuild(const std::string& name) const;
 
  private:
   std::filesystem::path root_;
