@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "test_util.h"
 
@@ -150,6 +151,87 @@ TEST(RunTools, FallbackCompilesCannotReadHostFilesNorHiddenFolders) {
   EXPECT_NE(confined[1].output.find("No such file"), std::string::npos) << confined[1].output;
   EXPECT_FALSE(fs::exists(work / "incbin.o"));
 }
+
+
+// Faults of ours, injected (CLOTHREF_GRADER_FAULT, read by the grader process only): each is
+// tried once more and then, if it is still there, the grader's error, never the student's. Once:
+// the retry grades the reference at full marks. Always: the verdict is grader-error (a probe) or
+// no grade at all (a compile), and no student cause, verdict or stderr appears.
+struct Fault {
+  const char* spec;       // CLOTHREF_GRADER_FAULT
+  const char* isolation;  // CLOTHREF_GRADER_ISOLATION
+  const char* outcome;    // "80" (graded at full marks), "grader-error", "no grade"
+};
+
+void PrintTo(const Fault& fault, std::ostream* out) {
+  *out << fault.spec << " (" << fault.isolation << ")";
+}
+
+class FaultInjection : public ::testing::TestWithParam<Fault> {};
+
+TEST_P(FaultInjection, OursIsRetriedOnceThenOursNeverTheStudents) {
+  const Fault& fault = GetParam();
+  if (geteuid() != 0) GTEST_SKIP() << "the fallback's expectations are for a grader running as root";
+  test::TempDir temp;
+  setenv("CLOTHREF_GRADER_ISOLATION", fault.isolation, 1);
+  setenv("CLOTHREF_GRADER_FAULT", fault.spec, 1);
+  const fs::path reference =
+      fs::path(CLOTHREF_SOURCE_DIR) / "tests" / "grader" / "submissions" / "2022" / "reference";
+  const auto run = test::runCli("grade '" + reference.string() +
+                                "' --no-whole-run --timeout 10 --results '" +
+                                temp.file("results.json") + "' --cache-dir '" +
+                                (temp.path() / "cache").string() + "'");
+  unsetenv("CLOTHREF_GRADER_FAULT");
+  const std::string outcome = fault.outcome;
+  if (outcome == "no grade") {
+    EXPECT_EQ(run.exit_code, 2) << run.output;
+    EXPECT_FALSE(fs::exists(temp.file("results.json")));
+    EXPECT_NE(run.output.find("grader: "), std::string::npos) << run.output;
+    EXPECT_EQ(run.output.find("compile-error"), std::string::npos) << run.output;
+    return;
+  }
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const auto results = nlohmann::json::parse(test::readText(temp.file("results.json")));
+  const bool boxed =
+      results["extra_data"]["isolation"].get<std::string>().rfind("bubblewrap", 0) == 0;
+  if (std::string(fault.isolation) == "auto" && !boxed) GTEST_SKIP() << "no bubblewrap here";
+  if (outcome == "80") {
+    EXPECT_DOUBLE_EQ(results["score"].get<double>(), 80.0) << results.dump(1).substr(0, 2000);
+    EXPECT_EQ(results["extra_data"]["verdict"].get<std::string>(), "graded");
+    return;
+  }
+  EXPECT_EQ(results["extra_data"]["verdict"].get<std::string>(), "grader-error");
+  for (const auto& t : results["tests"]) {
+    if (t["status"] == "passed") continue;
+    std::vector<std::string> tags;
+    for (const auto& tag : t["tags"]) tags.push_back(tag.get<std::string>());
+    ASSERT_EQ(tags.size(), 2u) << t["name"];
+    EXPECT_EQ(tags[1], "grader-error") << t["name"];
+    const std::string output = t["output"];
+    EXPECT_NE(output.find("could not be started by the grader"), std::string::npos) << output;
+    for (const char* theirs : {"crashed", "timed out", "exited with code", "```"})
+      EXPECT_EQ(output.find(theirs), std::string::npos) << theirs << " in " << output;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Faults, FaultInjection,
+    ::testing::Values(Fault{"fork", "rlimits", "80"}, Fault{"fork*0", "rlimits", "grader-error"},
+                      Fault{"setup", "rlimits", "80"}, Fault{"setup*0", "rlimits", "grader-error"},
+                      Fault{"pipe*0", "rlimits", "grader-error"},
+                      Fault{"files*0", "rlimits", "grader-error"},
+                      Fault{"setup*0", "auto", "grader-error"},
+                      Fault{"bwrap", "auto", "80"}, Fault{"bwrap*0", "auto", "grader-error"},
+                      Fault{"tool-fork", "rlimits", "80"},
+                      Fault{"tool-fork*0", "rlimits", "no grade"},
+                      Fault{"tool-setup*0", "rlimits", "no grade"},
+                      Fault{"tool-setup*0", "auto", "no grade"}),
+    [](const auto& info) {
+      std::string name = std::string(info.param.spec) + "_" + info.param.isolation;
+      for (char& c : name)
+        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+      return name;
+    });
 
 }  // namespace
 }  // namespace clothref::grader

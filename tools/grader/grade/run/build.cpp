@@ -267,6 +267,12 @@ bool fromPrebuilt(const CourseToolchain& t, const std::vector<std::string>& comm
          fs::copy_file(prebuilt, object, fs::copy_options::overwrite_existing, error);
 }
 
+// A compile or link the grader could not run (ToolRun::ours): the grade stops as ours.
+const ToolRun& checked(const ToolRun& run) {
+  if (run.ours) throw GraderFault(run.output.substr(0, run.output.find('\n')));
+  return run;
+}
+
 // Runs the compile commands, taking objects from the cache where it has them and filling it.
 std::vector<ToolRun> compileAll(const CourseToolchain& t,
                                 const std::vector<std::vector<std::string>>& commands,
@@ -299,7 +305,7 @@ std::vector<ToolRun> compileAll(const CourseToolchain& t,
       runTools(to_run, work_dir, t.jobs, t.compile_seconds, &t.isolation);
   for (std::size_t r = 0; r < runs.size(); ++r) {
     const std::size_t k = index[r];
-    results[k] = runs[r];
+    results[k] = checked(runs[r]);
     if (!runs[r].ok || cached[k].empty()) continue;
     const auto& c = commands[k];
     const fs::path object = *(std::find(c.begin(), c.end(), "-o") + 1);
@@ -560,8 +566,8 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseTo
     if (!sanitizer_options.empty()) command.push_back(sanitizer_options.string());
     for (const auto& o : objects) command.push_back(o.string());
     command.push_back(driver_lib.string());
-    return runTools({command}, work_dir, 1, toolchain.compile_seconds, &toolchain.isolation)
-        .front();
+    return checked(
+        runTools({command}, work_dir, 1, toolchain.compile_seconds, &toolchain.isolation).front());
   };
   std::vector<fs::path> objects = {work_dir / "cloth.o", work_dir / "sphere.o",
                                    work_dir / "integrator.o"};

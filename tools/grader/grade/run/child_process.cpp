@@ -602,12 +602,14 @@ ChildRun runChildOnce(const std::vector<std::string>& command,
   std::vector<std::string> argv = limits.launcher;
   std::vector<std::string> inner =
       boxed ? bubblewrapArgv(isolation, command, run_dir, kInfoFd) : command;
+  // Injected faults reach probe runs only (not the isolation's detection run).
+  const auto fault = [&](const char* point) { return expect_answer && injectFault(point); };
   // bubblewrap refuses an option it does not know before it starts anything
-  if (boxed && injectFault("bwrap")) inner.insert(inner.begin() + 1, "--clothref-injected-fault");
+  if (boxed && fault("bwrap")) inner.insert(inner.begin() + 1, "--clothref-injected-fault");
   argv.insert(argv.end(), inner.begin(), inner.end());
   const auto out_path = work_dir / "child.stdout";
   const auto err_path = work_dir / "child.stderr";
-  const bool files_fault = injectFault("files"), pipe_fault = injectFault("pipe");
+  const bool files_fault = fault("files"), pipe_fault = fault("pipe");
   int in_fd = open(stdin_file.c_str(), O_RDONLY | O_CLOEXEC);
   int out_fd = files_fault ? -1 : open(out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
   int err_fd = open(err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
@@ -627,7 +629,7 @@ ChildRun runChildOnce(const std::vector<std::string>& command,
   ExecLimits how;
   how.limits = &limits;
   how.uid = isolation.uid;
-  how.injected_fault = injectFault("setup");
+  how.injected_fault = fault("setup");
   privateMounts(isolation, work_dir, how);
   // The rlimits fallback puts a supervisor between us and the student (superviseChild).
   const bool supervised = !boxed && isolation.kind == IsolationKind::Rlimits &&
@@ -635,7 +637,7 @@ ChildRun runChildOnce(const std::vector<std::string>& command,
   bool in_namespace = supervised && isolation.containment == Containment::PidNamespace;
   const RunCgroup cgroup(isolation.kind == IsolationKind::None ? "" : isolation.cgroup_parent);
   pid_t pid = -1;
-  const bool fork_fault = injectFault("fork");
+  const bool fork_fault = fault("fork");
   if (fork_fault) {
     errno = EAGAIN;
   } else {

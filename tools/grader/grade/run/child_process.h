@@ -11,6 +11,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -116,6 +117,12 @@ ChildRun runProbe(const std::filesystem::path& executable, probe::ProbeMessage r
 // at a limit (time, output, disk) or not started is not repeated. One verdict goes to the log.
 ChildRun runProbeTwice(const std::filesystem::path& executable, const probe::ProbeMessage& request,
                        const std::filesystem::path& work_dir, const ChildLimits& limits);
+
+// A failure of the grader's own that stops a grade (a compile it could not run): never a verdict
+// of the student's; a batch makes it that submission's grader-error row.
+struct GraderFault : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
 
 // A compiler or linker run: exit status and the combined output.
 struct ToolRun {
