@@ -20,8 +20,8 @@ namespace clothref::test {
 namespace {
 
 namespace fs = std::filesystem;
-const fs::path kBase =
-    fs::path(CLOTHREF_SOURCE_DIR) / "tests" / "grader" / "submissions" / "2022" / "reference" / "src";
+const fs::path kBase = fs::path(CLOTHREF_SOURCE_DIR) / "tests" / "grader" / "submissions" / "2022" /
+                       "reference" / "src";
 
 // Runs once per probe process (the explicit probe calls integrate every step), for about two
 // seconds, so that two graders started together overlap. @NAME@ is this submission's name,
@@ -92,8 +92,10 @@ std::string spySubmission(const fs::path& dir, const std::string& name, const st
   const std::string includes =
       "#include \"configs.h\"\n\n#include <dirent.h>\n#include <fcntl.h>\n#include <unistd.h>\n\n"
       "#include <cstdio>\n#include <cstdlib>\n#include <cstring>\n#include <fstream>\n"
-      "#include <string>\n\n// SPY-OF-" + name + "\n";
-  const std::string body = "  for (const auto &p : particles) {\n    p->position() += p->velocity()";
+      "#include <string>\n\n// SPY-OF-" +
+      name + "\n";
+  const std::string body =
+      "  for (const auto &p : particles) {\n    p->position() += p->velocity()";
   const std::size_t include_at = text.find("#include \"configs.h\"\n");
   const std::size_t body_at = text.find(body);
   EXPECT_NE(include_at, std::string::npos);
@@ -106,7 +108,7 @@ std::string spySubmission(const fs::path& dir, const std::string& name, const st
 }
 
 struct SpyReport {
-  std::set<int> uids;  // the uids the spy ran as (one per probe process)
+  std::set<int> uids;            // the uids the spy ran as (one per probe process)
   std::vector<std::string> got;  // what it got: every line but SPY-UID and SPY-FOUND
   bool found_other = false;
 };
@@ -151,10 +153,10 @@ TEST(Confinement, TwoGradersSideBySideInTheFallbackRunAsDistinctUidsAndReachNoth
   setenv("CLOTHREF_GRADER_ISOLATION", "rlimits", 1);
   const auto grade = [&](const fs::path& dir, const fs::path& results, const fs::path& keep,
                          CommandResult& out) {
-    out = gradeDirect({"grade", dir.string(), "--no-whole-run", "--timeout", "20", "--results",
-                       results.string(), "--keep-work", keep.string(), "--cache-dir",
-                       CLOTHREF_GRADER_CACHE},
-                      keep.string() + "-run");
+    out = gradeDirect(
+        {"grade", dir.string(), "--no-whole-run", "--timeout", "20", "--results", results.string(),
+         "--keep-work", keep.string(), "--cache-dir", CLOTHREF_GRADER_CACHE},
+        keep.string() + "-run");
   };
   CommandResult a_run, b_run;
   std::thread first(grade, a, a_results, temp.path() / "alice-keep", std::ref(a_run));
@@ -173,11 +175,11 @@ TEST(Confinement, TwoGradersSideBySideInTheFallbackRunAsDistinctUidsAndReachNoth
   ASSERT_EQ(bobby.uids.size(), 1u);
   EXPECT_NE(*alice.uids.begin(), *bobby.uids.begin());
   std::cout << "[ info     ] the two graders ran their students as uids " << *alice.uids.begin()
-            << " and " << *bobby.uids.begin() << "; each saw the other's probes: "
-            << (alice.found_other ? "yes" : "no") << ", " << (bobby.found_other ? "yes" : "no")
-            << "\n";
-  RecordProperty("uids", std::to_string(*alice.uids.begin()) + " " +
-                             std::to_string(*bobby.uids.begin()));
+            << " and " << *bobby.uids.begin()
+            << "; each saw the other's probes: " << (alice.found_other ? "yes" : "no") << ", "
+            << (bobby.found_other ? "yes" : "no") << "\n";
+  RecordProperty("uids",
+                 std::to_string(*alice.uids.begin()) + " " + std::to_string(*bobby.uids.begin()));
   // the spies ran at the same time (each looks for two seconds): else the test proves nothing
   EXPECT_TRUE(alice.found_other || bobby.found_other);
   EXPECT_TRUE(alice.got.empty()) << (alice.got.empty() ? "" : alice.got.front());
@@ -198,10 +200,9 @@ TEST(Confinement, TwoSubmissionsOfABatchReachNothingOfEachOther) {
   fs::permissions(temp.path(), fs::perms::owner_all | fs::perms::others_exec |
                                    fs::perms::group_exec | fs::perms::others_read);
   setenv("CLOTHREF_GRADER_ISOLATION", "rlimits", 1);
-  const CommandResult run =
-      gradeDirect({"grade", a.string(), b.string(), "--out", out.string(), "--jobs", "2",
-                   "--no-whole-run", "--timeout", "20"},
-                  temp.path() / "run");
+  const CommandResult run = gradeDirect({"grade", a.string(), b.string(), "--out", out.string(),
+                                         "--jobs", "2", "--no-whole-run", "--timeout", "20"},
+                                        temp.path() / "run");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const std::string csv = readText(out / "grades.csv");
   EXPECT_NE(csv.find("alice-subm,2022,15,20,10,10,5,2.5,2.5,15,80,80,graded"), std::string::npos)

@@ -79,10 +79,10 @@ TEST(Sanitize, DanglingAutoExpressionIsQuotedFromAddressSanitizer) {
   TempDir temp;
   const fs::path submission =
       test::materialiseCase("2022/force-dangling-auto", temp.path() / "submission");
-  const auto run = runCli(
-      "grade '" + submission.string() + "' --no-whole-run --timeout 20 --cache-dir '" +
-      std::string(CLOTHREF_GRADER_CACHE) + "' --report '" + temp.file("report.md") +
-      "' --results '" + temp.file("results.json") + "'");
+  const auto run =
+      runCli("grade '" + submission.string() + "' --no-whole-run --timeout 20 --cache-dir '" +
+             std::string(CLOTHREF_GRADER_CACHE) + "' --report '" + temp.file("report.md") +
+             "' --results '" + temp.file("results.json") + "'");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const std::string report = readText(temp.file("report.md"));
   EXPECT_NE(report.find("ERROR: AddressSanitizer: stack-use-after-scope"), std::string::npos)

@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
-#include "grader/grade/run/build.h"
-#include "grader/grade/run/child_process.h"
 #include "grader/grade/results.h"
 #include "grader/grade/rubric.h"
+#include "grader/grade/run/build.h"
+#include "grader/grade/run/child_process.h"
 
 namespace clothref::grader {
 

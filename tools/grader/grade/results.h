@@ -37,15 +37,20 @@ struct VerdictInfo {
 
 // The one table of verdicts, in the order above.
 inline const std::vector<VerdictInfo>& verdictTable() {
-  static const std::vector<VerdictInfo> table = {
-      {Verdict::GraderError, "grader-error"},   {Verdict::NotGradable, "not-gradable"},
-      {Verdict::CompileError, "compile-error"}, {Verdict::LinkError, "link-error"},
-      {Verdict::MissingFile, "missing-file"},   {Verdict::TimedOut, "timed-out"},
-      {Verdict::MemoryLimit, "memory-limit"},   {Verdict::OutputLimit, "output-limit"},
-      {Verdict::Crashed, "crashed"},            {Verdict::ResultsVary, "results-vary"},
-      {Verdict::ExitedNonZero, "exited-non-zero"},
-      {Verdict::NoAnswer, "no-answer"},         {Verdict::NonFinite, "non-finite"},
-      {Verdict::Graded, "graded"}};
+  static const std::vector<VerdictInfo> table = {{Verdict::GraderError, "grader-error"},
+                                                 {Verdict::NotGradable, "not-gradable"},
+                                                 {Verdict::CompileError, "compile-error"},
+                                                 {Verdict::LinkError, "link-error"},
+                                                 {Verdict::MissingFile, "missing-file"},
+                                                 {Verdict::TimedOut, "timed-out"},
+                                                 {Verdict::MemoryLimit, "memory-limit"},
+                                                 {Verdict::OutputLimit, "output-limit"},
+                                                 {Verdict::Crashed, "crashed"},
+                                                 {Verdict::ResultsVary, "results-vary"},
+                                                 {Verdict::ExitedNonZero, "exited-non-zero"},
+                                                 {Verdict::NoAnswer, "no-answer"},
+                                                 {Verdict::NonFinite, "non-finite"},
+                                                 {Verdict::Graded, "graded"}};
   return table;
 }
 

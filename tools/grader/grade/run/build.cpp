@@ -13,8 +13,9 @@
 #include <set>
 #include <sstream>
 
-#include "grader/grade/run/child_process.h"
 #include "clothref/io/files.h"
+#include "grader/grade/run/child_process.h"
+#include "grader/grade/run/tools.h"
 
 #ifndef CLOTHREF_GRADER_COURSE_DIR
 #define CLOTHREF_GRADER_COURSE_DIR ""
@@ -334,17 +335,16 @@ std::vector<fs::path> ourFolders(const CourseToolchain& t) {
   const fs::path course = fs::absolute(t.course_dir).lexically_normal();
   const fs::path checkout = course.parent_path().parent_path().parent_path();
   add(fs::is_directory(checkout / "lib" / "clothref", error) ? checkout
-                                                               : course.parent_path().parent_path());
+                                                             : course.parent_path().parent_path());
   add(t.reference_dir);
   if (!t.prebuilt_dir.empty()) add(fs::absolute(t.prebuilt_dir).parent_path());
   if (!t.driver_lib_dir.empty())
     add(fs::absolute(t.driver_lib_dir).lexically_normal().parent_path().parent_path());
   add(t.cache_dir);
   const auto system = [&](const fs::path& path) {
-    static const char* const folders[] = {"/",     "/usr",       "/usr/local", "/usr/share",
-                                          "/opt",  "/home",      "/root",      "/tmp",
-                                          "/var",  "/var/tmp",   "/etc",       "/srv",
-                                          "/run",  "/dev/shm",   "/mnt",       "/media"};
+    static const char* const folders[] = {
+        "/",    "/usr",     "/usr/local", "/usr/share", "/opt", "/home",    "/root", "/tmp",
+        "/var", "/var/tmp", "/etc",       "/srv",       "/run", "/dev/shm", "/mnt",  "/media"};
     for (const char* folder : folders)
       if (path == fs::path(folder)) return true;
     return path == fs::temp_directory_path(error).lexically_normal() || !path.has_relative_path();
@@ -531,8 +531,8 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseTo
   for (const UsedFile& used : build.files) {
     if (used.compiled) continue;
     const fs::path reference = toolchain.reference_dir / ed / used.name;
-    commands.push_back(compileCommand(ours, edition, reference,
-                                      work_dir / (stem(used.name) + ".o"), 25, pch));
+    commands.push_back(
+        compileCommand(ours, edition, reference, work_dir / (stem(used.name) + ".o"), 25, pch));
     names.push_back(used.name);
   }
   runs = compileAll(ours, commands, work_dir);

@@ -38,7 +38,7 @@ struct ChildLimits {
   std::uint64_t address_space_bytes = 4ull << 30;  // RLIMIT_AS
   std::uint64_t file_size_bytes = 64ull << 20;     // RLIMIT_FSIZE (stdout/stderr floods)
   std::uint64_t open_files = 64;                   // RLIMIT_NOFILE
-  std::uint64_t processes = 64;       // RLIMIT_NPROC (counts the uid's processes; not for root)
+  std::uint64_t processes = 64;  // RLIMIT_NPROC (counts the uid's processes; not for root)
   // Files a run may hold at once: its folder, stdout, stderr and, outside bubblewrap, what its uid
   // owns in the shared temporary folders; checked every kDiskCheckSeconds, the run is stopped
   // past it (DiskLimit). Two runs of a submission at once: twice this per submission.
@@ -117,30 +117,5 @@ ChildRun runProbe(const std::filesystem::path& executable, probe::ProbeMessage r
 // at a limit (time, output, disk) or not started is not repeated. One verdict goes to the log.
 ChildRun runProbeTwice(const std::filesystem::path& executable, const probe::ProbeMessage& request,
                        const std::filesystem::path& work_dir, const ChildLimits& limits);
-
-// A failure of the grader's own that stops a grade (a compile it could not run): never a verdict
-// of the student's; a batch makes it that submission's grader-error row.
-struct GraderFault : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
-// A compiler or linker run: exit status and the combined output.
-struct ToolRun {
-  bool ok = false;
-  bool ours = false;  // the grader failed (could not start it, bubblewrap failed): not a verdict
-  std::string output;
-  double seconds = 0;
-};
-// Runs several tool commands at once (at most `jobs` in parallel); results in command order. A
-// command the grader could not start (fork, pipes, the child's set-up, bubblewrap) is tried once
-// more, then is a failed run marked `ours`, whose output says what failed.
-// With an `isolation` each command runs as its tool uid (never root: sandbox.h); of kind
-// Bubblewrap in bubblewrap seeing only /usr, the work dir and the paths it names; every run has
-// CPU (wall + 1 s), address-space (kToolAddressSpace) and file-size (kToolFileSize) limits.
-std::vector<ToolRun> runTools(const std::vector<std::vector<std::string>>& commands,
-                              const std::filesystem::path& work_dir, int jobs, double wall_seconds,
-                              const Isolation* isolation = nullptr);
-inline constexpr std::uint64_t kToolAddressSpace = 8ull << 30;  // a 10 GB constexpr stops here
-inline constexpr std::uint64_t kToolFileSize = 1ull << 30;
 
 }  // namespace clothref::grader

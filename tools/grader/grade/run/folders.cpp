@@ -236,8 +236,8 @@ const std::vector<fs::path>& sharedTemporaryFolders() {
     std::vector<fs::path> all;
     std::error_code error;
     const fs::path temp = fs::temp_directory_path(error);
-    for (const fs::path& candidate : {temp, fs::path("/tmp"), fs::path("/var/tmp"),
-                                      fs::path("/dev/shm")}) {
+    for (const fs::path& candidate :
+         {temp, fs::path("/tmp"), fs::path("/var/tmp"), fs::path("/dev/shm")}) {
       if (candidate.empty()) continue;
       const fs::path real = fs::canonical(candidate, error);
       if (error || !fs::is_directory(real, error)) continue;
@@ -299,8 +299,8 @@ GradeScratch::GradeScratch(int probe_uid, int tool_uid)
   std::error_code error;
   std::string pattern = (fs::temp_directory_path(error) / "clothref-grade-XXXXXX").string();
   if (!mkdtemp(pattern.data()))
-    throw InputError(pattern + ": cannot create a temporary folder (TMPDIR): " +
-                     std::strerror(errno));
+    throw InputError(pattern +
+                     ": cannot create a temporary folder (TMPDIR): " + std::strerror(errno));
   root_ = pattern;
   try {
     const bool uids = probe_uid >= 0;
@@ -366,7 +366,8 @@ void removeStaleKits(const fs::path& temp) {
     const std::string name = entry.path().filename().string();
     const std::string prefix = "clothref-kit-";
     if (name.rfind(prefix, 0) != 0) continue;
-    const std::string pid = name.substr(prefix.size(), name.find('-', prefix.size()) - prefix.size());
+    const std::string pid =
+        name.substr(prefix.size(), name.find('-', prefix.size()) - prefix.size());
     struct stat info {};
     if (pid.empty() || pid.find_first_not_of("0123456789") != std::string::npos ||
         lstat(entry.path().c_str(), &info) != 0 || info.st_uid != geteuid())
@@ -388,8 +389,8 @@ const CourseKit& courseKit(const fs::path& course_dir, const fs::path& driver_li
   removeStaleKits(temp);
   std::string pattern = (temp / ("clothref-kit-" + std::to_string(getpid()) + "-XXXXXX")).string();
   if (!mkdtemp(pattern.data()))
-    throw InputError(pattern + ": cannot create a temporary folder (TMPDIR): " +
-                     std::strerror(errno));
+    throw InputError(pattern +
+                     ": cannot create a temporary folder (TMPDIR): " + std::strerror(errno));
   auto kit = std::make_unique<CourseKit>();
   kit->root = pattern;
   kit->course_dir = kit->root / "course";
@@ -423,7 +424,8 @@ fs::path kitHeader(const CourseKit& kit, const fs::path& header) {
   const fs::path temporary = kit.root / (folder.filename().string() + ".tmp");
   removeTree(temporary);
   fs::create_directories(temporary, error);
-  for (const std::string& name : {header.filename().string(), header.filename().string() + ".gch"}) {
+  for (const std::string& name :
+       {header.filename().string(), header.filename().string() + ".gch"}) {
     const fs::path from = header.parent_path() / name, to = temporary / name;
     // A hard link costs nothing; across file systems, a copy (the header is about 130 MB).
     if (link(from.c_str(), to.c_str()) != 0)

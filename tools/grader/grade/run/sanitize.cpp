@@ -67,19 +67,21 @@ std::string firstSanitizerReport(const std::string& stderr_text, int max_lines) 
 SanitizedProbes::SanitizedProbes(const SubmissionFiles& files, int edition,
                                  CourseToolchain toolchain, const GradeScratch& scratch,
                                  ChildLimits limits)
-    : files_(files), edition_(edition), toolchain_(std::move(toolchain)), scratch_(scratch),
+    : files_(files),
+      edition_(edition),
+      toolchain_(std::move(toolchain)),
+      scratch_(scratch),
       limits_(std::move(limits)) {
   toolchain_.sanitize = true;
   // Instrumented code runs 2-5x slower; the shadow memory needs no address-space limit.
   limits_.wall_seconds *= 3;
   limits_.cpu_seconds *= 3;
   limits_.address_space_bytes = ~std::uint64_t{0};  // RLIM_INFINITY
-  limits_.log = nullptr;                             // it explains; it never decides a verdict
+  limits_.log = nullptr;                            // it explains; it never decides a verdict
   limits_.keep_files = true;  // its whole stderr: the report comes after what the code printed
 }
 
-std::string SanitizedProbes::explain(const probe::ProbeMessage& request,
-                                     const fs::path& folder) {
+std::string SanitizedProbes::explain(const probe::ProbeMessage& request, const fs::path& folder) {
   std::call_once(built_, [&] {
     try {
       const fs::path where = scratch_.extraBuild("sanitize");
