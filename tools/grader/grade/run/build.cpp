@@ -1,5 +1,6 @@
 #include "grader/grade/run/build.h"
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -257,15 +258,22 @@ fs::path precompiledHeader(const CourseToolchain& t, int edition, const fs::path
   return fs::exists(dir / "course_pch.h.gch", error) ? dir / "course_pch.h" : fs::path();
 }
 
+// A stored object (prebuilt or cached) copied into a build folder for the link, readable by the
+// link's uid whatever mode the store gave it (a Gradescope image closes our tree: 0600).
+bool copyObject(const fs::path& from, const fs::path& object) {
+  std::error_code error;
+  return fs::exists(from, error) &&
+         fs::copy_file(from, object, fs::copy_options::overwrite_existing, error) &&
+         chmod(object.c_str(), 0644) == 0;
+}
+
 // The object built with clothref for this command (our reference files), copied to `object`.
 bool fromPrebuilt(const CourseToolchain& t, const std::vector<std::string>& command,
                   const fs::path& source, const fs::path& object) {
   if (t.prebuilt_dir.empty()) return false;
-  const fs::path prebuilt =
-      t.prebuilt_dir / cachePath(t, command, source, object.parent_path(), true).filename();
-  std::error_code error;
-  return fs::exists(prebuilt, error) &&
-         fs::copy_file(prebuilt, object, fs::copy_options::overwrite_existing, error);
+  return copyObject(
+      t.prebuilt_dir / cachePath(t, command, source, object.parent_path(), true).filename(),
+      object);
 }
 
 // A compile or link the grader could not run (ToolRun::ours): the grade stops as ours.
@@ -289,8 +297,7 @@ std::vector<ToolRun> compileAll(const CourseToolchain& t,
     std::error_code error;
     if (!t.cache_dir.empty()) {
       cached[k] = cachePath(t, c, source, work_dir, t.trusted_sources);
-      if (fs::exists(cached[k], error) &&
-          fs::copy_file(cached[k], object, fs::copy_options::overwrite_existing, error)) {
+      if (copyObject(cached[k], object)) {
         results[k].ok = true;
         continue;
       }
