@@ -65,13 +65,14 @@ class PythonTest : public ::testing::Test {
 
 TEST_F(PythonTest, TraceReaderGivesBackTheLibrarysNumbers) {
   const std::string trace = smallTrace("a.jsonl", Method::Explicit);
-  const std::string script = "import sys; sys.path.insert(0, '" CLOTHREF_PYTHON_DIR
-                             "');"
-                             "from clothref.trace import read_trace;"
-                             "t = read_trace(sys.argv[1]);"
-                             "c = t.bodies['cloth']['position'];"
-                             "print(c.shape, t.bodies['spheres']['velocity'].shape, t.step.tolist(), "
-                             "repr(float(c[3, 40, 1])))";
+  const std::string script =
+      "import sys; sys.path.insert(0, '" CLOTHREF_PYTHON_DIR
+      "');"
+      "from clothref.trace import read_trace;"
+      "t = read_trace(sys.argv[1]);"
+      "c = t.bodies['cloth']['position'];"
+      "print(c.shape, t.bodies['spheres']['velocity'].shape, t.step.tolist(), "
+      "repr(float(c[3, 40, 1])))";
   const std::string command = std::string(CLOTHREF_PYTHON) + " -B -c \"" + script + "\" " + trace;
   FILE* pipe = ::popen(command.c_str(), "r");
   ASSERT_NE(pipe, nullptr);
