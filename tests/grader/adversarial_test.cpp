@@ -151,7 +151,7 @@ TEST_P(Adversarial, GetsItsVerdictAndTheAttackFails) {
               results["extra_data"]["stub_max"][stub.get<std::string>()].get<double>())
         << stub;
   }
-  if (expected.value("full_marks", false) && want == expected["verdict"]) {
+  if (expected.value("full_marks", false) && want == expected["verdict"].get<std::string>()) {
     EXPECT_DOUBLE_EQ(results["score"].get<double>(), 80.0) << results.dump(1).substr(0, 3000);
   }
 
