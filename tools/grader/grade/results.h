@@ -181,6 +181,10 @@ struct UsedFile {
   Verdict status = Verdict::Graded;
   std::string problem;  // the compile or link error (first error quoted), or "missing"
   double compile_seconds = 0;
+  // The whole compile (or link) log of a file that did not build: every message located in the
+  // student's own file, scratch paths removed (compilerLog, run/compiler_messages.h); shown folded
+  // under `problem`. Empty when it says no more than `problem`.
+  std::string log;
 };
 
 struct GradeReport {

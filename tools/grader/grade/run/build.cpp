@@ -385,6 +385,11 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseTo
   const auto stem = [](const std::string& name) { return name.substr(0, name.size() - 4); };
 
   const fs::path pch = precompiledHeader(toolchain, edition, work_dir);
+  // What a compile's messages may quote (run/compiler_messages.h): `source` itself and the headers.
+  const auto site = [&](const fs::path& source, const std::string& name) {
+    return CompileSite{work_dir, source, name,
+                       courseHeaderDirs(toolchain.course_dir, edition, toolchain.eigen_include)};
+  };
   // 1. Student files, each alone in its folder; plus cloth.cpp at the second size.
   std::vector<std::vector<std::string>> commands;
   std::vector<std::string> names;
@@ -421,7 +426,9 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseTo
   for (std::size_t k = 0; k < names.size(); ++k) {
     if (names[k] == "cloth-small") {
       small_compiled = runs[k].ok;
-      if (!runs[k].ok) build.small_problem = firstCompilerError(runs[k].output, "cloth.cpp");
+      if (!runs[k].ok)
+        build.small_problem = firstCompilerError(
+            runs[k].output, site(work_dir / "src-cloth" / "cloth.cpp", "cloth.cpp"));
       continue;
     }
     for (UsedFile& used : build.files)
@@ -430,7 +437,9 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseTo
         used.compile_seconds = runs[k].seconds;
         if (!runs[k].ok) {
           used.status = Verdict::CompileError;
-          used.problem = firstCompilerError(runs[k].output, used.name);
+          const CompileSite where = site(work_dir / ("src-" + stem(used.name)) / used.name, used.name);
+          used.problem = firstCompilerError(runs[k].output, where);
+          used.log = compilerLog(runs[k].output, where);
         }
       }
   }
@@ -449,7 +458,9 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseTo
   for (std::size_t k = 0; k < runs.size(); ++k)
     if (!runs[k].ok) {
       build.problem = "our reference " + names[k] + " for " + ed +
-                      " does not compile: " + firstCompilerError(runs[k].output, names[k]);
+                      " does not compile: " +
+                      firstCompilerError(runs[k].output,
+                                         site(toolchain.reference_dir / ed / names[k], names[k]));
       return build;
     }
   build.compile_seconds =
@@ -486,7 +497,9 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseTo
   for (UsedFile& used : build.files) {
     if (linked.ok) break;
     if (!used.compiled) continue;
-    const std::string error = firstCompilerError(linked.output, used.name);
+    const CompileSite where = site({}, used.name);
+    const std::string error = firstCompilerError(linked.output, where);
+    const std::string log = compilerLog(linked.output, where);
     std::vector<std::string> ref =
         compileCommand(toolchain, edition, toolchain.reference_dir / ed / used.name,
                        work_dir / (stem(used.name) + "-ref.o"), 25, pch);
@@ -499,12 +512,13 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseTo
       used.compiled = false;
       used.status = Verdict::LinkError;
       used.problem = "link error: " + error;
+      used.log = log;
       objects = swapped;
       linked = retry;
     }
   }
   if (!linked.ok) {
-    build.problem = "the probe does not link: " + firstCompilerError(linked.output, "");
+    build.problem = "the probe does not link: " + firstCompilerError(linked.output, site({}, ""));
     return build;
   }
   // The second-size springs probe: the student's cloth.cpp rebuilt, the rest as above.
@@ -515,7 +529,8 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseTo
     build.probe_small = work_dir / "probe-small";
     const ToolRun small_link = link(small, build.probe_small);
     build.small_ok = small_link.ok;
-    if (!small_link.ok) build.small_problem = firstCompilerError(small_link.output, "cloth.cpp");
+    if (!small_link.ok)
+      build.small_problem = firstCompilerError(small_link.output, site({}, "cloth.cpp"));
   }
   build.link_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - link_start).count();
