@@ -23,8 +23,8 @@ GradeReport sampleReport() {
   report.submission = "subs/<img src=x onerror=alert(1)>";
   report.edition = 2022;
   report.edition_source = "detected";
-  report.files = {{"cloth.cpp", "src/<b>cloth.cpp", true, Verdict::Graded, "", 0},
-                  {"sphere.cpp", "", false, Verdict::MissingFile, "missing", 0}};
+  report.files = {{"cloth.cpp", "src/<b>cloth.cpp", true, Verdict::Graded, "", 0, ""},
+                  {"sphere.cpp", "", false, Verdict::MissingFile, "missing", 0, ""}};
   report.notes = {"non-UTF-8 bytes \xFF in integrator.cpp"};
   TestResult pass = makeTest("Cloth::initializeSpring", "connections at N = 25", 1);
   pass.fraction = 1;
@@ -35,7 +35,7 @@ GradeReport sampleReport() {
       "State tried:\n\n- sphere 0: x (0.1, 0.42, -0.05)\n  - expected x (1, 2, 3) - actual "
       "x (1, 2, 4)\n\n```\n</pre><script>alert(2)</script>\n```\n\n**Likely cause** "
       "(`collision-normal-sign`): <the normal>";
-  fail.diagnoses = {"collision-normal-sign"};
+  fail.causes = {Cause{"collision-normal-sign", true, {}, {}, "<the normal>"}};
   report.tests = {pass, fail};
   report.stub_score = {{"Cloth::initializeSpring", 6}, {"Spheres::collide(Cloth*)", 0}};
   report.stub_max = {{"Cloth::initializeSpring", 6}, {"Spheres::collide(Cloth*)", 1.25}};

@@ -6,6 +6,10 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <map>
+#include <regex>
+#include <set>
+#include <tuple>
 
 #include "grader/grade/batch.h"
 #include "grader/grade/text.h"
@@ -24,7 +28,7 @@ GradeReport sampleReport() {
   TestResult failed = makeTest("Spheres::collide(Cloth*)", "approaching pair", 1);
   failed.max_score = 2;
   failed.output = "expected <1> & got \"2\"\x01";
-  failed.diagnoses = {"no-approach-check"};
+  failed.causes = {Cause{"no-approach-check", true, {}, {}, "The impulse is applied."}};
   report.tests = {passed, failed};
   report.score = 3;
   report.max_score = 5;
@@ -136,7 +140,7 @@ TEST(AllWriters, AnyBytesInValidUtf8OutAndTheReportSaysWhatWasDecoded) {
   }
   EXPECT_EQ(summaryLine(report).find('\n'), std::string::npos);
   EXPECT_EQ(
-      markdownReport(report).rfind("# Grading report: sub\\x0A\xEF\xBF\xBD\\x1B]0;x\\x07\n", 0), 0u)
+      markdownReport(report).rfind("# Grading report: `sub\\x0A\xEF\xBF\xBD\\x1B]0;x\\x07`\n", 0), 0u)
       << markdownReport(report);
 }
 
@@ -234,6 +238,71 @@ TEST(Cli, AnyBytesInTheSubmissionGiveValidOutputsInASingleGradeAndInABatch) {
     EXPECT_NE(text.find("\xE4\xB8\xAD\xE6\x96\x87"), std::string::npos) << file << text;  // 中文
     EXPECT_NE(text.find("decoded from Big5 (CP950)"), std::string::npos) << file;
   }
+}
+
+// ---- Quotes point at the right lines, once per stub
+
+std::size_t occurrences(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+// Three integrators hold the same pattern (an `auto` Eigen expression over the state); midpoint and
+// RK4 crash, implicit does not. Each crashed stub's dangling-auto cause quotes its own line only,
+// on its first failed test only; the stub that did not crash gets no such cause.
+TEST(Quotes, ACauseQuotesOnlyTheLinesOfTheStubItGradesOncePerStub) {
+  test::TempDir temp;
+  const std::filesystem::path reference =
+      std::filesystem::path(CLOTHREF_SOURCE_DIR) / "tools/grader/reference/2022";
+  const std::filesystem::path dir = temp.path() / "sub";
+  std::filesystem::create_directories(dir);
+  for (const char* file : {"cloth.cpp", "sphere.cpp"})
+    std::filesystem::copy_file(reference / file, dir / file);
+  std::string integrator = "#include <cstdlib>\n" + test::readText(reference / "integrator.cpp");
+  const std::string backup = "  for (const auto &p : particles) backup.push_back(*p);\n";
+  const auto pattern = [](const std::string& name, bool crash) {
+    return "  auto " + name + " = particles[0]->position(0) - particles[0]->velocity(0);\n  (void)" +
+           name + ";\n" + (crash ? "  std::abort();\n" : "");
+  };
+  std::size_t at = 0;
+  for (const auto& [name, crash] : {std::pair{"implicit_diff", false},
+                                    std::pair{"midpoint_diff", true}, std::pair{"rk4_diff", true}}) {
+    at = integrator.find(backup, at);
+    ASSERT_NE(at, std::string::npos) << name;
+    at += backup.size();
+    integrator.insert(at, pattern(name, crash));
+  }
+  test::writeText(dir / "integrator.cpp", integrator);
+  const auto line_of = [&](const std::string& name) {
+    const std::size_t where = integrator.find("auto " + name);
+    return std::to_string(1 + std::count(integrator.begin(), integrator.begin() + long(where), '\n'));
+  };
+  const auto run = test::runCli("grade '" + dir.string() + "' --results '" + temp.file("r.json") +
+                                "' --no-whole-run --timeout 10 --cache-dir '" +
+                                std::string(CLOTHREF_GRADER_CACHE) + "'");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const nlohmann::json results = nlohmann::json::parse(test::readText(temp.file("r.json")));
+  std::map<std::string, std::string> outputs;  // stub -> its tests' outputs, joined
+  std::map<std::string, int> named;            // stub -> tests naming dangling-auto-expression
+  for (const auto& test : results["tests"]) {
+    const std::string stub = test["tags"][0];
+    outputs[stub] += test["output"].get<std::string>();
+    for (std::size_t k = 1; k < test["tags"].size(); ++k)
+      named[stub] += test["tags"][k] == "dangling-auto-expression";
+  }
+  for (const auto& [stub, own, others] :
+       {std::tuple{"MidpointEuler::integrate", "midpoint_diff", std::vector{"rk4_diff", "implicit_diff"}},
+        std::tuple{"RungeKuttaFourth::integrate", "rk4_diff",
+                   std::vector{"midpoint_diff", "implicit_diff"}}}) {
+    EXPECT_EQ(named[stub], 6) << stub;  // every test of the crashed stub names the cause
+    EXPECT_EQ(occurrences(outputs[stub], "integrator.cpp:" + line_of(own) + ": auto " + own), 1u)
+        << stub << ":\n" << outputs[stub];  // its own line, once
+    for (const char* other : others)
+      EXPECT_EQ(outputs[stub].find(other), std::string::npos) << stub << " quotes " << other;
+  }
+  EXPECT_EQ(named["ImplicitEuler::integrate"], 0);
+  EXPECT_EQ(outputs["ImplicitEuler::integrate"].find("implicit_diff"), std::string::npos);
 }
 
 }  // namespace

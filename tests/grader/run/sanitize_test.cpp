@@ -75,7 +75,7 @@ TEST(FirstReport, FindsUndefinedBehaviourAndNothingInCleanOutput) {
 TEST(Finding, GoesIntoNotesAndTheCrashedStubsTests) {
   GradeReport report;
   TestResult crashed = makeTest("Cloth::computeSpringForce", "random perturbed state", 1);
-  crashed.diagnoses = {"crashed"};
+  crashed.causes = {Cause{"crashed", false, {}, {}, {}}};
   TestResult other = makeTest("ExplicitEuler::integrate", "one step on a random state", 2);
   report.tests = {crashed, other};
   EXPECT_TRUE(hasCrash(report));
@@ -84,7 +84,7 @@ TEST(Finding, GoesIntoNotesAndTheCrashedStubsTests) {
   EXPECT_NE(report.tests[0].output.find("AddressSanitizer"), std::string::npos);
   EXPECT_EQ(report.tests[1].output.find("AddressSanitizer"), std::string::npos);
   ASSERT_EQ(report.notes.size(), 1u);
-  EXPECT_NE(report.notes[0].find("`forces`"), std::string::npos);
+  EXPECT_NE(report.notes[0].text.find("`forces`"), std::string::npos);
   GradeReport clean;
   clean.tests = {other};
   EXPECT_FALSE(hasCrash(clean));

@@ -12,6 +12,7 @@
 #include "grader/bridge/probe_keys.h"
 #include "clothref/core/types.h"
 #include "grader/grade/probes/probes.h"
+#include "grader/grade/text.h"
 
 namespace clothref::grader {
 // The protocol's names (bridge/probe_keys.h), short in the probe files.
@@ -69,7 +70,7 @@ inline std::optional<probe::ProbeMessage> runGroup(
   if (run.status == ChildStatus::Ok) return run.answer;
   failure.verdict = run.verdict();
   failure.text = "The probe process " + run.describe() + ".";
-  if (!run.stderr_head.empty()) failure.text += "\n\n```\n" + run.stderr_head + "```";
+  if (!run.stderr_head.empty()) failure.text += "\n\n" + codeBlock(run.stderr_head);
   return std::nullopt;
 }
 
@@ -78,13 +79,17 @@ inline TestResult test(const PlannedTest& check) {
   return makeTest(check.stub, check.check, check.weight);
 }
 
+// A cause the numbers confirm, and one they only suggest (results.h, Cause).
+inline Cause likely(const std::string& id) { return Cause{id, true, {}, {}, {}}; }
+inline Cause guess(const std::string& id) { return Cause{id, false, {}, {}, {}}; }
+
 // A test of the group that could not run: zero points, the verdict as output.
 inline TestResult failedTest(const PlannedTest& check, const std::string& why,
-                             const std::vector<std::string>& diagnoses) {
+                             std::vector<Cause> causes) {
   TestResult t = test(check);
   t.fraction = 0;
   t.output = why;
-  t.diagnoses = diagnoses;
+  t.causes = std::move(causes);
   return t;
 }
 

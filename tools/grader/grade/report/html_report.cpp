@@ -16,6 +16,8 @@
 #include "pages/html.h"
 #include "pages/page_assets.h"
 #include "pages/view_data.h"
+#include "grader/grade/report/outputs.h"
+#include "grader/grade/text.h"
 
 namespace clothref::grader {
 
@@ -33,28 +35,52 @@ nlohmann::json readResults(const fs::path& path) {
   return nlohmann::json::parse(text.str(), nullptr, false);
 }
 
-std::string number(double value) {
-  const double rounded = std::round(value * 1000) / 1000;
-  return fmt::format("{}", rounded == 0 ? 0.0 : rounded);
+std::string number(double value) { return points(value); }
+
+std::size_t backtickRun(std::string_view text, std::size_t at) {
+  std::size_t n = 0;
+  while (at + n < text.size() && text[at + n] == '`') ++n;
+  return n;
 }
 
-// Inline Markdown of one escaped line: `code` and **bold**.
-std::string inlineMarkdown(const std::string& escaped) {
+// Inline Markdown of one line, escaped: code spans (a run of N backticks up to the next run of
+// exactly N, as text.h's codeSpan writes them) and **bold**; everything else is text.
+std::string inlineMarkdown(std::string_view line) {
   std::string out;
-  bool code = false, bold = false;
-  for (std::size_t i = 0; i < escaped.size(); ++i) {
-    if (escaped[i] == '`') {
-      out += code ? "</code>" : "<code>";
-      code = !code;
-    } else if (!code && escaped.compare(i, 2, "**") == 0) {
+  bool bold = false;
+  for (std::size_t i = 0; i < line.size();) {
+    if (line[i] == '`') {
+      const std::size_t n = backtickRun(line, i);
+      std::size_t close = i + n;
+      while (close < line.size()) {
+        close = line.find('`', close);
+        if (close == std::string_view::npos) break;
+        const std::size_t m = backtickRun(line, close);
+        if (m == n) break;
+        close += m;
+      }
+      if (close == std::string_view::npos || close >= line.size()) {  // no closing run: text
+        out += line.substr(i, n);
+        i += n;
+        continue;
+      }
+      std::string_view code = line.substr(i + n, close - i - n);
+      if (code.size() >= 2 && code.front() == ' ' && code.back() == ' ' &&
+          code.find_first_not_of(' ') != std::string_view::npos)
+        code = code.substr(1, code.size() - 2);
+      out += "<code>" + pages::escapeHtml(code) + "</code>";
+      i = close + n;
+    } else if (line.compare(i, 2, "**") == 0) {
       out += bold ? "</strong>" : "<strong>";
       bold = !bold;
-      ++i;
+      i += 2;
     } else {
-      out += escaped[i];
+      const std::size_t next = std::min(line.find('`', i), line.find("**", i));
+      const std::size_t end = next == std::string_view::npos ? line.size() : next;
+      out += pages::escapeHtml(line.substr(i, end - i));
+      i = end;
     }
   }
-  if (code) out += "</code>";
   if (bold) out += "</strong>";
   return out;
 }
@@ -80,7 +106,11 @@ const char* kReportStyle = R"(
 .gr-check > summary { cursor: pointer; font-weight: 600; }
 .gr-cause { display: inline-block; background: #fde8e8; color: #8b1a1a; border-radius: 3px;
             padding: 0 5px; margin-left: 6px; font-size: 0.85em; font-weight: 400; }
-.gr-check pre { background: #f6f8fa; padding: 6px; overflow-x: auto; }
+.gr-cause.gr-guess { background: #f1f1f1; color: #555; border: 1px dashed #aaa; }
+.gr-check pre, .gr-note pre, .gr-log pre { background: #f6f8fa; padding: 6px; overflow-x: auto; }
+.gr-likely { border-left: 4px solid #c0392b; padding-left: 8px; margin: 6px 0; }
+.gr-guesses { border-left: 4px dashed #999; padding-left: 8px; margin: 6px 0; color: #444; }
+.gr-log > summary { cursor: pointer; color: #555; }
 )";
 
 // The opening of a sketch's <svg> and its arrow-head markers, one per colour.
@@ -214,7 +244,8 @@ std::string markdownToHtml(std::string_view markdown) {
   std::string out;
   std::istringstream lines{std::string(markdown)};
   std::string line;
-  bool fence = false, list = false, paragraph = false, table = false;
+  std::size_t fence = 0;  // the open fence's length, 0 outside a code block
+  bool list = false, paragraph = false, table = false;
   const auto close = [&] {
     if (list) out += "</ul>\n";
     if (paragraph) out += "</p>\n";
@@ -235,10 +266,17 @@ std::string markdownToHtml(std::string_view markdown) {
     return found;
   };
   while (std::getline(lines, line)) {
-    if (line.rfind("```", 0) == 0) {
-      if (!fence) close();
-      out += fence ? "</code></pre>\n" : "<pre><code>";
-      fence = !fence;
+    const std::size_t run = backtickRun(line, 0);
+    // a fence opens with three backticks or more and closes with a line of as many or more
+    if (!fence && run >= 3) {
+      close();
+      out += "<pre><code>";
+      fence = run;
+      continue;
+    }
+    if (fence && run >= fence && line.find_first_not_of("` ", run) == std::string::npos) {
+      out += "</code></pre>\n";
+      fence = 0;
       continue;
     }
     if (fence) {
@@ -258,7 +296,7 @@ std::string markdownToHtml(std::string_view markdown) {
       table = true;
       out += "<tr>";
       for (const std::string& cell : cells(line))
-        out += (header ? "<th>" : "<td>") + inlineMarkdown(pages::escapeHtml(cell)) +
+        out += (header ? "<th>" : "<td>") + inlineMarkdown(cell) +
                (header ? "</th>" : "</td>");
       out += "</tr>\n";
       continue;
@@ -271,7 +309,7 @@ std::string markdownToHtml(std::string_view markdown) {
       paragraph = false;
       if (!list) out += "<ul>\n";
       list = true;
-      out += "<li>" + inlineMarkdown(pages::escapeHtml(line.substr(2))) + "</li>\n";
+      out += "<li>" + inlineMarkdown(std::string_view(line).substr(2)) + "</li>\n";
       continue;
     }
     if (list) out += "</ul>\n";
@@ -279,12 +317,11 @@ std::string markdownToHtml(std::string_view markdown) {
     if (line.rfind("#", 0) == 0) {
       if (paragraph) out += "</p>\n";
       paragraph = false;
-      out += "<p><strong>" +
-             inlineMarkdown(pages::escapeHtml(line.substr(line.find_first_not_of('#')))) +
+      out += "<p><strong>" + inlineMarkdown(line.substr(line.find_first_not_of('#'))) +
              "</strong></p>\n";
       continue;
     }
-    out += (paragraph ? "\n" : "<p>") + inlineMarkdown(pages::escapeHtml(line));
+    out += (paragraph ? "\n" : "<p>") + inlineMarkdown(line);
     paragraph = true;
   }
   if (fence) out += "</code></pre>\n";
@@ -295,39 +332,83 @@ std::string markdownToHtml(std::string_view markdown) {
 GradeReport gradeWithWholeRun(const fs::path& dir, const GradeOptions& options,
                               nlohmann::ordered_json& whole_run_view) {
   whole_run_view = nullptr;
-  GradeOptions keeping = options;
-  std::string temporary;
-  if (keeping.keep_work.empty()) {
-    std::string pattern = (fs::temp_directory_path() / "clothref-report-XXXXXX").string();
-    if (!::mkdtemp(pattern.data())) throw InputError("grade: cannot create a temporary folder");
-    temporary = pattern;
-    keeping.keep_work = fs::path(temporary) / "work";
-  }
-  struct Remove {
-    std::string path;
-    ~Remove() {
-      std::error_code ignored;
-      if (!path.empty()) fs::remove_all(path, ignored);
-    }
-  } remove{temporary};
-  GradeReport report = gradeSubmission(dir, keeping);
-  const fs::path run = keeping.keep_work / "probes" / "whole-run";
-  std::error_code error;
-  if (fs::exists(run / "reference.jsonl", error) && fs::exists(run / "student.jsonl", error)) {
+  GradeReport report = gradeSubmission(dir, options);
+  for (const TestResult& t : report.tests) {
+    if (!t.traces) continue;
     try {
+      // the traces as the probe kept them, named for the page (never a path of ours)
+      std::istringstream reference(t.traces->reference), student(t.traces->student);
       pages::ViewOptions view;
       view.labels = {"reference", "your code"};
-      whole_run_view = pages::viewerData(
-          {(run / "reference.jsonl").string(), (run / "student.jsonl").string()}, view);
+      whole_run_view =
+          pages::viewerData({{"reference", &reference}, {"your run", &student}}, view);
     } catch (const InputError& problem) {
       // a student trace the reader refuses (cut short by a crash) leaves the report without it
-      report.notes.push_back(std::string("The whole run could not be pictured: ") + problem.what());
+      report.notes.push_back("The whole run could not be pictured: " +
+                             codeSpan(safeName(problem.what())));
     }
   }
   return report;
 }
 
-nlohmann::ordered_json withHtmlSummary(nlohmann::ordered_json results, const GradeReport& report) {
+namespace {
+
+const char* causeClass(const Cause& cause) {
+  return cause.likely ? "gr-cause" : "gr-cause gr-guess";
+}
+
+// A test's output and causes as HTML: the likely causes and the guesses in blocks of their own.
+std::string testHtml(const TestText& text) {
+  std::string out = markdownToHtml(text.output);
+  for (const auto& [blocks, css] :
+       {std::pair{&text.likely, "gr-likely"}, std::pair{&text.guesses, "gr-guesses"}})
+    if (!blocks->empty()) {
+      out += std::string("<div class=\"") + css + "\">";
+      for (const std::string& block : *blocks) out += markdownToHtml(block);
+      out += "</div>\n";
+    }
+  return out;
+}
+
+std::string filesHtml(const GradeReport& report) {
+  const auto e = [](const std::string& text) { return pages::escapeHtml(text); };
+  std::string body =
+      "<table class=\"gr-table gr-files\"><tr><th>file</th><th>found at</th><th>used</th></tr>\n";
+  for (const UsedFile& f : report.files) {
+    std::string used = "yours";
+    if (!f.compiled) {
+      used = f.status == Verdict::MissingFile ? std::string("ours (yours is missing)")
+                                              : "ours (yours: " +
+                                                    e(f.problem.substr(0, f.problem.find('\n'))) +
+                                                    ")";
+      if (f.status != Verdict::MissingFile && !f.problem.empty())
+        used += "<details class=\"gr-log\"><summary>the first error" +
+                std::string(f.log.empty() ? "" : " and the whole log") + "</summary><pre>" +
+                e(f.problem) + "</pre>" +
+                (f.log.empty() ? std::string() : "<pre>" + e(f.log) + "</pre>") + "</details>";
+    }
+    body += "<tr><td>" + e(f.name) + "</td><td>" + (f.path.empty() ? "(missing)" : e(f.path)) +
+            "</td><td>" + used + "</td></tr>\n";
+  }
+  return body + "</table>\n";
+}
+
+std::string notesHtml(const std::vector<Note>& notes) {
+  std::string out;
+  for (const Note& note : notes) {
+    out += "<div class=\"gr-info gr-note\">" + markdownToHtml(note.text);
+    if (!note.block.empty()) out += "<pre>" + pages::escapeHtml(note.block) + "</pre>";
+    out += "</div>\n";
+  }
+  return out;
+}
+
+const char* kInformationStatus[] = {"differs", "identical"};
+
+}  // namespace
+
+nlohmann::ordered_json withHtmlSummary(nlohmann::ordered_json results, const GradeReport& given) {
+  const GradeReport report = cleaned(given);
   std::string out = "<p><strong>Score " + number(report.score) + " / " + number(report.max_score) +
                     "</strong> (edition " + std::to_string(report.edition) + ", verdict " +
                     std::string(verdictId(report.verdict)) +
@@ -346,12 +427,13 @@ nlohmann::ordered_json withHtmlSummary(nlohmann::ordered_json results, const Gra
   for (const TestResult& t : report.tests) {
     if (t.passed() || t.informational) continue;
     failed += "<li>" + pages::escapeHtml(t.name());
-    for (const std::string& cause : t.diagnoses)
-      failed += " <em>(" + pages::escapeHtml(cause) + ")</em>";
+    for (const Cause& cause : t.causes)
+      failed += " <em>(" + pages::escapeHtml(cause.id) + (cause.likely ? "" : "?") + ")</em>";
     failed += "</li>\n";
   }
   if (!failed.empty())
-    out += "<p>Failed checks (details in each test below):</p>\n<ul>\n" + failed + "</ul>\n";
+    out += "<p>Failed checks (details in each test below; a cause marked ? is a guess):</p>\n<ul>\n" +
+           failed + "</ul>\n";
   if (results.contains("output") && results["output"].is_string())
     out += markdownToHtml(results["output"].get<std::string>());
   results["output"] = out;
@@ -359,22 +441,17 @@ nlohmann::ordered_json withHtmlSummary(nlohmann::ordered_json results, const Gra
   return results;
 }
 
-std::string studentReportHtml(const GradeReport& report,
+std::string studentReportHtml(const GradeReport& given,
                               const nlohmann::ordered_json& whole_run_view) {
+  const GradeReport report = cleaned(given);
+  const std::vector<TestText> texts = testTexts(report);
   const auto e = [](const std::string& text) { return pages::escapeHtml(text); };
   std::string body = "<p><strong>Score " + number(report.score) + " / " + number(report.max_score) +
                      "</strong>. Edition " + std::to_string(report.edition) + " (" +
-                     e(report.edition_source) + "). Verdict: " + std::string(verdictId(report.verdict)) + ".</p>\n";
-  body +=
-      "<table class=\"gr-table gr-files\"><tr><th>file</th><th>found at</th><th>used</th></tr>\n";
-  for (const UsedFile& f : report.files)
-    body += "<tr><td>" + e(f.name) + "</td><td>" + (f.path.empty() ? "(missing)" : e(f.path)) +
-            "</td><td>" +
-            (f.compiled ? std::string("yours")
-                        : "ours (yours: " + e(f.problem.substr(0, f.problem.find('\n'))) + ")") +
-            "</td></tr>\n";
-  body += "</table>\n";
-  for (const std::string& note : report.notes) body += "<p class=\"gr-info\">" + e(note) + "</p>\n";
+                     e(report.edition_source) + "). Verdict: " +
+                     std::string(verdictId(report.verdict)) + ".</p>\n";
+  body += filesHtml(report);
+  body += notesHtml(report.notes);
   // score per stub, then every check of each stub
   body +=
       "<h2>Stubs</h2>\n<table class=\"gr-table gr-stubs\"><tr><th>stub</th><th>points</th>"
@@ -390,7 +467,8 @@ std::string studentReportHtml(const GradeReport& report,
   }
   body += "</table>\n";
   std::string section;
-  for (const TestResult& t : report.tests) {
+  for (std::size_t k = 0; k < report.tests.size(); ++k) {
+    const TestResult& t = report.tests[k];
     if (t.stub != section) {
       section = t.stub;
       body += "<h2 id=\"" + e(t.stub) + "\">" + e(t.stub) + "</h2>\n";
@@ -399,15 +477,20 @@ std::string studentReportHtml(const GradeReport& report,
     const char* mark = t.informational ? "\xE2\x84\xB9"
                        : t.passed()    ? "\xE2\x9C\x94"
                                        : "\xE2\x9C\x98";
-    body += std::string("<details class=\"gr-check\"") + (t.passed() ? "" : " open") +
+    const bool open = !t.passed() || t.informational;
+    body += std::string("<details class=\"gr-check\"") + (open ? " open" : "") +
             "><summary class=\"" + state + "\">" + mark + " " + e(t.check) +
-            (t.informational ? std::string(t.check.find("information only") == std::string::npos
-                                               ? " (information only)"
-                                               : "")
-                             : " \xE2\x80\x94 " + number(t.score) + " / " + number(t.max_score));
-    for (const std::string& cause : t.diagnoses)
-      body += "<span class=\"gr-cause\">" + e(cause) + "</span>";
-    body += "</summary>\n" + stateSketchSvg(t.sketch) + markdownToHtml(t.output) + "</details>\n";
+            (t.informational
+                 ? std::string(t.check.find("information only") == std::string::npos
+                                   ? " (information only)"
+                                   : "") +
+                       " \xE2\x80\x94 " + kInformationStatus[t.passed() ? 1 : 0]
+                 : " \xE2\x80\x94 " + number(t.score) + " / " + number(t.max_score));
+    for (const Cause& cause : t.causes)
+      body += std::string("<span class=\"") + causeClass(cause) + "\"" +
+              (cause.likely ? "" : " title=\"a guess\"") + ">" + e(cause.id) +
+              (cause.likely ? "" : "?") + "</span>";
+    body += "</summary>\n" + stateSketchSvg(t.sketch) + testHtml(texts[k]) + "</details>\n";
   }
   std::string viewer;
   if (!whole_run_view.is_null()) {

@@ -32,7 +32,7 @@ std::string cleanLine(std::string line) {
 bool hasCrash(const GradeReport& report) {
   if (report.verdict == Verdict::Crashed) return true;
   return std::any_of(report.tests.begin(), report.tests.end(), [](const TestResult& t) {
-    return std::find(t.diagnoses.begin(), t.diagnoses.end(), "crashed") != t.diagnoses.end();
+    return t.names("crashed");
   });
 }
 
@@ -105,8 +105,7 @@ std::optional<SanitizerFinding> sanitizerFinding(const fs::path& dir, const Grad
     SanitizerFinding finding{group, stub, quote};
     const bool crashed_here =
         std::any_of(report.tests.begin(), report.tests.end(), [&](const TestResult& t) {
-          return t.stub == stub &&
-                 std::find(t.diagnoses.begin(), t.diagnoses.end(), "crashed") != t.diagnoses.end();
+          return t.stub == stub && t.names("crashed");
         });
     if (crashed_here) return finding;
     if (!first) first = finding;

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "grader/grade/results.h"
+
 namespace clothref::grader {
 
 inline const std::vector<std::string>& studentFileNames() {
@@ -19,7 +21,9 @@ struct SubmissionFiles {
   // file name -> its bytes, read once through a descriptor that was checked to be a regular
   // file inside the submission: the only copy of the student's text anything else sees.
   std::map<std::string, std::string> bytes;
-  std::vector<std::string> notes;  // one line each: choices made, encodings seen, refusals
+  // One line of Markdown each (names in code spans): choices made, encodings seen, refusals.
+  std::vector<std::string> notes;
+  std::vector<FileChoice> choices;  // every name found more than once, and which copy was used
 };
 
 // Student files are small; a larger one is refused rather than read (`--max-file-bytes`).
@@ -49,6 +53,17 @@ int openBeneath(int root_fd, const std::string& relative, int flags, bool use_op
 // FIFO", "larger than N bytes", ...) otherwise.
 bool readRegularFileBeneath(int root_fd, const std::string& relative, std::size_t max_bytes,
                             std::string& bytes, std::string& why, bool use_openat2 = true);
+
+// The lines of a stub's body in a student file: from the line of its opening brace to the line of
+// its closing one (1-based); first = 0 when the file defines no such function.
+struct StubLines {
+  int first = 0, last = 0;
+  bool contains(int line) const { return first > 0 && line >= first && line <= last; }
+};
+// Finds the definition of `stub`, a course name from stubTable() ("RungeKuttaFourth::integrate",
+// "Spheres::collide(Cloth*)", "Spheres::collide()": a parameter list in the name picks the
+// overload), ignoring comments and string literals and skipping declarations.
+StubLines stubLines(const std::string& source, const std::string& stub);
 
 // 2024 when sphere.cpp defines Spheres::setVelocity (or cloth.cpp uses textureBuffer), 2022 when
 // sphere.cpp defines Spheres::collide(); 0 when neither is found. `why` says what decided.
