@@ -216,14 +216,92 @@ bool readRegularFileBeneath(int root_fd, const std::string& relative, std::size_
   return true;
 }
 
+namespace {
+
+// The submission folder named by the caller: the folders on the way to it may be links (the
+// caller's own), the folder itself may not (a link named like a submission, planted among them,
+// would have the grader read, as root, whatever it points to). A trailing '/' is dropped first: it
+// would make the kernel follow a last link. -1 with errno set when it cannot be opened.
+int openSubmissionFolder(const std::filesystem::path& dir) {
+  std::string path = dir.string();
+  while (path.size() > 1 && path.back() == '/') path.pop_back();
+  return open(path.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+}
+
+// Why `dir` did not open (errno `error`); O_DIRECTORY on a link says ENOTDIR: named for what it is.
+std::string openProblem(const std::filesystem::path& dir, int error) {
+  std::string path = dir.string();
+  while (path.size() > 1 && path.back() == '/') path.pop_back();
+  struct stat st {};
+  if (error == ELOOP || (error == ENOTDIR && lstat(path.c_str(), &st) == 0 && S_ISLNK(st.st_mode)))
+    return "a symbolic link (a submission folder given as a link is not followed)";
+  if (error == ENOTDIR)
+    return "not a directory (a submission is a directory holding cloth.cpp, sphere.cpp and "
+           "integrator.cpp)";
+  return std::strerror(error);
+}
+
+}  // namespace
+
+std::vector<std::string> submissionsBelow(const std::filesystem::path& dir) {
+  const int root_fd = openSubmissionFolder(dir);
+  if (root_fd < 0) return {};
+  std::vector<std::string> whole;
+  Walk top;
+  walk(root_fd, "", kMaxDepth, top);  // depth kMaxDepth: the top level only
+  bool files_at_top = false;
+  for (const auto& [name, paths] : top.candidates)
+    for (const std::string& path : paths) files_at_top = files_at_top || depthOf(path) == 0;
+  DIR* listing = files_at_top ? nullptr : fdopendir(dup(root_fd));
+  std::vector<std::string> folders;
+  if (listing) {
+    rewinddir(listing);  // the walk above read the same open directory to its end
+    while (const dirent* entry = readdir(listing)) {
+      const std::string name = entry->d_name;
+      if (name == "." || name == ".." || name == "__MACOSX" || name == ".git" ||
+          name.rfind("._", 0) == 0)
+        continue;
+      struct stat st {};
+      if (fstatat(root_fd, name.c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0 && S_ISDIR(st.st_mode))
+        folders.push_back(name);
+    }
+    closedir(listing);
+  }
+  std::sort(folders.begin(), folders.end());
+  for (const std::string& folder : folders) {
+    const int sub = openBeneath(root_fd, folder, O_RDONLY | O_DIRECTORY);
+    if (sub < 0) continue;
+    Walk w;
+    walk(sub, "", 1, w);
+    close(sub);
+    bool all = true;
+    for (const std::string& wanted : studentFileNames()) all = all && !w.candidates[wanted].empty();
+    if (all) whole.push_back(folder);
+  }
+  close(root_fd);
+  if (whole.size() < 2) whole.clear();
+  return whole;
+}
+
+std::string severalSubmissionsProblem(const std::filesystem::path& dir,
+                                      const std::vector<std::string>& names) {
+  std::string list;
+  for (std::size_t k = 0; k < names.size() && k < 5; ++k)
+    list += (k ? ", " : "") + safeName(names[k]);
+  if (names.size() > 5) list += ", ...";
+  std::string shown = dir.string();
+  while (shown.size() > 1 && shown.back() == '/') shown.pop_back();
+  shown = safeName(shown);
+  return std::to_string(names.size()) + " submissions below " + shown + " (" + list +
+         "): give them as " + shown + "/* with --out BATCHDIR, or --one-submission to grade " +
+         shown + " as one";
+}
+
 SubmissionFiles findSubmissionFiles(const std::filesystem::path& dir, std::size_t max_file_bytes) {
-  // The folder named by the caller (not by the student) may itself be reached through a link;
-  // nothing below it is.
-  const int root_fd = open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (root_fd < 0)
-    throw InputError(safeName(dir.string()) +
-                     ": not a directory (a submission is a directory holding "
-                     "cloth.cpp, sphere.cpp and integrator.cpp)");
+  // The folder named by the caller (not by the student) may itself be reached through folders
+  // that are links, but it is no link itself; nothing below it is followed either.
+  const int root_fd = openSubmissionFolder(dir);
+  if (root_fd < 0) throw InputError(safeName(dir.string()) + ": " + openProblem(dir, errno));
   Walk w;
   walk(root_fd, "", 0, w);
   SubmissionFiles files;

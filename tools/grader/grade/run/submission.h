@@ -41,6 +41,17 @@ inline constexpr std::size_t kDefaultMaxSourceBytes = 16u << 20;
 SubmissionFiles findSubmissionFiles(const std::filesystem::path& dir,
                                     std::size_t max_file_bytes = kDefaultMaxSourceBytes);
 
+// The folders directly below `dir` that each hold a whole submission (cloth.cpp, sphere.cpp and
+// integrator.cpp somewhere below them), sorted, when there are two or more of them and `dir`
+// itself holds none of the three files at its top: `dir` is then a folder of submissions, not
+// one (grading it would silently grade one of them). Empty otherwise, or when `dir` cannot be
+// opened. Walked as findSubmissionFiles walks: no link followed.
+std::vector<std::string> submissionsBelow(const std::filesystem::path& dir);
+// The one line that refuses such a folder: "3 submissions below subs (a, b, c): give them as
+// subs/* with --out BATCHDIR, or --one-submission to grade subs as one".
+std::string severalSubmissionsProblem(const std::filesystem::path& dir,
+                                      const std::vector<std::string>& names);
+
 // Opens `relative` (no "..", no leading '/') below the open directory `root_fd` without
 // following any symbolic link on the way: openat2(RESOLVE_BENEATH | RESOLVE_NO_SYMLINKS), or
 // where the kernel lacks openat2 (or `use_openat2` is false, for tests) one openat(O_NOFOLLOW)
