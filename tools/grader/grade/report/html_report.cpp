@@ -477,7 +477,7 @@ std::string studentReportHtml(const GradeReport& given,
     const char* mark = t.informational ? "\xE2\x84\xB9"
                        : t.passed()    ? "\xE2\x9C\x94"
                                        : "\xE2\x9C\x98";
-    const bool open = !t.passed() || t.informational;
+    const bool open = !t.passed() && !t.informational;  // the whole run: its status in the summary
     body += std::string("<details class=\"gr-check\"") + (open ? " open" : "") +
             "><summary class=\"" + state + "\">" + mark + " " + e(t.check) +
             (t.informational
@@ -527,9 +527,18 @@ std::string batchIndexHtml(const fs::path& batch_dir, const std::vector<BatchRow
     s["report"] =
         row.name +
         (fs::exists(batch_dir / row.name / "report.html", error) ? "/report.html" : "/report.md");
-    // per check: passed, failed; the named causes (a test's tags after its stub)
+    // per check: passed, failed; the named causes (extra_data's, with whether each is likely;
+    // else a test's tags after its stub)
     nlohmann::ordered_json passed = nlohmann::ordered_json::object();
-    std::vector<std::string> causes;
+    std::vector<std::pair<std::string, bool>> causes;  // id, likely on some test
+    const auto name_cause = [&](const std::string& id, bool likely) {
+      for (auto& [known, was_likely] : causes)
+        if (known == id) {
+          was_likely = was_likely || likely;
+          return;
+        }
+      causes.push_back({id, likely});
+    };
     const nlohmann::json results = readResults(batch_dir / row.name / "results.json");
     if (results.is_object() && results.contains("tests") && results["tests"].is_array())
       for (const auto& test : results["tests"]) {
@@ -540,16 +549,23 @@ std::string batchIndexHtml(const fs::path& batch_dir, const std::vector<BatchRow
           checks.push_back(name);
         }
         passed[std::to_string(index[name])] = test.value("status", "") == "passed";
-        if (test.contains("tags") && test["tags"].is_array())
+        const nlohmann::json* listed = nullptr;
+        if (test.contains("extra_data") && test["extra_data"].is_object() &&
+            test["extra_data"].contains("causes") && test["extra_data"]["causes"].is_array())
+          listed = &test["extra_data"]["causes"];
+        if (listed) {
+          for (const auto& cause : *listed)
+            if (cause.is_object() && cause.contains("id") && cause["id"].is_string())
+              name_cause(cause["id"].get<std::string>(), cause.value("likely", true));
+        } else if (test.contains("tags") && test["tags"].is_array()) {
           for (std::size_t k = 1; k < test["tags"].size(); ++k)
-            if (test["tags"][k].is_string()) {
-              const std::string cause = test["tags"][k].get<std::string>();
-              if (std::find(causes.begin(), causes.end(), cause) == causes.end())
-                causes.push_back(cause);
-            }
+            if (test["tags"][k].is_string()) name_cause(test["tags"][k].get<std::string>(), true);
+        }
       }
+    nlohmann::ordered_json cause_list = nlohmann::ordered_json::array();
+    for (const auto& [id, likely] : causes) cause_list.push_back({{"id", id}, {"likely", likely}});
     s["checks"] = passed;
-    s["causes"] = causes;
+    s["causes"] = cause_list;
     submissions.push_back(s);
   }
   data["checks"] = checks;
