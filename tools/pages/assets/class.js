@@ -27,8 +27,9 @@ function mountClass(root, data) {
   const shortName = {
     'Cloth::initializeSpring': 'springs', 'Cloth::computeSpringForce': 'forces',
     'Spheres::collide(Cloth*)': 'collide (Cloth*)', 'Spheres::collide()': 'collide ()',
-    'ExplicitEuler::integrate': 'Explicit', 'ImplicitEuler::integrate': 'Implicit',
-    'MidpointEuler::integrate': 'Midpoint', 'RungeKuttaFourth::integrate': 'RK4',
+    // soft hyphens: a narrow column breaks the name where a reader expects it
+    'ExplicitEuler::integrate': 'Ex\u00adplicit', 'ImplicitEuler::integrate': 'Im\u00adplicit',
+    'MidpointEuler::integrate': 'Mid\u00adpoint', 'RungeKuttaFourth::integrate': 'RK4',
   };
   const svgNs = 'http://www.w3.org/2000/svg';
   function svg(tag, attributes, text) {
