@@ -48,18 +48,18 @@ std::string describe(const DiffReport& report, double dt) {
            ", the reference's " + util::num(value.a) + unitOf(value);
   };
   if (report.verdict == clothref::Verdict::Identical)
-    return "**Identical**: all " + std::to_string(report.steps_compared) +
+    return "**The runs are identical**: all " + std::to_string(report.steps_compared) +
            " recorded states (every " + std::to_string(kStride) +
            "th step) equal the reference's, bit for bit.\n";
   if (report.verdict == clothref::Verdict::WithinTolerance)
-    return "**Identical within the tolerance** (" + std::string("1e-5") +
+    return "**The runs are identical within the tolerance** (" + std::string("1e-5") +
            ", absolute or relative): " + std::to_string(report.values_compared) +
            " values compared" +
            (report.worst ? "; the largest difference is " + values(*report.worst) + " at " +
                                at(report.worst->step)
                          : std::string()) +
            ".\n";
-  std::string out = "**Differs**";
+  std::string out = "**The runs differ**";
   if (report.first_beyond)
     out += " from " + at(report.first_beyond->step) + ": " + values(*report.first_beyond) + ".";
   out += " In all, " + std::to_string(report.values_beyond) + " of " +
