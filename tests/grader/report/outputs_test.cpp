@@ -12,6 +12,7 @@
 #include <tuple>
 
 #include "grader/grade/batch.h"
+#include "grader/grade/report/html_report.h"
 #include "grader/grade/text.h"
 #include "test_util.h"
 
@@ -61,6 +62,20 @@ TEST(ResultsJson, GradescopeFields) {
   EXPECT_EQ(test["tags"],
             nlohmann::ordered_json({"Spheres::collide(Cloth*)", "no-approach-check"}));
   EXPECT_EQ(json["tests"][0]["status"], "passed");
+}
+
+// The rubric's visibility reaches each test of results.json; the top-level summary does not name
+// a failed test that is not visible yet.
+TEST(ResultsJson, EachTestHasTheVisibilityTheRubricGave) {
+  GradeReport report = sampleReport();
+  report.tests[1].visibility = "after_due_date";
+  const auto json = resultsJson(report);
+  EXPECT_EQ(json["tests"][0]["visibility"], "visible");
+  EXPECT_EQ(json["tests"][1]["visibility"], "after_due_date");
+  const auto html = withHtmlSummary(json, report);
+  EXPECT_EQ(html["output"].get<std::string>().find("approaching pair"), std::string::npos);
+  EXPECT_NE(html["output"].get<std::string>().find("1 more failed check shown later"),
+            std::string::npos);
 }
 
 TEST(JunitXml, EscapesFeedback) {

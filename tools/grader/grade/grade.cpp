@@ -310,6 +310,7 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
   fillCauseTexts(catalogue, report.tests);
   sortInCourseOrder(report.tests);
   applyRubric(rubric, report);
+  for (TestResult& t : report.tests) t.visibility = rubric.visibilityOf(t.name(), t.stub);
   report.verdict = submissionVerdict(report, context.limits.log->verdicts);
   if (!options.keep_work.empty()) keepWork(scratch.path(), options.keep_work, report);
   report.seconds["total"] = since(start);

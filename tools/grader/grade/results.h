@@ -183,6 +183,8 @@ struct TestResult {
   double max_score = 0;        // points, filled in by the rubric
   double score = 0;            // points, filled in by the rubric
   bool informational = false;  // never scored (e.g. the whole-run comparison)
+  // Gradescope's visibility of the test (the rubric's "visibility"; rubric.h visibilityNames())
+  std::string visibility = "visible";
   // Markdown: state tried, expected vs actual, what was measured. Never the causes' text: the
   // writers add it from `causes`. Text a submission controls enters it only through codeBlock()
   // or codeSpan() (text.h).

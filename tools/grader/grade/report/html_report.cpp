@@ -424,8 +424,13 @@ nlohmann::ordered_json withHtmlSummary(nlohmann::ordered_json results, const Gra
   }
   out += "</table>\n";
   std::string failed;
+  int not_shown = 0;  // failed tests the rubric shows later or never: not named here either
   for (const TestResult& t : report.tests) {
     if (t.passed() || t.informational) continue;
+    if (t.visibility != "visible") {
+      ++not_shown;
+      continue;
+    }
     failed += "<li>" + pages::escapeHtml(t.name());
     for (const Cause& cause : t.causes)
       failed += " <em>(" + pages::escapeHtml(cause.id) + (cause.likely ? "" : "?") + ")</em>";
@@ -434,6 +439,9 @@ nlohmann::ordered_json withHtmlSummary(nlohmann::ordered_json results, const Gra
   if (!failed.empty())
     out += "<p>Failed checks (details in each test below; a cause marked ? is a guess):</p>\n<ul>\n" +
            failed + "</ul>\n";
+  if (not_shown)
+    out += "<p>" + std::to_string(not_shown) + " more failed check" + (not_shown == 1 ? "" : "s") +
+           " shown later.</p>\n";
   if (results.contains("output") && results["output"].is_string())
     out += markdownToHtml(results["output"].get<std::string>());
   results["output"] = out;

@@ -105,6 +105,7 @@ GradeReport cleaned(const GradeReport& given) {
   for (TestResult& test : report.tests) {
     name(test.stub);
     name(test.check);
+    name(test.visibility);
     text(test.output);
     for (Cause& cause : test.causes) {
       name(cause.id);
@@ -224,7 +225,7 @@ nlohmann::ordered_json resultsJson(const GradeReport& given) {
     test["status"] = t.passed() ? "passed" : "failed";
     test["output"] = texts[k].markdown();
     test["output_format"] = "md";
-    test["visibility"] = "visible";
+    test["visibility"] = t.visibility;
     nlohmann::ordered_json tags = nlohmann::ordered_json::array({t.stub});
     for (const auto& id : t.causeIds()) tags.push_back(id);
     test["tags"] = tags;
