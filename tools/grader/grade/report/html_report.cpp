@@ -3,6 +3,7 @@
 #include <stdlib.h>
 
 #include <algorithm>
+#include <atomic>
 #include <array>
 #include <cmath>
 #include <fstream>
@@ -128,41 +129,42 @@ std::string sketchSvgStart(double width, double height, const char* label,
   return out + "</defs>";
 }
 
-std::string bodiesSvg(const std::vector<SketchBody>& bodies) {
-  constexpr double kWidth = 320, kHeight = 230, kMargin = 14, kLegend = 30;
-  // Arrow scale: the fastest velocity spans 40 % of the bodies' extent (at least 0.2 m).
-  double lo_x = 1e30, hi_x = -1e30, lo_y = 1e30, hi_y = -1e30, fastest = 0;
-  for (const SketchBody& b : bodies) {
-    if (!std::isfinite(b.x[0]) || !std::isfinite(b.x[1]) || !std::isfinite(b.radius))
-      return {};  // a body we cannot place: the text says where it was
-    lo_x = std::min(lo_x, double(b.x[0] - b.radius));
-    hi_x = std::max(hi_x, double(b.x[0] + b.radius));
-    lo_y = std::min(lo_y, double(b.x[1] - b.radius));
-    hi_y = std::max(hi_y, double(b.x[1] + b.radius));
+// A rectangle of the picture in pixels, for labels that must not cover each other.
+struct Box {
+  double x0, y0, x1, y1;
+  bool overlaps(const Box& o) const { return x0 < o.x1 && o.x0 < x1 && y0 < o.y1 && o.y0 < y1; }
+};
+
+// One panel of a collision sketch: the part [lo, hi] of the x-y plane drawn in the pixel box at
+// (left, top) of size `side` x `side`, one scale for both axes; arrows scaled so that the fastest
+// velocity spans 40 % of the panel's width in metres. Bodies, then arrows, then labels, each label
+// where it covers no other label (tried beside its body on four sides).
+std::string bodiesPanel(const std::vector<SketchBody>& bodies, double lo_x, double lo_y, double span,
+                        double left, double top, double side, const std::string& clip,
+                        std::vector<Box>& labels) {
+  const double scale = side / span;
+  const auto px = [&](double x) { return left + (x - lo_x) * scale; };
+  const auto py = [&](double y) { return top + side - (y - lo_y) * scale; };
+  double fastest = 0;
+  for (const SketchBody& b : bodies)
     for (const auto& v : {b.v, b.v_expected, b.v_actual})
       if (std::isfinite(v[0]) && std::isfinite(v[1]))
         fastest = std::max(fastest, std::hypot(double(v[0]), double(v[1])));
-  }
-  const double extent = std::max({hi_x - lo_x, hi_y - lo_y, 0.2});
-  const double arrow = fastest > 0 ? 0.4 * extent / fastest : 0;
-  // Room for the arrows around the bodies, then one metres-to-pixels scale for both axes.
-  lo_x -= 0.4 * extent, hi_x += 0.4 * extent, lo_y -= 0.4 * extent, hi_y += 0.4 * extent;
-  const double scale = std::min((kWidth - 2 * kMargin) / (hi_x - lo_x),
-                                (kHeight - 2 * kMargin - kLegend) / (hi_y - lo_y));
-  const auto px = [&](double x) { return kMargin + (x - lo_x) * scale; };
-  const auto py = [&](double y) { return kHeight - kLegend - kMargin - (y - lo_y) * scale; };
+  const double arrow = fastest > 0 ? 0.4 * span / fastest : 0;
   const std::array<std::pair<std::string, std::string>, 3> kinds = {
       {{"before", "#888"}, {"course", "#2a7a2a"}, {"yours", "#c0392b"}}};
-  std::string out =
-      sketchSvgStart(kWidth, kHeight, "the state tried", {kinds.begin(), kinds.end()});
-  // Bodies first, then every arrow, then the labels: nothing hides a label or an arrow.
+  std::string out = fmt::format(
+      R"(<clipPath id="{0}"><rect x="{1:.1f}" y="{2:.1f}" width="{3:.1f}" height="{3:.1f}"/>)"
+      R"(</clipPath><rect x="{1:.1f}" y="{2:.1f}" width="{3:.1f}" height="{3:.1f}" fill="none" )"
+      R"svg(stroke="#ddd"/><g clip-path="url(#{0})">)svg",
+      clip, left, top, side);
   for (const SketchBody& b : bodies)
     out += b.radius > 0
                ? fmt::format(R"(<circle cx="{:.1f}" cy="{:.1f}" r="{:.1f}" fill="#dce8f5" )"
                              R"(stroke="#5b7fa6" fill-opacity="0.8"/>)",
                              px(b.x[0]), py(b.x[1]), b.radius * scale)
-               : fmt::format(R"(<circle cx="{:.1f}" cy="{:.1f}" r="3" fill="#333"/>)", px(b.x[0]),
-                             py(b.x[1]));
+               : fmt::format(R"(<circle cx="{:.1f}" cy="{:.1f}" r="3.5" fill="#333"/>)",
+                             px(b.x[0]), py(b.x[1]));
   for (const SketchBody& b : bodies) {
     const std::array<const std::array<float, 3>*, 3> velocities = {&b.v, &b.v_expected,
                                                                    &b.v_actual};
@@ -175,22 +177,115 @@ std::string bodiesSvg(const std::vector<SketchBody>& bodies) {
                          py(b.x[1] + v[1] * arrow), kinds[k].second, kinds[k].first);
     }
   }
-  // A sphere's label at its centre (its number alone where the circle is small), a particle's
-  // beside its dot.
+  out += "</g>";
+  // Labels of the bodies whose centre is in the panel: beside the dot, or inside the circle's top
+  // for a sphere, on the first side where it covers no label placed before.
+  constexpr double kCharWidth = 6.2, kLabelHeight = 12;
   for (const SketchBody& b : bodies) {
-    const bool sphere = b.radius > 0;
-    const bool roomy = b.radius * scale > 28;
-    const std::string label = sphere && !roomy ? b.label.substr(b.label.rfind(' ') + 1) : b.label;
-    out += fmt::format(R"(<text x="{:.1f}" y="{:.1f}" font-size="10" fill="#333"{}>{}</text>)",
-                       px(b.x[0]) + (sphere ? 0 : 4), py(b.x[1]) + (sphere ? 12 : -4),
-                       sphere ? R"( text-anchor="middle")" : "", pages::escapeHtml(label));
+    const double cx = px(b.x[0]), cy = py(b.x[1]);
+    if (cx < left || cx > left + side || cy < top || cy > top + side) continue;
+    const double width = kCharWidth * double(b.label.size());
+    const double r = b.radius > 0 ? b.radius * scale : 4;
+    const std::array<std::pair<double, double>, 5> corners = {{
+        {cx + 0.7 * r + 2, cy - 0.7 * r - 2},            // upper right
+        {cx - 0.7 * r - 2 - width, cy - 0.7 * r - 2},    // upper left
+        {cx + 0.7 * r + 2, cy + 0.7 * r + kLabelHeight},  // lower right
+        {cx - 0.7 * r - 2 - width, cy + 0.7 * r + kLabelHeight},
+        {cx - width / 2, cy + 4}}};  // on the centre
+    Box chosen{};
+    bool placed = false;
+    for (const auto& [x, y] : corners) {
+      const Box box{x, y - kLabelHeight + 2, x + width, y + 2};
+      const bool inside = box.x0 >= left && box.x1 <= left + side && box.y0 >= top &&
+                          box.y1 <= top + side;
+      const bool free = std::none_of(labels.begin(), labels.end(),
+                                     [&](const Box& other) { return other.overlaps(box); });
+      if (inside && free) {
+        chosen = box;
+        placed = true;
+        break;
+      }
+    }
+    if (!placed) continue;  // no free place: the text below the picture names every body
+    labels.push_back(chosen);
+    out += fmt::format(
+        R"(<text x="{:.1f}" y="{:.1f}" font-size="11" fill="#222" paint-order="stroke" )"
+        R"(stroke="#fff" stroke-width="3">{}</text>)",
+        chosen.x0, chosen.y1 - 2, pages::escapeHtml(b.label));
+  }
+  return out;
+}
+
+// The point where two bodies meet (the middle of their gap, or of their overlap) and how wide the
+// gap is, for the closest pair; false for fewer than two bodies.
+bool contactPoint(const std::vector<SketchBody>& bodies, double& x, double& y, double& gap) {
+  bool found = false;
+  for (std::size_t i = 0; i < bodies.size(); ++i)
+    for (std::size_t j = i + 1; j < bodies.size(); ++j) {
+      const auto& a = bodies[i];
+      const auto& b = bodies[j];
+      const double dx = double(b.x[0]) - a.x[0], dy = double(b.x[1]) - a.x[1];
+      const double d = std::hypot(dx, dy);
+      const double g = d - a.radius - b.radius;
+      if (found && g >= gap) continue;
+      found = true;
+      gap = g;
+      const double t = d > 0 ? (a.radius + g / 2) / d : 0;
+      x = a.x[0] + dx * t;
+      y = a.x[1] + dy * t;
+    }
+  return found;
+}
+
+std::string bodiesSvg(const std::vector<SketchBody>& bodies) {
+  constexpr double kSide = 300, kGap = 16, kMargin = 10, kTitle = 16, kLegend = 34;
+  double lo_x = 1e30, hi_x = -1e30, lo_y = 1e30, hi_y = -1e30;
+  for (const SketchBody& b : bodies) {
+    if (!std::isfinite(b.x[0]) || !std::isfinite(b.x[1]) || !std::isfinite(b.radius))
+      return {};  // a body we cannot place: the text says where it was
+    lo_x = std::min(lo_x, double(b.x[0] - b.radius));
+    hi_x = std::max(hi_x, double(b.x[0] + b.radius));
+    lo_y = std::min(lo_y, double(b.x[1] - b.radius));
+    hi_y = std::max(hi_y, double(b.x[1] + b.radius));
+  }
+  // The whole scene with room for the arrows around it; beside it, when two bodies meet, the
+  // contact up close (a square a few times the gap, at least 10 cm), where a particle on a
+  // sphere's surface and its arrows are not lost in the sphere's size.
+  const double extent = std::max({hi_x - lo_x, hi_y - lo_y, 0.2});
+  const double span = 1.8 * extent;
+  const double mid_x = (lo_x + hi_x) / 2, mid_y = (lo_y + hi_y) / 2;
+  double cx = 0, cy = 0, gap = 0;
+  const bool zoom = contactPoint(bodies, cx, cy, gap);
+  const double zoom_span = std::max(0.1, 6 * std::abs(gap));
+  const double width = 2 * kMargin + kSide + (zoom ? kGap + kSide : 0);
+  const double height = kTitle + kSide + kLegend + kMargin;
+  const std::array<std::pair<std::string, std::string>, 3> kinds = {
+      {{"before", "#888"}, {"course", "#2a7a2a"}, {"yours", "#c0392b"}}};
+  static std::atomic<unsigned long> sketches{0};
+  const std::string id = "gr-sketch-" + std::to_string(sketches++);
+  std::string out = sketchSvgStart(width, height, "the state tried", {kinds.begin(), kinds.end()});
+  std::vector<Box> labels;
+  out += fmt::format(R"(<text x="{}" y="12" font-size="11" fill="#555">the bodies, front view )"
+                     R"((x right, y up)</text>)",
+                     kMargin);
+  out += bodiesPanel(bodies, mid_x - span / 2, mid_y - span / 2, span, kMargin, kTitle, kSide,
+                     id + "-all", labels);
+  if (zoom) {
+    const double left = kMargin + kSide + kGap;
+    out += fmt::format(R"(<text x="{}" y="12" font-size="11" fill="#555">around the contact, )"
+                       R"({:.0f} cm across</text>)",
+                       left, zoom_span * 100);
+    labels.clear();
+    out += bodiesPanel(bodies, cx - zoom_span / 2, cy - zoom_span / 2, zoom_span, left, kTitle,
+                       kSide, id + "-near", labels);
   }
   out += fmt::format(
-      R"(<text x="{0}" y="{1}" font-size="10"><tspan fill="#888">&#8594; velocity before</tspan> )"
-      R"(<tspan fill="#2a7a2a">&#8594; after the course's collide</tspan></text>)"
-      R"(<text x="{0}" y="{2}" font-size="10"><tspan fill="#c0392b">&#8594; after yours</tspan> )"
-      R"(<tspan fill="#555">(front view: x right, y up)</tspan></text></svg>)",
-      kMargin, kHeight - 20, kHeight - 6);
+      R"(<text x="{0}" y="{1}" font-size="11"><tspan fill="#888">&#8594; velocity before</tspan> )"
+      R"(<tspan fill="#2a7a2a">&#8594; after the course's collide</tspan> )"
+      R"(<tspan fill="#c0392b">&#8594; after yours</tspan></text>)"
+      R"(<text x="{0}" y="{2}" font-size="11" fill="#555">arrows on one scale per panel; the )"
+      R"(numbers below give x, y and z</text></svg>)",
+      kMargin, kTitle + kSide + 16, kTitle + kSide + 30);
   return out;
 }
 
