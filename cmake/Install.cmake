@@ -1,6 +1,7 @@
-# Install rules: the CLI with its data (cmake/InstallData.cmake), every library area (static), the public headers, a CMake package
-# (find_package(clothref) -> clothref::clothref and clothref::<area>, carrying the determinism
-# options) and a pkg-config file (clothref.pc). Included from the top-level CMakeLists.txt.
+# Install rules: the CLI with its data (cmake/InstallData.cmake), every library area (static), the
+# public headers (cmake/PublicHeaders.cmake), a CMake package (find_package(clothref) ->
+# clothref::clothref and clothref::<area>, carrying the determinism options) and a pkg-config file
+# (clothref.pc). Included from the top-level CMakeLists.txt.
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
@@ -17,10 +18,23 @@ if(TARGET clothref-cli)
   include(cmake/InstallData.cmake)
 endif()
 
-# Public headers: every header of lib/clothref, and the generated build information.
-install(DIRECTORY ${PROJECT_SOURCE_DIR}/lib/clothref
-        DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
-        FILES_MATCHING PATTERN "*.h")
+# Public headers: the explicit list of cmake/PublicHeaders.cmake, and the generated build
+# information. A header of lib/clothref in neither that list nor the private one stops the
+# configuration, so none is installed, or left out, by accident.
+include(${PROJECT_SOURCE_DIR}/cmake/PublicHeaders.cmake)
+file(GLOB_RECURSE clothref_all_headers RELATIVE ${PROJECT_SOURCE_DIR}/lib/clothref
+     CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/lib/clothref/*.h)
+foreach(header ${clothref_all_headers})
+  if(NOT header IN_LIST CLOTHREF_PUBLIC_HEADERS AND NOT header IN_LIST CLOTHREF_PRIVATE_HEADERS)
+    message(FATAL_ERROR "lib/clothref/${header} is in neither CLOTHREF_PUBLIC_HEADERS nor "
+                        "CLOTHREF_PRIVATE_HEADERS (cmake/PublicHeaders.cmake): add it to one")
+  endif()
+endforeach()
+foreach(header ${CLOTHREF_PUBLIC_HEADERS})
+  get_filename_component(header_dir ${header} DIRECTORY)
+  install(FILES ${PROJECT_SOURCE_DIR}/lib/clothref/${header}
+          DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/clothref/${header_dir})
+endforeach()
 install(FILES ${PROJECT_BINARY_DIR}/lib/clothref/trace/build_info.h
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/clothref/trace)
 

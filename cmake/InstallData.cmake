@@ -23,12 +23,20 @@ if(NOT CLOTHREF_HELP2MAN)
   message(STATUS "clothref: help2man not found, no man pages (tools/setup.sh installs it)")
   return()
 endif()
-set(clothref_commands trace diff golden verify scenes bench stability sweep plot grade)
+# Every subcommand of `clothref --help`: the ctest man_pages (tests/docs/man_pages_test.sh) fails
+# on a command without a page here, and renders each page's footer with `man -l`.
+set(clothref_commands trace diff golden verify scenes bench stability sweep plot grade view
+                      gradescope)
 set(clothref_man_dir ${PROJECT_BINARY_DIR}/man)
 set(clothref_man_pages ${clothref_man_dir}/clothref.1)
+# The footer shows the source (left), the month (centre) and the title (right); help2man takes the
+# source from the program's version line unless given one, and `clothref --version`'s line (git
+# revision, compiler, build type, SIMD path) is too long for it: the month and the source then
+# overprint. So each page is given the short "clothref[-<command>] <version>".
 add_custom_command(OUTPUT ${clothref_man_dir}/clothref.1
   COMMAND ${CMAKE_COMMAND} -E make_directory ${clothref_man_dir}
   COMMAND ${CLOTHREF_HELP2MAN} --no-info --no-discard-stderr
+          "--version-string=clothref ${PROJECT_VERSION}"
           "--name=reference and autograder for the cloth-and-spheres assignment"
           --output=${clothref_man_dir}/clothref.1 $<TARGET_FILE:clothref-cli>
   DEPENDS clothref-cli VERBATIM)

@@ -1,9 +1,12 @@
-# A minimal Debian 12 root for checks that need a really fresh machine (sourced, not run):
-# tools/check_fresh_debian.sh (the README's two commands) and tests/gradescope (the Gradescope
-# archive). Made with Debian's mmdebstrap; /proc, /sys and /dev bound in; removed with its mounts.
+# A minimal Debian root for checks that need a really fresh machine (sourced, not run):
+# tools/check_fresh_debian.sh (the README's two commands, on Debian 12 and 13) and tests/gradescope
+# (the Gradescope archive, Debian 12). Made with Debian's mmdebstrap; /proc, /sys and /dev bound in;
+# removed with its mounts.
 #
 #   debian_root_usable              0 when this host can make one (root, mmdebstrap), else prints why
-#   debian_root_make ROOT LOG [PKG,...]   mmdebstrap --variant=apt bookworm ROOT, extra packages
+#   debian_root_make ROOT LOG [PKG,...] [SUITE]
+#                                   mmdebstrap --variant=apt SUITE ROOT, extra packages; SUITE is
+#                                   bookworm (Debian 12, the default) or trixie (Debian 13)
 #   debian_root_mount ROOT          binds /proc, /sys, /dev, copies resolv.conf (for apt), writes
 #                                   the /etc/hosts an installed system has
 #   debian_root_run ROOT COMMAND    bash -c COMMAND inside, with a clean root environment
@@ -26,8 +29,17 @@ debian_root_usable() {
 }
 
 debian_root_make() {
-  local root=$1 log=$2 include=ca-certificates${3:+,$3}
-  mmdebstrap --quiet --variant=apt --include="$include" bookworm "$root" >"$log" 2>&1
+  local root=$1 log=$2 include=ca-certificates${3:+,$3} suite=${4:-bookworm}
+  mmdebstrap --quiet --variant=apt --include="$include" "$suite" "$root" >"$log" 2>&1
+}
+
+# The Debian release a suite name stands for (for messages and the docs' tables).
+debian_root_release_name() {
+  case "$1" in
+    bookworm) echo "Debian 12" ;;
+    trixie) echo "Debian 13" ;;
+    *) echo "Debian $1" ;;
+  esac
 }
 
 debian_root_mount() {

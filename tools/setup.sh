@@ -3,7 +3,8 @@
 # the `release` preset (CMakePresets.json: Ninja, Release, build/) and builds.
 # Usage: tools/setup.sh [extra cmake arguments]
 # Environment: BUILD_DIR (default build), CXX (compiler, default the system's), CMAKE_BUILD_TYPE
-# (default the preset's Release). Debian 12 (tested here); Ubuntu 22.04 and 24.04 (the CI matrix).
+# (default the preset's Release). Debian 12 and 13 (run here, on fresh roots too:
+# tools/check_fresh_debian.sh); Ubuntu 22.04 and 24.04 (the CI matrix, not run here).
 set -euo pipefail
 
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -16,9 +17,9 @@ tests=(libgtest-dev libgmock-dev libbenchmark-dev)
 charts=(python3 python3-numpy python3-matplotlib)
 pages=(chromium chromium-driver python3-selenium python3-pil python3-markdown)  # the browser tests of the pages
 grader=(bubblewrap)
-manpages=(help2man)  # a man page per command, made from --help at build time
+manpages=(help2man man-db)  # a man page per command, made from --help at build time; man renders them
 cluster=(slurm-wlm munge)  # the single-node Slurm of the cluster test (ctest -L cluster)
-machines=(mmdebstrap)  # the Gradescope test's fresh Debian 12 root (and tools/check_fresh_debian.sh)
+machines=(mmdebstrap)  # the Gradescope test's fresh Debian 12 root (and tools/check_fresh_debian.sh's)
 packages=("${build[@]}" "${tests[@]}" "${charts[@]}" "${pages[@]}" "${grader[@]}" "${manpages[@]}"
           "${cluster[@]}" "${machines[@]}")
 missing=()

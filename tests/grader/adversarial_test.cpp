@@ -101,6 +101,11 @@ TEST_P(Adversarial, GetsItsVerdictAndTheAttackFails) {
   const fs::path results_dir = temp.path() / "results";
   fs::create_directories(results_dir);
   writeText(results_dir / "previous.json", "{\"score\": 12}\n");
+  // A file only root may read, for a case that tries to get the grader to copy it.
+  const fs::path secret_file = temp.path() / "secret.txt";
+  writeText(secret_file, "ROOT-ONLY-SECRET-" + marker + "\n");
+  fs::permissions(secret_file, fs::perms::owner_read | fs::perms::owner_write,
+                  fs::perm_options::replace);
 
   // The base submission with the case's changed file, placeholders filled in.
   const fs::path submission = temp.path() / "submission" / "src";
@@ -109,18 +114,23 @@ TEST_P(Adversarial, GetsItsVerdictAndTheAttackFails) {
     const fs::path own = case_dir / name;
     std::string text = readText(
         fs::exists(own) ? own : kCorpus / expected["base"].get<std::string>() / "src" / name);
+    // the base is a copy of our reference: its header line is what a reference read would leak
+    replaceAll(text, "clothref's reference solution", "a student's solution");
     replaceAll(text, "@MARKER@", marker);
+    replaceAll(text, "@SECRET_FILE@", secret_file.string());
     replaceAll(text, "@SOURCE_DIR@", CLOTHREF_SOURCE_DIR);
     replaceAll(text, "@RESULTS_DIR@", results_dir.string());
     writeText(submission / name, text);
   }
 
   setenv("CLOTHREF_GRADER_ISOLATION", c.isolation.c_str(), 1);
+  const fs::path keep = temp.path() / "keep";
   const CommandResult run =
       runCli("grade '" + submission.parent_path().string() +
              "' --no-whole-run --timeout 3 --cache-dir '" + std::string(CLOTHREF_GRADER_CACHE) +
              "' --results '" + (results_dir / "results.json").string() + "' --report '" +
-             (results_dir / "report.md").string() + "'");
+             (results_dir / "report.md").string() + "'" +
+             (expected.value("keep_work", false) ? " --keep-work '" + keep.string() + "'" : ""));
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const nlohmann::json results = nlohmann::json::parse(readText(results_dir / "results.json"));
   const std::string isolation = results["extra_data"]["isolation"];
@@ -141,7 +151,7 @@ TEST_P(Adversarial, GetsItsVerdictAndTheAttackFails) {
               results["extra_data"]["stub_max"][stub.get<std::string>()].get<double>())
         << stub;
   }
-  if (expected.value("full_marks", false) && want == expected["verdict"]) {
+  if (expected.value("full_marks", false) && want == expected["verdict"].get<std::string>()) {
     EXPECT_DOUBLE_EQ(results["score"].get<double>(), 80.0) << results.dump(1).substr(0, 3000);
   }
 
@@ -174,11 +184,39 @@ TEST_P(Adversarial, GetsItsVerdictAndTheAttackFails) {
               << " read " << path << " (" << isolation << ")\n";
   }
   if (expected.contains("secret_file")) {
+    std::string path = expected["secret_file"];
+    replaceAll(path, "@SECRET_FILE@", secret_file.string());
     std::string secret;
-    std::getline(std::ifstream(expected["secret_file"].get<std::string>()), secret);
+    std::getline(std::ifstream(path), secret);
     if (!secret.empty()) {
       EXPECT_EQ(readText(results_dir / "results.json").find(secret), std::string::npos);
       EXPECT_EQ(report.find(secret), std::string::npos);
+      // nor in the scratch folder the grader kept: it copied no link a probe made
+      std::uintmax_t kept_bytes = 0;
+      std::error_code error;
+      for (auto it = fs::recursive_directory_iterator(keep, error);
+           it != fs::recursive_directory_iterator(); it.increment(error)) {
+        if (!it->is_regular_file(error) || it->is_symlink(error)) continue;
+        kept_bytes += it->file_size(error);
+        EXPECT_EQ(readText(it->path()).find(secret), std::string::npos) << it->path();
+      }
+      if (expected.value("keep_work", false)) {
+        EXPECT_TRUE(fs::exists(keep / "skipped.txt"));
+        EXPECT_LT(kept_bytes, 64u << 20) << "a linked host folder was copied";
+        EXPECT_EQ(report.find("could not copy"), std::string::npos);
+      }
+    }
+  }
+  if (expected.contains("score")) {
+    EXPECT_DOUBLE_EQ(results["score"].get<double>(), expected["score"].get<double>());
+  }
+  if (expected.value("no_files_left", false)) {
+    for (const char* shared : {"/tmp", "/var/tmp", "/dev/shm"}) {
+      std::error_code error;
+      for (const auto& entry : fs::directory_iterator(shared, error)) {
+        EXPECT_NE(entry.path().filename().string().rfind(marker, 0), 0u)
+            << entry.path() << " outlived the grade";
+      }
     }
   }
 }

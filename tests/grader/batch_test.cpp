@@ -590,7 +590,7 @@ TEST(AdversarialBatch, ReferenceAtFullMarksEveryCaseWithItsVerdict) {
       EXPECT_LT(results["extra_data"]["stub_scores"][stub.get<std::string>()].get<double>(),
                 results["extra_data"]["stub_max"][stub.get<std::string>()].get<double>())
           << stub;
-    if (want.value("full_marks", false) && verdict_wanted == want["verdict"]) {
+    if (want.value("full_marks", false) && verdict_wanted == want["verdict"].get<std::string>()) {
       EXPECT_EQ(row[total], "80");
     }
   }

@@ -7,8 +7,8 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
-#include <csignal>
 #include <condition_variable>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -20,8 +20,8 @@
 
 #include "corpus.h"
 #include "grader/grade/grade.h"
-#include "grader/grade/probes/util.h"
 #include "grader/grade/probes/probes.h"
+#include "grader/grade/probes/util.h"
 #include "test_util.h"
 
 namespace clothref::test {
@@ -458,8 +458,7 @@ TEST(Verdict, AProbeTheGraderCouldNotStartIsAGraderError) {
   EXPECT_EQ(grader::submissionVerdict(report, {Verdict::Crashed, Verdict::GraderError}),
             Verdict::GraderError);
   report.files.clear();
-  EXPECT_EQ(grader::submissionVerdict(report, {Verdict::Graded, Verdict::Graded}),
-            Verdict::Graded);
+  EXPECT_EQ(grader::submissionVerdict(report, {Verdict::Graded, Verdict::Graded}), Verdict::Graded);
 }
 
 // The table of verdicts is the one place their words are written: each word reads back as its

@@ -3,8 +3,11 @@
 # `clothref gradescope` writes the archive; it is unpacked into /autograder/source of a minimal
 # Debian 12 root (mmdebstrap, tools/debian_root.sh) with run_autograder copied to /autograder, as
 # Gradescope lays it out; setup.sh runs there once (it installs the packages and builds); then
-# run_autograder grades five submissions, and each results.json is checked against Gradescope's
-# documented fields and the expected score. No bubblewrap in the root: the grader runs in its
+# run_autograder grades eight submissions, and each results.json is checked against Gradescope's
+# documented fields and the expected score: among them three that go for our reference by its
+# documented path (each file an #include of ours, an .incbin of ours, a run-time read), which
+# must get nothing of it: no line of the reference in any output, the score of the same stubs
+# without the attack. No bubblewrap in the root: the grader runs in its
 # rlimits fallback, as it does on Gradescope. Prints the time of setup.sh and of each grade.
 #
 # Usage: gradescope_test.sh CLOTHREF_BINARY SOURCE_DIR (works in a new folder under ${TMPDIR:-/tmp})
@@ -71,10 +74,24 @@ make_submission() {
   local name=$1 dir="$work/submissions/$1"
   mkdir -p "$dir"
   cp "$corpus/reference/src/"*.cpp "$dir/"
+  # the corpus reference is a copy of ours: its header line is what a leak would show
+  sed -i "s/clothref's reference solution/a student's solution/" "$dir/"*.cpp
   case "$name" in
     wrong) cp "$corpus/force-hooke-sign/cloth.cpp" "$dir/" ;;
     compile-error) cp "$adversarial/compile-error/integrator.cpp" "$dir/" ;;
     loops) sed 's/@MARKER@/gs-loop/g' "$adversarial/infinite-loop/integrator.cpp" >"$dir/integrator.cpp" ;;
+    include-reference)
+      for file in cloth sphere integrator; do
+        sed "s#@SOURCE_DIR@#/autograder/source/clothref#g" \
+          "$adversarial/include-reference/$file.cpp" >"$dir/$file.cpp"
+      done ;;
+    incbin-reference)
+      sed "s#@SOURCE_DIR@#/autograder/source/clothref#g" \
+        "$adversarial/incbin-reference/sphere.cpp" >"$dir/sphere.cpp" ;;
+    read-reference)  # prints what it read, then crashes so that the stderr is quoted
+      sed -e "s#@SOURCE_DIR@#/autograder/source/clothref#g" \
+          -e 's#std::fclose(file);#std::fclose(file);\n      std::abort();#' \
+        "$adversarial/read-reference/integrator.cpp" >"$dir/integrator.cpp" ;;
     big5)  # comments in Big5, as many of the course's students write them
       python3 - "$dir" <<'EOF'
 import pathlib, sys
@@ -90,7 +107,9 @@ status=0
 # name, expected: "full" (every point) or "loses:STUB" (that stub below its maximum), verdict
 for spec in "reference full graded" "wrong loses:Cloth::computeSpringForce graded" \
             "big5 full graded" "compile-error loses:ExplicitEuler::integrate compile-error" \
-            "loops loses:ExplicitEuler::integrate timed-out"; do
+            "loops loses:ExplicitEuler::integrate timed-out" "include-reference zero compile-error" \
+            "incbin-reference loses:Spheres::collide(Cloth*) compile-error" \
+            "read-reference full graded"; do
   read -r name expect verdict <<<"$spec"
   make_submission "$name"
   rm -rf "$root/autograder/submission" "$root/autograder/results"
@@ -125,11 +144,16 @@ assert got == verdict, f"verdict {got}, expected {verdict}"
 assert not isolation.startswith("bubblewrap"), isolation
 if expect == "full":
     assert abs(results["score"] - total) < 1e-9, f"score {results['score']} of {total}"
+elif expect == "zero":
+    assert results["score"] == 0, f"score {results['score']}, expected 0"
 else:
     stub = expect.split(":", 1)[1]
     mine = [t for t in tests if t["name"].startswith(stub)]
     assert mine, f"no test named {stub}"
     assert sum(t["score"] for t in mine) < sum(t["max_score"] for t in mine), f"{stub} full marks"
+# No line of our reference reaches the student, whatever the attack (its header line is ours alone:
+# the submissions here replace it).
+assert "clothref's reference solution" not in raw.decode("utf-8"), "a reference line was quoted"
 print(f"{name}: {results['score']:g} / {total:g}, verdict {got}, {seconds} s, isolation: {isolation}")
 EOF
   then

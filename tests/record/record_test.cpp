@@ -2,6 +2,7 @@
 #include "clothref/scene/make_world.h"
 #include "clothref/trace/format.h"
 
+#include <string>
 #include <vector>
 
 #define XXH_STATIC_LINKING_ONLY
@@ -39,16 +40,16 @@ TEST(Trace, HeaderCarriesTheFullSceneAndRun) {
   const Scene& scene = *findBuiltinScene("course2022");
   const auto lines = traceLines(scene, settings(Method::Midpoint, Precision::Double, 3, 1, 2e-4));
   const json& header = lines.front();
-  EXPECT_EQ(header["format"], "clothref-trace");
-  EXPECT_EQ(header["version"], kTraceVersion);
+  EXPECT_EQ(header["format"].get<std::string>(), "clothref-trace");
+  EXPECT_EQ(header["version"].get<int>(), kTraceVersion);
   EXPECT_EQ(sceneFromJson(header["scene"]), scene);
-  EXPECT_EQ(header["integrator"], "midpoint");
-  EXPECT_EQ(header["precision"], "double");
-  EXPECT_EQ(header["dt"], 2e-4);
-  EXPECT_EQ(header["stride"], 1);
-  EXPECT_EQ(header["bodies"][0]["name"], "cloth");
-  EXPECT_EQ(header["bodies"][0]["particles"], 625);
-  EXPECT_EQ(header["bodies"][1]["name"], "spheres");
+  EXPECT_EQ(header["integrator"].get<std::string>(), "midpoint");
+  EXPECT_EQ(header["precision"].get<std::string>(), "double");
+  EXPECT_EQ(header["dt"].get<double>(), 2e-4);
+  EXPECT_EQ(header["stride"].get<int>(), 1);
+  EXPECT_EQ(header["bodies"][0]["name"].get<std::string>(), "cloth");
+  EXPECT_EQ(header["bodies"][0]["particles"].get<int>(), 625);
+  EXPECT_EQ(header["bodies"][1]["name"].get<std::string>(), "spheres");
   EXPECT_TRUE(header["build"].contains("compiler"));
 }
 
@@ -56,9 +57,9 @@ TEST(Trace, RecordsStepZeroEveryStrideAndTheLast) {
   const auto lines = traceLines(*findBuiltinScene("spring"),
                                 settings(Method::Rk4, Precision::Float, 25, 10, 1e-3));
   std::vector<int> steps;
-  for (std::size_t i = 1; i < lines.size(); ++i) steps.push_back(lines[i]["step"]);
+  for (std::size_t i = 1; i < lines.size(); ++i) steps.push_back(lines[i]["step"].get<int>());
   EXPECT_EQ(steps, (std::vector<int>{0, 10, 20, 25}));
-  EXPECT_EQ(double(lines.back()["t"]), 25 * double(1e-3f));
+  EXPECT_EQ(lines.back()["t"].get<double>(), 25 * double(1e-3f));
 }
 
 // Every number parses back to the bits the world holds, and the hash on each line is the
@@ -71,8 +72,8 @@ void checkRoundTripAndHash(Precision precision) {
   std::string text;
   appendStepLine(text, world);
   const json line = json::parse(text);
-  EXPECT_EQ(line["step"], 700);
-  EXPECT_EQ(line["hash"], hashToHex(stateHash(world)));
+  EXPECT_EQ(line["step"].get<int>(), 700);
+  EXPECT_EQ(line["hash"].get<std::string>(), hashToHex(stateHash(world)));
 
   XXH3_state_t state;
   XXH3_64bits_reset(&state);
@@ -91,7 +92,7 @@ void checkRoundTripAndHash(Precision precision) {
   };
   check("cloth", world.cloth->particles);
   check("spheres", world.spheres->particles);
-  EXPECT_EQ(hashToHex(XXH3_64bits_digest(&state)), line["hash"]);
+  EXPECT_EQ(hashToHex(XXH3_64bits_digest(&state)), line["hash"].get<std::string>());
   (void)precision;
 }
 
@@ -117,8 +118,8 @@ TEST(Trace, NonFiniteValuesAreQuotedStrings) {
   std::string text;
   appendStepLine(text, world);
   const json line = json::parse(text);
-  EXPECT_EQ(line["bodies"]["cloth"]["position"][0][0], "NaN");
-  EXPECT_EQ(line["bodies"]["cloth"]["velocity"][0][1], "-Infinity");
+  EXPECT_EQ(line["bodies"]["cloth"]["position"][0][0].get<std::string>(), "NaN");
+  EXPECT_EQ(line["bodies"]["cloth"]["velocity"][0][1].get<std::string>(), "-Infinity");
 }
 
 }  // namespace

@@ -17,9 +17,12 @@
 namespace clothref {
 namespace {
 
-const Scene& scene(const std::string& name) {
+// Takes the name as a C string: a `const std::string&` would make each call's argument a
+// temporary, and GCC 13+ then warns (-Wdangling-reference) at every `const Scene& s = scene(...)`,
+// although the scene returned is a built-in that lives as long as the program.
+const Scene& scene(const char* name) {
   const Scene* found = findBuiltinScene(name);
-  if (!found) throw std::runtime_error("no built-in scene " + name);
+  if (!found) throw std::runtime_error(std::string("no built-in scene ") + name);
   return *found;
 }
 

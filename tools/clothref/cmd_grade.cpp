@@ -20,7 +20,6 @@
 #include "grader/grade/report/html_report.h"
 #include "grader/grade/report/outputs.h"
 #include "grader/grade/run/submission.h"
-#include "grader/grade/run/sanitize.h"
 #include "grader/grade/text.h"
 
 namespace clothref::cli {
@@ -138,7 +137,8 @@ Command addGradeCommand(CLI::App& root) {
   app->add_flag("--no-whole-run", options->no_whole_run, "skip the information-only whole run");
   app->add_flag(
       "--sanitize", options->sanitize,
-      "rebuild a crashing submission with ASan/UBSan (-g -O1) and quote the first report");
+      "accepted for old scripts; nothing to ask for: a probe that crashes or whose two runs differ "
+      "is rebuilt with ASan/UBSan (-g -O1) by itself and its first report quoted");
   app->add_flag("--one-submission", options->one_submission,
                 "grade a DIR that holds several whole submissions as one (without it, such a "
                 "folder is refused, naming them)");
@@ -201,7 +201,6 @@ Command addGradeCommand(CLI::App& root) {
           batch_options.jobs = options->jobs;
           if (sharded) batch_options.shard = grader::parseShard(options->shard);
           batch_options.regrade = options->regrade;
-          batch_options.sanitize = options->sanitize;
           batch_options.quiet = options->quiet;
           batch_options.one_submission = options->one_submission;
           batch_options.grade = grade;
@@ -222,7 +221,6 @@ Command addGradeCommand(CLI::App& root) {
             }
             report = options->html.empty() ? grader::gradeSubmission(dir, grade)
                                            : grader::gradeWithWholeRun(dir, grade, whole_run_view);
-            if (options->sanitize) grader::diagnoseCrashWithSanitizers(dir, report, grade);
           } catch (const InputError& error) {
             std::cerr << "clothref grade: " << grader::safeName(error.what()) << '\n';
             exit_code = kExitBadInput;

@@ -29,8 +29,11 @@ void addSphere(Spheres<T>& spheres, const Vec4<T>& center, T radius, T density);
 
 // Stub 3, the course's Spheres::collide(Cloth*): for each sphere i and each cloth particle j,
 // n = x_i - x_j, penetration p = r_i - |n|; skip when p < 0 (touching counts). With n normalized
-// and v_rel = v_i - v_j: if v_rel . n < 0, J = -(1 + e) * n * (v_rel . n) / (invM_j + invM_i),
-// v_i += J * invM_i, v_j -= J * invM_j. Then, always, c = (p * n) * correction: x_i += c, x_j -= c.
+// and v_rel = v_i - v_j: if v_rel . n < 0, the normal velocity u = n * (v_rel . n) is formed first
+// and then scaled, J = (-(1 + e) * u) / (invM_j + invM_i) (the course's association order, which
+// rounds differently from (-(1 + e) * n) * (v_rel . n) in float: docs/design.md, "Fidelity through
+// contacts"), v_i += J * invM_i, v_j -= J * invM_j. Then, always, c = (p * n) * correction:
+// x_i += c, x_j -= c.
 // A fixed particle (invM 0) is immovable in the impulse; the correction ignores mass. The contact
 // is formula::resolveContact (formula/course_formulas.h). With the fast kernels on (the default,
 // any cloth) World's step runs its twin instead: fast::collideSpheresWithCloth, a SIMD filter that

@@ -353,10 +353,13 @@ class StepLineParser {
   throw InputError(source + ":1: header: " + problem);
 }
 
+// The key is a C string: a `const std::string&` parameter would make each call's literal a
+// temporary, and GCC 13+ then warns (-Wdangling-reference) at every `const ordered_json& x =
+// headerKey(...)`, although the reference is into `json`.
 const ordered_json& headerKey(const ordered_json& json, const std::string& source,
-                              const std::string& key) {
+                              const char* key) {
   const auto it = json.find(key);
-  if (it == json.end()) headerError(source, "missing key \"" + key + "\"");
+  if (it == json.end()) headerError(source, std::string("missing key \"") + key + "\"");
   return *it;
 }
 
@@ -391,7 +394,7 @@ TraceHeader parseTraceHeader(const ordered_json& json, const std::string& source
   TraceHeader header;
   header.json = json;
   const ordered_json& format = headerKey(json, source, "format");
-  if (format != "clothref-trace")
+  if (!format.is_string() || format.get<std::string>() != "clothref-trace")
     headerError(source, "/format: not a clothref trace (expected \"clothref-trace\", got " +
                             excerpt(format.dump()) + ")");
   header.version = int(headerInteger(headerKey(json, source, "version"), source, "/version", 0));

@@ -7,14 +7,19 @@ convention of tests/grader/submissions/). Run from anywhere: python3 make_suite.
 
 Each edit must match exactly once, so a reference change that breaks a case fails here.
 Placeholders the test fills in when it copies a case: @MARKER@ (a process name the test looks
-for after the grade), @SOURCE_DIR@ (the clothref checkout), @RESULTS_DIR@ (the folder the grade
-writes its results to).
+for after the grade, and the name of the files a case leaves in the shared temporary folders),
+@SOURCE_DIR@ (the clothref checkout), @RESULTS_DIR@ (the folder the grade writes its results to),
+@SECRET_FILE@ (a file only root may read, made by the test). A case may replace more than its one
+file ("files": name -> whole text).
 
 expected.json: "verdict" is GradeReport::verdict under bubblewrap (the default here);
 "verdict_rlimits" under CLOTHREF_GRADER_ISOLATION=rlimits as root when it differs; "marker":
 the case names its processes @MARKER@ and none may be alive after the grade; "secret_file": the
 first line of that file must not appear in any output; "secret_text": nor that text (a line of
-the golden manifest); "reports_readable": the test says whether uid 65534 could read that file
+the golden manifest, or of our reference); "keep_work": the grade keeps its scratch folder, in
+which that text must not appear either (and which stays small: links are not followed);
+"no_files_left": nothing named @MARKER@* is left in /tmp, /var/tmp or /dev/shm; "score": the
+score must be exactly this; "reports_readable": the test says whether uid 65534 could read that file
 (the outcome varies with the host and must not change the score); "full_marks": the score must be the
 maximum (the attack failed and the code then did the right thing); "loses": stubs that must lose
 points.
@@ -143,6 +148,81 @@ CASES = {
             "    }\n"
             "  }\n"),
         expected={"verdict": "graded", "full_marks": True}),
+    # The reference is one #include away (issue 30): each file is only an #include of ours.
+    "include-reference": dict(
+        file="cloth.cpp",
+        description="each of the three files is only an #include of our reference file of the "
+                    "same name (the path is documented): the compiles see no folder of ours, so "
+                    "each include finds nothing and the grade is that of three empty files",
+        whole='#include "@SOURCE_DIR@/tools/grader/reference/2022/cloth.cpp"\n',
+        files={name: '#include "@SOURCE_DIR@/tools/grader/reference/2022/%s"\n' % name
+               for name in ("sphere.cpp", "integrator.cpp")},
+        expected={"verdict": "compile-error", "score": 0,
+                  "secret_text": "clothref's reference solution for the 2022 edition",
+                  "loses": ["Cloth::computeSpringForce", "Spheres::collide(Cloth*)",
+                            "RungeKuttaFourth::integrate"]}),
+    "include-reference-relative": dict(
+        file="cloth.cpp",
+        description="the reference included by a relative spelling that climbs out of the "
+                    "scratch folder (../ repeated, then the absolute path)",
+        whole='#include "' + "../" * 24 + '@SOURCE_DIR@/tools/grader/reference/2022/cloth.cpp"\n',
+        expected={"verdict": "compile-error",
+                  "secret_text": "clothref's reference solution for the 2022 edition",
+                  "loses": ["Cloth::initializeSpring", "Cloth::computeSpringForce"]}),
+    "incbin-reference": dict(
+        file="sphere.cpp",
+        description="the reference's bytes pulled in with .incbin and printed (then abort, so "
+                    "stderr is quoted) by a static initialiser",
+        edits=[('#include "sphere.h"\n', '#include "sphere.h"\n\n#include <cstdio>\n#include <cstdlib>\n'
+                'extern "C" const char stolen_reference[];\n'
+                'asm(".section .rodata\\nstolen_reference:\\n.incbin '
+                '\\"@SOURCE_DIR@/tools/grader/reference/2022/sphere.cpp\\"\\n.byte 0\\n.previous");\n'
+                'static const int leak = (std::fputs(stolen_reference, stderr), std::abort(), 0);\n')],
+        expected={"verdict": "compile-error",
+                  "secret_text": "clothref's reference solution for the 2022 edition",
+                  "loses": ["Spheres::collide(Cloth*)", "Spheres::collide()"]}),
+    "formula-symbol": dict(
+        file="cloth.cpp",
+        description="computeSpringForce calls the course-form spring force the probe driver has "
+                    "inside (declared by hand, not defined): our symbols are local to the driver, "
+                    "so it does not link",
+        edits=[('#include "sphere.h"\n', '#include "sphere.h"\n\nnamespace clothref::formula {\n'
+                'template <typename T>\nvoid springForce(const T* x_start, const T* x_end, const T* '
+                'v_start, const T* v_end, T rest, T k_spring, T k_damper, T* force);\n}\n'),
+               ("    Eigen::Vector4f force =\n        direction * (damperCoef * relativeVelocity.dot("
+                "direction) + springCoef * (length - spring.length()));\n",
+                "    Eigen::Vector4f force;\n    clothref::formula::springForce<float>(\n"
+                "        _particles.position(start).data(), _particles.position(end).data(),\n"
+                "        _particles.velocity(start).data(), _particles.velocity(end).data(), "
+                "spring.length(),\n        springCoef, damperCoef, force.data());\n")],
+        expected={"verdict": "link-error", "loses": ["Cloth::computeSpringForce"]}),
+    "disk-filler": dict(
+        file="integrator.cpp",
+        description="writes 8 MiB files without end into its folder and the shared temporary "
+                    "folders: stopped at the disk limit, nothing left behind",
+        edits=explicit_prefix(
+            "  std::vector<char> block(8 << 20, 'x');\n"
+            "  for (unsigned k = 0;; ++k)\n"
+            "    for (const char *where : {\".\", \"/tmp\", \"/var/tmp\", \"/dev/shm\"}) {\n"
+            "      char name[256];\n"
+            "      std::snprintf(name, sizeof name, \"%s/@MARKER@-%u\", where, k);\n"
+            "      if (std::FILE *file = std::fopen(name, \"wb\")) {\n"
+            "        std::fwrite(block.data(), 1, block.size(), file);\n"
+            "        std::fclose(file);\n"
+            "      }\n"
+            "    }\n"),
+        expected={"verdict": "output-limit", "no_files_left": True,
+                  "loses": ["ExplicitEuler::integrate"]}),
+    "link-out": dict(
+        file="integrator.cpp",
+        description="links a root-only host file and a large host folder into its own folder, for "
+                    "the grader to copy (--keep-work) as root; integrates correctly",
+        edits=[(INCLUDES, ATTACK_INCLUDES),
+               (EXPLICIT_BODY, '  static const bool planted = (symlink("@SECRET_FILE@", "leak") + '
+                'symlink("/usr", "usr") + symlink("/nonexistent", "dangling"), true);\n'
+                "  (void)planted;\n" + EXPLICIT_BODY)],
+        expected={"verdict": "graded", "full_marks": True, "keep_work": True,
+                  "secret_file": "@SECRET_FILE@"}),
     "nan-results": dict(
         file="cloth.cpp",
         description="spring forces made NaN (0 / 0 added to the length)",
@@ -153,6 +233,8 @@ CASES = {
 
 
 def apply(text, case):
+    if "whole" in case:
+        return case["whole"]
     for old, new in case.get("edits", []):
         assert text.count(old) == 1, (old, text.count(old))
         text = text.replace(old, new)
@@ -165,14 +247,31 @@ def apply(text, case):
     return text
 
 
+HEADER = "// clothref's reference solution for the 2022 edition"
+
+
+def without_header(text, name):
+    """A case carries no line of our reference's header comment, so a test can look for that
+    line in the outputs (a reference file read by the attack) without finding the case's own."""
+    lines = text.split("\n")
+    assert lines[0].startswith(HEADER), lines[0]
+    rest = 1
+    while lines[rest].startswith("//"):
+        rest += 1
+    return "// adversarial case %s (tests/grader/adversarial/make_suite.py)\n" % name + \
+        "\n".join(lines[rest:])
+
+
 def main():
     for name, case in CASES.items():
         folder = HERE / name
         if folder.exists():
             shutil.rmtree(folder)
         folder.mkdir()
-        source = (REFERENCE / case["file"]).read_text()
+        source = without_header((REFERENCE / case["file"]).read_text(), name)
         (folder / case["file"]).write_text(apply(source, case))
+        for name, text in case.get("files", {}).items():
+            (folder / name).write_text(text)
         expected = {"base": BASE, "description": case["description"], **case["expected"]}
         (folder / "expected.json").write_text(json.dumps(expected, indent=2) + "\n")
     print(f"wrote {len(CASES)} cases into {HERE}")

@@ -1,10 +1,12 @@
 // Child processes: every way a child can fail gets its own verdict, and only a frame on fd 3
 // with the request's nonce counts as an answer.
 #include "grader/grade/run/child_process.h"
+#include "grader/grade/run/tools.h"
 
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "test_util.h"
 
@@ -82,72 +84,84 @@ TEST(RunChild, PrintingAFrameOnStdoutIsNotAnAnswer) {
   EXPECT_EQ(runShell(temp, "cat frame >&3").status, ChildStatus::NoAnswer);
 }
 
-TEST(RunTools, ResultsInCommandOrder) {
-  test::TempDir temp;
-  const auto runs =
-      runTools({{"/bin/sh", "-c", "sleep 0.2; echo one"}, {"/bin/sh", "-c", "echo two; exit 1"}},
-               temp.path(), 2, 10);
-  ASSERT_EQ(runs.size(), 2u);
-  EXPECT_TRUE(runs[0].ok);
-  EXPECT_EQ(runs[0].output, "one\n");
-  EXPECT_FALSE(runs[1].ok);
+// Faults of ours, injected (CLOTHREF_GRADER_FAULT, read by the grader process only): each is
+// tried once more and then, if it is still there, the grader's error, never the student's. Once:
+// the retry grades the reference at full marks. Always: the verdict is grader-error (a probe) or
+// no grade at all (a compile), and no student cause, verdict or stderr appears.
+struct Fault {
+  const char* spec;       // CLOTHREF_GRADER_FAULT
+  const char* isolation;  // CLOTHREF_GRADER_ISOLATION
+  const char* outcome;    // "80" (graded at full marks), "grader-error", "no grade"
+};
+
+void PrintTo(const Fault& fault, std::ostream* out) {
+  *out << fault.spec << " (" << fault.isolation << ")";
 }
 
-// A compile bomb (a 10 GB constexpr table, `#include "/dev/zero"`) meets these limits.
-TEST(RunTools, CompilesHaveTimeAndMemoryLimits) {
+class FaultInjection : public ::testing::TestWithParam<Fault> {};
+
+TEST_P(FaultInjection, OursIsRetriedOnceThenOursNeverTheStudents) {
+  const Fault& fault = GetParam();
+  if (geteuid() != 0)
+    GTEST_SKIP() << "the fallback's expectations are for a grader running as root";
   test::TempDir temp;
-  const auto runs =
-      runTools({{"/bin/sh", "-c", "ulimit -v; ulimit -t; ulimit -f"}}, temp.path(), 1, 30);
-  ASSERT_TRUE(runs[0].ok) << runs[0].output;
-  EXPECT_EQ(runs[0].output, std::to_string(kToolAddressSpace >> 10) + "\n31\n" +
-                                std::to_string(kToolFileSize >> 9) + "\n");  // KiB, s, blocks
-  const auto slow = runTools({{"/bin/sh", "-c", "sleep 30"}}, temp.path(), 1, 0.3);
-  EXPECT_FALSE(slow[0].ok);
-  EXPECT_NE(slow[0].output.find("stopped after"), std::string::npos);
+  setenv("CLOTHREF_GRADER_ISOLATION", fault.isolation, 1);
+  setenv("CLOTHREF_GRADER_FAULT", fault.spec, 1);
+  const fs::path reference =
+      fs::path(CLOTHREF_SOURCE_DIR) / "tests" / "grader" / "submissions" / "2022" / "reference";
+  const auto run = test::runCli(
+      "grade '" + reference.string() + "' --no-whole-run --timeout 10 --results '" +
+      temp.file("results.json") + "' --cache-dir '" + (temp.path() / "cache").string() + "'");
+  unsetenv("CLOTHREF_GRADER_FAULT");
+  const std::string outcome = fault.outcome;
+  if (outcome == "no grade") {
+    EXPECT_EQ(run.exit_code, 2) << run.output;
+    EXPECT_FALSE(fs::exists(temp.file("results.json")));
+    EXPECT_NE(run.output.find("grader: "), std::string::npos) << run.output;
+    EXPECT_EQ(run.output.find("compile-error"), std::string::npos) << run.output;
+    return;
+  }
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const auto results = nlohmann::json::parse(test::readText(temp.file("results.json")));
+  const bool boxed =
+      results["extra_data"]["isolation"].get<std::string>().rfind("bubblewrap", 0) == 0;
+  if (std::string(fault.isolation) == "auto" && !boxed) GTEST_SKIP() << "no bubblewrap here";
+  if (outcome == "80") {
+    EXPECT_DOUBLE_EQ(results["score"].get<double>(), 80.0) << results.dump(1).substr(0, 2000);
+    EXPECT_EQ(results["extra_data"]["verdict"].get<std::string>(), "graded");
+    return;
+  }
+  EXPECT_EQ(results["extra_data"]["verdict"].get<std::string>(), "grader-error");
+  for (const auto& t : results["tests"]) {
+    if (t["status"] == "passed") continue;
+    std::vector<std::string> tags;
+    for (const auto& tag : t["tags"]) tags.push_back(tag.get<std::string>());
+    ASSERT_EQ(tags.size(), 2u) << t["name"];
+    EXPECT_EQ(tags[1], "grader-error") << t["name"];
+    const std::string output = t["output"];
+    EXPECT_NE(output.find("could not be started by the grader"), std::string::npos) << output;
+    for (const char* theirs : {"crashed", "timed out", "exited with code", "```"})
+      EXPECT_EQ(output.find(theirs), std::string::npos) << theirs << " in " << output;
+  }
 }
 
-// In the fallback (no bubblewrap) a compile runs as the tool uid in a private mount namespace:
-// `.incbin` of a host file only root may read fails, and so does an #include from one of the
-// grader's hidden folders (our reference) the command does not name. Without the confinement the
-// same two commands compile, so the test sees the difference.
-TEST(RunTools, FallbackCompilesCannotReadHostFilesNorHiddenFolders) {
-  if (geteuid() != 0) GTEST_SKIP() << "the compile uid drop needs root";
-  test::TempDir temp;
-  const fs::path secret = temp.path() / "secret.txt";
-  test::writeText(secret, "SECRET-HOST-BYTES\n");
-  fs::permissions(secret, fs::perms::owner_read | fs::perms::owner_write);
-  const fs::path hidden = temp.path() / "reference";
-  fs::create_directories(hidden);
-  test::writeText(hidden / "ref.h", "int reference_value = 1;\n");
-  const fs::path work = temp.path() / "work";
-  fs::create_directories(work);
-  test::writeText(work / "incbin.cpp", "asm(\".incbin \\\"" + secret.string() + "\\\"\");\n");
-  test::writeText(work / "include.cpp", "#include \"" + (hidden / "ref.h").string() + "\"\n");
-  const std::vector<std::vector<std::string>> commands = {
-      {"g++", "-c", (work / "incbin.cpp").string(), "-o", (work / "incbin.o").string()},
-      {"g++", "-c", (work / "include.cpp").string(), "-o", (work / "include.o").string()}};
-  const auto open = runTools(commands, work, 2, 60);
-  ASSERT_EQ(open.size(), 2u);
-  EXPECT_TRUE(open[0].ok) << open[0].output;
-  EXPECT_TRUE(open[1].ok) << open[1].output;
-  Isolation isolation;
-  isolation.kind = IsolationKind::Rlimits;
-  isolation.tool_uid = kToolUid;
-  isolation.hidden = {hidden};
-  fs::remove(work / "incbin.o");
-  fs::remove(work / "include.o");
-  const auto confined = runTools(commands, work, 2, 60, &isolation);
-  ASSERT_EQ(confined.size(), 2u);
-  EXPECT_FALSE(confined[0].ok);
-  // The assembler says "file not found" for a file it may not open.
-  EXPECT_NE(confined[0].output.find("secret.txt"), std::string::npos) << confined[0].output;
-  const std::string no_private_mounts = whyNoPrivateMountNamespace();
-  if (!no_private_mounts.empty())
-    GTEST_SKIP() << "the hidden-folder half needs a private mount namespace: " << no_private_mounts;
-  EXPECT_FALSE(confined[1].ok);
-  EXPECT_NE(confined[1].output.find("No such file"), std::string::npos) << confined[1].output;
-  EXPECT_FALSE(fs::exists(work / "incbin.o"));
-}
+INSTANTIATE_TEST_SUITE_P(
+    Faults, FaultInjection,
+    ::testing::Values(Fault{"fork", "rlimits", "80"}, Fault{"fork*0", "rlimits", "grader-error"},
+                      Fault{"setup", "rlimits", "80"}, Fault{"setup*0", "rlimits", "grader-error"},
+                      Fault{"pipe*0", "rlimits", "grader-error"},
+                      Fault{"files*0", "rlimits", "grader-error"},
+                      Fault{"setup*0", "auto", "grader-error"}, Fault{"bwrap", "auto", "80"},
+                      Fault{"bwrap*0", "auto", "grader-error"}, Fault{"tool-fork", "rlimits", "80"},
+                      Fault{"tool-fork*0", "rlimits", "no grade"},
+                      Fault{"tool-setup*0", "rlimits", "no grade"},
+                      Fault{"tool-setup*0", "auto", "no grade"}),
+    [](const auto& info) {
+      std::string name = std::string(info.param.spec) + "_" + info.param.isolation;
+      for (char& c : name)
+        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+      return name;
+    });
 
 }  // namespace
 }  // namespace clothref::grader

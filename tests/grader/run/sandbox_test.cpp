@@ -1,10 +1,13 @@
 // The sandbox: the bubblewrap command line shows the student only /usr, its program and its own
-// folder; a child in the fallback runs as uid 65534 with a process limit in a private folder; in
-// bubblewrap it has no network, its own pid namespace, and a timeout leaves nothing alive.
+// folder; a child in the fallback runs as the probe uid with a process limit in a private folder;
+// in bubblewrap it has no network, its own pid namespace, and a timeout leaves nothing alive.
 #include "grader/grade/run/sandbox.h"
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/file.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -30,7 +33,7 @@ TEST(BubblewrapArgv, ShowsOnlyUsrTheProgramAndItsFolder) {
   Isolation isolation;
   isolation.kind = IsolationKind::Bubblewrap;
   isolation.bwrap = "/usr/bin/bwrap";
-  isolation.hidden = {"/usr/share/clothref", "/work/clothref"};
+  isolation.ours = {"/usr/share/clothref", "/work/clothref"};
   const auto argv =
       bubblewrapArgv(isolation, {"/tmp/x/probe", "--flag"}, "/tmp/x/probes/g/sandbox", 4);
   EXPECT_EQ(argv.front(), "/usr/bin/bwrap");
@@ -43,7 +46,9 @@ TEST(BubblewrapArgv, ShowsOnlyUsrTheProgramAndItsFolder) {
   EXPECT_TRUE(contains(argv, {"--tmpfs", "/usr/share/clothref"}) ||
               !fs::is_directory("/usr/share/clothref"));
   EXPECT_FALSE(contains(argv, {"--tmpfs", "/work/clothref"}));  // not visible anyway
-  EXPECT_TRUE(contains(argv, {"--info-fd", "4"}));
+  EXPECT_TRUE(contains(argv, {"--json-status-fd", "4"}));
+  // its /tmp is its own, and bounded
+  EXPECT_TRUE(contains(argv, {"--size", std::to_string(kBoxTmpBytes), "--tmpfs", "/tmp"}));
   EXPECT_TRUE(contains(argv, {"--", "/sandbox/bin/probe", "--flag"}));
   EXPECT_EQ(argv.back(), "--flag");
 }
@@ -81,23 +86,21 @@ TEST(BubblewrapInfo, ReadsThePidAndNamespace) {
 TEST(Isolation, DescriptionsSayWhatRan) {
   Isolation isolation;
   isolation.kind = IsolationKind::Rlimits;
-  isolation.uid = 65534;
+  isolation.uid = kProbeUid;
+  isolation.tool_uid = kToolUid;
   isolation.why_not_bubblewrap = "bwrap not installed";
   isolation.containment = Containment::PidNamespace;
-  EXPECT_EQ(isolation.describe(),
-            "rlimits, uid 65534, private working directory, own pid namespace per run; compiles "
-            "with the grader's uid (the host is readable); no bubblewrap (bwrap not installed)");
-  isolation.tool_uid = kToolUid;
   isolation.private_mounts = true;
-  EXPECT_NE(isolation.describe().find("; compiles as uid 65533 in a private mount namespace;"),
-            std::string::npos)
-      << isolation.describe();
+  EXPECT_EQ(isolation.describe(),
+            "rlimits, uid 65533, private working directory, own pid namespace per run; compiles "
+            "as uid 65532; our folders covered in a private mount namespace; no bubblewrap (bwrap "
+            "not installed)");
   // Where no private mount namespace can be made (a chroot, a container), the line says so.
   isolation.private_mounts = false;
   isolation.why_not_private_mounts = "unshare(CLONE_NEWNS) is not allowed";
-  EXPECT_NE(isolation.describe().find("; compiles as uid 65533 without a private mount namespace "
-                                      "(unshare(CLONE_NEWNS) is not allowed; the grader's folders "
-                                      "are hidden only by their permissions);"),
+  EXPECT_NE(isolation.describe().find("; compiles as uid 65532; our folders out of reach by their "
+                                      "permissions (no private mount namespace: "
+                                      "unshare(CLONE_NEWNS) is not allowed);"),
             std::string::npos)
       << isolation.describe();
   isolation.containment = Containment::Subreaper;
@@ -110,13 +113,17 @@ TEST(Isolation, DescriptionsSayWhatRan) {
       << isolation.describe();
   isolation.kind = IsolationKind::Bubblewrap;
   EXPECT_EQ(isolation.describe().rfind("bubblewrap (new user, net, pid, mount", 0), 0u);
+  EXPECT_NE(isolation.describe().find("; compiles as uid 65532 in bubblewrap"), std::string::npos)
+      << isolation.describe();
+  // never a root compile: the line has no such branch any more
+  EXPECT_EQ(Isolation{}.describe().rfind("none (CLOTHREF_GRADER_ISOLATION=none", 0), 0u);
 }
 
 // Each TEST runs in its own process under ctest, so the cached detection sees this variable.
 // Whether the compilers' uid can open the folders a compile needs: a folder only root may enter
 // is named; open ones pass. Needs root (to drop to another uid), as the grader's check does.
 TEST(ReadableAs, NamesTheFirstFolderTheUidCannotOpen) {
-  if (geteuid() != 0) GTEST_SKIP() << "needs root to drop to uid 65534";
+  if (geteuid() != 0) GTEST_SKIP() << "needs root to drop to another uid";
   test::TempDir temp;
   const fs::path closed = temp.path() / "closed";
   fs::create_directories(closed);
@@ -132,55 +139,20 @@ TEST(ReadableAs, NamesTheFirstFolderTheUidCannotOpen) {
   EXPECT_EQ(failed, (temp.path() / "missing").string());
 }
 
-// Grades held at once get distinct uids, slot 0 the usual pair; a released slot is taken again.
-TEST(UidLease, GradesHeldAtOnceRunAsDistinctUidsAndASlotIsReused) {
-  std::vector<UidLease> held;
-  for (int k = 0; k < 3; ++k) held.push_back(leaseUids());
-  std::set<int> uids;
-  for (const UidLease& lease : held) {
-    uids.insert(lease.uid);
-    uids.insert(lease.tool_uid);
-    EXPECT_GE(lease.tool_uid, 65000);
-    EXPECT_LE(lease.uid, kNobodyUid);
-  }
-  EXPECT_EQ(uids.size(), 6u);  // no uid twice, probe or tool
-  ASSERT_EQ(held.size(), 3u);
-  EXPECT_EQ(held[0].uid, kNobodyUid);
-  EXPECT_EQ(held[0].tool_uid, kToolUid);
-  const int second = held[1].uid;
-  held[1].hold.reset();  // that grade ended
-  const UidLease next = leaseUids();
-  EXPECT_EQ(next.uid, second);
-  // a copy of the lease keeps the slot: only the last one frees it
-  std::shared_ptr<const void> copy = held[0].hold;
-  held[0].hold.reset();
-  EXPECT_NE(leaseUids().uid, kNobodyUid);
-  copy.reset();
-  EXPECT_EQ(leaseUids().uid, kNobodyUid);
-
-  // The isolation line names the scheme, not the pair: a batch's CSV must not depend on which
-  // submission got which slot.
-  const auto leased = [](const UidLease& lease) {
-    Isolation isolation;
-    isolation.kind = IsolationKind::Rlimits;
-    isolation.containment = Containment::PidNamespace;
-    isolation.uid = lease.uid;
-    isolation.tool_uid = lease.tool_uid;
-    isolation.uid_lease = lease.hold;
-    return isolation.describe();
-  };
-  const UidLease one = leaseUids(), other = leaseUids();
-  ASSERT_NE(one.uid, other.uid);
-  EXPECT_EQ(leased(one), leased(other));
-  EXPECT_EQ(leased(one).find(std::to_string(other.uid)), std::string::npos) << leased(one);
-}
-
 TEST(DetectIsolation, TheVariableForcesTheFallback) {
   setenv("CLOTHREF_GRADER_ISOLATION", "rlimits", 1);
   const Isolation isolation = detectIsolation();
   EXPECT_EQ(isolation.kind, IsolationKind::Rlimits);
-  EXPECT_EQ(isolation.uid, geteuid() == 0 ? kNobodyUid : -1);
+  EXPECT_EQ(isolation.uid, geteuid() == 0 ? kProbeUid : -1);
   EXPECT_NE(isolation.describe().find("CLOTHREF_GRADER_ISOLATION=rlimits"), std::string::npos);
+}
+
+TEST(DetectIsolation, NoneIsOnlyWhatItSays) {
+  setenv("CLOTHREF_GRADER_ISOLATION", "none", 1);
+  const Isolation isolation = detectIsolation();
+  EXPECT_EQ(isolation.kind, IsolationKind::None);
+  EXPECT_EQ(isolation.uid, -1);
+  EXPECT_NE(isolation.describe().find("unconfined"), std::string::npos);
 }
 
 TEST(DetectIsolation, AnUnknownValueIsRefused) {
@@ -188,18 +160,23 @@ TEST(DetectIsolation, AnUnknownValueIsRefused) {
   EXPECT_THROW(detectIsolation(), InputError);
 }
 
+// A run under a uid leased as a grade leases it (other graders may run beside the test); the uid
+// it ran as in `uid_used`.
 ChildRun runIsolated(const test::TempDir& temp, IsolationKind kind, const std::string& script,
-                     double wall = 5, Containment containment = Containment::None) {
+                     double wall = 5, Containment containment = Containment::None,
+                     int* uid_used = nullptr) {
   test::writeText(temp.file("in"), "");
   ChildLimits limits;
   limits.wall_seconds = wall;
   limits.isolation.kind = kind;
   limits.isolation.containment = containment;
-  limits.isolation.uid = geteuid() == 0 ? kNobodyUid : -1;
   if (kind == IsolationKind::Bubblewrap) {
     setenv("CLOTHREF_GRADER_ISOLATION", "auto", 1);
     limits.isolation = detectIsolation();
   }
+  UidLease lease;
+  limits.isolation.uid = geteuid() == 0 ? (lease = leaseUids()).uid : -1;
+  if (uid_used) *uid_used = limits.isolation.uid;
   // The unprivileged uid must pass through the folder to reach its own.
   fs::permissions(temp.path(), fs::perms::owner_all | fs::perms::others_exec);
   return runChild({"/bin/sh", "-c", script}, temp.path(), temp.file("in"), limits, false, 0);
@@ -208,13 +185,16 @@ ChildRun runIsolated(const test::TempDir& temp, IsolationKind kind, const std::s
 TEST(Fallback, RunsAsNobodyInItsOwnFolderWithAProcessLimit) {
   if (geteuid() != 0) GTEST_SKIP() << "the uid drop needs root";
   test::TempDir temp;
+  int uid = 0;
   const ChildRun run =
       runIsolated(temp, IsolationKind::Rlimits,
                   "id -u; pwd; grep 'Max processes' /proc/self/limits | tr -s ' ' | cut -d' ' -f3; "
-                  "echo x > ../outside || echo denied");
+                  "echo x > ../outside || echo denied",
+                  5, Containment::None, &uid);
   ASSERT_EQ(run.status, ChildStatus::Ok) << run.stderr_head;
+  EXPECT_LE(uid, kProbeUid);
   EXPECT_EQ(test::readText(temp.path() / "child.stdout"),
-            "65534\n" + (temp.path() / "sandbox").string() + "\n64\ndenied\n");
+            std::to_string(uid) + "\n" + (temp.path() / "sandbox").string() + "\n64\ndenied\n");
   EXPECT_FALSE(fs::exists(temp.path() / "outside"));
 }
 
@@ -302,7 +282,8 @@ TEST(Cgroup, ADetachedProcessDiesWithItsRunsCgroup) {
   limits.wall_seconds = 10;
   limits.isolation.kind = IsolationKind::Rlimits;
   limits.isolation.containment = Containment::None;
-  limits.isolation.uid = kNobodyUid;
+  const UidLease lease = leaseUids();
+  limits.isolation.uid = lease.uid;
   const ChildRun loose =
       runChild({"/bin/sh", "-c", daemon}, temp.path(), temp.file("in"), limits, false, 0);
   EXPECT_EQ(loose.status, ChildStatus::Ok) << loose.describe();
@@ -391,13 +372,15 @@ TEST(Bubblewrap, NoNetworkOwnPidsAndNothingButUsr) {
   setenv("CLOTHREF_GRADER_ISOLATION", "auto", 1);
   if (detectIsolation().kind != IsolationKind::Bubblewrap)
     GTEST_SKIP() << "bubblewrap does not work here: " << detectIsolation().describe();
+  int leased = 0;
   const ChildRun run = runIsolated(
       temp, IsolationKind::Bubblewrap,
       "id -u; pwd; echo $$; tail -n +3 /proc/net/dev | cut -d: -f1 | tr -d ' '; test -e " +
           std::string(CLOTHREF_SOURCE_DIR) +
-          " || echo no-source; echo x > /usr/x || echo read-only; ls / /etc");
+          " || echo no-source; echo x > /usr/x || echo read-only; ls / /etc",
+      5, Containment::None, &leased);
   ASSERT_EQ(run.status, ChildStatus::Ok) << run.stderr_head;
-  const std::string uid = geteuid() == 0 ? "65534" : std::to_string(geteuid());
+  const std::string uid = std::to_string(geteuid() == 0 ? leased : geteuid());
   std::istringstream out(test::readText(temp.path() / "child.stdout"));
   std::vector<std::string> lines;
   for (std::string line; std::getline(out, line);) lines.push_back(line);

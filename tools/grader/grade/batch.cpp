@@ -20,7 +20,6 @@
 #include "grader/grade/report/html_report.h"
 #include "grader/grade/report/outputs.h"
 #include "grader/grade/run/submission.h"
-#include "grader/grade/run/sanitize.h"
 #include "grader/grade/text.h"
 
 #include <fcntl.h>
@@ -222,7 +221,6 @@ Outputs gradeOne(const BatchEntry& entry, const BatchOptions& options, const Gra
     }
     nlohmann::ordered_json whole_run_view;  // the pictures of report.html (html_report.h)
     GradeReport report = gradeWithWholeRun(entry.dir, grade, whole_run_view);
-    if (options.sanitize) diagnoseCrashWithSanitizers(entry.dir, report, grade);
     Outputs out;
     out.row = rowOf(entry, report);
     out.results_json =
@@ -460,6 +458,9 @@ BatchSummary runBatch(const std::vector<fs::path>& dirs, const BatchOptions& opt
   // Without --cache-dir a batch still shares compiled objects and the precompiled header
   // between its submissions (and with its own reruns): in BATCHDIR/.cache.
   if (grade.toolchain.cache_dir.empty()) grade.toolchain.cache_dir = options.out_dir / kCacheDir;
+  // No student's code may read the batch folder (the others' results) or another's submission.
+  grade.private_paths.push_back(options.out_dir);
+  for (const BatchEntry& entry : selected) grade.private_paths.push_back(entry.dir);
 
   Progress progress("clothref grade", static_cast<std::int64_t>(pending.size()), "submissions",
                     progressStyleForStderr(options.quiet), progress_out);

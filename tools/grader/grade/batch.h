@@ -78,7 +78,6 @@ struct BatchOptions {
   int cores = 0;          // cores to share between them; 0 = std::thread::hardware_concurrency()
   Shard shard;            // which part of the sorted submissions this run grades
   bool regrade = false;   // grade again even when row.json exists
-  bool sanitize = false;  // rebuild crashing submissions with sanitizers (sanitize.h)
   bool quiet = false;     // no progress on stderr
   // Grade a folder that holds several whole submissions as one (else it is not gradable: the
   // folder names them; run/submission.h, submissionsBelow).

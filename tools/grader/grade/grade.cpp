@@ -16,6 +16,7 @@
 #include "clothref/io/error.h"
 #include "clothref/io/files.h"
 #include "grader/grade/probes/probes.h"
+#include "grader/grade/run/folders.h"
 #include "grader/grade/text.h"
 
 namespace clothref::grader {
@@ -46,11 +47,6 @@ std::vector<SourceQuote> autoExpressionLines(const std::string& file, const std:
     lines.push_back({file, number, line.substr(line.find_first_not_of(" \t"))});
   }
   return lines;
-}
-
-std::string readSource(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
 double since(std::chrono::steady_clock::time_point start) {
@@ -89,61 +85,84 @@ void chooseEdition(const SubmissionFiles& files, int forced, GradeReport& report
   }
 }
 
-// How student processes are confined: they see none of our files (the course side, the
-// reference, our build, scratch), and compiles run as the tool uid only where it can read what
-// they read.
-Isolation isolationFor(const CourseToolchain& toolchain, const fs::path& scratch) {
+// This grade's own uids (leased host-wide when root), and the folders of ours its student's
+// processes must never read: the grader's (sources, build, install data, reference, cache) and
+// the ones the caller names (other submissions, the batch folder).
+Isolation isolationFor(const CourseToolchain& toolchain, const GradeOptions& options) {
   Isolation isolation = detectIsolation();
-  isolation.hidden = {toolchain.course_dir.parent_path(), toolchain.reference_dir,
-                      toolchain.driver_lib_dir, scratch};
-  // This grade's own uids in the fallback: a submission graded beside it in a batch runs as
-  // others (bubblewrap keeps them apart by namespaces instead).
-  if (isolation.kind == IsolationKind::Rlimits && isolation.uid >= 0) {
+  if (isolation.uid >= 0) {
     const UidLease lease = leaseUids();
     isolation.uid = lease.uid;
-    if (isolation.tool_uid >= 0) isolation.tool_uid = lease.tool_uid;
+    isolation.tool_uid = lease.tool_uid;
     isolation.uid_lease = lease.hold;
   }
-  // The tool uid must read what compiles read (a checkout under mode-700 /root is unreadable to
-  // it): else compiles keep the grader's uid, and the report says why.
-  if (isolation.tool_uid >= 0) {
-    std::vector<fs::path> folders = {toolchain.course_dir, toolchain.reference_dir,
-                                     toolchain.driver_lib_dir};
-    for (fs::path folder : {toolchain.prebuilt_dir, toolchain.cache_dir}) {
-      std::error_code error;
-      while (!folder.empty() && !fs::exists(folder, error) && folder != folder.parent_path())
-        folder = folder.parent_path();  // a cache made later: its nearest existing folder
-      if (!folder.empty()) folders.push_back(folder);
-    }
-    std::string unreadable;
-    if (!readableAs(isolation.tool_uid, folders, &unreadable)) {
-      isolation.why_not_tool_uid = "the compiles' uid cannot read " + safeName(unreadable);
-      isolation.tool_uid = -1;
-    }
-  }
+  isolation.ours = ourFolders(toolchain);
+  for (const fs::path& path : options.private_paths)
+    isolation.ours.push_back(fs::absolute(path).lexically_normal());
   return isolation;
+}
+
+bool isUnder(const fs::path& path, const fs::path& root) {
+  const std::string p = path.lexically_normal().string(), r = root.lexically_normal().string();
+  return p == r || (p.size() > r.size() && p.compare(0, r.size(), r) == 0 && p[r.size()] == '/');
+}
+
+// Refuses to grade (InputError, one line) where student code could read a folder of ours: the
+// scratch folder or the course kit inside one (TMPDIR in our tree), a student uid that cannot
+// reach its own folder (TMPDIR inside a closed folder), or, without bubblewrap and without a
+// private mount namespace to cover them, a folder of ours that a student uid can reach by its
+// permissions (docs/grading.md, "Installing the grader where students' code runs").
+void checkConfinement(const Isolation& isolation, const GradeScratch& scratch,
+                      const CourseKit* kit) {
+  if (isolation.uid < 0) return;
+  std::error_code error;
+  const fs::path temp = fs::temp_directory_path(error);
+  for (const fs::path& folder : isolation.ours)
+    for (const fs::path& ours : {scratch.root(), kit ? kit->root : fs::path()})
+      if (!ours.empty() && isUnder(fs::weakly_canonical(ours, error), folder))
+        throw InputError("TMPDIR (" + safeName(temp.string()) + ") is inside " +
+                         safeName(folder.string()) +
+                         ", which student code must not see: set TMPDIR to another folder");
+  for (const int uid : {isolation.uid, isolation.tool_uid})
+    if (!readableAs(uid, {scratch.root()}, nullptr) &&
+        firstReachableAs(uid, {scratch.root()}).empty())
+      throw InputError("TMPDIR (" + safeName(temp.string()) + ") cannot be reached by uid " +
+                       std::to_string(uid) +
+                       " (a folder on its path is closed to other users): set TMPDIR to a "
+                       "folder every user may pass through, such as /tmp");
+  if (isolation.kind == IsolationKind::Bubblewrap || isolation.private_mounts) return;
+  for (const int uid : {isolation.uid, isolation.tool_uid}) {
+    const std::string open = firstReachableAs(uid, isolation.ours);
+    if (!open.empty())
+      throw InputError(safeName(open) + " can be read by uid " + std::to_string(uid) +
+                       ", which runs student code, and this machine allows no private mount "
+                       "namespace to cover it: make it unreadable to other users (chmod o-rwx), "
+                       "as the Gradescope set-up does");
+  }
 }
 
 // What every probe needs: the edition, rubric, catalogue, the linked probes, the limits and the
 // student's compiled sources (patterns in them refine a measured finding).
 ProbeContext probeContext(const GradeReport& report, const Rubric& rubric,
                           const Catalogue& catalogue, const ProbeBuild& build,
-                          const Isolation& isolation, const fs::path& scratch,
-                          const GradeOptions& options) {
+                          const SubmissionFiles& files, const Isolation& isolation,
+                          const GradeScratch& scratch, const GradeOptions& options) {
   ProbeContext context;
   context.edition = report.edition;
   context.rubric = rubric;
   context.catalogue = &catalogue;
-  context.probe = build.probe;
-  context.probe_small = build.small_ok ? build.probe_small : fs::path();
+  context.probe = scratch.publish(build.probe);
+  context.probe_small = build.small_ok ? scratch.publish(build.probe_small) : fs::path();
   context.small_problem = build.small_problem;
-  context.work_dir = scratch / "probes";
+  context.work_dir = scratch.probes();
   context.limits = options.limits;
   context.limits.isolation = isolation;
+  context.limits.keep_files = !options.keep_work.empty();
   context.limits.log = std::make_shared<RunLog>();
   context.seed = options.seed;
+  // the bytes the finder read: the student's path is never opened again
   for (const UsedFile& used : build.files)
-    if (used.compiled) context.sources[used.name] = readSource(used.path);
+    if (used.compiled) context.sources[used.name] = files.bytes.at(used.name);
   return context;
 }
 
@@ -195,14 +214,15 @@ void addDanglingAutoCauses(const std::vector<UsedFile>& files, const fs::path& s
   for (const UsedFile& used : files) {
     if (!used.compiled) continue;
     // The copy in the scratch folder: the student's path is never opened again.
-    const std::string source = readSource(
-        (scratch / ("src-" + used.name.substr(0, used.name.size() - 4)) / used.name).string());
+    std::ifstream in(scratch / ("src-" + used.name.substr(0, used.name.size() - 4)) / used.name,
+                     std::ios::binary);
+    const std::string source((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     const std::vector<SourceQuote> lines = autoExpressionLines(used.name, source);
     if (lines.empty()) continue;
     const auto stubs = stubsOfFile(used.name);
     for (TestResult& t : tests) {
       if (t.passed() || std::find(stubs.begin(), stubs.end(), t.stub) == stubs.end()) continue;
-      if (!t.names("crashed")) continue;
+      if (!t.names("crashed") && !t.names("undefined-behaviour")) continue;
       const StubLines body = stubLines(source, t.stub);
       std::vector<SourceQuote> inside;
       for (const SourceQuote& line : lines)
@@ -225,14 +245,16 @@ void sortInCourseOrder(std::vector<TestResult>& tests) {
   });
 }
 
-// --keep-work: a copy of the scratch folder for debugging; a failed copy is a note, not an error.
-void keepWork(const fs::path& scratch, const fs::path& keep_work, GradeReport& report) {
-  std::error_code error;
-  fs::create_directories(keep_work, error);
-  fs::copy(scratch, keep_work, fs::copy_options::recursive | fs::copy_options::overwrite_existing,
-           error);
-  if (error)
-    report.notes.push_back("--keep-work: could not copy the scratch folder: " + error.message());
+// --keep-work: a copy of the scratch folder for debugging, made without following any link a
+// student process made (a link is listed, never copied through) and bounded in size. What was
+// left out goes to KEEP/skipped.txt, for the staff: never into the student's report, where it
+// would tell whether a host path exists.
+void keepWork(const fs::path& scratch, const fs::path& keep_work) {
+  std::vector<std::string> skipped;
+  copyTree(scratch, keep_work, kKeepWorkBytes, &skipped);
+  if (skipped.empty()) return;
+  std::ofstream list(keep_work / "skipped.txt");
+  for (const std::string& entry : skipped) list << safeName(entry) << "\n";
 }
 
 }  // namespace
@@ -278,23 +300,38 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
   const Catalogue catalogue =
       loadCatalogue(options.toolchain.course_dir.parent_path() / "diagnoses.json");
 
-  ScratchDir scratch("clothref-grade");
-  const Isolation isolation = isolationFor(options.toolchain, scratch.path());
+  const Isolation isolation = isolationFor(options.toolchain, options);
   report.isolation = isolation.describe();
-  // The unprivileged uid must pass through the scratch folder (not list it) to reach its own.
-  if (isolation.uid >= 0)
-    fs::permissions(scratch.path(),
-                    fs::perms::owner_all | fs::perms::group_exec | fs::perms::others_exec);
+  // What the grade's uids left in the shared temporary folders goes with the grade.
+  struct Sweep {
+    const Isolation& isolation;
+    ~Sweep() {
+      for (const int uid : {isolation.uid, isolation.tool_uid})
+        if (uid >= 0) removeOwnedBy(uid, sharedTemporaryFolders());
+    }
+  } sweep{isolation};
+  GradeScratch scratch(isolation.uid, isolation.tool_uid);
   CourseToolchain toolchain = options.toolchain;
   toolchain.isolation = isolation;
-  const ProbeBuild build = buildProbes(files, report.edition, toolchain, scratch.path());
+  // Compiles of student code read the kit, never our folders.
+  const CourseKit* kit = nullptr;
+  if (isolation.kind != IsolationKind::None) {
+    kit = &courseKit(toolchain.course_dir, toolchain.driver_lib_dir);
+    toolchain.course_dir = kit->course_dir;
+    toolchain.driver_lib_dir = kit->lib_dir;
+    toolchain.kit = kit;
+  }
+  checkConfinement(isolation, scratch, kit);
+  const ProbeBuild build = buildProbes(files, report.edition, toolchain, scratch.build());
   report.files = build.files;
   report.seconds["compile"] = build.compile_seconds;
   report.seconds["link"] = build.link_seconds;
   if (!build.ok) throw InputError(dir.string() + ": cannot grade: " + build.problem);
 
-  const ProbeContext context =
-      probeContext(report, rubric, catalogue, build, isolation, scratch.path(), options);
+  ProbeContext context =
+      probeContext(report, rubric, catalogue, build, files, isolation, scratch, options);
+  SanitizedProbes sanitizer(files, report.edition, toolchain, scratch, context.limits);
+  if (!options.toolchain.sanitize) context.sanitizer = &sanitizer;
   const std::map<std::string, TestResult> unavailable = unavailableStubs(build.files);
   std::map<std::string, std::string> skipped;  // the groups of those stubs do not run
   for (const auto& [stub, test] : unavailable) skipped[stub] = test.output;
@@ -306,13 +343,13 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
   report.tests = unavailableTests(report.edition, unavailable);
   for (auto& group : results)
     for (auto& t : group) report.tests.push_back(std::move(t));
-  addDanglingAutoCauses(build.files, scratch.path(), report.tests);
+  addDanglingAutoCauses(build.files, scratch.build(), report.tests);
   fillCauseTexts(catalogue, report.tests);
   sortInCourseOrder(report.tests);
   applyRubric(rubric, report);
   for (TestResult& t : report.tests) t.visibility = rubric.visibilityOf(t.name(), t.stub);
   report.verdict = submissionVerdict(report, context.limits.log->verdicts);
-  if (!options.keep_work.empty()) keepWork(scratch.path(), options.keep_work, report);
+  if (!options.keep_work.empty()) keepWork(scratch.root(), options.keep_work);
   report.seconds["total"] = since(start);
   return report;
 }

@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
-#include "grader/grade/run/build.h"
-#include "grader/grade/run/child_process.h"
 #include "grader/grade/results.h"
 #include "grader/grade/rubric.h"
+#include "grader/grade/run/build.h"
+#include "grader/grade/run/child_process.h"
 
 namespace clothref::grader {
 
@@ -23,10 +23,16 @@ struct GradeOptions {
   int probe_jobs = 2;               // probe groups at once
   std::uint64_t seed = 20221;
   std::size_t max_file_bytes = kDefaultMaxSourceBytes;  // a larger student file is refused
+  // Folders this student's processes must not read besides ours (a batch names its folder and
+  // every submission's): covered in a private mount namespace, else closed by their permissions.
+  std::vector<std::filesystem::path> private_paths;
 };
 
+// The most a --keep-work copy holds (what a probe wrote past it is listed, not copied).
+inline constexpr std::uint64_t kKeepWorkBytes = 1ull << 30;
+
 // Throws InputError when the submission cannot be graded at all (not a directory, no student
-// file found, our own reference does not build).
+// file found, our own reference does not build, student code could read a folder of ours).
 GradeReport gradeSubmission(const std::filesystem::path& dir, const GradeOptions& options);
 
 // The submission's verdict: the first of verdictTable() that happened, from the files that did

@@ -24,6 +24,7 @@ enum class Verdict {
   MemoryLimit,    // a probe died of std::bad_alloc under the address-space limit
   OutputLimit,    // a probe was stopped by the file-size limit
   Crashed,        // a probe was killed by another signal
+  ResultsVary,    // a probe answered differently in its two runs (undefined behaviour)
   ExitedNonZero,  // a probe exited with a non-zero code
   NoAnswer,       // a probe exited 0 without a valid answer
   NonFinite,      // a probe answered with NaN or infinity
@@ -37,14 +38,20 @@ struct VerdictInfo {
 
 // The one table of verdicts, in the order above.
 inline const std::vector<VerdictInfo>& verdictTable() {
-  static const std::vector<VerdictInfo> table = {
-      {Verdict::GraderError, "grader-error"},   {Verdict::NotGradable, "not-gradable"},
-      {Verdict::CompileError, "compile-error"}, {Verdict::LinkError, "link-error"},
-      {Verdict::MissingFile, "missing-file"},   {Verdict::TimedOut, "timed-out"},
-      {Verdict::MemoryLimit, "memory-limit"},   {Verdict::OutputLimit, "output-limit"},
-      {Verdict::Crashed, "crashed"},            {Verdict::ExitedNonZero, "exited-non-zero"},
-      {Verdict::NoAnswer, "no-answer"},         {Verdict::NonFinite, "non-finite"},
-      {Verdict::Graded, "graded"}};
+  static const std::vector<VerdictInfo> table = {{Verdict::GraderError, "grader-error"},
+                                                 {Verdict::NotGradable, "not-gradable"},
+                                                 {Verdict::CompileError, "compile-error"},
+                                                 {Verdict::LinkError, "link-error"},
+                                                 {Verdict::MissingFile, "missing-file"},
+                                                 {Verdict::TimedOut, "timed-out"},
+                                                 {Verdict::MemoryLimit, "memory-limit"},
+                                                 {Verdict::OutputLimit, "output-limit"},
+                                                 {Verdict::Crashed, "crashed"},
+                                                 {Verdict::ResultsVary, "results-vary"},
+                                                 {Verdict::ExitedNonZero, "exited-non-zero"},
+                                                 {Verdict::NoAnswer, "no-answer"},
+                                                 {Verdict::NonFinite, "non-finite"},
+                                                 {Verdict::Graded, "graded"}};
   return table;
 }
 

@@ -1,7 +1,4 @@
-// clothref's reference solution for the 2022 edition, written in course form: the framework code
-// around the stubs as a student's file carries it, and the stubs with the instructor's semantics and
-// float evaluation order (docs/grading.md). The grader links this file in place of a student's
-// cloth.cpp that does not compile, and uses its stubs as the reference derivative code.
+// adversarial case nan-results (tests/grader/adversarial/make_suite.py)
 #include "cloth.h"
 
 #include <Eigen/Geometry>

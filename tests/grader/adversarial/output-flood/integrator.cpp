@@ -1,8 +1,4 @@
-// clothref's reference solution for the 2022 edition, written in course form (see cloth.cpp here).
-// Explicit: x += v dt, then v += a dt (forward Euler). Implicit and midpoint: back up full copies,
-// predict (the midpoint with (v dt) * 0.5f), simulateOneStep(), then x = x0 + v dt, v = v0 + a dt
-// with the derivatives just evaluated. RK4: k = (v dt, a dt) per stage, stage states x0 + k * 0.5f,
-// x0 + k * 0.5f, x0 + k, and x0 + (k1 + 2.0f * k2 + 2.0f * k3 + k4) / 6.0f.
+// adversarial case output-flood (tests/grader/adversarial/make_suite.py)
 #include "integrator.h"
 
 #include "configs.h"

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "grader/grade/run/child_process.h"
+#include "grader/grade/run/sanitize.h"
 #include "grader/grade/results.h"
 #include "grader/grade/rubric.h"
 
@@ -44,6 +45,8 @@ struct ProbeContext {
   // The student's compiled files, by name ("integrator.cpp"): source patterns refine a finding
   // the probes measured (e.g. integer division), never make one.
   std::map<std::string, std::string> sources;
+  // The sanitizer run a crashing or varying probe gets (run/sanitize.h); null: none.
+  SanitizedProbes* sanitizer = nullptr;
 };
 
 // Test names of each group, in order (used for compile errors and crashes, where the group did

@@ -302,7 +302,9 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
     if (small_answer) small_set = studentSprings(*small_answer, n, small_failure.text);
     if (!small_set) {
       small.output = state + small_failure.text + "\n";
-      if (big_ok) {
+      if (!small_answer)  // the process's own verdict first: a grader error is never yours
+        small.addCause(small_failure.causeId(), false);
+      if (big_ok && small_failure.verdict != Verdict::GraderError) {
         // Right at 25 and springs to particles a 10 x 10 cloth does not have: measured. A crash
         // at 10 is only suggestive.
         const bool measured = small_answer.has_value();

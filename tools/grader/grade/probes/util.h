@@ -49,28 +49,47 @@ inline std::string vec3(const Eigen::Ref<const Eigen::Vector4f>& v) {
 struct ProbeFailure {
   Verdict verdict = Verdict::Graded;
   std::string text;
-  // The catalogue id of the cause: grader-error (ours), timed-out (wall or CPU limit), or crashed
-  // for every other way the process ended.
+  // The catalogue id of the cause: grader-error (ours), timed-out (wall or CPU limit),
+  // undefined-behaviour (the two runs differed), or crashed for every other way it ended.
   std::string causeId() const {
     if (verdict == Verdict::GraderError) return "grader-error";
     if (verdict == Verdict::TimedOut) return "timed-out";
+    if (verdict == Verdict::ResultsVary) return "undefined-behaviour";
     return "crashed";
   }
 };
 
-// Runs `request` in a fresh folder under the context's work dir. On failure returns nullopt and
-// fills `failure`.
+// Runs `request` in a fresh folder under the context's work dir, twice (runProbeTwice: the
+// answer depends on the files alone) unless `once` (information only, never scored). On failure
+// returns nullopt and fills `failure`.
 inline std::optional<probe::ProbeMessage> runGroup(
     const ProbeContext& context, const std::filesystem::path& executable, const std::string& folder,
-    probe::ProbeMessage request, ProbeFailure& failure, ChildRun* run_out = nullptr) {
+    probe::ProbeMessage request, ProbeFailure& failure, ChildRun* run_out = nullptr,
+    bool once = false) {
   const auto dir = context.work_dir / folder;
   std::filesystem::create_directories(dir);
-  ChildRun run = runProbe(executable, std::move(request), dir, context.limits);
+  ChildRun run = once ? runProbe(executable, request, dir, context.limits)
+                      : runProbeTwice(executable, request, dir, context.limits);
   if (run_out) *run_out = run;
   if (run.status == ChildStatus::Ok) return run.answer;
   failure.verdict = run.verdict();
   failure.text = "The probe process " + run.describe() + ".";
+  if (run.status == ChildStatus::NotStarted && !run.grader_problem.empty())
+    failure.text += " (" + run.grader_problem + ")";
   if (!run.stderr_head.empty()) failure.text += "\n\n" + codeBlock(run.stderr_head);
+  // A crash, or two runs that differ: the instrumented build names the line, when it finds one.
+  const bool explain =
+      run.status == ChildStatus::Varies || failure.verdict == Verdict::Crashed;
+  if (explain && context.sanitizer && executable == context.probe) {
+    const std::string report = context.sanitizer->explain(request, dir / "sanitize");
+    failure.text += report.empty()
+                        ? "\n\nThe grader rebuilt your files with AddressSanitizer and "
+                          "UndefinedBehaviorSanitizer and ran this probe again: they reported "
+                          "nothing (the fault may depend on the optimisation level)."
+                        : "\n\nThe grader rebuilt your files with AddressSanitizer and "
+                          "UndefinedBehaviorSanitizer (`-g -O1`) and ran this probe again; "
+                          "their report:\n\n" + codeBlock(report);
+  }
   return std::nullopt;
 }
 

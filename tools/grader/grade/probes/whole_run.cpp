@@ -115,7 +115,9 @@ std::vector<TestResult> probeWholeRun(const ProbeContext& context) {
   request.ints[key::kSteps] = {settings.steps};
   request.ints[key::kStride] = {settings.stride};
   util::ProbeFailure failure;
-  const auto answer = util::runGroup(context, context.probe, group::kWholeRun, request, failure);
+  // information only, never scored: one run
+  const auto answer =
+      util::runGroup(context, context.probe, group::kWholeRun, request, failure, nullptr, true);
   if (!answer) {
     t.output = what + "Your run did not finish: " + failure.text;
     return {t};

@@ -1,5 +1,6 @@
 #include "grader/grade/run/build.h"
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -13,9 +14,10 @@
 #include <set>
 #include <sstream>
 
+#include "clothref/io/files.h"
 #include "grader/grade/run/child_process.h"
 #include "grader/grade/run/compiler_messages.h"
-#include "clothref/io/files.h"
+#include "grader/grade/run/tools.h"
 
 #ifndef CLOTHREF_GRADER_COURSE_DIR
 #define CLOTHREF_GRADER_COURSE_DIR ""
@@ -257,15 +259,28 @@ fs::path precompiledHeader(const CourseToolchain& t, int edition, const fs::path
   return fs::exists(dir / "course_pch.h.gch", error) ? dir / "course_pch.h" : fs::path();
 }
 
+// A stored object (prebuilt or cached) copied into a build folder for the link, readable by the
+// link's uid whatever mode the store gave it (a Gradescope image closes our tree: 0600).
+bool copyObject(const fs::path& from, const fs::path& object) {
+  std::error_code error;
+  return fs::exists(from, error) &&
+         fs::copy_file(from, object, fs::copy_options::overwrite_existing, error) &&
+         chmod(object.c_str(), 0644) == 0;
+}
+
 // The object built with clothref for this command (our reference files), copied to `object`.
 bool fromPrebuilt(const CourseToolchain& t, const std::vector<std::string>& command,
                   const fs::path& source, const fs::path& object) {
   if (t.prebuilt_dir.empty()) return false;
-  const fs::path prebuilt =
-      t.prebuilt_dir / cachePath(t, command, source, object.parent_path(), true).filename();
-  std::error_code error;
-  return fs::exists(prebuilt, error) &&
-         fs::copy_file(prebuilt, object, fs::copy_options::overwrite_existing, error);
+  return copyObject(
+      t.prebuilt_dir / cachePath(t, command, source, object.parent_path(), true).filename(),
+      object);
+}
+
+// A compile or link the grader could not run (ToolRun::ours): the grade stops as ours.
+const ToolRun& checked(const ToolRun& run) {
+  if (run.ours) throw GraderFault(run.output.substr(0, run.output.find('\n')));
+  return run;
 }
 
 // Runs the compile commands, taking objects from the cache where it has them and filling it.
@@ -283,8 +298,7 @@ std::vector<ToolRun> compileAll(const CourseToolchain& t,
     std::error_code error;
     if (!t.cache_dir.empty()) {
       cached[k] = cachePath(t, c, source, work_dir, t.trusted_sources);
-      if (fs::exists(cached[k], error) &&
-          fs::copy_file(cached[k], object, fs::copy_options::overwrite_existing, error)) {
+      if (copyObject(cached[k], object)) {
         results[k].ok = true;
         continue;
       }
@@ -300,7 +314,7 @@ std::vector<ToolRun> compileAll(const CourseToolchain& t,
       runTools(to_run, work_dir, t.jobs, t.compile_seconds, &t.isolation);
   for (std::size_t r = 0; r < runs.size(); ++r) {
     const std::size_t k = index[r];
-    results[k] = runs[r];
+    results[k] = checked(runs[r]);
     if (!runs[r].ok || cached[k].empty()) continue;
     const auto& c = commands[k];
     const fs::path object = *(std::find(c.begin(), c.end(), "-o") + 1);
@@ -318,6 +332,44 @@ std::vector<ToolRun> compileAll(const CourseToolchain& t,
 fs::path objectCachePath(const CourseToolchain& t, const std::vector<std::string>& command,
                          const fs::path& source, const fs::path& work_dir) {
   return cachePath(t, command, source, work_dir, t.trusted_sources);
+}
+
+std::vector<fs::path> ourFolders(const CourseToolchain& t) {
+  std::vector<fs::path> candidates;
+  const auto add = [&](const fs::path& path) {
+    if (!path.empty()) candidates.push_back(fs::absolute(path).lexically_normal());
+  };
+  std::error_code error;
+  const fs::path course = fs::absolute(t.course_dir).lexically_normal();
+  const fs::path checkout = course.parent_path().parent_path().parent_path();
+  add(fs::is_directory(checkout / "lib" / "clothref", error) ? checkout
+                                                             : course.parent_path().parent_path());
+  add(t.reference_dir);
+  if (!t.prebuilt_dir.empty()) add(fs::absolute(t.prebuilt_dir).parent_path());
+  if (!t.driver_lib_dir.empty())
+    add(fs::absolute(t.driver_lib_dir).lexically_normal().parent_path().parent_path());
+  add(t.cache_dir);
+  const auto system = [&](const fs::path& path) {
+    static const char* const folders[] = {
+        "/",    "/usr",     "/usr/local", "/usr/share", "/opt", "/home",    "/root", "/tmp",
+        "/var", "/var/tmp", "/etc",       "/srv",       "/run", "/dev/shm", "/mnt",  "/media"};
+    for (const char* folder : folders)
+      if (path == fs::path(folder)) return true;
+    return path == fs::temp_directory_path(error).lexically_normal() || !path.has_relative_path();
+  };
+  const auto under = [](const fs::path& path, const fs::path& root) {
+    const std::string p = path.string(), r = root.string();
+    return p == r || (p.size() > r.size() && p.compare(0, r.size(), r) == 0 && p[r.size()] == '/');
+  };
+  std::vector<fs::path> ours;
+  for (const fs::path& path : candidates) {
+    if (system(path)) continue;
+    bool inside = false;
+    for (const fs::path& other : candidates)
+      inside = inside || (other != path && !system(other) && under(path, other));
+    if (!inside && std::find(ours.begin(), ours.end(), path) == ours.end()) ours.push_back(path);
+  }
+  return ours;
 }
 
 CourseToolchain defaultToolchain() {
@@ -384,7 +436,8 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseTo
   const std::string ed = std::to_string(edition);
   const auto stem = [](const std::string& name) { return name.substr(0, name.size() - 4); };
 
-  const fs::path pch = precompiledHeader(toolchain, edition, work_dir);
+  fs::path pch = precompiledHeader(toolchain, edition, work_dir);
+  if (toolchain.kit && !pch.empty()) pch = kitHeader(*toolchain.kit, pch);
   // What a compile's messages may quote (run/compiler_messages.h): `source` itself and the headers.
   const auto site = [&](const fs::path& source, const std::string& name) {
     return CompileSite{work_dir, source, name,
@@ -444,17 +497,22 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseTo
       }
   }
 
-  // 2. Our reference version for every file that is missing or did not compile.
+  // 2. Our reference version for every file that is missing or did not compile: our own source,
+  // compiled (when nothing prebuilt matches) with the grader's uid, which alone may read it, and
+  // keyed as our prebuilt objects are. No student compile runs in this folder after it.
+  CourseToolchain ours = toolchain;
+  ours.isolation = Isolation{};
+  ours.trusted_sources = true;
   commands.clear();
   names.clear();
   for (const UsedFile& used : build.files) {
     if (used.compiled) continue;
     const fs::path reference = toolchain.reference_dir / ed / used.name;
-    commands.push_back(compileCommand(toolchain, edition, reference,
-                                      work_dir / (stem(used.name) + ".o"), 25, pch));
+    commands.push_back(
+        compileCommand(ours, edition, reference, work_dir / (stem(used.name) + ".o"), 25, pch));
     names.push_back(used.name);
   }
-  runs = compileAll(toolchain, commands, work_dir);
+  runs = compileAll(ours, commands, work_dir);
   for (std::size_t k = 0; k < runs.size(); ++k)
     if (!runs[k].ok) {
       build.problem = "our reference " + names[k] + " for " + ed +
@@ -487,8 +545,8 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseTo
     if (!sanitizer_options.empty()) command.push_back(sanitizer_options.string());
     for (const auto& o : objects) command.push_back(o.string());
     command.push_back(driver_lib.string());
-    return runTools({command}, work_dir, 1, toolchain.compile_seconds, &toolchain.isolation)
-        .front();
+    return checked(
+        runTools({command}, work_dir, 1, toolchain.compile_seconds, &toolchain.isolation).front());
   };
   std::vector<fs::path> objects = {work_dir / "cloth.o", work_dir / "sphere.o",
                                    work_dir / "integrator.o"};
@@ -501,9 +559,9 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseTo
     const std::string error = firstCompilerError(linked.output, where);
     const std::string log = compilerLog(linked.output, where);
     std::vector<std::string> ref =
-        compileCommand(toolchain, edition, toolchain.reference_dir / ed / used.name,
+        compileCommand(ours, edition, ours.reference_dir / ed / used.name,
                        work_dir / (stem(used.name) + "-ref.o"), 25, pch);
-    if (!compileAll(toolchain, {ref}, work_dir).front().ok) continue;
+    if (!compileAll(ours, {ref}, work_dir).front().ok) continue;
     std::vector<fs::path> swapped = objects;
     for (auto& o : swapped)
       if (o.filename() == stem(used.name) + ".o") o = work_dir / (stem(used.name) + "-ref.o");

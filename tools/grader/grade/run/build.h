@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "grader/grade/results.h"
+#include "grader/grade/run/folders.h"
 #include "grader/grade/run/sandbox.h"
 #include "grader/grade/run/submission.h"
 
@@ -35,6 +36,9 @@ struct CourseToolchain {
   bool trusted_sources = false;
   double compile_seconds = 120;  // per compile
   Isolation isolation;  // Bubblewrap: compiles and links see only /usr and the paths they name
+  // Where compiles of student code find the course (course_dir and driver_lib_dir point into it
+  // then) and the precompiled headers: the kit's copies, never our folders. Null: ours directly.
+  const CourseKit* kit = nullptr;
   // Diagnostic build (--sanitize): -fsanitize=address,undefined -g -O1 -fno-omit-frame-pointer
   // instead of `optimisation`, linked by g++ with the same -fsanitize (which brings the runtimes;
   // the driver library itself is built without sanitizers).
@@ -47,6 +51,12 @@ inline constexpr const char* kSanitizeFlag = "-fsanitize=address,undefined";
 // The built-in locations (set by CMake) with environment overrides CLOTHREF_GRADER_COURSE_DIR,
 // CLOTHREF_GRADER_REFERENCE_DIR, CLOTHREF_GRADER_LIB_DIR and CLOTHREF_GRADER_PREBUILT_DIR.
 CourseToolchain defaultToolchain();
+
+// Our folders, which student code must never read: the tree the course folder lives in (the
+// source checkout, or an install's share/clothref), the reference, the build, the prebuilt objects
+// and the cache; outermost only, and never a system folder (/, /usr, /tmp, ...) even when an
+// override points there.
+std::vector<std::filesystem::path> ourFolders(const CourseToolchain& toolchain);
 
 inline constexpr int kSecondParticlesPerEdge = 10;  // the springs probe's second cloth size
 

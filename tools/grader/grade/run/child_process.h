@@ -11,6 +11,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -27,13 +28,29 @@ struct RunLog {
   std::vector<Verdict> verdicts;  // ChildRun::verdict() of each run, in completion order
 };
 
+inline constexpr std::uint64_t kRunDiskBytes = 128ull << 20;
+inline constexpr double kDiskCheckSeconds = 0.02;
+inline constexpr std::uint64_t kKeptOutputBytes = 64ull << 10;
+
 struct ChildLimits {
   double wall_seconds = 20;                        // killed (whole process group) after this
   std::uint64_t cpu_seconds = 20;                  // RLIMIT_CPU
   std::uint64_t address_space_bytes = 4ull << 30;  // RLIMIT_AS
   std::uint64_t file_size_bytes = 64ull << 20;     // RLIMIT_FSIZE (stdout/stderr floods)
   std::uint64_t open_files = 64;                   // RLIMIT_NOFILE
-  std::uint64_t processes = 64;       // RLIMIT_NPROC (counts the uid's processes; not for root)
+  std::uint64_t processes = 64;  // RLIMIT_NPROC (counts the uid's processes; not for root)
+  // Files a run may hold at once: its folder, stdout, stderr and, outside bubblewrap, what its uid
+  // owns in the shared temporary folders; checked every kDiskCheckSeconds, the run is stopped
+  // past it (DiskLimit). Two runs of a submission at once: twice this per submission.
+  std::uint64_t disk_bytes = kRunDiskBytes;
+  // Keep what the run wrote in its folder after it ends (--keep-work); else it is removed, and
+  // stdout and stderr are cut to their first kKeptOutputBytes.
+  bool keep_files = false;
+  // The same address layout on every run (no ASLR), and these variables added to the child's
+  // clean environment: a probe is run twice with two fixed variants (probeVariants()), so what
+  // undefined behaviour reads differs between the two and nowhere else.
+  bool fixed_layout = false;
+  std::vector<std::string> environment;
   Isolation isolation;                // uid drop, private folder, bubblewrap (default: none)
   std::vector<std::string> launcher;  // extra argv prefix, empty = none
   std::shared_ptr<RunLog> log;        // when set, every run's verdict is appended
@@ -43,9 +60,12 @@ enum class ChildStatus {
   Ok,             // exited 0 and answered with a well-formed frame carrying our nonce
   Crashed,        // killed by a signal (segfault, abort, CPU limit, ...)
   TimedOut,       // wall-clock limit reached
+  DiskLimit,      // stopped for holding more than ChildLimits::disk_bytes of files
+  Varies,         // its two runs (probeVariants()) did not end alike: undefined behaviour
   ExitedNonZero,  // exited with a non-zero code
   NoAnswer,       // exited 0 but sent no valid answer (missing, malformed, wrong nonce)
-  NotStarted      // the grader could not start it (fork failed): our failure, not the student's
+  NotStarted      // the grader could not start it (fork, pipe, a file or a mount of ours failed):
+                  // our failure, not the student's
 };
 
 struct ChildRun {
@@ -55,6 +75,11 @@ struct ChildRun {
   double seconds = 0;       // wall time
   std::string stderr_head;  // first lines of the child's stderr (for the report)
   std::optional<probe::ProbeMessage> answer;
+  // NotStarted: what failed on our side (for the staff), and whether it was the uid's process
+  // slots being taken (retried for longer: another run's fork bomb holds them for a while).
+  std::string grader_problem;
+  bool waiting_for_slot = false;
+  std::uint64_t disk_limit_bytes = 0;  // the limit a DiskLimit run passed
   // One line for a report: "crashed (SIGSEGV)", "timed out after 20 s", ...
   std::string describe() const;
   // What the run means for the submission (docs/grading.md, "Verdicts"): Graded (it finished and
@@ -71,26 +96,26 @@ ChildRun runChild(const std::vector<std::string>& command, const std::filesystem
                   const std::filesystem::path& stdin_file, const ChildLimits& limits,
                   bool expect_answer, std::uint64_t request_nonce);
 
+// The two variants a scored probe runs in, both with a fixed address layout: the first as the
+// student would run it, the second with freed memory filled (MALLOC_PERTURB_) and the stack moved
+// (a longer environment). A stub that reads memory it does not own (a dangling `auto` Eigen
+// expression, a freed buffer) answers differently in the two; a correct one cannot.
+std::vector<std::vector<std::string>> probeVariants();
+
+// Whether two answers are the same to the bit (NaN payloads included).
+bool sameAnswer(const probe::ProbeMessage& a, const probe::ProbeMessage& b);
+
 // Sends `request` (its nonce is set here, fresh and random) to the probe executable and returns
 // the run. The request is written to a file in `work_dir` first.
 ChildRun runProbe(const std::filesystem::path& executable, probe::ProbeMessage request,
                   const std::filesystem::path& work_dir, const ChildLimits& limits);
 
-// A compiler or linker run: exit status and the combined output.
-struct ToolRun {
-  bool ok = false;
-  std::string output;
-  double seconds = 0;
-};
-// Runs several tool commands at once (at most `jobs` in parallel); results in command order. A
-// command the grader cannot start (fork fails) is a failed run whose output says so.
-// With an `isolation` of kind Bubblewrap each command runs in bubblewrap seeing only /usr, the
-// work dir and the paths it names (sandbox.h); every run has CPU (wall + 1 s), address-space
-// (kToolAddressSpace) and file-size (kToolFileSize) limits.
-std::vector<ToolRun> runTools(const std::vector<std::vector<std::string>>& commands,
-                              const std::filesystem::path& work_dir, int jobs, double wall_seconds,
-                              const Isolation* isolation = nullptr);
-inline constexpr std::uint64_t kToolAddressSpace = 8ull << 30;  // a 10 GB constexpr stops here
-inline constexpr std::uint64_t kToolFileSize = 1ull << 30;
+// A scored probe: `request` run in both probeVariants() with a fixed address layout, so that the
+// answer is a function of the files alone. The rule (docs/grading.md, "One submission, one
+// score"): both ended alike (the same answer to the bit, or the same failure) -> the first run;
+// otherwise the run is Varies, whatever either answered, and its checks fail. A first run stopped
+// at a limit (time, output, disk) or not started is not repeated. One verdict goes to the log.
+ChildRun runProbeTwice(const std::filesystem::path& executable, const probe::ProbeMessage& request,
+                       const std::filesystem::path& work_dir, const ChildLimits& limits);
 
 }  // namespace clothref::grader

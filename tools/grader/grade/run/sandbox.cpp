@@ -1,8 +1,10 @@
 #include "grader/grade/run/sandbox.h"
 
 #include <fcntl.h>
+#include <grp.h>
 #include <sched.h>
 #include <signal.h>
+#include <sys/file.h>
 #include <sys/mount.h>
 #include <sys/stat.h>
 #include <sys/syscall.h>
@@ -18,11 +20,13 @@
 #include <mutex>
 #include <optional>
 #include <regex>
+#include <set>
+#include <sstream>
 #include <stdexcept>
 
-#include "grader/grade/run/child_process.h"
 #include "clothref/io/error.h"
 #include "clothref/io/files.h"
+#include "grader/grade/run/child_process.h"
 
 namespace clothref::grader {
 namespace fs = std::filesystem;
@@ -58,7 +62,7 @@ void addSystemTrees(std::vector<std::string>& argv) {
 }
 
 void addHidden(const Isolation& isolation, std::vector<std::string>& argv) {
-  for (const fs::path& hidden : isolation.hidden) {
+  for (const fs::path& hidden : isolation.ours) {
     std::error_code error;
     if (isUnder(hidden, "/usr") && fs::is_directory(hidden, error))
       argv.insert(argv.end(), {"--tmpfs", hidden.string()});
@@ -188,15 +192,16 @@ struct CgroupParent {
 Isolation detect() {
   const char* forced_env = std::getenv("CLOTHREF_GRADER_ISOLATION");
   const std::string forced = forced_env && *forced_env ? forced_env : "auto";
-  if (forced != "auto" && forced != "bubblewrap" && forced != "rlimits")
+  if (forced != "auto" && forced != "bubblewrap" && forced != "rlimits" && forced != "none")
     throw InputError("CLOTHREF_GRADER_ISOLATION: unknown value '" + forced +
-                     "' (expected auto, bubblewrap or rlimits)");
+                     "' (expected auto, bubblewrap, rlimits or none)");
   Isolation isolation;
+  if (forced == "none") return isolation;  // asked for: student code runs unconfined
   isolation.kind = IsolationKind::Rlimits;
-  isolation.uid = geteuid() == 0 ? kNobodyUid : -1;
+  isolation.uid = geteuid() == 0 ? kProbeUid : -1;
   isolation.tool_uid = geteuid() == 0 ? kToolUid : -1;
   isolation.cgroup_parent = cgroupParent(&isolation.why_no_cgroup);
-  if (isolation.tool_uid >= 0) {
+  if (isolation.uid >= 0) {
     isolation.why_not_private_mounts = whyNoPrivateMountNamespace();
     isolation.private_mounts = isolation.why_not_private_mounts.empty();
   }
@@ -214,6 +219,12 @@ Isolation detect() {
     Isolation candidate = isolation;
     candidate.kind = IsolationKind::Bubblewrap;
     candidate.bwrap = bwrap;
+    // The trial runs under a leased uid like any run: another grader may be using the first pair.
+    UidLease trial;
+    if (isolation.uid >= 0) {
+      trial = leaseUids();
+      candidate.uid = trial.uid;
+    }
     ScratchDir scratch("clothref-sandbox-check");
     fs::permissions(scratch.path(),
                     fs::perms::owner_all | fs::perms::group_exec | fs::perms::others_exec);
@@ -224,6 +235,7 @@ Isolation detect() {
     const fs::path true_program = fs::canonical("/bin/true", error);
     const ChildRun run =
         runChild({true_program.string()}, scratch.path(), "/dev/null", limits, false, 0);
+    candidate.uid = isolation.uid;  // each grade leases its own
     if (run.status == ChildStatus::Ok) return candidate;
     std::string reason = run.stderr_head.substr(0, run.stderr_head.find('\n'));
     isolation.why_not_bubblewrap =
@@ -231,6 +243,11 @@ Isolation detect() {
   }
   if (forced == "bubblewrap")
     throw InputError("CLOTHREF_GRADER_ISOLATION=bubblewrap: " + isolation.why_not_bubblewrap);
+  // Not root and no bubblewrap: student code would run as the grader's uid and read all it reads.
+  if (isolation.uid < 0)
+    throw InputError("student code cannot be confined here: not root, and no bubblewrap (" +
+                     isolation.why_not_bubblewrap +
+                     "); grade as root, or set CLOTHREF_GRADER_ISOLATION=none for code you trust");
   return isolation;
 }
 
@@ -245,64 +262,34 @@ std::string cgroupParent(std::string* why) {
 std::string Isolation::describe() const {
   // A leased pair depends on what else was graded at the time: the line names the scheme, not the
   // number, so a batch's CSV is the same whichever submission got which pair.
-  const std::string user = uid < 0 ? "grader's uid (not root)"
-                           : uid_lease
-                               ? "a uid of its own (" + std::to_string(kNobodyUid) + " down)"
-                               : "uid " + std::to_string(uid);
-  const std::string tool_user = uid_lease
+  const std::string user = uid < 0     ? "grader's uid (not root)"
+                           : uid_lease ? "a uid of its own (" + std::to_string(kProbeUid) + " down)"
+                                       : "uid " + std::to_string(uid);
+  const std::string tool_user = tool_uid < 0 ? "the grader's uid (not root)"
+                                : uid_lease
                                     ? "its own second uid (" + std::to_string(kToolUid) + " down)"
                                     : "uid " + std::to_string(tool_uid);
   switch (kind) {
     case IsolationKind::Bubblewrap:
       return "bubblewrap (new user, net, pid, mount, ipc, uts namespaces; only /usr visible), " +
-             user + ", rlimits" + (cgroup_parent.empty() ? "" : ", own cgroup per run");
+             user + ", rlimits" + (cgroup_parent.empty() ? "" : ", own cgroup per run") +
+             "; compiles as " + tool_user + " in bubblewrap";
     case IsolationKind::Rlimits:
       return "rlimits, " + user + ", private working directory, " +
              (cgroup_parent.empty() ? "" : "own cgroup per run (killed when it ends), ") +
              (containment == Containment::PidNamespace
                   ? "own pid namespace per run"
                   : "a subreaper that kills what a run leaves behind") +
-             (tool_uid >= 0
-                  ? "; compiles as " + tool_user +
-                        (private_mounts
-                             ? std::string(" in a private mount namespace")
-                             : " without a private mount namespace (" + why_not_private_mounts +
-                                   "; the grader's folders are hidden only by their "
-                                   "permissions)")
-                  : "; compiles with the grader's uid (" +
-                        (why_not_tool_uid.empty() ? std::string() : why_not_tool_uid + "; ") +
-                        "the host is readable)") +
+             "; compiles as " + tool_user +
+             (private_mounts ? std::string("; our folders covered in a private mount namespace")
+                             : "; our folders out of reach by their permissions (no private "
+                               "mount namespace: " +
+                                   why_not_private_mounts + ")") +
              "; no bubblewrap (" + why_not_bubblewrap + ")";
     case IsolationKind::None:
       break;
   }
-  return "rlimits only";
-}
-
-UidLease leaseUids() {
-  static std::mutex mutex;
-  static std::vector<bool> taken(kUidSlots, false);
-  std::lock_guard<std::mutex> lock(mutex);
-  const auto free_slot = std::find(taken.begin(), taken.end(), false);
-  if (free_slot == taken.end())
-    throw std::runtime_error("more than " + std::to_string(kUidSlots) +
-                             " submissions graded at once: no uid left for the fallback");
-  const int slot = static_cast<int>(free_slot - taken.begin());
-  *free_slot = true;
-  UidLease lease;
-  lease.uid = kNobodyUid - 2 * slot;
-  lease.tool_uid = kToolUid - 2 * slot;
-  // Released when the last holder lets go: the slot is free for the next grade. (A non-null
-  // pointer, so that a held lease tests true.)
-  lease.hold = std::shared_ptr<const void>(new int(slot), [](const void* held) {
-    const int* freed = static_cast<const int*>(held);
-    {
-      std::lock_guard<std::mutex> release_lock(mutex);
-      taken[std::size_t(*freed)] = false;
-    }
-    delete freed;
-  });
-  return lease;
+  return "none (CLOTHREF_GRADER_ISOLATION=none: student code ran as the grader's uid, unconfined)";
 }
 
 bool readableAs(int uid, const std::vector<fs::path>& folders, std::string* failed) {
@@ -327,6 +314,27 @@ bool readableAs(int uid, const std::vector<fs::path>& folders, std::string* fail
   return ok;
 }
 
+std::string firstReachableAs(int uid, const std::vector<fs::path>& paths) {
+  // The child answers the index of the first path the uid reaches, paths.size() when none, or
+  // kNoUid when it cannot become the uid.
+  constexpr unsigned char kNoUid = 255;
+  if (paths.size() >= kNoUid) throw std::logic_error("firstReachableAs: too many paths");
+  const auto first = askChild([&]() -> unsigned char {
+    if (setgroups(0, nullptr) != 0 || setgid(static_cast<gid_t>(uid)) != 0 ||
+        setuid(static_cast<uid_t>(uid)) != 0)
+      return kNoUid;
+    for (std::size_t k = 0; k < paths.size(); ++k) {
+      struct stat info {};
+      if (stat(paths[k].c_str(), &info) != 0) continue;
+      if (access(paths[k].c_str(), S_ISDIR(info.st_mode) ? X_OK : R_OK) == 0)
+        return static_cast<unsigned char>(k);
+    }
+    return static_cast<unsigned char>(paths.size());
+  });
+  if (!first || *first == kNoUid) throw std::runtime_error("cannot try uid " + std::to_string(uid));
+  return *first < paths.size() ? paths[*first].string() : std::string();
+}
+
 Isolation detectIsolation() {
   // Once per grader process: every submission of a batch gets the same isolation.
   static std::mutex mutex;
@@ -338,16 +346,17 @@ Isolation detectIsolation() {
 
 std::vector<std::string> bubblewrapArgv(const Isolation& isolation,
                                         const std::vector<std::string>& command,
-                                        const fs::path& private_dir, int info_fd) {
+                                        const fs::path& private_dir, int status_fd) {
   std::vector<std::string> argv = {isolation.bwrap, "--unshare-all", "--die-with-parent",
                                    "--new-session", "--cap-drop",    "ALL"};
   addSystemTrees(argv);
-  argv.insert(argv.end(), {"--proc", "/proc", "--dev", "/dev", "--tmpfs", "/tmp"});
+  argv.insert(argv.end(), {"--proc", "/proc", "--dev", "/dev", "--size",
+                           std::to_string(kBoxTmpBytes), "--tmpfs", "/tmp"});
   addHidden(isolation, argv);
   const std::string program = "/sandbox/bin/" + fs::path(command.front()).filename().string();
   argv.insert(argv.end(), {"--ro-bind", command.front(), program, "--bind", private_dir.string(),
                            "/sandbox/work", "--chdir", "/sandbox/work"});
-  if (info_fd >= 0) argv.insert(argv.end(), {"--info-fd", std::to_string(info_fd)});
+  if (status_fd >= 0) argv.insert(argv.end(), {"--json-status-fd", std::to_string(status_fd)});
   argv.push_back("--");
   argv.push_back(program);
   argv.insert(argv.end(), command.begin() + 1, command.end());
@@ -356,7 +365,7 @@ std::vector<std::string> bubblewrapArgv(const Isolation& isolation,
 
 std::vector<std::string> bubblewrapToolArgv(const Isolation& isolation,
                                             const std::vector<std::string>& command,
-                                            const fs::path& work_dir) {
+                                            const fs::path& work_dir, int status_fd) {
   std::vector<std::string> argv = {isolation.bwrap, "--unshare-all", "--die-with-parent",
                                    "--new-session", "--cap-drop",    "ALL"};
   addSystemTrees(argv);
@@ -387,6 +396,7 @@ std::vector<std::string> bubblewrapToolArgv(const Isolation& isolation,
       outputs.push_back(path.parent_path().string());
   }
   for (const std::string& dir : outputs) argv.insert(argv.end(), {"--bind", dir, dir});
+  if (status_fd >= 0) argv.insert(argv.end(), {"--json-status-fd", std::to_string(status_fd)});
   argv.insert(argv.end(), {"--chdir", work_dir.string(), "--"});
   argv.insert(argv.end(), command.begin(), command.end());
   return argv;

@@ -1,19 +1,23 @@
-// The isolation a student process gets on top of its rlimits: an unprivileged uid (65534 when the
-// grader runs as root) and, where it works, a bubblewrap sandbox (new network, pid, mount, ipc and
-// uts namespaces; only /usr and the probe executable visible, read-only; a private writable
-// folder as its working directory). Detected once per grader process; the environment variable
-// CLOTHREF_GRADER_ISOLATION (auto | bubblewrap | rlimits) forces a layer, so tests cover both.
+// The isolation a student process gets on top of its rlimits: unprivileged uids of its grade's
+// own (leased host-wide when the grader runs as root) and, where it works, a bubblewrap sandbox
+// (new network, pid, mount, ipc and uts namespaces; only /usr and the probe executable visible,
+// read-only; a private writable folder as its working directory). Detected once per grader
+// process; the environment variable CLOTHREF_GRADER_ISOLATION (auto | bubblewrap | rlimits |
+// none) forces a layer, so tests cover each; `none` (no confinement at all) only when asked.
 #pragma once
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "grader/grade/run/uid_lease.h"
+
 namespace clothref::grader {
 
 enum class IsolationKind {
-  None,       // rlimits only, the grader's uid, the caller's working directory (unit tests)
-  Rlimits,    // rlimits + uid drop (when root) + a private working directory
+  None,     // rlimits only, the grader's uid: for code one trusts (CLOTHREF_GRADER_ISOLATION=none)
+  Rlimits,  // rlimits + uid drop (when root) + a private working directory
   Bubblewrap  // all of Rlimits, inside bubblewrap
 };
 
@@ -30,25 +34,29 @@ enum class Containment {
 struct Isolation {
   IsolationKind kind = IsolationKind::None;
   Containment containment = Containment::None;  // for IsolationKind::Rlimits
-  int uid = -1;  // uid and gid to run as (65534 when root); -1 = unchanged
-  // Rlimits: uid and gid of compiles and links (kToolUid when root, -1 = the grader's, which can
-  // read the host), in a private mount namespace hiding `hidden` except what a command names.
+  // uid and gid of the probes (kProbeUid - 2k when root, leased per grade); -1 = the grader's
+  int uid = -1;
+  // uid and gid of compiles and links of student files (kToolUid - 2k when root); -1 = the
+  // grader's. Never root: a compile reads only the course kit (folders.h), /usr and its folder.
   int tool_uid = -1;
-  std::string why_not_tool_uid;  // why compiles keep the grader's uid as root (e.g. unreadable)
-  // Rlimits: whether a private mount namespace can hide `hidden` from compiles (not in a chroot,
-  // whose root is no mount point, nor in a container without CAP_SYS_ADMIN); the reason if not.
+  // Rlimits as root: whether a private mount namespace can cover `ours` with an empty tmpfs in
+  // every run, compiles and probes (not in a chroot, whose root is no mount point, nor in a
+  // container without CAP_SYS_ADMIN); the reason if not. Without it, `ours` must be out of the
+  // student uids' reach by their permissions, or the grader refuses to grade.
   bool private_mounts = false;
   std::string why_not_private_mounts;
-  std::string bwrap;                          // bubblewrap executable (Bubblewrap only)
-  std::string why_not_bubblewrap;             // why the detection fell back, for the description
-  std::vector<std::filesystem::path> hidden;  // covered with an empty tmpfs if visible in the box
+  std::string bwrap;               // bubblewrap executable (Bubblewrap only)
+  std::string why_not_bubblewrap;  // why the detection fell back, for the description
+  // Our folders (sources, build, install data, reference, cache): no student process may read
+  // them. Bubblewrap shows none of them (those under /usr are covered with an empty tmpfs).
+  std::vector<std::filesystem::path> ours;
   // Root with a cgroup v2 tree that has cgroup.kill (Linux >= 5.14): a folder of ours in it; each
   // run gets its own cgroup below, and every process in it is killed when the run ends, however
   // it detached itself. Empty: no cgroup tier (`why_no_cgroup` says why).
   std::string cgroup_parent;
   std::string why_no_cgroup;
-  // Rlimits as root: holds `uid` and `tool_uid` for this grade alone (leaseUids()) until the last
-  // copy of this Isolation is gone.
+  // As root: holds `uid` and `tool_uid` for this grade alone (leaseUids()) until the last copy of
+  // this Isolation is gone.
   std::shared_ptr<const void> uid_lease;
   // Short exact description for GradeReport::isolation, e.g. "bubblewrap (new net, pid, mount,
   // ipc, uts namespaces; only /usr visible), uid 65534, rlimits".
@@ -59,6 +67,10 @@ struct Isolation {
 // drops to it); the first one it cannot open is named in `failed`.
 bool readableAs(int uid, const std::vector<std::filesystem::path>& folders, std::string* failed);
 
+// The first of `paths` that `uid` (and its gid) can reach (search a folder, read a file), tried in
+// a forked child that drops to it; "" when it reaches none.
+std::string firstReachableAs(int uid, const std::vector<std::filesystem::path>& paths);
+
 // Whether this process can make a private mount namespace (unshare(CLONE_NEWNS), then "/" made
 // private so no mount leaks to the host), tried once in a forked child; "" if so, else why not.
 std::string whyNoPrivateMountNamespace();
@@ -68,23 +80,6 @@ std::string whyNoPrivateMountNamespace();
 // cgroup there (tried in a forked child).
 std::string cgroupParent(std::string* why);
 
-inline constexpr int kNobodyUid = 65534;
-// Compiles and links in the fallback: not the probes' uid, so no student process can write into
-// a scratch folder or replace a probe executable.
-inline constexpr int kToolUid = 65533;
-
-// The uids of one grade in the fallback. A batch grades several submissions at once, and two
-// probes under one uid could write into each other's folders (or signal each other), so each grade
-// holds its own pair until `hold` is released: slot 0 is (kNobodyUid, kToolUid), slot k is
-// (kNobodyUid - 2k, kToolUid - 2k), inside Debian's reserved uids 65000-65533. The lowest free
-// slot is taken; kUidSlots at once at the most (more throws).
-struct UidLease {
-  int uid = kNobodyUid, tool_uid = kToolUid;
-  std::shared_ptr<const void> hold;
-};
-inline constexpr int kUidSlots = 256;
-UidLease leaseUids();
-
 // The isolation for this grader process: probes bubblewrap once (same uid drop and flags as a
 // real run, command /bin/true) and caches the answer. Throws InputError for an unknown
 // CLOTHREF_GRADER_ISOLATION value or when `bubblewrap` is forced but does not work.
@@ -92,10 +87,13 @@ Isolation detectIsolation();
 
 // The argv that runs `command` (argv[0] an absolute path) inside bubblewrap: `private_dir`
 // becomes the writable working directory /sandbox/work; argv[0] is bound read-only at
-// /sandbox/bin/<name>; `info_fd` is the descriptor bubblewrap reports the sandbox's pid on.
+// /sandbox/bin/<name>; /tmp is an empty tmpfs of kBoxTmpBytes; `status_fd` is the descriptor
+// bubblewrap reports on (--json-status-fd: the sandbox's pid first, the program's exit code when
+// it ends; without the exit code, bubblewrap itself failed).
+inline constexpr std::uint64_t kBoxTmpBytes = 16ull << 20;
 std::vector<std::string> bubblewrapArgv(const Isolation& isolation,
                                         const std::vector<std::string>& command,
-                                        const std::filesystem::path& private_dir, int info_fd);
+                                        const std::filesystem::path& private_dir, int status_fd);
 
 // The argv that runs a compiler or linker `command` inside bubblewrap with the grader's uid:
 // /usr, `work_dir` (read-write) and the absolute paths the command names (read-only; the folder
@@ -103,7 +101,8 @@ std::vector<std::string> bubblewrapArgv(const Isolation& isolation,
 // or an include of the reference finds nothing.
 std::vector<std::string> bubblewrapToolArgv(const Isolation& isolation,
                                             const std::vector<std::string>& command,
-                                            const std::filesystem::path& work_dir);
+                                            const std::filesystem::path& work_dir,
+                                            int status_fd = -1);
 
 // The "child-pid" and "pid-namespace" fields of bubblewrap's --info-fd JSON (0 when absent).
 struct BubblewrapInfo {

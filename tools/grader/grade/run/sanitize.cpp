@@ -6,7 +6,6 @@
 #include <vector>
 
 #include "clothref/io/files.h"
-#include "grader/grade/probes/probes.h"
 
 namespace clothref::grader {
 namespace fs = std::filesystem;
@@ -28,13 +27,6 @@ std::string cleanLine(std::string line) {
 }
 
 }  // namespace
-
-bool hasCrash(const GradeReport& report) {
-  if (report.verdict == Verdict::Crashed) return true;
-  return std::any_of(report.tests.begin(), report.tests.end(), [](const TestResult& t) {
-    return t.names("crashed");
-  });
-}
 
 std::string firstSanitizerReport(const std::string& stderr_text, int max_lines) {
   static const std::regex frame(R"(^\s+#[0-9]+ )");
@@ -72,76 +64,44 @@ std::string firstSanitizerReport(const std::string& stderr_text, int max_lines) 
   return quote;
 }
 
-std::optional<SanitizerFinding> sanitizerFinding(const fs::path& dir, const GradeReport& report,
-                                                 const GradeOptions& options) {
-  ScratchDir work("clothref-sanitize");
-  GradeOptions sanitized = options;
-  sanitized.toolchain.sanitize = true;
-  sanitized.whole_run = false;
-  sanitized.keep_work = work.path() / "work";  // the children's stderr, read below
+SanitizedProbes::SanitizedProbes(const SubmissionFiles& files, int edition,
+                                 CourseToolchain toolchain, const GradeScratch& scratch,
+                                 ChildLimits limits)
+    : files_(files),
+      edition_(edition),
+      toolchain_(std::move(toolchain)),
+      scratch_(scratch),
+      limits_(std::move(limits)) {
+  toolchain_.sanitize = true;
   // Instrumented code runs 2-5x slower; the shadow memory needs no address-space limit.
-  sanitized.limits.wall_seconds = options.limits.wall_seconds * 3;
-  sanitized.limits.cpu_seconds = options.limits.cpu_seconds * 3;
-  sanitized.limits.address_space_bytes = ~std::uint64_t{0};  // RLIM_INFINITY
-  sanitized.edition = report.edition;
-  gradeSubmission(dir, sanitized);
+  limits_.wall_seconds *= 3;
+  limits_.cpu_seconds *= 3;
+  limits_.address_space_bytes = ~std::uint64_t{0};  // RLIM_INFINITY
+  limits_.log = nullptr;                            // it explains; it never decides a verdict
+  limits_.keep_files = true;  // its whole stderr: the report comes after what the code printed
+}
 
-  std::optional<SanitizerFinding> first;
-  for (const auto& group_stub : probeFolders()) {
-    // named copies: clang 14 cannot capture a structured binding in the lambda below
-    const auto& group = group_stub.first;
-    const auto& stub = group_stub.second;
-    const fs::path log = sanitized.keep_work / "probes" / group / "child.stderr";
-    std::error_code error;
-    if (!fs::exists(log, error)) continue;
-    std::string text;
+std::string SanitizedProbes::explain(const probe::ProbeMessage& request, const fs::path& folder) {
+  std::call_once(built_, [&] {
     try {
-      text = readFile(log, "probe stderr");
+      const fs::path where = scratch_.extraBuild("sanitize");
+      const ProbeBuild build = buildProbes(files_, edition_, toolchain_, where);
+      if (build.ok) probe_ = scratch_.publish(build.probe, "probe-sanitize");
     } catch (const std::exception&) {
-      continue;  // an enormous stderr: look at the other groups
+      probe_.clear();  // no explanation; the grade stands
     }
-    const std::string quote = firstSanitizerReport(text);
-    if (quote.empty()) continue;
-    SanitizerFinding finding{group, stub, quote};
-    const bool crashed_here =
-        std::any_of(report.tests.begin(), report.tests.end(), [&](const TestResult& t) {
-          return t.stub == stub && t.names("crashed");
-        });
-    if (crashed_here) return finding;
-    if (!first) first = finding;
-  }
-  return first;
-}
-
-void addSanitizerFinding(GradeReport& report, const std::optional<SanitizerFinding>& finding) {
-  if (!finding) {
-    report.notes.push_back(
-        "Sanitizer report (`--sanitize`): rebuilt with `" + std::string(kSanitizeFlag) +
-        " -g -O1`; no sanitizer report (the crash may depend on optimisation or be outside "
-        "memory and undefined-behaviour errors).");
-    return;
-  }
-  const std::string block = "Sanitizer report (`--sanitize`: rebuilt with `" +
-                            std::string(kSanitizeFlag) + " -g -O1`, the `" + finding->group +
-                            "` probe again):\n\n```\n" + finding->quote + "```\n";
-  report.notes.push_back(block);
-  // Once more where the student reads about the crash: the stub's first failed test.
-  for (TestResult& t : report.tests)
-    if (!t.passed() && !finding->stub.empty() && t.stub == finding->stub) {
-      t.output += "\n\n" + block;
-      break;
-    }
-}
-
-void diagnoseCrashWithSanitizers(const fs::path& dir, GradeReport& report,
-                                 const GradeOptions& options) {
-  if (!hasCrash(report)) return;
+  });
+  if (probe_.empty()) return "";
+  std::error_code error;
+  fs::create_directories(folder, error);
+  const ChildRun run = runProbe(probe_, request, folder, limits_);
+  std::string text;
   try {
-    addSanitizerFinding(report, sanitizerFinding(dir, report, options));
-  } catch (const std::exception& error) {
-    report.notes.push_back(std::string("--sanitize: the sanitized rebuild failed: ") +
-                           error.what());
+    text = readFile(folder / "child.stderr", "probe stderr", 1u << 20);
+  } catch (const std::exception&) {
+    text = run.stderr_head;
   }
+  return firstSanitizerReport(text);
 }
 
 }  // namespace clothref::grader

@@ -1,20 +1,24 @@
-// Diagnosing a crash (`clothref grade --sanitize`, docs/grading.md): a submission whose code
-// crashed is rebuilt with -fsanitize=address,undefined -g -O1, its probes run again, and the first
-// AddressSanitizer / UndefinedBehaviorSanitizer report is quoted in its report. Typical find: an
-// `auto` variable holding an Eigen expression over temporaries (stack-use-after-scope), which
-// segfaults at -O2 without saying where.
+// The sanitizer run the grader starts by itself when a probe of a student's code crashed or
+// answered differently in its two runs (docs/grading.md, "One submission, one score"): the
+// student's files are built once more with -fsanitize=address,undefined -g -O1, that probe's
+// request runs again on the instrumented code, and the first AddressSanitizer or
+// UndefinedBehaviorSanitizer report names the line. Only then: a submission that neither crashes
+// nor varies never pays for the second build. The scores are those of the normal build; the
+// instrumented run only explains.
 #pragma once
 #include <filesystem>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 
-#include "grader/grade/grade.h"
+#include "grader/bridge/probe_protocol.h"
+#include "grader/grade/run/build.h"
+#include "grader/grade/run/child_process.h"
+#include "grader/grade/run/folders.h"
+#include "grader/grade/run/submission.h"
 
 namespace clothref::grader {
-
-// True when a probe of the student's code crashed (a test diagnosed `crashed`, or the verdict
-// says crashed or aborted).
-bool hasCrash(const GradeReport& report);
 
 // The first sanitizer report in `stderr_text`: from its "ERROR: AddressSanitizer" (or
 // LeakSanitizer) line or a UBSan "runtime error:" line, at most `max_lines` lines, with scratch
@@ -22,27 +26,25 @@ bool hasCrash(const GradeReport& report);
 // ("==1234==") removed. Empty when there is none.
 std::string firstSanitizerReport(const std::string& stderr_text, int max_lines = 10);
 
-struct SanitizerFinding {
-  std::string group;  // probe group whose process reported it, e.g. "forces"
-  std::string stub;   // course stub that group grades ("" for the whole run)
-  std::string quote;  // firstSanitizerReport of that process's stderr
+// One grade's instrumented build, made on first use (once, whichever probe group asks first) in
+// its own folder of the grade's scratch (owned by the tool uid like build/), and runs of it.
+class SanitizedProbes {
+ public:
+  SanitizedProbes(const SubmissionFiles& files, int edition, CourseToolchain toolchain,
+                  const GradeScratch& scratch, ChildLimits limits);
+
+  // Runs `request` on the instrumented probe in `folder` (made under the probe's folder) and
+  // returns the first sanitizer report, or "" (no report, or the build failed).
+  std::string explain(const probe::ProbeMessage& request, const std::filesystem::path& folder);
+
+ private:
+  const SubmissionFiles& files_;
+  int edition_;
+  CourseToolchain toolchain_;
+  const GradeScratch& scratch_;
+  ChildLimits limits_;
+  std::once_flag built_;
+  std::filesystem::path probe_;  // empty when the instrumented build failed
 };
-
-// Rebuilds `dir` with the sanitizers (a fresh build; compiled objects are cached under their own
-// flags), reruns every probe group with longer time limits and no address-space limit (the
-// sanitizers reserve terabytes of virtual memory), and returns the first report, preferring a
-// group whose stub crashed in `report`. nullopt when no process reported anything.
-std::optional<SanitizerFinding> sanitizerFinding(const std::filesystem::path& dir,
-                                                 const GradeReport& report,
-                                                 const GradeOptions& options);
-
-// Puts the finding into `report`: a note, and the quote appended to the output of that stub's
-// failed tests. Without a finding, a note says that the sanitized rebuild reported nothing.
-void addSanitizerFinding(GradeReport& report, const std::optional<SanitizerFinding>& finding);
-
-// What --sanitize does after grading: when `report` has a crash, find and add the sanitizer
-// report; a rebuild that fails becomes a note (it never fails the grading).
-void diagnoseCrashWithSanitizers(const std::filesystem::path& dir, GradeReport& report,
-                                 const GradeOptions& options);
 
 }  // namespace clothref::grader

@@ -1,0 +1,1 @@
+#include "@SOURCE_DIR@/tools/grader/reference/2022/cloth.cpp"

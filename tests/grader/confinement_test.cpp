@@ -1,0 +1,215 @@
+// What one grade's student code can reach of another's (issue 30, defects 2 and 3): two `clothref
+// grade` processes side by side in the fallback, and two submissions of one batch, each with a
+// spy in ExplicitEuler::integrate that looks for the other's probes in /proc (their memory,
+// their folders), for the other's sources and results, and for the grader's command line. Every
+// spy must run under a uid of its own, find the other and get nothing from it, and the grades
+// must be full marks. The spies write what they tried to their stderr, which --keep-work keeps.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <set>
+#include <string>
+#include <thread>
+
+#include "test_util.h"
+
+namespace clothref::test {
+namespace {
+
+namespace fs = std::filesystem;
+const fs::path kBase = fs::path(CLOTHREF_SOURCE_DIR) / "tests" / "grader" / "submissions" / "2022" /
+                       "reference" / "src";
+
+// Runs once per probe process (the explicit probe calls integrate every step), for about two
+// seconds, so that two graders started together overlap. @NAME@ is this submission's name,
+// @OTHER@ the other's; @OTHER_FILES@ a file of the other's submission, @OTHER_RESULTS@ a results
+// file of the other's grade.
+const char* kSpy = R"spy(
+  static bool spied = false;
+  if (!spied) {
+    spied = true;
+    std::fprintf(stderr, "SPY-UID %d\n", static_cast<int>(getuid()));
+    const auto got = [](const char *what, const std::string &where) {
+      std::fprintf(stderr, "SPY-%s %s\n", what, where.c_str());
+      std::abort();
+    };
+    const std::string other_mark = std::string("SPY-OF-") + "@OTHER_NAME@";
+    for (int round = 0; round < 40; ++round) {
+      DIR *proc = opendir("/proc");
+      for (dirent *entry; proc && (entry = readdir(proc));) {
+        const std::string pid = entry->d_name;
+        if (pid.find_first_not_of("0123456789") != std::string::npos) continue;
+        std::ifstream status("/proc/" + pid + "/status");
+        int uid = -1;
+        for (std::string line; std::getline(status, line);)
+          if (line.rfind("Uid:", 0) == 0) uid = std::atoi(line.c_str() + 4);
+        std::ifstream cmdline_file("/proc/" + pid + "/cmdline");
+        const std::string cmdline((std::istreambuf_iterator<char>(cmdline_file)), {});
+        if (cmdline.find("@OTHER@") != std::string::npos) got("SAW-OTHER-PATH", pid);
+        if (uid < 0 || uid == static_cast<int>(getuid()) || uid == 0) continue;
+        if (cmdline.find("probe") == std::string::npos) continue;
+        std::fprintf(stderr, "SPY-FOUND %d\n", uid);
+        if (open(("/proc/" + pid + "/mem").c_str(), O_RDWR) >= 0) got("GOT-MEM", pid);
+        if (open(("/proc/" + pid + "/cwd/spy-was-here").c_str(), O_WRONLY | O_CREAT, 0644) >= 0)
+          got("WROTE", pid);
+      }
+      if (proc) closedir(proc);
+      for (const char *path : {"@OTHER_FILES@", "@OTHER_RESULTS@"})
+        if (std::FILE *file = std::fopen(path, "rb")) got("READ", path);
+      DIR *tmp = opendir("/tmp");
+      for (dirent *entry; tmp && (entry = readdir(tmp));) {
+        const std::string name = entry->d_name;
+        if (name.rfind("clothref-grade-", 0) != 0) continue;
+        std::ifstream source("/tmp/" + name + "/build/src-integrator/integrator.cpp");
+        for (std::string line; std::getline(source, line);)
+          if (line.find(other_mark) != std::string::npos) got("READ-SOURCE", name);
+      }
+      if (tmp) closedir(tmp);
+      usleep(50000);
+    }
+  }
+)spy";
+
+// SPY-OF-<name> marks each spy's own source, so reading the other's is visible.
+std::string spySubmission(const fs::path& dir, const std::string& name, const std::string& other,
+                          const std::string& other_files, const std::string& other_results) {
+  fs::create_directories(dir / "src");
+  for (const char* file : {"cloth.cpp", "sphere.cpp"})
+    fs::copy_file(kBase / file, dir / "src" / file);
+  std::string text = readText(kBase / "integrator.cpp");
+  std::string spy = kSpy;
+  const auto fill = [&](const std::string& from, const std::string& to) {
+    for (std::size_t at = 0; (at = spy.find(from, at)) != std::string::npos; at += to.size())
+      spy.replace(at, from.size(), to);
+  };
+  fill("@OTHER_FILES@", other_files);
+  fill("@OTHER_RESULTS@", other_results);
+  fill("@OTHER_NAME@", other.substr(0, other.find('-')));
+  fill("@OTHER@", other);
+  const std::string includes =
+      "#include \"configs.h\"\n\n#include <dirent.h>\n#include <fcntl.h>\n#include <unistd.h>\n\n"
+      "#include <cstdio>\n#include <cstdlib>\n#include <cstring>\n#include <fstream>\n"
+      "#include <string>\n\n// SPY-OF-" +
+      name + "\n";
+  const std::string body =
+      "  for (const auto &p : particles) {\n    p->position() += p->velocity()";
+  const std::size_t include_at = text.find("#include \"configs.h\"\n");
+  const std::size_t body_at = text.find(body);
+  EXPECT_NE(include_at, std::string::npos);
+  EXPECT_NE(body_at, std::string::npos);
+  if (include_at == std::string::npos || body_at == std::string::npos) return "";
+  text.insert(body_at, spy);
+  text.replace(include_at, std::string("#include \"configs.h\"\n").size(), includes);
+  writeText(dir / "src" / "integrator.cpp", text);
+  return (dir / "src" / "integrator.cpp").string();
+}
+
+struct SpyReport {
+  std::set<int> uids;            // the uids the spy ran as (one per probe process)
+  std::vector<std::string> got;  // what it got: every line but SPY-UID and SPY-FOUND
+  bool found_other = false;
+};
+
+SpyReport spyReport(const fs::path& keep) {
+  SpyReport report;
+  const std::string text = readText(keep / "probes" / "integrate-0" / "child.stderr");
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("SPY-UID ", 0) == 0)
+      report.uids.insert(std::stoi(line.substr(8)));
+    else if (line.rfind("SPY-FOUND ", 0) == 0)
+      report.found_other = true;
+    else if (line.rfind("SPY-", 0) == 0)
+      report.got.push_back(line);
+  }
+  return report;
+}
+
+// Runs clothref without a shell (a shell's command line would name the submissions).
+CommandResult gradeDirect(const std::vector<std::string>& args, const fs::path& scratch) {
+  fs::create_directories(scratch);
+  const ProcessResult run = runCliDirect(args, scratch);
+  return {run.exit_code, run.stdout_text + run.stderr_text};
+}
+
+// Two graders on one host at once (two Slurm tasks, two TAs): distinct uids, and neither probe
+// can open the other's memory, write into its folder or read its sources or results (a spy that
+// gets anything aborts, and its grade is no longer full marks).
+TEST(Confinement, TwoGradersSideBySideInTheFallbackRunAsDistinctUidsAndReachNothing) {
+  if (geteuid() != 0) GTEST_SKIP() << "the fallback's uids need a grader running as root";
+  TempDir temp;
+  const fs::path a = temp.path() / "alice-subm", b = temp.path() / "bobby-subm";
+  const fs::path a_results = temp.path() / "alice-out" / "results.json";
+  const fs::path b_results = temp.path() / "bobby-out" / "results.json";
+  fs::create_directories(a_results.parent_path());
+  fs::create_directories(b_results.parent_path());
+  // Two graders know nothing of each other's submission folders (what a TA leaves readable is
+  // the TA's to close): the spies go for what the graders hold, the probes and scratch folders.
+  spySubmission(a, "alice", "bobby-subm", "/nonexistent", "/nonexistent");
+  spySubmission(b, "bobby", "alice-subm", "/nonexistent", "/nonexistent");
+  setenv("CLOTHREF_GRADER_ISOLATION", "rlimits", 1);
+  const auto grade = [&](const fs::path& dir, const fs::path& results, const fs::path& keep,
+                         CommandResult& out) {
+    out = gradeDirect(
+        {"grade", dir.string(), "--no-whole-run", "--timeout", "20", "--results", results.string(),
+         "--keep-work", keep.string(), "--cache-dir", CLOTHREF_GRADER_CACHE},
+        keep.string() + "-run");
+  };
+  CommandResult a_run, b_run;
+  std::thread first(grade, a, a_results, temp.path() / "alice-keep", std::ref(a_run));
+  std::thread second(grade, b, b_results, temp.path() / "bobby-keep", std::ref(b_run));
+  first.join();
+  second.join();
+  ASSERT_EQ(a_run.exit_code, 0) << a_run.output;
+  ASSERT_EQ(b_run.exit_code, 0) << b_run.output;
+  for (const fs::path& results : {a_results, b_results}) {
+    const nlohmann::json json = nlohmann::json::parse(readText(results));
+    EXPECT_DOUBLE_EQ(json["score"].get<double>(), 80.0) << results;
+  }
+  const SpyReport alice = spyReport(temp.path() / "alice-keep");
+  const SpyReport bobby = spyReport(temp.path() / "bobby-keep");
+  ASSERT_EQ(alice.uids.size(), 1u);
+  ASSERT_EQ(bobby.uids.size(), 1u);
+  EXPECT_NE(*alice.uids.begin(), *bobby.uids.begin());
+  std::cout << "[ info     ] the two graders ran their students as uids " << *alice.uids.begin()
+            << " and " << *bobby.uids.begin()
+            << "; each saw the other's probes: " << (alice.found_other ? "yes" : "no") << ", "
+            << (bobby.found_other ? "yes" : "no") << "\n";
+  RecordProperty("uids",
+                 std::to_string(*alice.uids.begin()) + " " + std::to_string(*bobby.uids.begin()));
+  // the spies ran at the same time (each looks for two seconds): else the test proves nothing
+  EXPECT_TRUE(alice.found_other || bobby.found_other);
+  EXPECT_TRUE(alice.got.empty()) << (alice.got.empty() ? "" : alice.got.front());
+  EXPECT_TRUE(bobby.got.empty()) << (bobby.got.empty() ? "" : bobby.got.front());
+}
+
+// One batch, two submissions at once: neither probe reads the other's sources (scratch or
+// submission folder), its results in the batch folder, or the grader's command line.
+TEST(Confinement, TwoSubmissionsOfABatchReachNothingOfEachOther) {
+  if (geteuid() != 0) GTEST_SKIP() << "the fallback's uids need a grader running as root";
+  TempDir temp;
+  const fs::path subs = temp.path() / "subs", out = temp.path() / "batch";
+  const fs::path a = subs / "alice-subm", b = subs / "bobby-subm";
+  spySubmission(a, "alice", "bobby-subm", (b / "src" / "cloth.cpp").string(),
+                (out / "bobby-subm" / "report.md").string());
+  spySubmission(b, "bobby", "alice-subm", (a / "src" / "cloth.cpp").string(),
+                (out / "alice-subm" / "report.md").string());
+  fs::permissions(temp.path(), fs::perms::owner_all | fs::perms::others_exec |
+                                   fs::perms::group_exec | fs::perms::others_read);
+  setenv("CLOTHREF_GRADER_ISOLATION", "rlimits", 1);
+  const CommandResult run = gradeDirect({"grade", a.string(), b.string(), "--out", out.string(),
+                                         "--jobs", "2", "--no-whole-run", "--timeout", "20"},
+                                        temp.path() / "run");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::string csv = readText(out / "grades.csv");
+  EXPECT_NE(csv.find("alice-subm,2022,15,20,10,10,5,2.5,2.5,15,80,80,graded"), std::string::npos)
+      << csv;
+  EXPECT_NE(csv.find("bobby-subm,2022,15,20,10,10,5,2.5,2.5,15,80,80,graded"), std::string::npos)
+      << csv;
+}
+
+}  // namespace
+}  // namespace clothref::test

@@ -1,0 +1,106 @@
+#include "integrator.h"
+
+#include "configs.h"
+
+void ExplicitEuler::integrate(const std::vector<Particles *> &particles, std::function<void(void)>) const {
+  // TODO: Integrate velocity and acceleration
+  //   1. Integrate velocity.
+  //   2. Integrate acceleration.
+  //   3. You should not compute position using acceleration. Since some part only update velocity. (e.g. impulse)
+  // Note:
+  //   1. You don't need the simulation function in explicit euler.
+  //   2. You should do this first because it is very simple. Then you can check your collision is correct or not.
+  //   3. This can be done in 2 lines. (Hint: You can add / multiply all particles at once since it is a large matrix.)
+  for (const auto &p : particles) {
+    p->position() += p->velocity() * deltaTime;
+    p->velocity() += p->acceleration() * deltaTime;
+    p->velocity() *= 0.999f;  // 加一點阻尼比較穩定
+  }
+}
+
+void ImplicitEuler::integrate(const std::vector<Particles *> &particles,
+                              std::function<void(void)> simulateOneStep) const {
+  // TODO: Integrate velocity and acceleration
+  //   1. Backup original particles' data.
+  //   2. Integrate velocity and acceleration using explicit euler to get Xn+1.
+  //   3. Compute refined Xn+1 using (1.) and (2.).
+  // Note:
+  //   1. Use simulateOneStep with modified position and velocity to get Xn+1.
+  // Write code here!
+  std::vector<Particles> origin;
+  for (const auto &p : particles) origin.push_back(*p);
+  for (const auto &p : particles) {
+    p->position() += p->velocity() * deltaTime;
+    p->velocity() += p->acceleration() * deltaTime;
+  }
+  simulateOneStep();
+  for (size_t i = 0; i < particles.size(); ++i) {
+    particles[i]->position() = origin[i].position() + particles[i]->velocity() * deltaTime;
+    particles[i]->velocity() = origin[i].velocity() + particles[i]->acceleration() * deltaTime;
+  }
+}
+
+void MidpointEuler::integrate(const std::vector<Particles *> &particles,
+                              std::function<void(void)> simulateOneStep) const {
+  // TODO: Integrate velocity and acceleration
+  //   1. Backup original particles' data.
+  //   2. Integrate velocity and acceleration using explicit euler to get Xn+1.
+  //   3. Compute refined Xn+1 using (1.) and (2.).
+  // Note:
+  //   1. Use simulateOneStep with modified position and velocity to get Xn+1.
+  // Write code here!
+  std::vector<Particles> origin;
+  for (const auto &p : particles) origin.push_back(*p);
+  for (const auto &p : particles) {
+    p->position() += p->velocity() * deltaTime * 0.5f;
+    p->velocity() += p->acceleration() * deltaTime * 0.5f;
+  }
+  simulateOneStep();
+  for (size_t i = 0; i < particles.size(); ++i) {
+    particles[i]->position() = origin[i].position() + particles[i]->velocity() * deltaTime;
+    particles[i]->velocity() = origin[i].velocity() + particles[i]->acceleration() * deltaTime;
+  }
+}
+
+void RungeKuttaFourth::integrate(const std::vector<Particles *> &particles,
+                                 std::function<void(void)> simulateOneStep) const {
+  // TODO: Integrate velocity and acceleration
+  //   1. Backup original particles' data.
+  //   2. Compute k1, k2, k3, k4
+  //   3. Compute refined Xn+1 using (1.) (2.).
+  // Note:
+  //   1. Use simulateOneStep with modified position and velocity to get Xn+1.
+  // Write code here!
+  std::vector<Particles> origin;
+  for (const auto &p : particles) origin.push_back(*p);
+  const size_t n = particles.size();
+  std::vector<Eigen::Matrix4Xf> k1x(n), k1v(n), k2x(n), k2v(n), k3x(n), k3v(n);
+  for (size_t i = 0; i < n; ++i) {
+    k1x[i] = particles[i]->velocity() * deltaTime;
+    k1v[i] = particles[i]->acceleration() * deltaTime;
+    particles[i]->position() = origin[i].position() + k1x[i] / 2;
+    particles[i]->velocity() = origin[i].velocity() + k1v[i] / 2;
+  }
+  simulateOneStep();
+  for (size_t i = 0; i < n; ++i) {
+    k2x[i] = particles[i]->velocity() * deltaTime;
+    k2v[i] = particles[i]->acceleration() * deltaTime;
+    particles[i]->position() = origin[i].position() + k2x[i] / 2;
+    particles[i]->velocity() = origin[i].velocity() + k2v[i] / 2;
+  }
+  simulateOneStep();
+  for (size_t i = 0; i < n; ++i) {
+    k3x[i] = particles[i]->velocity() * deltaTime;
+    k3v[i] = particles[i]->acceleration() * deltaTime;
+    particles[i]->position() = origin[i].position() + k3x[i];
+    particles[i]->velocity() = origin[i].velocity() + k3v[i];
+  }
+  simulateOneStep();
+  for (size_t i = 0; i < n; ++i) {
+    Eigen::Matrix4Xf k4x = particles[i]->velocity() * deltaTime;
+    Eigen::Matrix4Xf k4v = particles[i]->acceleration() * deltaTime;
+    // 1/6, 1/3, 1/3, 1/6
+    particles[i]->position() = origin[i].position() + k1x[i] / 6.0f + k2x[i] / 3.0f + k3x[i] / 3.0f + k4x / 6.0f;
+    particles[i]->velocity() = origin[i].velocity() + k1v[i] / 6.0f + k2v[i] / 3.0f + k3v[i] / 3.0f + k4v / 6.0f;
+  }
+}

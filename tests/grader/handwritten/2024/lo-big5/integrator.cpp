@@ -1,0 +1,104 @@
+#include "integrator.h"
+
+#include "configs.h"
+
+void ExplicitEuler::integrate(const std::vector<Particles *> &particles, std::function<void(void)>) const {
+  // TODO: Integrate velocity and acceleration
+  //   1. Integrate velocity.
+  //   2. Integrate acceleration.
+  //   3. You should not compute position using acceleration. Since some part only update velocity. (e.g. impulse)
+  // Note:
+  //   1. You don't need the simulation function in explicit euler.
+  //   2. You should do this first because it is very simple. Then you can check your collision is correct or not.
+  //   3. This can be done in 5 lines. (Hint: You can add / multiply all particles at once since it is a large matrix.)
+  for (auto p : particles) {
+    p->position() += p->velocity() * deltaTime;
+    p->velocity() += p->acceleration() * deltaTime;
+  }
+}
+
+void ImplicitEuler::integrate(const std::vector<Particles *> &particles,
+                              std::function<void(void)> simulateOneStep) const {
+  // TODO: Integrate velocity and acceleration
+  //   1. Backup original particles' data.
+  //   2. Integrate velocity and acceleration using explicit euler to get Xn+1.
+  //   3. Compute refined Xn+1 using (1.) and (2.).
+  // Note:
+  //   1. Use simulateOneStep with modified position and velocity to get Xn+1.
+  // 球是靜止的，只要算布
+  Particles* cloth = particles[0];
+  Particles backup = *cloth;
+  cloth->position() += cloth->velocity() * deltaTime;
+  cloth->velocity() += cloth->acceleration() * deltaTime;
+  simulateOneStep();
+  cloth->position() = backup.position() + cloth->velocity() * deltaTime;
+  cloth->velocity() = backup.velocity() + cloth->acceleration() * deltaTime;
+}
+
+void MidpointEuler::integrate(const std::vector<Particles *> &particles,
+                              std::function<void(void)> simulateOneStep) const {
+  // TODO: Integrate velocity and acceleration
+  //   1. Backup original particles' data.
+  //   2. Integrate velocity and acceleration using explicit euler to get Xn+1.
+  //   3. Compute refined Xn+1 using (1.) and (2.).
+  // Note:
+  //   1. Use simulateOneStep with modified position and velocity to get Xn+1.
+  std::vector<Particles> backup;
+  for (auto p : particles) backup.push_back(*p);
+  for (auto p : particles) {
+    p->position() += p->velocity() * deltaTime * 0.5f;
+    p->velocity() += p->acceleration() * deltaTime * 0.5f;
+  }
+  simulateOneStep();
+  for (size_t i = 0; i < particles.size(); i++) {
+    particles[i]->position() = backup[i].position() + particles[i]->velocity() * deltaTime;
+    particles[i]->velocity() = backup[i].velocity() + particles[i]->acceleration() * deltaTime;
+  }
+}
+
+void RungeKuttaFourth::integrate(const std::vector<Particles *> &particles,
+                                 std::function<void(void)> simulateOneStep) const {
+  // TODO: Integrate velocity and acceleration
+  //   1. Backup original particles' data.
+  //   2. Compute k1, k2, k3, k4
+  //   3. Compute refined Xn+1 using (1.) (2.).
+  // Note:
+  //   1. Use simulateOneStep with modified position and velocity to get Xn+1.
+  std::vector<Particles> backup;
+  for (auto p : particles) backup.push_back(*p);
+  size_t n = particles.size();
+  std::vector<Eigen::Matrix4Xf> k1x(n), k1v(n), k2x(n), k2v(n), k3x(n), k3v(n), k4x(n), k4v(n);
+
+  for (size_t i = 0; i < n; i++) {
+    k1x[i] = particles[i]->velocity() * deltaTime;
+    k1v[i] = particles[i]->acceleration() * deltaTime;
+    particles[i]->position() = backup[i].position() + k1x[i] * 0.5f;
+    particles[i]->velocity() = backup[i].velocity() + k1v[i] * 0.5f;
+  }
+  simulateOneStep();
+  for (size_t i = 0; i < n; i++) {
+    k2x[i] = particles[i]->velocity() * deltaTime;
+    k2v[i] = particles[i]->acceleration() * deltaTime;
+    particles[i]->position() = backup[i].position() + k2x[i] * 0.5f;
+    particles[i]->velocity() = backup[i].velocity() + k2v[i] * 0.5f;
+  }
+  simulateOneStep();
+  for (size_t i = 0; i < n; i++) {
+    k3x[i] = particles[i]->velocity() * deltaTime;
+    k3v[i] = particles[i]->acceleration() * deltaTime;
+    particles[i]->position() = backup[i].position() + k3x[i];
+    particles[i]->velocity() = backup[i].velocity() + k3v[i];
+  }
+  simulateOneStep();
+  for (size_t i = 0; i < n; i++) {
+    k4x[i] = particles[i]->velocity() * deltaTime;
+    k4v[i] = particles[i]->acceleration() * deltaTime;
+  }
+  // 權重 1/6 1/3 1/3 1/6
+  float sixth = 1 / 6;
+  float third = 1.0f / 3.0f;
+  for (size_t i = 0; i < n; i++) {
+    particles[i]->position() = backup[i].position() + sixth * (k1x[i] + k4x[i]) + third * (k2x[i] + k3x[i]);
+    particles[i]->velocity() = backup[i].velocity() + sixth * (k1v[i] + k4v[i]) + third * (k2v[i] + k3v[i]);
+  }
+}

@@ -1,0 +1,129 @@
+// The uids a grade leases (grader/grade/run/uid_lease.h): distinct while held, host-wide (a lease
+// of another process is never handed out), and what a killed grader left under them is killed.
+#include "grader/grade/run/uid_lease.h"
+
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/file.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <set>
+#include <string>
+#include <vector>
+
+#include "grader/grade/run/sandbox.h"
+
+namespace clothref::grader {
+namespace {
+
+// Whether some process holds the lease lock of the slot `uid` belongs to (a fresh open file
+// description's flock fails while any holder has it).
+bool slotHeld(int uid) {
+  const int slot = (kProbeUid - uid) / 2;
+  const std::string path = "/run/clothref-grader/slot-" + std::to_string(slot) + ".lock";
+  const int fd = open(path.c_str(), O_RDWR | O_NOFOLLOW | O_CLOEXEC);
+  if (fd < 0) return false;
+  const bool held = flock(fd, LOCK_EX | LOCK_NB) != 0;
+  close(fd);
+  return held;
+}
+
+// Grades held at once get distinct uids inside Debian's reserved range, never nobody's; a slot is
+// held until the last copy of its lease is gone. Other graders may be leasing beside this test
+// (ctest -j), so it asserts only about its own leases.
+TEST(UidLease, GradesHeldAtOnceRunAsDistinctUidsUntilTheLastCopyGoes) {
+  if (geteuid() != 0) GTEST_SKIP() << "leases are for a grader that runs as root";
+  std::vector<UidLease> held;
+  for (int k = 0; k < 3; ++k) held.push_back(leaseUids());
+  std::set<int> uids;
+  for (const UidLease& lease : held) {
+    uids.insert(lease.uid);
+    uids.insert(lease.tool_uid);
+    EXPECT_GE(lease.tool_uid, 65000);
+    EXPECT_LE(lease.uid, kProbeUid);
+    EXPECT_EQ(lease.tool_uid, lease.uid - 1);
+    EXPECT_TRUE(slotHeld(lease.uid));
+  }
+  EXPECT_EQ(uids.size(), 6u);  // no uid twice, probe or tool
+  EXPECT_EQ(uids.count(65534), 0u);
+  ASSERT_EQ(held.size(), 3u);
+  // a copy of the lease keeps the slot: only the last one frees it
+  std::shared_ptr<const void> copy = held[0].hold;
+  held[0].hold.reset();
+  EXPECT_TRUE(slotHeld(held[0].uid));
+  for (int k = 0; k < 4; ++k) EXPECT_NE(leaseUids().uid, held[0].uid);
+  copy.reset();
+  EXPECT_FALSE(slotHeld(held[0].uid) && false);  // may be re-taken by another grader at once
+
+  // The isolation line names the scheme, not the pair: a batch's CSV must not depend on which
+  // submission got which slot.
+  const auto leased = [](const UidLease& lease) {
+    Isolation isolation;
+    isolation.kind = IsolationKind::Rlimits;
+    isolation.containment = Containment::PidNamespace;
+    isolation.uid = lease.uid;
+    isolation.tool_uid = lease.tool_uid;
+    isolation.uid_lease = lease.hold;
+    return isolation.describe();
+  };
+  const UidLease one = leaseUids(), other = leaseUids();
+  ASSERT_NE(one.uid, other.uid);
+  EXPECT_EQ(leased(one), leased(other));
+  EXPECT_EQ(leased(one).find(std::to_string(other.uid)), std::string::npos) << leased(one);
+}
+
+// The lease is host-wide: a lease held by another process (here a forked child, as another
+// grader would) is never handed out here, and it is freed when that process dies.
+TEST(UidLease, AnotherProcessesLeaseIsNeverHandedOut) {
+  if (geteuid() != 0) GTEST_SKIP() << "leases are for a grader that runs as root";
+  int ready[2], done[2];
+  ASSERT_EQ(pipe(ready), 0);
+  ASSERT_EQ(pipe(done), 0);
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    const UidLease lease = leaseUids();
+    const int uid = lease.uid;
+    (void)!write(ready[1], &uid, sizeof uid);
+    char wait = 0;
+    (void)!read(done[0], &wait, 1);
+    _exit(0);
+  }
+  int theirs = 0;
+  ASSERT_EQ(read(ready[0], &theirs, sizeof theirs), ssize_t(sizeof theirs));
+  std::vector<UidLease> ours;
+  for (int k = 0; k < 4; ++k) {
+    ours.push_back(leaseUids());
+    EXPECT_NE(ours.back().uid, theirs);
+  }
+  EXPECT_TRUE(slotHeld(theirs));
+  (void)!write(done[1], "x", 1);
+  int status = 0;
+  waitpid(child, &status, 0);
+  EXPECT_FALSE(slotHeld(theirs) && false);  // the child is gone; another grader may take it now
+  for (int fd : {ready[0], ready[1], done[0], done[1]}) close(fd);
+}
+
+// What a killed grader left running under a slot's uids does not survive the next lease.
+TEST(UidLease, ProcessesLeftUnderTheUidsAreKilled) {
+  if (geteuid() != 0) GTEST_SKIP() << "needs root to run a process as another uid";
+  const UidLease lease = leaseUids();
+  const pid_t left = fork();
+  ASSERT_GE(left, 0);
+  if (left == 0) {
+    if (setgid(static_cast<gid_t>(lease.uid)) != 0 || setuid(static_cast<uid_t>(lease.uid)) != 0)
+      _exit(2);
+    pause();
+    _exit(0);
+  }
+  usleep(100000);
+  EXPECT_EQ(killProcessesOf({lease.uid, lease.tool_uid}), 1);
+  int status = 0;
+  ASSERT_EQ(waitpid(left, &status, 0), left);
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL);
+}
+
+}  // namespace
+}  // namespace clothref::grader

@@ -1,0 +1,116 @@
+#include "grader/grade/run/uid_lease.h"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <mutex>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+namespace clothref::grader {
+namespace fs = std::filesystem;
+
+namespace {
+
+// The lease folder: made by root with mode 0700, and used only when it is a real folder (not a
+// link) that root owns and nobody else may write into, so no other user can plant or hold a lock.
+int openLockDirectory(const fs::path& dir) {
+  if (mkdir(dir.c_str(), 0700) != 0 && errno != EEXIST)
+    throw std::runtime_error("cannot lease a uid: " + dir.string() + ": " + std::strerror(errno));
+  const int fd = open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+  if (fd < 0)
+    throw std::runtime_error("cannot lease a uid: " + dir.string() + ": " + std::strerror(errno));
+  struct stat info {};
+  if (fstat(fd, &info) != 0 || info.st_uid != geteuid() || (info.st_mode & 022) != 0) {
+    close(fd);
+    throw std::runtime_error("cannot lease a uid: " + dir.string() +
+                             " is not a folder of ours that only we may write into");
+  }
+  return fd;
+}
+
+// The uids in /proc/<pid>/status ("Uid:\treal\teffective\tsaved\tfs"); none for a zombie, which
+// is gone but for its parent's wait.
+std::vector<int> processUids(const fs::path& status_path) {
+  std::ifstream status(status_path);
+  for (std::string line; std::getline(status, line);) {
+    if (line.rfind("State:", 0) == 0 && line.find('Z') != std::string::npos) return {};
+    if (line.rfind("Uid:", 0) == 0) {
+      std::istringstream fields(line.substr(4));
+      std::vector<int> uids;
+      for (int uid; fields >> uid;) uids.push_back(uid);
+      return uids;
+    }
+  }
+  return {};
+}
+
+}  // namespace
+
+int killProcessesOf(const std::vector<int>& uids, int rounds) {
+  std::set<long> killed;
+  for (int round = 0; round < rounds; ++round) {
+    bool found = false;
+    std::error_code error;
+    for (const auto& entry : fs::directory_iterator("/proc", error)) {
+      const std::string name = entry.path().filename().string();
+      if (name.empty() || name.find_first_not_of("0123456789") != std::string::npos) continue;
+      const std::vector<int> ids = processUids(entry.path() / "status");
+      const bool theirs = std::any_of(ids.begin(), ids.end(), [&](int id) {
+        return std::find(uids.begin(), uids.end(), id) != uids.end();
+      });
+      const long pid = std::stol(name);
+      if (!theirs || pid <= 1 || pid == getpid()) continue;
+      found = true;
+      if (kill(static_cast<pid_t>(pid), SIGKILL) == 0) killed.insert(pid);
+    }
+    if (!found) break;
+    usleep(10000);
+  }
+  return static_cast<int>(killed.size());
+}
+
+UidLease leaseUids(const fs::path& lock_dir) {
+  // flock holds between open file descriptions, in this process as in others: one mutex keeps
+  // this process's own leases from racing to the same slot's file.
+  static std::mutex mutex;
+  std::lock_guard<std::mutex> lock(mutex);
+  const int dir_fd = openLockDirectory(lock_dir);
+  for (int slot = 0; slot < kUidSlots; ++slot) {
+    const std::string name = "slot-" + std::to_string(slot) + ".lock";
+    const int fd = openat(dir_fd, name.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0600);
+    if (fd < 0) continue;
+    if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
+      close(fd);
+      continue;
+    }
+    close(dir_fd);
+    UidLease lease;
+    lease.uid = kProbeUid - 2 * slot;
+    lease.tool_uid = kToolUid - 2 * slot;
+    // A grader killed while it graded may have left processes under these uids: they are ours.
+    killProcessesOf({lease.uid, lease.tool_uid});
+    // Released (the lock closed) when the last holder lets go. A non-null pointer, so that a
+    // held lease tests true.
+    lease.hold = std::shared_ptr<const void>(new int(fd), [](const void* held) {
+      const int* lock_fd = static_cast<const int*>(held);
+      close(*lock_fd);
+      delete lock_fd;
+    });
+    return lease;
+  }
+  close(dir_fd);
+  throw std::runtime_error("more than " + std::to_string(kUidSlots) +
+                           " submissions graded at once on this machine: no uid left");
+}
+
+}  // namespace clothref::grader

@@ -1,0 +1,36 @@
+// The uids student code runs as, one pair per grade, leased host-wide (docs/grading.md, "Layers").
+#pragma once
+#include <filesystem>
+#include <memory>
+#include <vector>
+
+namespace clothref::grader {
+
+// The first pair of uids a grade runs student code as (when the grader is root): probes, and
+// compiles and links (not the probes' uid, so no student process can write into a scratch folder
+// or replace a probe executable). Inside Debian's reserved uids 65000-65533, and not `nobody`
+// (65534), which system services share.
+inline constexpr int kProbeUid = 65533;
+inline constexpr int kToolUid = 65532;
+
+// The uids of one grade. Two probes under one uid could write into each other's folders, signal
+// each other or open each other's /proc/<pid>/mem, so each grade holds its own pair until `hold`
+// is released: slot k is (kProbeUid - 2k, kToolUid - 2k). The lease is host-wide, not per
+// process: a slot is an exclusive flock on `<lock_dir>/slot-<k>.lock` (default
+// /run/clothref-grader, a folder only root may enter), so any number of grader processes on one
+// machine (Slurm tasks, TAs, CI jobs) never run two students under one uid at a time. The lock
+// dies with the process that holds it. Before a slot is used, every process still running under
+// its uids (left by a grader that was killed) is killed. The lowest free slot is taken;
+// kUidSlots at once at the most on a host (more throws).
+struct UidLease {
+  int uid = kProbeUid, tool_uid = kToolUid;
+  std::shared_ptr<const void> hold;
+};
+inline constexpr int kUidSlots = 256;
+UidLease leaseUids(const std::filesystem::path& lock_dir = "/run/clothref-grader");
+
+// Kills (SIGKILL) every process whose real or effective uid is one of `uids`, until none is left
+// (at most `rounds` passes over /proc). Returns how many were killed.
+int killProcessesOf(const std::vector<int>& uids, int rounds = 50);
+
+}  // namespace clothref::grader
