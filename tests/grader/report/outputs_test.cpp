@@ -392,6 +392,11 @@ TEST(OneTruth, EveryOutputNamesTheSameCausesAndTheSamePoints) {
     const std::string xml = test::readText(prefix + ".xml");
     const std::string html = test::readText(prefix + ".html");
     const nlohmann::json row = nlohmann::json::parse(test::readText(temp.path() / "batch" / name / "row.json"));
+    // no scratch path of the grader in any of them (report.html embedded the whole run's)
+    for (const std::string& text : {md, xml, html, results.dump(), batch_results.dump(),
+                                     test::readText(temp.path() / "batch" / name / "report.html")})
+      for (const char* scratch : {"clothref-grade-", "clothref-report-", "/src-cloth/"})
+        EXPECT_EQ(text.find(scratch), std::string::npos) << scratch;
     // points: one rounding everywhere
     const std::string total = points(results["score"].get<double>());
     EXPECT_EQ(points(batch_results["score"].get<double>()), total);
