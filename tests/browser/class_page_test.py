@@ -3,12 +3,16 @@ tools/grader/grade/report/html_report.cpp, tools/pages/assets/class.js).
 
 Usage: class_page_test.py --cli build/bin/clothref --screenshots DIR
 
-A batch of 30 submissions is made of markers (row.json) and results.json files with known scores
-and causes, so `clothref grade ... --out BATCHDIR` rebuilds grades.csv and index.html from them
-without grading anything (as it does after an interrupted batch). Checks: no console message, no
-network request, 30 rows, sorting by total (both ways) and by name, filtering by cause and by
-verdict, the histogram counts all 30, the cause table counts and links the right reports, a
-check's pass rate, the page opens in under 2 s. Screenshot: class-index.png.
+A batch of 30 graded submissions and one that could not be graded is made of markers (row.json)
+and results.json files with known scores and causes, so `clothref grade ... --out BATCHDIR`
+rebuilds grades.csv and index.html from them without grading anything (as it does after an
+interrupted batch). Checks: no console message, no network request, 30 rows, sorting by total
+(both ways) and by name, filtering by cause and by verdict, the histogram counts all 30 and labels
+its bins and axes, the not-gradable submission listed apart and left out of the statistics, the
+cause table counts and links the right reports, a check's pass rate, causes as chips (a guess
+marked), the page opens in under 2 s; at 1280 and 1920 px every column of the table is visible
+without scrolling and every row is one line. Screenshots: class-index.png, class-index-1280.png,
+class-index-1920.png.
 """
 import json
 import os
@@ -51,6 +55,8 @@ def fixture(batch, subs, n=30):
                  {'name': 'Cloth::computeSpringForce: one spring',
                   'status': 'failed' if causes else 'passed',
                   'tags': ['Cloth::computeSpringForce', *causes]}]
+        if i == 1:  # a guess, as the grader's extra_data says it
+            tests[2]['extra_data'] = {'causes': [{'id': 'spring-force-sign', 'likely': False}]}
         with open(os.path.join(folder, 'results.json'), 'w') as f:
             json.dump({'score': total, 'tests': tests}, f)
         with open(os.path.join(folder, 'report.md'), 'w') as f:
@@ -58,6 +64,19 @@ def fixture(batch, subs, n=30):
         with open(os.path.join(folder, 'row.json'), 'w') as f:
             json.dump(row, f)
         expected[name] = (total, verdict, causes, passed)
+    # one a typo'd path became: not graded, apart from the statistics
+    os.makedirs(os.path.join(subs, 'zz-typo'))
+    folder = os.path.join(batch, 'zz-typo')
+    os.makedirs(folder)
+    with open(os.path.join(folder, 'results.json'), 'w') as f:
+        json.dump({'score': 0, 'tests': []}, f)
+    with open(os.path.join(folder, 'report.md'), 'w') as f:
+        f.write('# Grading report: zz-typo\n')
+    with open(os.path.join(folder, 'row.json'), 'w') as f:
+        json.dump({'submission': 'zz-typo', 'dir': os.path.join(subs, 'zz-typo'), 'edition': 0,
+                   'stub_scores': {}, 'stub_max': {}, 'total': 0.0, 'max': 0.0,
+                   'verdict': 'not-gradable', 'isolation': '',
+                   'problem': 'none of cloth.cpp, sphere.cpp, integrator.cpp found', 'seconds': 0.1}, f)
     return expected
 
 
@@ -73,7 +92,7 @@ def main():
         expected = fixture(batch, subs)
         names = sorted(expected)
         result = subprocess.run([options.cli, 'grade', '--out', batch,
-                                 *[os.path.join(subs, n) for n in names]],
+                                 *[os.path.join(subs, n) for n in names + ['zz-typo']]],
                                 capture_output=True, text=True)
         checks.check(result.returncode == 0, f'grade rebuilt the batch: {result.stderr.strip()}')
         page = os.path.join(batch, 'index.html')
@@ -116,6 +135,24 @@ def main():
             bars = b.js("return [...document.querySelectorAll('.cl-hist-bar')]"
                         ".map((r) => Number(r.dataset.count))")
             checks.check(len(bars) == 10 and sum(bars) == 30, f'histogram of 30 totals {bars}')
+            labels = b.js("return [...document.querySelectorAll('.cl-hist-label')]"
+                          ".map((t) => t.textContent)")
+            checks.check(len(labels) == 10 and labels[0] == '0–3.2' and labels[-1] == '28.8–32',
+                         f'the bins are labelled {labels}')
+            axes = b.js("return [...document.querySelectorAll('.cl-hist text')]"
+                        ".map((t) => t.textContent)")
+            checks.check('submissions' in axes and 'total (points of 32)' in axes,
+                         'the axes are labelled')
+            apart = b.js("return [...document.querySelectorAll('.cl-apart tr[data-name]')]"
+                         ".map((tr) => [tr.dataset.name, tr.cells[1].textContent])")
+            checks.check(apart == [['zz-typo', 'not-gradable']], f'not graded, apart: {apart}')
+            summary = b.js("return document.querySelector('.cl-summary').textContent")
+            mean = sum(expected[n][0] for n in names) / 30
+            checks.check(f'mean total {round(mean * 1000) / 1000:g} / 32' in summary and
+                         '1 not graded' in summary, f'the statistics leave it out: {summary}')
+            chips = b.js("return [...document.querySelectorAll('.cl-submissions tr[data-name=\"student01\"] .cl-chip')]"
+                         ".map((c) => c.textContent)")
+            checks.check(chips == ['spring-force-sign?'], f'a guess is a marked chip: {chips}')
             cause = b.js("const tr = document.querySelector('.cl-causes tr[data-cause=\"backup-aliases\"]');"
                          "return tr ? [tr.cells[1].textContent,"
                          " [...tr.querySelectorAll('a')].map((a) => a.getAttribute('href'))] : null")
@@ -131,7 +168,34 @@ def main():
             browser.check_quiet(b, checks, url, 'class')
         finally:
             b.close()
+        for width in (1280, 1920):
+            check_fits(page, width, checks, options.screenshots)
     checks.finish()
+
+
+def check_fits(page, width, checks, screenshots):
+    """At `width` px: no horizontal scrolling, every column of the table inside the window, every
+    row one line."""
+    b = browser.Browser(width=width, height=900)
+    try:
+        b.open(page)
+        scroll = b.js("return [document.documentElement.scrollWidth, window.innerWidth]")
+        checks.check(scroll[0] <= scroll[1], f'{width} px: no horizontal scrolling {scroll}')
+        columns = b.js("return [...document.querySelectorAll('.cl-submissions th')].map((th) => {"
+                       " const r = th.getBoundingClientRect();"
+                       " return [th.textContent, r.left, r.right, r.width]; })")
+        outside = [c for c in columns if c[1] < 0 or c[2] > width or c[3] < 20]
+        checks.check(len(columns) == 13 and not outside,
+                     f'{width} px: all {len(columns)} columns visible ({outside})')
+        heights = b.js("return [...document.querySelectorAll('.cl-submissions tbody tr')]"
+                       ".map((tr) => tr.getBoundingClientRect().height)")
+        line = b.js("return parseFloat(getComputedStyle(document.querySelector("
+                    "'.cl-submissions td')).lineHeight) || 20")
+        checks.check(heights and max(heights) < 2 * line,
+                     f'{width} px: every row one line (tallest {max(heights):.0f} px, line {line:.0f} px)')
+        b.save_screenshot(os.path.join(screenshots, f'class-index-{width}.png'))
+    finally:
+        b.close()
 
 
 if __name__ == '__main__':

@@ -3,7 +3,9 @@
 // outside (tools/clothref/cmd_view.cpp). The page in a real browser: tests/browser/.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
+#include <sstream>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -160,6 +162,70 @@ TEST(ViewCli, BadInputIsOneLineAndNoPage) {
     EXPECT_NE(result.output.find(c.message), std::string::npos) << result.output;
     EXPECT_EQ(std::count(result.output.begin(), result.output.end(), '\n'), 1) << result.output;
     EXPECT_FALSE(fs::exists(out)) << c.args;
+  }
+}
+
+// Two traces whose steps are not the same times (dt 1e-3 and 2e-3) are refused, not compared
+// step by step: step 10 is 0.01 s in one and 0.02 s in the other.
+TEST(ViewCli, TracesWithDifferentDtAreRefused) {
+  const test::TempDir dir;
+  const std::string a = trace(dir, "a.jsonl", "--scene spring --steps 20 --dt 0.001");
+  const std::string b = trace(dir, "b.jsonl", "--scene spring --steps 20 --dt 0.002");
+  const auto result = test::runCli("view " + a + " " + b + " -o " + dir.file("view.html"));
+  EXPECT_EQ(result.exit_code, 2) << result.output;
+  EXPECT_NE(result.output.find("b.jsonl: dt 0.002 s differs from"), std::string::npos)
+      << result.output;
+  EXPECT_NE(result.output.find("not the same time"), std::string::npos) << result.output;
+  EXPECT_FALSE(fs::exists(dir.file("view.html")));
+}
+
+// A 1 kB trace whose header claims 10^12 steps: refused at once where the file ends ("trace ends
+// after step 0", diff's rule), within an address space of 1 GB; nothing is allocated for the
+// claim (it was: out of memory after 9 s).
+TEST(ViewCli, BoundedByWhatItReadsNotByTheHeadersClaim) {
+  const test::TempDir dir;
+  const std::string a = trace(dir, "a.jsonl", "--scene spring --steps 10");
+  std::istringstream in(test::readText(a));
+  std::string header, first;
+  std::getline(in, header);
+  std::getline(in, first);
+  nlohmann::json json = nlohmann::json::parse(header);
+  json["steps"] = 1000000000000LL;
+  json["stride"] = 1;
+  test::writeText(dir.file("claim.jsonl"), json.dump() + "\n" + first + "\n");
+  ASSERT_LT(fs::file_size(dir.file("claim.jsonl")), 2000u);
+  for (const std::string& pair : {std::string(), dir.file("claim.jsonl")}) {
+    std::vector<std::string> args = {"view", dir.file("claim.jsonl")};
+    if (!pair.empty()) args.push_back(pair);
+    args.insert(args.end(), {"-o", dir.file("view.html")});
+    const auto start = std::chrono::steady_clock::now();
+    const test::ProcessResult run =
+        test::runCliDirect(args, dir.path(), "", 1ull << 30);
+    EXPECT_EQ(run.exit_code, 2) << run.stderr_text;
+    EXPECT_NE(run.stderr_text.find("trace ends after step 0"), std::string::npos) << run.stderr_text;
+    EXPECT_EQ(run.stderr_text.find("out of memory"), std::string::npos) << run.stderr_text;
+    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(5));
+    EXPECT_LT(run.max_rss_kb, 200 * 1024) << "KiB";
+  }
+  EXPECT_FALSE(fs::exists(dir.file("view.html")));
+}
+
+// Strides 3 and 2 over 10 steps meet at steps 0, 6 and 10 (the last step is always recorded):
+// the frames counted from the headers are the steps the files hold.
+TEST(ViewCli, DifferentStridesMeetAtTheirCommonSteps) {
+  const test::TempDir dir;
+  const std::string a = trace(dir, "a.jsonl", "--scene spring --steps 10 --stride 3");
+  const std::string b = trace(dir, "b.jsonl", "--scene spring --steps 10 --stride 2");
+  for (const char* frames : {"0", "2"}) {
+    const auto result = test::runCli("view --max-frames " + std::string(frames) + " " + a + " " +
+                                     b + " -o " + dir.file("view.html"));
+    ASSERT_EQ(result.exit_code, 0) << result.output;
+    const nlohmann::json data = pageData(test::readText(dir.file("view.html")));
+    ASSERT_TRUE(data.is_object());
+    EXPECT_EQ(data["recorded"], 3);
+    EXPECT_EQ(data["difference"]["steps"], nlohmann::json({0, 6, 10}));
+    EXPECT_EQ(data["frame_steps"], std::string(frames) == "2" ? nlohmann::json({0, 10})
+                                                              : nlohmann::json({0, 6, 10}));
   }
 }
 

@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # ctest `cluster`: a real single-node Slurm (munge + slurmctld + slurmd, started and stopped here,
 # bound to 127.0.0.1, state in a temporary folder) runs tools/grader/slurm/grade-array.sh as an
-# array of 3 shards over a batch of 30 corpus submissions; the shards' CSVs merged as
-# docs/grading.md says must equal a one-machine batch's CSV row for row (the seconds column left
-# out). Exit 77 (skipped) only when Slurm or munge is not installed, without root (slurmd
+# array of 3 shards over a batch of 31 corpus submissions, one of them in a dot folder; the shards'
+# CSVs merged as docs/grading.md says must equal a one-machine batch's CSV row for row (the seconds
+# column left out). Exit 77 (skipped) only when Slurm or munge is not installed, without root (slurmd
 # starts jobs as their user), or when the array fails inside a chroot.
 # Usage: slurm_array_test.sh CLOTHREF SOURCE_DIR CACHE_DIR
 set -euo pipefail
@@ -99,8 +99,10 @@ idle() { sinfo -h -n clothref-node -o %T | grep -q '^idle'; }
 wait_for 30 "the node (idle)" idle
 echo "slurm up after $(($(date +%s) - start)) s"
 
-# The batch: 30 corpus submissions; three shards through the checked-in array script.
+# The batch: 30 corpus submissions and one in a folder whose name starts with a dot (a glob without
+# dotglob skips it); three shards through the checked-in array script.
 "$source/tests/bench/make_corpus_batch.sh" "$tmp/subs"
+cp -r "$tmp/subs/01-"* "$tmp/subs/.hidden"
 export CLOTHREF=$clothref SUBMISSIONS=$tmp/subs BATCHDIR=$tmp/batch
 export GRADE_OPTIONS="--cache-dir $cache"
 # In a chroot (tools/check_fresh_debian.sh) Slurm 22.05 requeues each task after it exits 0
@@ -119,7 +121,10 @@ echo "array done after $(($(date +%s) - start)) s"
 # shellcheck disable=SC2046  # the folder has no spaces; the docs command is copied as it is
 cat $(for k in $(seq 1 3); do echo "$BATCHDIR/grades-$k-of-3.csv"; done) > "$tmp/merged.csv"
 
+# the one-machine batch of every folder, dot folders included (docs/grading.md)
+shopt -s dotglob
 "$clothref" grade "$tmp"/subs/*/ --out "$tmp/one" --jobs 2 --cache-dir "$cache" --quiet
+shopt -u dotglob
 python3 - "$tmp/merged.csv" "$tmp/one/grades.csv" <<'PY' || fail "the merged CSV differs"
 import csv, sys
 def rows(path):
@@ -127,7 +132,8 @@ def rows(path):
     drop = table[0].index("seconds")
     return [row[:drop] + row[drop + 1:] for row in table]
 merged, one = rows(sys.argv[1]), rows(sys.argv[2])
-assert len(one) == 31, f"{len(one)} lines in the one-machine CSV, expected 31"
+assert len(one) == 32, f"{len(one)} lines in the one-machine CSV, expected 32 (31 rows)"
+assert any(row[0] == "_.hidden" for row in one), "no row for the dot folder"
 for k, (a, b) in enumerate(zip(merged, one)):
     assert a == b, f"line {k + 1}: shards {a} one machine {b}"
 assert len(merged) == len(one), f"{len(merged)} merged lines, {len(one)} one-machine lines"

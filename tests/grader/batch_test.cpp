@@ -133,6 +133,23 @@ TEST(Names, LastComponentThenParentsWhenTheyCollideSortedAndDeduplicated) {
   EXPECT_EQ(entries[0].dir, temp.path() / "2022/reference");
 }
 
+// A submission folder named like one of the batch's own outputs gets a '_' before it, as a dot
+// folder does: BATCHDIR/index.html stays the class overview, BATCHDIR/grades.csv the CSV.
+TEST(Names, NamesOfTheBatchsOwnOutputsAreRenamed) {
+  TempDir temp;
+  std::vector<fs::path> dirs;
+  for (const char* name : {"index.html", "grades.csv", "grades-1-of-2.csv", "index-1-of-2.html",
+                           ".cache", "INDEX.HTML", "index.htm", "grades.csv.bak"}) {
+    fs::create_directories(temp.path() / name);
+    dirs.push_back(temp.path() / name);
+  }
+  std::vector<std::string> names;
+  for (const BatchEntry& e : batchEntries(dirs)) names.push_back(e.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"_.cache", "_INDEX.HTML", "_grades-1-of-2.csv",
+                                             "_grades.csv", "_index-1-of-2.html", "_index.html",
+                                             "grades.csv.bak", "index.htm"}));
+}
+
 TEST(Names, NamesThatStayEqualAreBadInput) {
   TempDir temp;
   fs::create_directories(temp.path() / "a b");
@@ -241,6 +258,78 @@ TEST(Cli, MaxFileBytesIsARealOption) {
   EXPECT_NE(zero.output.find("--max-file-bytes"), std::string::npos) << zero.output;
 }
 
+// A path that does not exist is a typo of the command: the batch stops before grading (exit 2),
+// naming it with the reason, and writes nothing.
+TEST(Cli, ABatchStopsBeforeGradingAtAPathThatDoesNotExist) {
+  TempDir temp;
+  const auto run = runCli("grade '" + (kCorpus / "2022" / "reference").string() + "' '" +
+                          temp.file("no-such-student") + "' --out '" + temp.file("batch") + "'");
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  EXPECT_NE(run.output.find("no-such-student: No such file or directory"), std::string::npos)
+      << run.output;
+  EXPECT_EQ(std::count(run.output.begin(), run.output.end(), '\n'), 1) << run.output;
+  EXPECT_FALSE(fs::exists(temp.path() / "batch" / "grades.csv"));
+  EXPECT_FALSE(fs::exists(temp.path() / "batch" / "reference"));
+}
+
+// Named outputs are checked before grading: a folder that does not exist is "No such file or
+// directory" (not "not a directory"), a named output that is a symbolic link is refused (never
+// written through), each in one line, at once, and nothing is written.
+TEST(Cli, NamedOutputsAreCheckedBeforeGrading) {
+  TempDir temp;
+  test::writeText(temp.path() / "target.json", "keep me\n");
+  fs::create_symlink(temp.path() / "target.json", temp.path() / "link.json");
+  const std::string submission = (kCorpus / "2022" / "reference").string();
+  const struct {
+    std::string args, message;
+  } cases[] = {
+      {"--html /nonexistent-dir/r.html", "--html /nonexistent-dir/r.html: /nonexistent-dir: No such file or directory"},
+      {"--results '" + temp.file("link.json") + "'", "a symbolic link; outputs are never written through a link"},
+      {"--report '" + temp.file("target.json/x.md") + "'", "Not a directory"},
+      {"--out '" + temp.file("b") + "' --csv /nonexistent-dir/g.csv", "/nonexistent-dir: No such file or directory"},
+  };
+  for (const auto& c : cases) {
+    const auto start = std::chrono::steady_clock::now();
+    const auto run = runCli("grade '" + submission + "' " + c.args);
+    EXPECT_EQ(run.exit_code, 2) << c.args << ": " << run.output;
+    EXPECT_NE(run.output.find(c.message), std::string::npos) << run.output;
+    EXPECT_EQ(std::count(run.output.begin(), run.output.end(), '\n'), 1) << run.output;
+    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(1)) << c.args;
+  }
+  EXPECT_EQ(readText(temp.path() / "target.json"), "keep me\n");
+  EXPECT_FALSE(fs::exists(temp.path() / "b"));
+}
+
+// A folder holding several whole submissions is refused with one line naming them, alone and in a
+// batch, unless --one-submission says to grade it as one.
+TEST(Cli, AFolderOfSeveralSubmissionsIsRefusedUnlessAskedFor) {
+  TempDir temp;
+  const fs::path subs = temp.path() / "subs";
+  for (const char* name : {"alice", "bob", "carol"})
+    materialise("2022/reference", subs / name);
+  const auto alone = runCli("grade '" + subs.string() + "' --results '" + temp.file("r.json") + "'");
+  EXPECT_EQ(alone.exit_code, 2) << alone.output;
+  EXPECT_NE(alone.output.find("3 submissions below " + subs.string() +
+                              " (alice, bob, carol): give them as " + subs.string() + "/* with --out"),
+            std::string::npos)
+      << alone.output;
+  EXPECT_EQ(std::count(alone.output.begin(), alone.output.end(), '\n'), 1) << alone.output;
+  EXPECT_FALSE(fs::exists(temp.file("r.json")));
+  const auto asked = runCli("grade '" + subs.string() + "' --one-submission --no-whole-run --cache-dir '" +
+                            std::string(CLOTHREF_GRADER_CACHE) + "' --results '" + temp.file("r.json") + "'");
+  EXPECT_EQ(asked.exit_code, 0) << asked.output;
+  // the choice is said on the terminal: the first copy of each name, the others found
+  EXPECT_NE(asked.output.find("clothref grade: cloth.cpp: used alice/"), std::string::npos) << asked.output;
+  EXPECT_NE(asked.output.find("also found bob/"), std::string::npos) << asked.output;
+  EXPECT_NE(asked.output.find(": 80 / 80, verdict graded"), std::string::npos) << asked.output;
+  const auto batch = runCli("grade '" + subs.string() + "' --out '" + temp.file("batch") +
+                            "' --no-whole-run --quiet");
+  EXPECT_EQ(batch.exit_code, 0) << batch.output;
+  const nlohmann::json row = nlohmann::json::parse(readText(temp.path() / "batch" / "subs" / "row.json"));
+  EXPECT_EQ(row["verdict"], "not-gradable");
+  EXPECT_NE(row["problem"].get<std::string>().find("3 submissions below"), std::string::npos);
+}
+
 // A batch: the reference, a mutant, a folder without student files. Every one gets a row with its
 // verdict; then resume, shards and --regrade on the same submissions.
 class Batch : public ::testing::Test {
@@ -284,6 +373,16 @@ TEST_F(Batch, RowPerSubmissionRightVerdictsResumeSkipsGradedAndRegradesHalfGrade
       EXPECT_TRUE(fs::exists(out / name / file)) << name << "/" << file;
   EXPECT_NE(readText(out / "nothing-here" / "report.md").find("none of cloth.cpp"),
             std::string::npos);
+  // the last lines: the submission whose verdict is not `graded`, then where the CSV and the
+  // class overview are
+  const std::vector<std::string> said = lines(first.output);
+  ASSERT_GE(said.size(), 3u) << first.output;
+  EXPECT_NE(said[said.size() - 3].find("1 with a verdict other than 'graded':"), std::string::npos)
+      << first.output;
+  EXPECT_EQ(said[said.size() - 2], "  nothing-here: not-gradable") << first.output;
+  EXPECT_EQ(said.back(), "clothref grade: CSV " + (out / "grades.csv").string() +
+                             "; class overview " + (out / "index.html").string())
+      << first.output;
 
   // Resume: the mutant lost its marker (as if killed between its results and its row); the
   // others keep theirs untouched.
@@ -310,6 +409,45 @@ TEST_F(Batch, RowPerSubmissionRightVerdictsResumeSkipsGradedAndRegradesHalfGrade
   ASSERT_EQ(third.exit_code, 0) << third.output;
   EXPECT_EQ(third.output, "");  // --quiet
   EXPECT_NE(fs::last_write_time(out / "reference" / "row.json"), reference_time);
+}
+
+// Inside BATCHDIR nothing is written through a link: a link planted in place of an output file
+// is replaced by the file (its target untouched); a link in place of a submission's folder stops
+// the batch before grading, naming it; a submission folder given as a link is not followed (a
+// not-gradable row).
+TEST_F(Batch, NothingIsWrittenOrReadThroughALinkInsideTheBatchFolder) {
+  const fs::path out = temp_.path() / "out", elsewhere = temp_.path() / "elsewhere";
+  fs::create_directories(out);
+  fs::create_directories(elsewhere);
+  test::writeText(elsewhere / "target.csv", "keep me\n");
+  fs::create_symlink(elsewhere / "target.csv", out / "grades.csv");
+  fs::create_symlink(elsewhere / "target.csv", out / "index.html");
+  fs::create_symlink(elsewhere, out / "reference");
+  const auto refused = batch(dirs_, out);
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_NE(refused.output.find((out / "reference").string() +
+                                ": not a folder of the batch (a symbolic link"),
+            std::string::npos)
+      << refused.output;
+  EXPECT_EQ(std::distance(fs::directory_iterator(elsewhere), fs::directory_iterator()), 1);
+  fs::remove(out / "reference");
+  // a submission given as a link to a real one: a row saying so, its target not graded
+  fs::create_symlink(dirs_[0], temp_.path() / "in" / "linked");
+  std::vector<fs::path> with_link = dirs_;
+  with_link.push_back(temp_.path() / "in" / "linked/");
+  const auto graded = batch(with_link, out, "--jobs 2");
+  ASSERT_EQ(graded.exit_code, 0) << graded.output;
+  EXPECT_EQ(readText(elsewhere / "target.csv"), "keep me\n");
+  EXPECT_FALSE(fs::exists(elsewhere / "results.json"));
+  EXPECT_FALSE(fs::is_symlink(out / "grades.csv"));
+  EXPECT_FALSE(fs::is_symlink(out / "index.html"));
+  EXPECT_NE(readText(out / "grades.csv").find("reference,2022"), std::string::npos);
+  const nlohmann::json row = nlohmann::json::parse(readText(out / "linked" / "row.json"));
+  EXPECT_EQ(row["verdict"], "not-gradable");
+  EXPECT_NE(row["problem"].get<std::string>().find("a symbolic link (a submission folder given as a "
+                                                   "link is not followed)"),
+            std::string::npos)
+      << row.dump();
 }
 
 TEST_F(Batch, ShardsAreDisjointAndTheirCsvsConcatenateToTheWholeBatch) {

@@ -366,8 +366,9 @@ TEST(CourseCloth, CrashOnBothClothsStaysACrash) {
   for (const auto& test : results["tests"])
     if (test["tags"][0] == "ExplicitEuler::integrate") {
       const std::string output = test["output"];
-      quoted = output.find("On the 4 x 4 probe cloth") != std::string::npos &&
-               output.find("On the course's cloth") != std::string::npos;
+      // quoted once per stub: later tests of the stub refer to it (repeats are folded)
+      quoted = quoted || (output.find("On the 4 x 4 probe cloth") != std::string::npos &&
+                          output.find("On the course's cloth") != std::string::npos);
     }
   EXPECT_TRUE(quoted) << results.dump(1).substr(0, 3000);
 }

@@ -41,6 +41,34 @@ TEST(Rubric, FileOverridesWeightsTolerancesAndVariants) {
   EXPECT_TRUE(rubric.accepts("implicit-corrector-v-new"));
 }
 
+// Gradescope's visibility per stub or per test: a test's own entry wins, "visible" by default;
+// an unknown stub or visibility is refused with the field named.
+TEST(Rubric, VisibilityPerStubOrTestDefaultVisible) {
+  const Rubric rubric = rubricFromJson(
+      nlohmann::json::parse(R"({"visibility": {"RungeKuttaFourth::integrate": "after_due_date",
+        "RungeKuttaFourth::integrate: convergence order": "hidden"}})"),
+      "r.json", defaultRubric(2022));
+  EXPECT_EQ(rubric.visibilityOf("RungeKuttaFourth::integrate: convergence order",
+                                "RungeKuttaFourth::integrate"),
+            "hidden");
+  EXPECT_EQ(rubric.visibilityOf("RungeKuttaFourth::integrate: one step on a random state",
+                                "RungeKuttaFourth::integrate"),
+            "after_due_date");
+  EXPECT_EQ(rubric.visibilityOf("Cloth::initializeSpring: connections at N = 25",
+                                "Cloth::initializeSpring"),
+            "visible");
+  for (const char* bad : {R"({"visibility": {"Cloth::nope": "hidden"}})",
+                          R"({"visibility": {"Cloth::initializeSpring": "secret"}})",
+                          R"({"visibility": {"Cloth::initializeSpring": 1}})"}) {
+    try {
+      rubricFromJson(nlohmann::json::parse(bad), "r.json", defaultRubric(2022));
+      ADD_FAILURE() << bad;
+    } catch (const InputError& error) {
+      EXPECT_EQ(std::string(error.what()).rfind("r.json: /visibility/", 0), 0u) << error.what();
+    }
+  }
+}
+
 TEST(Rubric, BadFilesNameTheField) {
   test::TempDir temp;
   const auto expectError = [&](const std::string& text, const std::string& field) {

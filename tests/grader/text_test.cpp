@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 namespace clothref::grader {
 namespace {
 
@@ -56,6 +58,44 @@ TEST(SafeText, ControlCharactersAreEscapedLayoutKept) {
 TEST(SafeName, OneLineAlways) {
   EXPECT_EQ(safeName("sub\nmission\t\x1B]0;title\x07"), "sub\\x0Amission\\x09\\x1B]0;title\\x07");
   EXPECT_EQ(safeName(safeName("a\x1B")), "a\\x1B");  // escaping twice changes nothing more
+}
+
+// A name can display reversed (U+202E "cloth\u202Eppc.exe"): every control of text direction is
+// escaped like a control character, and counted on its own.
+TEST(SafeText, TextDirectionControlsAreEscaped) {
+  TextRepairs repairs;
+  EXPECT_EQ(safeName("a\u202Eb\u2066c\u2069d\u200Ee\u200Ff\u061Cg\u202Ah", &repairs),
+            "a\\u{202E}b\\u{2066}c\\u{2069}d\\u{200E}e\\u{200F}f\\u{61C}g\\u{202A}h");
+  EXPECT_EQ(repairs.escaped_bidi, 7);
+  EXPECT_EQ(repairs.escaped_controls, 0);
+  EXPECT_NE(repairs.describe().find("text direction controls"), std::string::npos);
+  // Letters of right-to-left scripts are text, not controls.
+  EXPECT_EQ(safeText("\u05D0\u0627"), "\u05D0\u0627");
+}
+
+std::size_t lines(const std::string& text) {
+  return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+}
+
+// A fence no line of the text can close: longer than every run of backticks inside.
+TEST(CodeBlock, ItsFenceIsLongerThanAnyBacktickRunInside) {
+  EXPECT_EQ(codeBlock("a < b\n"), "```\na < b\n```\n");
+  EXPECT_EQ(codeBlock("no newline"), "```\nno newline\n```\n");
+  const std::string hostile = "x\n```\n<img src=x onerror=alert(1)>\n`````` \n";
+  const std::string block = codeBlock(hostile);
+  ASSERT_EQ(lines(block), lines(hostile) + 2);
+  EXPECT_EQ(block.rfind("```````\n", 0), 0u) << block;  // 7 backticks: one more than 6
+  EXPECT_EQ(block.substr(block.size() - 8), "```````\n") << block;
+  EXPECT_EQ(block.substr(8, hostile.size()), hostile);
+}
+
+TEST(CodeSpan, DelimitedByMoreBackticksThanInsideAndOnOneLine) {
+  EXPECT_EQ(codeSpan("cloth.cpp"), "`cloth.cpp`");
+  EXPECT_EQ(codeSpan("a`b"), "``a`b``");
+  EXPECT_EQ(codeSpan("`x`"), "`` `x` ``");
+  EXPECT_EQ(codeSpan("two\n\nlines"), "`two  lines`");
+  EXPECT_EQ(codeSpan(""), "` `");
+  EXPECT_EQ(codeSpan(" lead"), "`  lead `");  // CommonMark strips one space each side
 }
 
 }  // namespace

@@ -1,6 +1,11 @@
 // clothref grade DIR...: compile a student's cloth.cpp, sphere.cpp and integrator.cpp against the
 // course stand-in and grade each stub (docs/grading.md). With --out BATCHDIR: a batch (many
 // submissions in parallel, resume, shards, a CSV summary; grader/grade/batch.h).
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <string>
@@ -14,6 +19,7 @@
 #include "grader/grade/grade.h"
 #include "grader/grade/report/html_report.h"
 #include "grader/grade/report/outputs.h"
+#include "grader/grade/run/submission.h"
 #include "grader/grade/text.h"
 
 namespace clothref::cli {
@@ -41,6 +47,47 @@ CLI::Validator timeoutSeconds() {
       "seconds, (0, 86400]");
 }
 
+// A named output (--results, --junit, --report, --html, --csv) is checked before anything is
+// graded: a symbolic link is refused (never written through: give the file it names), and a folder
+// that does not exist or cannot be written is named with the reason, so a typo costs no grading.
+void checkOutputPath(const std::string& option, const std::string& path) {
+  if (path.empty() || path == "-") return;
+  const std::string shown = option + " " + grader::safeName(path);
+  struct stat st {};
+  if (::lstat(path.c_str(), &st) == 0) {
+    if (S_ISLNK(st.st_mode))
+      throw InputError(shown +
+                       ": a symbolic link; outputs are never written through a link (give the "
+                       "file it names, or remove the link)");
+    if (S_ISDIR(st.st_mode)) throw InputError(shown + ": a directory, not a file");
+  }
+  std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  if (folder.empty()) folder = ".";
+  if (::stat(folder.c_str(), &st) != 0)
+    throw InputError(shown + ": " + grader::safeName(folder.string()) + ": " + std::strerror(errno));
+  if (!S_ISDIR(st.st_mode))
+    throw InputError(shown + ": " + grader::safeName(folder.string()) + ": " +
+                     std::strerror(ENOTDIR));
+  if (::access(folder.c_str(), W_OK | X_OK) != 0)
+    throw InputError(shown + ": " + grader::safeName(folder.string()) + ": " + std::strerror(errno));
+}
+
+// The batch's last lines: what it did, the submissions whose verdict is not `graded` (at most 20
+// by name), and where the CSV and the class overview are.
+void printBatchEnd(const grader::BatchSummary& summary) {
+  std::cerr << "clothref grade: " << summary.rows.size() << " submissions (" << summary.graded
+            << " graded now, " << summary.skipped << " already graded), " << summary.failed
+            << " with a verdict other than 'graded'" << (summary.not_graded.empty() ? "" : ":")
+            << '\n';
+  for (std::size_t k = 0; k < summary.not_graded.size() && k < 20; ++k)
+    std::cerr << "  " << grader::safeName(summary.not_graded[k].first) << ": "
+              << grader::verdictId(summary.not_graded[k].second) << '\n';
+  if (summary.not_graded.size() > 20)
+    std::cerr << "  ... and " << summary.not_graded.size() - 20 << " more (the CSV has them all)\n";
+  std::cerr << "clothref grade: CSV " << grader::safeName(summary.csv.string())
+            << "; class overview " << grader::safeName(summary.index.string()) << '\n';
+}
+
 }  // namespace
 
 Command addGradeCommand(CLI::App& root) {
@@ -58,6 +105,7 @@ Command addGradeCommand(CLI::App& root) {
     std::string out, csv, shard;
     int jobs = 1;
     bool regrade = false, csv_no_header = false, quiet = false, sanitize = false;
+    bool one_submission = false;
   };
   auto options = std::make_shared<Options>();
   app->add_option("DIR", options->dirs, "submission directories (the three files anywhere below)")
@@ -91,9 +139,13 @@ Command addGradeCommand(CLI::App& root) {
       "--sanitize", options->sanitize,
       "accepted for old scripts; nothing to ask for: a probe that crashes or whose two runs differ "
       "is rebuilt with ASan/UBSan (-g -O1) by itself and its first report quoted");
+  app->add_flag("--one-submission", options->one_submission,
+                "grade a DIR that holds several whole submissions as one (without it, such a "
+                "folder is refused, naming them)");
   app->add_option("--out", options->out,
                   "batch: grade every DIR into this folder (BATCHDIR/<name>/results.json, "
-                  "report.md; BATCHDIR/grades.csv)");
+                  "report.md, report.html; BATCHDIR/grades.csv and the class overview "
+                  "BATCHDIR/index.html)");
   app->add_option("--jobs", options->jobs, "batch: submissions graded at once (default 1)")
       ->check(atLeast(1));
   auto* shard =
@@ -124,6 +176,13 @@ Command addGradeCommand(CLI::App& root) {
           throw InputError(
               "--jobs, --shard, --regrade, --csv and --csv-no-header need --out "
               "BATCHDIR (batch grading)");
+        for (const auto& [option, path] :
+             {std::pair<const char*, std::string>{"--results", options->results},
+              {"--junit", options->junit},
+              {"--report", options->report},
+              {"--html", options->html},
+              {"--csv", options->csv}})
+          checkOutputPath(option, path);
         grader::GradeOptions grade;
         grade.edition = options->edition;
         if (!options->rubric.empty()) grade.rubric_path = options->rubric;
@@ -143,15 +202,11 @@ Command addGradeCommand(CLI::App& root) {
           if (sharded) batch_options.shard = grader::parseShard(options->shard);
           batch_options.regrade = options->regrade;
           batch_options.quiet = options->quiet;
+          batch_options.one_submission = options->one_submission;
           batch_options.grade = grade;
           std::vector<std::filesystem::path> dirs(options->dirs.begin(), options->dirs.end());
           const grader::BatchSummary summary = grader::runBatch(dirs, batch_options, std::cerr);
-          if (!options->quiet)
-            std::cerr << "clothref grade: " << summary.rows.size() << " submissions ("
-                      << summary.graded << " graded now, " << summary.skipped
-                      << " already graded), " << summary.failed
-                      << " with a verdict other than 'graded'; CSV "
-                      << grader::safeName(summary.csv.string()) << '\n';
+          if (!options->quiet) printBatchEnd(summary);
           return kExitOk;  // every submission has a row, whatever its verdict
         }
         int exit_code = kExitOk;
@@ -159,6 +214,11 @@ Command addGradeCommand(CLI::App& root) {
           grader::GradeReport report;
           nlohmann::ordered_json whole_run_view;  // --html's pictures
           try {
+            if (!options->one_submission) {
+              const std::vector<std::string> several = grader::submissionsBelow(dir);
+              if (!several.empty())
+                throw InputError(grader::severalSubmissionsProblem(dir, several));
+            }
             report = options->html.empty() ? grader::gradeSubmission(dir, grade)
                                            : grader::gradeWithWholeRun(dir, grade, whole_run_view);
           } catch (const InputError& error) {
@@ -199,7 +259,11 @@ Command addGradeCommand(CLI::App& root) {
             throw;
           }
           if (single && outputs.empty()) std::cout << grader::markdownReport(report);
-          if (!options->quiet) std::cerr << grader::summaryLine(report) << '\n';
+          if (!options->quiet) {
+            for (const std::string& line : grader::choiceLines(report))
+              std::cerr << "clothref grade: " << line << '\n';
+            std::cerr << grader::summaryLine(report) << '\n';
+          }
         }
         return exit_code;
       }};

@@ -37,6 +37,24 @@ std::size_t utf8Length(std::string_view text, std::size_t i) {
   return length;
 }
 
+// U+200E, U+200F, U+202A..U+202E, U+2066..U+2069 (three bytes each in UTF-8).
+bool isBidiControl(std::string_view c) {
+  const auto b = [&](std::size_t k) { return static_cast<unsigned char>(c[k]); };
+  if (b(0) != 0xE2) return false;
+  if (b(1) == 0x80) return b(2) == 0x8E || b(2) == 0x8F || (b(2) >= 0xAA && b(2) <= 0xAE);
+  return b(1) == 0x81 && b(2) >= 0xA6 && b(2) <= 0xA9;
+}
+
+std::string bidiCode(std::string_view c) {
+  const unsigned code = ((static_cast<unsigned char>(c[0]) & 0x0Fu) << 12) |
+                        ((static_cast<unsigned char>(c[1]) & 0x3Fu) << 6) |
+                        (static_cast<unsigned char>(c[2]) & 0x3Fu);
+  static const char* const kHex = "0123456789ABCDEF";
+  std::string out;
+  for (int shift = 12; shift >= 0; shift -= 4) out += kHex[(code >> shift) & 0xF];
+  return out;
+}
+
 }  // namespace
 
 std::string escapeHtml(std::string_view text) {
@@ -47,6 +65,17 @@ std::string escapeHtml(std::string_view text) {
     if (length == 0) {
       out += "\xEF\xBF\xBD";  // U+FFFD
       ++i;
+      continue;
+    }
+    if (length == 3 && isBidiControl(text.substr(i, 3))) {
+      // a control of text direction would display what follows in another order: shown
+      out += "\\u{" + bidiCode(text.substr(i, 3)) + "}";
+      i += length;
+      continue;
+    }
+    if (length == 2 && text.compare(i, 2, "\xD8\x9C") == 0) {  // U+061C ARABIC LETTER MARK
+      out += "\\u{61C}";
+      i += length;
       continue;
     }
     if (length > 1) {

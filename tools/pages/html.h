@@ -12,7 +12,9 @@
 namespace clothref::pages {
 
 // Text for HTML element content or a quoted attribute: & < > " ' escaped, bytes that are not
-// UTF-8 replaced by U+FFFD, control characters other than tab and newline dropped.
+// UTF-8 replaced by U+FFFD, control characters other than tab and newline dropped, and the
+// controls of text direction (U+061C, U+200E, U+200F, U+202A..U+202E, U+2066..U+2069) shown as
+// \u{202E}, so no name displays in another order than its characters.
 std::string escapeHtml(std::string_view text);
 
 // `data` as JSON safe inside <script type="application/json">: invalid UTF-8 replaced by U+FFFD

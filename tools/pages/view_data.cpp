@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <numeric>
 
 #include <fmt/format.h>
 
@@ -16,24 +17,33 @@ namespace clothref::pages {
 
 namespace {
 
+__extension__ typedef __int128 Wide;  // products of step counts that an int64 cannot hold
+
 bool isRecorded(const TraceHeader& header, std::int64_t step) {
   return step >= 0 && step <= header.steps && (step % header.stride == 0 || step == header.steps);
 }
 
-// The recorded steps of `a` that `b` (when given) records too, in increasing order.
-std::vector<std::int64_t> commonSteps(const TraceHeader& a, const TraceHeader* b) {
-  std::vector<std::int64_t> steps;
-  for (std::int64_t s = 0; s <= a.steps; s += a.stride)
-    if (!b || isRecorded(*b, s)) steps.push_back(s);
-  if (a.steps % a.stride != 0 && (!b || isRecorded(*b, a.steps))) steps.push_back(a.steps);
-  return steps;
+// How many steps `a` and `b` (when given) both record, counted from the headers without listing
+// them: a header may claim any number of steps (the reader refuses a file that ends before its
+// claim, as diff does), and nothing is allocated for a claim.
+std::int64_t commonStepCount(const TraceHeader& a, const TraceHeader* b) {
+  if (!b) return a.steps / a.stride + 1 + (a.steps % a.stride != 0 ? 1 : 0);
+  const std::int64_t end = std::min(a.steps, b->steps);
+  const Wide lcm = Wide(a.stride) / std::gcd(a.stride, b->stride) * b->stride;  // no overflow
+  std::int64_t n = std::int64_t(Wide(end) / lcm) + 1;        // the multiples of both, 0 first
+  // a last step off the strides that both record (one step when both traces end there)
+  const auto counts = [&](std::int64_t last) {
+    return last <= end && Wide(last) % lcm != 0 && isRecorded(a, last) && isRecorded(*b, last);
+  };
+  if (counts(a.steps)) ++n;
+  if (b->steps != a.steps && counts(b->steps)) ++n;
+  return n;
 }
 
-// Moves `reader` to the step line of `step`, which its header says is recorded.
-void advanceTo(TraceReader& reader, std::int64_t step) {
-  do {
-    if (!reader.next()) reader.fail(fmt::format("ended before step {}", step));
-  } while (reader.prefix().step < step);
+// The index among `n` evenly spread over [0, n) that frame k of `wanted` gets (first and last
+// included).
+std::int64_t spreadIndex(std::int64_t k, std::int64_t wanted, std::int64_t n) {
+  return std::int64_t((2 * Wide(k) * (n - 1) + (wanted - 1)) / (2 * Wide(wanted - 1)));
 }
 
 std::string labelOf(const std::string& path) {
@@ -120,18 +130,28 @@ nlohmann::ordered_json traceInfo(const TraceReader& reader, const std::string& l
 
 nlohmann::ordered_json viewerData(const std::vector<std::string>& paths, const ViewOptions& options,
                                   ViewSummary* summary) {
-  if (paths.empty() || paths.size() > 2)
+  std::vector<TraceSource> sources;
+  for (const std::string& path : paths) sources.push_back({path, nullptr});
+  return viewerData(sources, options, summary);
+}
+
+nlohmann::ordered_json viewerData(const std::vector<TraceSource>& sources,
+                                  const ViewOptions& options, ViewSummary* summary) {
+  if (sources.empty() || sources.size() > 2)
     throw InputError("view: give one trace, or two to compare (a reference and a student)");
-  if (paths.size() == 2 && paths[0] == "-" && paths[1] == "-")
+  if (sources.size() == 2 && !sources[0].in && !sources[1].in && sources[0].name == "-" &&
+      sources[1].name == "-")
     throw InputError("view: standard input can be read once: give '-' for one of the traces");
-  if (!options.labels.empty() && options.labels.size() != paths.size())
+  if (!options.labels.empty() && options.labels.size() != sources.size())
     throw InputError(fmt::format("--labels: give one label per trace ({} traces, {} labels)",
-                                 paths.size(), options.labels.size()));
+                                 sources.size(), options.labels.size()));
   if (options.max_frames == 1 || options.max_frames < 0)
     throw InputError(
         fmt::format("--max-frames: must be 0 (automatic) or >= 2 (got {})", options.max_frames));
   std::vector<std::unique_ptr<TraceReader>> readers;
-  for (const std::string& path : paths) readers.push_back(std::make_unique<TraceReader>(path));
+  for (const TraceSource& source : sources)
+    readers.push_back(source.in ? std::make_unique<TraceReader>(*source.in, source.name)
+                                : std::make_unique<TraceReader>(source.name));
   const bool two = readers.size() == 2;
   const TraceHeader& a = readers[0]->header();
   if (two) {
@@ -146,11 +166,15 @@ nlohmann::ordered_json viewerData(const std::vector<std::string>& paths, const V
       throw InputError(fmt::format("{}: bodies ({}) differ from {}'s ({}): not the same scene",
                                    readers[1]->path(), describe(b), readers[0]->path(),
                                    describe(a)));
+    // The same step of two step sizes is not the same time: refused, not aligned (clothref diff
+    // counts dt among the differences that matter).
+    if (a.dt != b.dt)
+      throw InputError(fmt::format(
+          "{}: dt {} s differs from {}'s {} s: step k is not the same time in both, so the two "
+          "cannot be compared step by step (record both with one dt)",
+          readers[1]->path(), b.dt, readers[0]->path(), a.dt));
   }
-  const std::vector<std::int64_t> common = commonSteps(a, two ? &readers[1]->header() : nullptr);
-  if (common.empty())
-    throw InputError(fmt::format("{}: no recorded step in common with {}", readers[1]->path(),
-                                 readers[0]->path()));
+  const std::int64_t n = commonStepCount(a, two ? &readers[1]->header() : nullptr);
 
   // which bodies are drawn how
   std::int64_t values_per_trace = 0;  // floats of one frame of one trace
@@ -166,24 +190,41 @@ nlohmann::ordered_json viewerData(const std::vector<std::string>& paths, const V
       (values_per_trace * std::int64_t(readers.size()) + (two ? cloth_particles : 0)) * 4;
   const std::int64_t automatic =
       std::max<std::int64_t>(2, kFrameBudgetBytes / std::max<std::int64_t>(1, frame_bytes * 4 / 3));
-  const std::int64_t n = std::int64_t(common.size());
   const std::int64_t wanted = std::min(n, options.max_frames > 0 ? options.max_frames : automatic);
-  std::vector<char> selected(common.size(), wanted >= n);
-  if (wanted < n)
-    for (std::int64_t k = 0; k < wanted; ++k)  // evenly spread, first and last included
-      selected[(2 * k * (n - 1) + (wanted - 1)) / (2 * (wanted - 1))] = 1;
+  // evenly spread, first and last included: frame k is common step spreadIndex(k)
+  std::int64_t next_frame = 0, next_index = 0;
+  const auto selected = [&](std::int64_t index) {
+    if (wanted >= n) return true;
+    while (next_frame < wanted && next_index < index)
+      next_index = spreadIndex(++next_frame, wanted, n);
+    return next_frame < wanted && next_index == index;
+  };
 
   std::vector<float> positions[2];
   std::vector<float> distance;
   std::vector<double> frame_t;
-  std::vector<float> largest;  // per common step, two traces only
+  std::vector<float> largest;          // per common step, two traces only
+  std::vector<std::int64_t> common;    // the common steps read, in order
   nlohmann::ordered_json frame_steps = nlohmann::ordered_json::array();
   std::optional<std::int64_t> first_difference;
   double first_difference_t = 0, largest_difference = 0;
   TraceStep steps[2];
-  for (std::size_t c = 0; c < common.size(); ++c) {
-    for (auto& reader : readers) advanceTo(*reader, common[c]);
-    bool keep = selected[c] != 0;
+  // Step by step as the files hold them (the reader checks each against its header and refuses a
+  // file that ends early): what is kept grows with what was read, never with a header's claim.
+  bool more[2] = {readers[0]->next(), two && readers[1]->next()};
+  for (std::int64_t c = 0;; ++c) {
+    if (c > 0) {
+      more[0] = readers[0]->next();
+      if (two) more[1] = readers[1]->next();
+    }
+    while (two && more[0] && more[1] &&
+           readers[0]->prefix().step != readers[1]->prefix().step) {
+      const int behind = readers[0]->prefix().step < readers[1]->prefix().step ? 0 : 1;
+      more[behind] = readers[std::size_t(behind)]->next();
+    }
+    if (!more[0] || (two && !more[1])) break;
+    common.push_back(readers[0]->prefix().step);
+    bool keep = selected(c);
     if (two) {
       const StepPrefix& pa = readers[0]->prefix();
       const StepPrefix& pb = readers[1]->prefix();
@@ -209,7 +250,7 @@ nlohmann::ordered_json viewerData(const std::vector<std::string>& paths, const V
       largest.push_back(float(step_largest));
       largest_difference = std::max(largest_difference, step_largest);
       if (differs && !first_difference) {
-        first_difference = common[c];
+        first_difference = common.back();
         first_difference_t = pa.t;
         keep = true;  // the first differing state is always among the frames
       }
@@ -223,7 +264,7 @@ nlohmann::ordered_json viewerData(const std::vector<std::string>& paths, const V
       readers[0]->parseStep(steps[0]);
     }
     if (!keep) continue;
-    frame_steps.push_back(common[c]);
+    frame_steps.push_back(common.back());
     frame_t.push_back(readers[0]->prefix().t);
     for (std::size_t r = 0; r < readers.size(); ++r)
       for (const BodyState& body : steps[r].bodies)
@@ -236,7 +277,7 @@ nlohmann::ordered_json viewerData(const std::vector<std::string>& paths, const V
   data["traces"] = nlohmann::ordered_json::array();
   for (std::size_t r = 0; r < readers.size(); ++r)
     data["traces"].push_back(
-        traceInfo(*readers[r], options.labels.empty() ? labelOf(paths[r]) : options.labels[r]));
+        traceInfo(*readers[r], options.labels.empty() ? labelOf(sources[r].name) : options.labels[r]));
   data["bodies"] = nlohmann::ordered_json::array();
   for (const TraceBody& body : a.bodies)
     data["bodies"].push_back({{"name", body.name}, {"particles", body.particles}});
@@ -245,7 +286,10 @@ nlohmann::ordered_json viewerData(const std::vector<std::string>& paths, const V
   const auto* fixed = scene.is_object() ? find(scene, "/cloth/fixed") : nullptr;
   data["fixed"] = fixed && fixed->is_array() ? *fixed : nlohmann::ordered_json::array();
   data["sphere_radii"] = sphereRadii(a);
-  data["recorded"] = n;
+  if (common.empty())
+    throw InputError(fmt::format("{}: no recorded step in common with {}", readers.back()->path(),
+                                 readers[0]->path()));
+  data["recorded"] = std::int64_t(common.size());
   data["frame_steps"] = frame_steps;
   data["frame_t"] = base64(frame_t.data(), frame_t.size() * sizeof(double));
   data["positions"] = nlohmann::ordered_json::array();
@@ -266,7 +310,7 @@ nlohmann::ordered_json viewerData(const std::vector<std::string>& paths, const V
         std::isfinite(largest_difference) ? nlohmann::ordered_json(largest_difference) : nullptr;
   }
   if (summary) {
-    summary->recorded = n;
+    summary->recorded = std::int64_t(common.size());
     summary->frames = std::int64_t(frame_steps.size());
     summary->first_difference = first_difference;
     summary->largest_difference = largest_difference;

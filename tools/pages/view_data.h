@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cstdint>
+#include <istream>
 #include <optional>
 #include <string>
 #include <vector>
@@ -36,10 +37,21 @@ struct ViewSummary {
 };
 
 // Reads `paths` (one or two) and returns the viewer's data object (schema: docs/pictures.md).
-// Throws InputError naming the file for bad input, two traces with different bodies, or no
-// common recorded step.
+// Throws InputError naming the file for bad input, two traces with different bodies or different
+// dt (step k would not be the same time in both: refused, not aligned), or no common recorded
+// step. What it keeps grows with the steps the files hold, never with what a header claims: a
+// file that ends before its header's last step is refused when its end is read, as by diff.
 nlohmann::ordered_json viewerData(const std::vector<std::string>& paths, const ViewOptions& options,
                                   ViewSummary* summary = nullptr);
+
+// A trace to read: a path ("-" for standard input) when `in` is null, else the stream `in` (which
+// must outlive the call), named `name` in the page and in messages.
+struct TraceSource {
+  std::string name;
+  std::istream* in = nullptr;
+};
+nlohmann::ordered_json viewerData(const std::vector<TraceSource>& sources,
+                                  const ViewOptions& options, ViewSummary* summary = nullptr);
 
 // The viewer's script and style, to embed a viewer in another page (the grade report) beside
 // mountViewer(elementId, data) calls of its own.

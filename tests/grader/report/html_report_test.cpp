@@ -23,8 +23,8 @@ GradeReport sampleReport() {
   report.submission = "subs/<img src=x onerror=alert(1)>";
   report.edition = 2022;
   report.edition_source = "detected";
-  report.files = {{"cloth.cpp", "src/<b>cloth.cpp", true, Verdict::Graded, "", 0},
-                  {"sphere.cpp", "", false, Verdict::MissingFile, "missing", 0}};
+  report.files = {{"cloth.cpp", "src/<b>cloth.cpp", true, Verdict::Graded, "", 0, ""},
+                  {"sphere.cpp", "", false, Verdict::MissingFile, "missing", 0, ""}};
   report.notes = {"non-UTF-8 bytes \xFF in integrator.cpp"};
   TestResult pass = makeTest("Cloth::initializeSpring", "connections at N = 25", 1);
   pass.fraction = 1;
@@ -35,7 +35,7 @@ GradeReport sampleReport() {
       "State tried:\n\n- sphere 0: x (0.1, 0.42, -0.05)\n  - expected x (1, 2, 3) - actual "
       "x (1, 2, 4)\n\n```\n</pre><script>alert(2)</script>\n```\n\n**Likely cause** "
       "(`collision-normal-sign`): <the normal>";
-  fail.diagnoses = {"collision-normal-sign"};
+  fail.causes = {Cause{"collision-normal-sign", true, {}, {}, "<the normal>"}};
   report.tests = {pass, fail};
   report.stub_score = {{"Cloth::initializeSpring", 6}, {"Spheres::collide(Cloth*)", 0}};
   report.stub_max = {{"Cloth::initializeSpring", 6}, {"Spheres::collide(Cloth*)", 1.25}};
@@ -68,8 +68,9 @@ std::size_t countOf(const std::string& text, const std::string& what) {
   return n;
 }
 
-// A failed collision check's state: one circle per sphere, a dot per particle, three arrows per
-// body, nothing but static SVG; a check without a sketch gets no picture.
+// A failed collision check's state, in two panels (the whole scene, and the contact up close): in
+// each one circle per sphere, a dot per particle, three arrows per body, nothing but static SVG;
+// a check without a sketch gets no picture.
 TEST(HtmlReport, AFailedCollisionCheckGetsASmallPictureOfTheStateTried) {
   Sketch sketch;
   sketch.bodies.push_back({"sphere 0",
@@ -86,17 +87,18 @@ TEST(HtmlReport, AFailedCollisionCheckGetsASmallPictureOfTheStateTried) {
                            {0.2f, 0.5f, -0.1f}});
   const std::string svg = stateSketchSvg(sketch);
   ASSERT_EQ(svg.rfind("<svg ", 0), 0u) << svg;
-  EXPECT_EQ(countOf(svg, "<circle "), 2u);
-  EXPECT_EQ(countOf(svg, "r=\"3\""), 1u);  // the particle's dot
-  EXPECT_EQ(countOf(svg, "<line "), 6u);
-  EXPECT_EQ(countOf(svg, "marker-end=\"url(#gr-yours)\""), 2u);
+  EXPECT_EQ(countOf(svg, "<circle "), 4u);
+  EXPECT_EQ(countOf(svg, "r=\"3.5\""), 2u);  // the particle's dot
+  EXPECT_EQ(countOf(svg, "<line "), 12u);
+  EXPECT_EQ(countOf(svg, "marker-end=\"url(#gr-yours)\""), 4u);
   EXPECT_NE(svg.find(">particle 312</text>"), std::string::npos);
+  EXPECT_NE(svg.find("around the contact"), std::string::npos);
   EXPECT_EQ(svg.find("<script"), std::string::npos);
   EXPECT_EQ(svg.find("nan"), std::string::npos);
   // a non-finite velocity loses its arrow, never the picture; a non-finite position, the picture
   sketch.bodies[1].v_actual = {std::nanf(""), 0, 0};
   const std::string without_arrow = stateSketchSvg(sketch);
-  EXPECT_EQ(countOf(without_arrow, "<line "), 5u);
+  EXPECT_EQ(countOf(without_arrow, "<line "), 10u);
   EXPECT_EQ(without_arrow.find("nan"), std::string::npos);
   sketch.bodies[1].x = {std::nanf(""), 0, 0};
   EXPECT_EQ(stateSketchSvg(sketch), "");
@@ -111,6 +113,43 @@ TEST(HtmlReport, AFailedCollisionCheckGetsASmallPictureOfTheStateTried) {
   const std::string with = studentReportHtml(report, nullptr);
   EXPECT_EQ(countOf(with, "<svg class=\"gr-sketch\""), 1u);
   EXPECT_EQ(with.find("<script"), std::string::npos);
+}
+
+// Labels never cover each other: a particle on a sphere's surface, a second sphere touching the
+// first, and a second particle beside the first (the cases' usual shapes), in both panels.
+TEST(HtmlReport, SketchLabelsNeverCoverEachOther) {
+  Sketch sketch;
+  sketch.bodies.push_back({"sphere 0", {0, 0.5f, 0}, 0.5f, {0, -1, 0}, {0, 0, 0}, {0, -1, 0}});
+  sketch.bodies.push_back({"sphere 1", {0.95f, 0.5f, 0}, 0.5f, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}});
+  sketch.bodies.push_back({"particle 312", {0, 0, 0}, 0, {0, 0.2f, 0}, {0, 0, 0}, {0, 0.2f, 0}});
+  sketch.bodies.push_back({"particle 313", {0.02f, 0.01f, 0}, 0, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}});
+  const std::string svg = stateSketchSvg(sketch);
+  ASSERT_FALSE(svg.empty());
+  // every label: x, y of its baseline and its text, per panel (the second panel starts at x 326)
+  struct Label {
+    double x, y;
+    std::string text;
+  };
+  std::vector<Label> found;
+  const std::string open = "<text x=\"";
+  for (std::size_t at = svg.find(open); at != std::string::npos; at = svg.find(open, at + 1)) {
+    const double x = std::stod(svg.substr(at + open.size()));
+    const std::size_t y_at = svg.find("y=\"", at) + 3;
+    const double y = std::stod(svg.substr(y_at));
+    const std::size_t text_at = svg.find('>', at) + 1;
+    const std::string text = svg.substr(text_at, svg.find('<', text_at) - text_at);
+    if (text.rfind("sphere ", 0) == 0 || text.rfind("particle ", 0) == 0) found.push_back({x, y, text});
+  }
+  EXPECT_GE(found.size(), 4u) << svg;  // all four in the overview at least
+  for (std::size_t i = 0; i < found.size(); ++i)
+    for (std::size_t j = i + 1; j < found.size(); ++j) {
+      const Label& a = found[i];
+      const Label& b = found[j];
+      const bool apart = a.x + 6.2 * double(a.text.size()) <= b.x || b.x + 6.2 * double(b.text.size()) <= a.x ||
+                         a.y <= b.y - 12 || b.y <= a.y - 12;
+      EXPECT_TRUE(apart) << a.text << " at " << a.x << "," << a.y << " covers " << b.text << " at "
+                         << b.x << "," << b.y;
+    }
 }
 
 // A failed springs check: the grid's dots and one line per spring that differs, each kind in its
@@ -208,7 +247,9 @@ TEST(HtmlReport, ClassPageFromTheBatchFolders) {
       nlohmann::json::parse(page.substr(begin + open.size(), end - begin - open.size()));
   ASSERT_EQ(data["submissions"].size(), 2u);
   EXPECT_EQ(data["checks"], nlohmann::json({"Cloth::initializeSpring: count"}));
-  EXPECT_EQ(data["submissions"][0]["causes"], nlohmann::json({"backup-</script>-aliases"}));
+  // a results.json without extra_data: its tags, each taken as likely
+  EXPECT_EQ(data["submissions"][0]["causes"],
+            nlohmann::json::parse(R"([{"id": "backup-</script>-aliases", "likely": true}])"));
   EXPECT_EQ(data["submissions"][0]["checks"]["0"], false);
   EXPECT_EQ(data["submissions"][0]["report"], "alice/report.html");
   EXPECT_EQ(data["submissions"][1]["report"], "bob/report.md");

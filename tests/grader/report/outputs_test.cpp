@@ -6,13 +6,31 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <map>
+#include <regex>
+#include <set>
+#include <tuple>
 
 #include "grader/grade/batch.h"
+#include "grader/grade/report/html_report.h"
 #include "grader/grade/text.h"
 #include "test_util.h"
 
 namespace clothref::grader {
 namespace {
+
+std::string pagesEscape(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '&') out += "&amp;";
+    else if (c == '<') out += "&lt;";
+    else if (c == '>') out += "&gt;";
+    else if (c == '"') out += "&quot;";
+    else if (c == '\'') out += "&#39;";
+    else out += c;
+  }
+  return out;
+}
 
 GradeReport sampleReport() {
   GradeReport report;
@@ -24,7 +42,7 @@ GradeReport sampleReport() {
   TestResult failed = makeTest("Spheres::collide(Cloth*)", "approaching pair", 1);
   failed.max_score = 2;
   failed.output = "expected <1> & got \"2\"\x01";
-  failed.diagnoses = {"no-approach-check"};
+  failed.causes = {Cause{"no-approach-check", true, {}, {}, "The impulse is applied."}};
   report.tests = {passed, failed};
   report.score = 3;
   report.max_score = 5;
@@ -44,6 +62,20 @@ TEST(ResultsJson, GradescopeFields) {
   EXPECT_EQ(test["tags"],
             nlohmann::ordered_json({"Spheres::collide(Cloth*)", "no-approach-check"}));
   EXPECT_EQ(json["tests"][0]["status"], "passed");
+}
+
+// The rubric's visibility reaches each test of results.json; the top-level summary does not name
+// a failed test that is not visible yet.
+TEST(ResultsJson, EachTestHasTheVisibilityTheRubricGave) {
+  GradeReport report = sampleReport();
+  report.tests[1].visibility = "after_due_date";
+  const auto json = resultsJson(report);
+  EXPECT_EQ(json["tests"][0]["visibility"], "visible");
+  EXPECT_EQ(json["tests"][1]["visibility"], "after_due_date");
+  const auto html = withHtmlSummary(json, report);
+  EXPECT_EQ(html["output"].get<std::string>().find("approaching pair"), std::string::npos);
+  EXPECT_NE(html["output"].get<std::string>().find("1 more failed check shown later"),
+            std::string::npos);
 }
 
 TEST(JunitXml, EscapesFeedback) {
@@ -136,7 +168,7 @@ TEST(AllWriters, AnyBytesInValidUtf8OutAndTheReportSaysWhatWasDecoded) {
   }
   EXPECT_EQ(summaryLine(report).find('\n'), std::string::npos);
   EXPECT_EQ(
-      markdownReport(report).rfind("# Grading report: sub\\x0A\xEF\xBF\xBD\\x1B]0;x\\x07\n", 0), 0u)
+      markdownReport(report).rfind("# Grading report: `sub\\x0A\xEF\xBF\xBD\\x1B]0;x\\x07`\n", 0), 0u)
       << markdownReport(report);
 }
 
@@ -233,6 +265,215 @@ TEST(Cli, AnyBytesInTheSubmissionGiveValidOutputsInASingleGradeAndInABatch) {
     const std::string text = test::readText(file);
     EXPECT_NE(text.find("\xE4\xB8\xAD\xE6\x96\x87"), std::string::npos) << file << text;  // 中文
     EXPECT_NE(text.find("decoded from Big5 (CP950)"), std::string::npos) << file;
+  }
+}
+
+// ---- Quotes point at the right lines, once per stub
+
+std::size_t occurrences(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+// Three integrators hold the same pattern (an `auto` Eigen expression over the state); midpoint and
+// RK4 crash, implicit does not. Each crashed stub's dangling-auto cause quotes its own line only,
+// on its first failed test only; the stub that did not crash gets no such cause.
+TEST(Quotes, ACauseQuotesOnlyTheLinesOfTheStubItGradesOncePerStub) {
+  test::TempDir temp;
+  const std::filesystem::path reference =
+      std::filesystem::path(CLOTHREF_SOURCE_DIR) / "tools/grader/reference/2022";
+  const std::filesystem::path dir = temp.path() / "sub";
+  std::filesystem::create_directories(dir);
+  for (const char* file : {"cloth.cpp", "sphere.cpp"})
+    std::filesystem::copy_file(reference / file, dir / file);
+  std::string integrator = "#include <cstdlib>\n" + test::readText(reference / "integrator.cpp");
+  const std::string backup = "  for (const auto &p : particles) backup.push_back(*p);\n";
+  const auto pattern = [](const std::string& name, bool crash) {
+    return "  auto " + name + " = particles[0]->position(0) - particles[0]->velocity(0);\n  (void)" +
+           name + ";\n" + (crash ? "  std::abort();\n" : "");
+  };
+  std::size_t at = 0;
+  for (const auto& [name, crash] : {std::pair{"implicit_diff", false},
+                                    std::pair{"midpoint_diff", true}, std::pair{"rk4_diff", true}}) {
+    at = integrator.find(backup, at);
+    ASSERT_NE(at, std::string::npos) << name;
+    at += backup.size();
+    integrator.insert(at, pattern(name, crash));
+  }
+  test::writeText(dir / "integrator.cpp", integrator);
+  const auto line_of = [&](const std::string& name) {
+    const std::size_t where = integrator.find("auto " + name);
+    return std::to_string(1 + std::count(integrator.begin(), integrator.begin() + long(where), '\n'));
+  };
+  const auto run = test::runCli("grade '" + dir.string() + "' --results '" + temp.file("r.json") +
+                                "' --no-whole-run --timeout 10 --cache-dir '" +
+                                std::string(CLOTHREF_GRADER_CACHE) + "'");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const nlohmann::json results = nlohmann::json::parse(test::readText(temp.file("r.json")));
+  std::map<std::string, std::string> outputs;  // stub -> its tests' outputs, joined
+  std::map<std::string, int> named;            // stub -> tests naming dangling-auto-expression
+  for (const auto& test : results["tests"]) {
+    const std::string stub = test["tags"][0];
+    outputs[stub] += test["output"].get<std::string>();
+    for (std::size_t k = 1; k < test["tags"].size(); ++k)
+      named[stub] += test["tags"][k] == "dangling-auto-expression";
+  }
+  for (const auto& [stub, own, others] :
+       {std::tuple{"MidpointEuler::integrate", "midpoint_diff", std::vector{"rk4_diff", "implicit_diff"}},
+        std::tuple{"RungeKuttaFourth::integrate", "rk4_diff",
+                   std::vector{"midpoint_diff", "implicit_diff"}}}) {
+    EXPECT_EQ(named[stub], 6) << stub;  // every test of the crashed stub names the cause
+    EXPECT_EQ(occurrences(outputs[stub], "integrator.cpp:" + line_of(own) + ": auto " + own), 1u)
+        << stub << ":\n" << outputs[stub];  // its own line, once
+    for (const char* other : others)
+      EXPECT_EQ(outputs[stub].find(other), std::string::npos) << stub << " quotes " << other;
+  }
+  EXPECT_EQ(named["ImplicitEuler::integrate"], 0);
+  EXPECT_EQ(outputs["ImplicitEuler::integrate"].find("implicit_diff"), std::string::npos);
+}
+
+// ---- One truth in every output
+
+// The cause ids a Markdown text names ("**Likely cause** (`id`)", "**Possible cause (a guess)**
+// (`id`)"), in order.
+std::vector<std::string> markdownCauses(const std::string& text) {
+  std::vector<std::string> ids;
+  static const std::regex cause(R"(\*\*(?:Likely cause|Possible cause \(a guess\))\*\* \(`([^`]+)`\))");
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), cause); it != std::sregex_iterator();
+       ++it)
+    ids.push_back((*it)[1].str());
+  return ids;
+}
+
+std::string unescapeXml(std::string text) {
+  for (const auto& [from, to] : {std::pair{"&lt;", "<"}, std::pair{"&gt;", ">"},
+                                 std::pair{"&quot;", "\""}, std::pair{"&amp;", "&"}})
+    for (std::size_t at; (at = text.find(from)) != std::string::npos;)
+      text.replace(at, std::string(from).size(), to);
+  return text;
+}
+
+// Three submissions of the realistic corpus graded alone (results.json, report.md, report.html,
+// JUnit) and as a batch (the CSV, row.json, the class overview): every output names the same
+// causes for every check, in the same order, and the same points, rounded to 0.001 alike.
+TEST(OneTruth, EveryOutputNamesTheSameCausesAndTheSamePoints) {
+  test::TempDir temp;
+  const std::filesystem::path corpus =
+      std::filesystem::path(CLOTHREF_SOURCE_DIR) / "tests/grader/corpus";
+  const std::vector<std::filesystem::path> dirs = {
+      corpus / "2022/big5-shear-aliased-midpoint-first",
+      corpus / "2024/swapped-damper-sign-per-body-midpoint",
+      corpus / "2022/float-half-sixth-position-full-velocity"};
+  const std::string common = " --timeout 10 --cache-dir '" + std::string(CLOTHREF_GRADER_CACHE) + "'";
+  std::string batch_args = "grade";
+  for (const auto& dir : dirs) batch_args += " '" + dir.string() + "'";
+  const auto batch = test::runCli(batch_args + " --out '" + temp.file("batch") + "' --jobs 2" + common);
+  ASSERT_EQ(batch.exit_code, 0) << batch.output;
+  const std::string csv = test::readText(temp.path() / "batch" / "grades.csv");
+  const std::string index = test::readText(temp.path() / "batch" / "index.html");
+  const std::string data_open = "<script type=\"application/json\" id=\"class-data\">";
+  const std::size_t data_at = index.find(data_open);
+  ASSERT_NE(data_at, std::string::npos);
+  const nlohmann::json overview = nlohmann::json::parse(
+      index.substr(data_at + data_open.size(), index.find("</script>", data_at) - data_at - data_open.size()));
+  for (const auto& dir : dirs) {
+    const std::string name = dir.filename().string();
+    SCOPED_TRACE(name);
+    const std::string prefix = temp.file(name);
+    const auto single = test::runCli("grade '" + dir.string() + "' --results '" + prefix +
+                                     ".json' --report '" + prefix + ".md' --junit '" + prefix +
+                                     ".xml' --html '" + prefix + ".html'" + common);
+    ASSERT_EQ(single.exit_code, 0) << single.output;
+    const nlohmann::json results = nlohmann::json::parse(test::readText(prefix + ".json"));
+    const nlohmann::json batch_results =
+        nlohmann::json::parse(test::readText(temp.path() / "batch" / name / "results.json"));
+    const std::string md = test::readText(prefix + ".md");
+    const std::string xml = test::readText(prefix + ".xml");
+    const std::string html = test::readText(prefix + ".html");
+    const nlohmann::json row = nlohmann::json::parse(test::readText(temp.path() / "batch" / name / "row.json"));
+    // no scratch path of the grader in any of them (report.html embedded the whole run's)
+    for (const std::string& text : {md, xml, html, results.dump(), batch_results.dump(),
+                                     test::readText(temp.path() / "batch" / name / "report.html")})
+      for (const char* scratch : {"clothref-grade-", "clothref-report-", "/src-cloth/"})
+        EXPECT_EQ(text.find(scratch), std::string::npos) << scratch;
+    // points: one rounding everywhere
+    const std::string total = points(results["score"].get<double>());
+    EXPECT_EQ(points(batch_results["score"].get<double>()), total);
+    EXPECT_EQ(points(row["total"].get<double>()), total);
+    EXPECT_NE(csv.find("\n" + name + ","), std::string::npos);
+    const std::string csv_row = csv.substr(csv.find("\n" + name + ",") + 1);
+    EXPECT_NE(csv_row.substr(0, csv_row.find('\n')).find("," + total + ","), std::string::npos) << csv_row;
+    EXPECT_NE(md.find("**Code score " + total + " / "), std::string::npos);
+    EXPECT_NE(html.find("<strong>Score " + total + " / "), std::string::npos);
+    EXPECT_NE(xml.find("<property name=\"score\" value=\"" + total + "\"/>"), std::string::npos);
+    bool in_overview = false;
+    for (const auto& s : overview["submissions"])
+      if (s["submission"] == name) {
+        in_overview = true;
+        EXPECT_EQ(points(s["total"].get<double>()), total);
+      }
+    EXPECT_TRUE(in_overview);
+    // causes, check by check
+    std::set<std::string> overview_causes, named_causes;
+    for (const auto& s : overview["submissions"])
+      if (s["submission"] == name)
+        for (const auto& c : s["causes"]) overview_causes.insert(c["id"].get<std::string>());
+    ASSERT_EQ(results["tests"].size(), batch_results["tests"].size());
+    for (std::size_t k = 0; k < results["tests"].size(); ++k) {
+      const auto& t = results["tests"][k];
+      const std::string test_name = t["name"];
+      SCOPED_TRACE(test_name);
+      std::vector<std::string> tags;
+      for (std::size_t j = 1; j < t["tags"].size(); ++j) tags.push_back(t["tags"][j]);
+      std::vector<std::string> extra;
+      if (t.contains("extra_data") && t["extra_data"].contains("causes"))
+        for (const auto& c : t["extra_data"]["causes"]) extra.push_back(c["id"]);
+      EXPECT_EQ(extra, tags);
+      EXPECT_EQ(batch_results["tests"][k]["tags"], t["tags"]);
+      std::vector<std::string> in_text = markdownCauses(t["output"]);
+      std::sort(in_text.begin(), in_text.end());
+      std::vector<std::string> sorted_tags = tags;
+      std::sort(sorted_tags.begin(), sorted_tags.end());
+      EXPECT_EQ(in_text, sorted_tags) << t["output"];
+      for (const auto& id : tags) named_causes.insert(id);
+      const std::string stub = t["tags"][0];
+      const std::string check = test_name.substr(stub.size() + 2);
+      // report.md: the failed check's section names the same causes
+      if (t["status"] == "failed" && test_name.find("whole run") == std::string::npos) {
+        const std::size_t section = md.find("\n### " + test_name + " (");
+        ASSERT_NE(section, std::string::npos);
+        const std::size_t end = md.find("\n### ", section + 1);
+        std::vector<std::string> md_causes = markdownCauses(md.substr(section, end - section));
+        std::sort(md_causes.begin(), md_causes.end());
+        EXPECT_EQ(md_causes, sorted_tags);
+        // JUnit: the failure of the same testcase
+        const std::string open = "classname=\"" + unescapeXml(stub) + "\" name=\"" + check + "\">";
+        std::string junit_case;
+        for (std::size_t at = xml.find("<testcase "); at != std::string::npos;
+             at = xml.find("<testcase ", at + 1)) {
+          const std::string one = unescapeXml(xml.substr(at, xml.find("</testcase>", at) - at));
+          if (one.find(open) != std::string::npos) junit_case = one;
+        }
+        ASSERT_FALSE(junit_case.empty()) << open;
+        std::vector<std::string> junit_causes = markdownCauses(junit_case);
+        std::sort(junit_causes.begin(), junit_causes.end());
+        EXPECT_EQ(junit_causes, sorted_tags);
+      }
+      // report.html: the badges of the check, in its stub's section
+      const std::size_t section = html.find("<h2 id=\"" + pagesEscape(stub) + "\">");
+      ASSERT_NE(section, std::string::npos) << stub;
+      const std::size_t summary = html.find(" " + pagesEscape(check) + " \xE2\x80\x94", section);
+      ASSERT_NE(summary, std::string::npos) << check;
+      const std::string badges = html.substr(summary, html.find("</summary>", summary) - summary);
+      std::vector<std::string> html_causes;
+      static const std::regex badge(R"(<span class="gr-cause[^"]*"[^>]*>([^<?]+)\??</span>)");
+      for (auto it = std::sregex_iterator(badges.begin(), badges.end(), badge);
+           it != std::sregex_iterator(); ++it)
+        html_causes.push_back((*it)[1].str());
+      EXPECT_EQ(html_causes, tags);
+    }
+    EXPECT_EQ(overview_causes, named_causes);
   }
 }
 

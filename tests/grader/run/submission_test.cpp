@@ -89,7 +89,7 @@ TEST(FindSubmissionFiles, RefusesSymbolicLinksToHostAndReferenceFiles) {
   EXPECT_TRUE(files.bytes.empty());
   const std::string notes = allNotes(files);
   for (const char* name : {"cloth.cpp", "sphere.cpp", "integrator.cpp"})
-    EXPECT_NE(notes.find(std::string(name) + ": refused " + name + ": a symbolic link"),
+    EXPECT_NE(notes.find(std::string(name) + ": refused `" + name + "`: a symbolic link"),
               std::string::npos)
         << notes;
   EXPECT_EQ(notes.find("SECRET"), std::string::npos);
@@ -111,8 +111,8 @@ TEST(FindSubmissionFiles, AFifoDoesNotHangAndAFolderIsNotAFile) {
   ASSERT_EQ(files.bytes.count("integrator.cpp"), 1u);
   EXPECT_EQ(files.bytes.at("integrator.cpp"), "int i;\n");
   const std::string notes = allNotes(files);
-  EXPECT_NE(notes.find("sphere.cpp: refused sphere.cpp: a FIFO"), std::string::npos) << notes;
-  EXPECT_NE(notes.find("cloth.cpp: refused cloth.cpp: a folder"), std::string::npos) << notes;
+  EXPECT_NE(notes.find("sphere.cpp: refused `sphere.cpp`: a FIFO"), std::string::npos) << notes;
+  EXPECT_NE(notes.find("cloth.cpp: refused `cloth.cpp`: a folder"), std::string::npos) << notes;
 }
 
 // A symbolic link to a folder (inside or outside the submission) is not entered: files reached
@@ -127,7 +127,7 @@ TEST(FindSubmissionFiles, DoesNotEnterASymlinkedFolder) {
   EXPECT_EQ(files.found.count("cloth.cpp"), 0u);
   EXPECT_EQ(files.found.count("sphere.cpp"), 1u);
   const std::string notes = allNotes(files);
-  EXPECT_NE(notes.find("1 symbolic link(s) not followed: src"), std::string::npos) << notes;
+  EXPECT_NE(notes.find("1 symbolic link(s) not followed: `src`"), std::string::npos) << notes;
 }
 
 // Both ways of opening below a folder refuse a link on the way and a way out: openat2 and the
@@ -165,7 +165,7 @@ TEST(FindSubmissionFiles, AFileOverTheLimitIsRefusedTheOthersAreFound) {
   const SubmissionFiles small = findSubmissionFiles(temp.path(), 1000);
   EXPECT_EQ(small.found.count("cloth.cpp"), 0u);
   EXPECT_EQ(small.found.count("sphere.cpp"), 1u);
-  EXPECT_NE(allNotes(small).find("cloth.cpp: refused cloth.cpp: larger than 1000 bytes (raise "
+  EXPECT_NE(allNotes(small).find("cloth.cpp: refused `cloth.cpp`: larger than 1000 bytes (raise "
                                  "the limit with --max-file-bytes)"),
             std::string::npos)
       << allNotes(small);
@@ -228,9 +228,9 @@ TEST(GradeThroughTheCli, LinkedFilesAreRefusedInASingleGradeAndInABatch) {
   for (const std::string& file : {temp.file("r.json"), temp.file("batch/linked/results.json")}) {
     const nlohmann::json results = nlohmann::json::parse(test::readText(file));
     const std::string output = results["output"].get<std::string>();
-    EXPECT_NE(output.find("cloth.cpp: refused src/cloth.cpp: a symbolic link"), std::string::npos)
+    EXPECT_NE(output.find("cloth.cpp: refused <code>src/cloth.cpp</code>: a symbolic link"), std::string::npos)
         << output;
-    EXPECT_NE(output.find("integrator.cpp: refused integrator.cpp: a symbolic link"),
+    EXPECT_NE(output.find("integrator.cpp: refused <code>integrator.cpp</code>: a symbolic link"),
               std::string::npos)
         << output;
     const auto& scores = results["extra_data"]["stub_scores"];

@@ -19,7 +19,17 @@
 #include "clothref/io/progress.h"
 #include "grader/grade/report/html_report.h"
 #include "grader/grade/report/outputs.h"
+#include "grader/grade/run/submission.h"
 #include "grader/grade/text.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <regex>
+#include <utility>
 
 namespace clothref::grader {
 namespace fs = std::filesystem;
@@ -28,6 +38,7 @@ namespace {
 
 constexpr const char* kRowFile = "row.json";
 constexpr const char* kCacheDir = ".cache";  // no submission name starts with a dot
+constexpr std::size_t kMaxRowBytes = 1 << 20;  // a marker is a few hundred bytes
 // The writers already give valid UTF-8 (text.h); should a byte slip through, it becomes U+FFFD
 // rather than an exception that loses the submission's row.
 constexpr auto kReplace = nlohmann::json::error_handler_t::replace;
@@ -36,22 +47,26 @@ double since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// A name the batch writes at BATCHDIR's top (grades.csv, index.html and their shard forms
+// grades-k-of-n.csv, index-k-of-n.html), which no submission folder may take.
+bool isBatchOutputName(const std::string& name) {
+  static const std::regex output(R"((grades|index)(-[0-9]+-of-[0-9]+)?\.(csv|html))",
+                                 std::regex::icase);
+  return std::regex_match(name, output);
+}
+
 // A path component as a folder name: letters, digits, '.', '_' and '-' kept, the rest '_'; never
-// starting with a dot (so never "." or "..", nor BATCHDIR/.cache).
+// starting with a dot (so never "." or "..", nor BATCHDIR/.cache) and never a name of the batch's
+// own outputs (index.html becomes _index.html).
 std::string safeComponent(const std::string& text) {
   std::string out = text;
   for (char& c : out)
     if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '_' && c != '-') c = '_';
-  if (out.empty() || out.front() == '.') out = "_" + out;
+  if (out.empty() || out.front() == '.' || isBatchOutputName(out)) out = "_" + out;
   return out;
 }
 
-// Rounded to 0.001, without trailing zeros: "12.5", "80", "3.333".
-std::string number(double value) {
-  std::ostringstream out;
-  out << std::round(value * 1000) / 1000;
-  return out.str();
-}
+std::string number(double value) { return points(value); }
 
 std::string csvField(const std::string& given) {
   const std::string text = safeName(given);  // valid UTF-8, one line, no terminal escapes
@@ -61,21 +76,104 @@ std::string csvField(const std::string& given) {
   return out + "\"";
 }
 
-void writeText(const fs::path& path, const std::string& text) {
-  OutputFile out(path.string());
-  out.stream() << text;
-  out.commit();
+// A descriptor that closes itself.
+struct Fd {
+  int fd = -1;
+  explicit Fd(int value = -1) : fd(value) {}
+  Fd(Fd&& other) noexcept : fd(std::exchange(other.fd, -1)) {}
+  Fd& operator=(Fd&& other) noexcept {
+    std::swap(fd, other.fd);
+    return *this;
+  }
+  ~Fd() {
+    if (fd >= 0) ::close(fd);
+  }
+};
+
+std::string errnoText(const fs::path& path) { return safeName(path.string()) + ": " + std::strerror(errno); }
+
+// BATCHDIR's folder of a submission, created when missing. It must be a folder, not a link: a link
+// planted there would have the batch write (as root) wherever it points.
+Fd openFolder(int batch_fd, const fs::path& batch_dir, const std::string& name) {
+  if (::mkdirat(batch_fd, name.c_str(), 0755) != 0 && errno != EEXIST)
+    throw InputError(errnoText(batch_dir / name));
+  Fd folder(::openat(batch_fd, name.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC));
+  if (folder.fd < 0)
+    throw InputError(safeName((batch_dir / name).string()) + ": " +
+                     (errno == ELOOP || errno == ENOTDIR
+                          ? std::string("not a folder of the batch (a link or a file there is "
+                                        "never written through; remove it)")
+                          : std::strerror(errno)));
+  return folder;
 }
 
-// The row a previous run left in `folder`, or nullopt (none, unreadable, or a grader error,
-// which is ours to retry).
-std::optional<BatchRow> finishedRow(const fs::path& folder) {
-  std::error_code error;
-  const fs::path path = folder / kRowFile;
-  if (!fs::exists(path, error)) return std::nullopt;
+// Writes `name` in the folder `dir_fd` atomically: a new temporary file beside it (O_EXCL |
+// O_NOFOLLOW: never an existing file nor a link), then renamed over the name, which replaces a
+// link there instead of writing through it.
+void writeNoFollow(int dir_fd, const fs::path& folder, const std::string& name,
+                   const std::string& text) {
+  static std::atomic<unsigned long> counter{0};
+  const std::string temporary =
+      name + ".tmp" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+  Fd out(::openat(dir_fd, temporary.c_str(),
+                  O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644));
+  if (out.fd < 0) throw InputError(errnoText(folder / name));
+  for (std::size_t done = 0; done < text.size();) {
+    const ssize_t n = ::write(out.fd, text.data() + done, text.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const std::string why = errnoText(folder / name);
+      ::unlinkat(dir_fd, temporary.c_str(), 0);
+      throw InputError(why + " (nothing written)");
+    }
+    done += std::size_t(n);
+  }
+  if (::renameat(dir_fd, temporary.c_str(), dir_fd, name.c_str()) != 0) {
+    const std::string why = errnoText(folder / name);
+    ::unlinkat(dir_fd, temporary.c_str(), 0);
+    throw InputError(why);
+  }
+}
+
+// The bytes of `name` in the folder `dir_fd`, read without following a link; nullopt when there is
+// none, it is a link or not a regular file, or it is larger than `max_bytes`.
+std::optional<std::string> readNoFollow(int dir_fd, const std::string& name, std::size_t max_bytes) {
+  Fd in(::openat(dir_fd, name.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC));
+  struct stat st {};
+  if (in.fd < 0 || ::fstat(in.fd, &st) != 0 || !S_ISREG(st.st_mode) ||
+      std::size_t(st.st_size) > max_bytes)
+    return std::nullopt;
+  std::string text(std::size_t(st.st_size), '\0');
+  std::size_t done = 0;
+  while (done < text.size()) {
+    const ssize_t n = ::read(in.fd, text.data() + done, text.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    done += std::size_t(n);
+  }
+  text.resize(done);
+  return text;
+}
+
+// The row marker of a folder of the batch (read without following links), or nullopt.
+std::optional<BatchRow> readRow(int batch_fd, const fs::path& batch_dir, const std::string& name) {
+  Fd folder(::openat(batch_fd, name.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC));
+  if (folder.fd < 0) return std::nullopt;
+  const std::optional<std::string> text = readNoFollow(folder.fd, kRowFile, kMaxRowBytes);
+  if (!text) return std::nullopt;
+  const std::string where = (batch_dir / name / kRowFile).string();
+  const nlohmann::json json = nlohmann::json::parse(*text, nullptr, false);
+  if (json.is_discarded()) throw InputError(where + ": not a batch row (not JSON)");
+  return rowFromJson(json, where);
+}
+
+// The row a previous run left for `name`, or nullopt (none, unreadable, or a grader error, which
+// is ours to retry).
+std::optional<BatchRow> finishedRow(int batch_fd, const fs::path& batch_dir,
+                                    const std::string& name) {
   try {
-    BatchRow row = rowFromJson(readJsonFile(path.string(), "batch row"), path.string());
-    if (row.verdict == Verdict::GraderError) return std::nullopt;
+    std::optional<BatchRow> row = readRow(batch_fd, batch_dir, name);
+    if (row && row->verdict == Verdict::GraderError) return std::nullopt;
     return row;
   } catch (const InputError&) {
     return std::nullopt;
@@ -96,10 +194,12 @@ Outputs notGradable(const BatchEntry& entry, Verdict verdict,
   out.row.dir = safeName(entry.dir.string());
   out.row.verdict = verdict;
   out.row.problem = safeName(problem);
+  // Markdown: the problem names the folder, which the submission controls: in a code block
   const std::string text =
-      verdict == Verdict::NotGradable
-          ? "The submission could not be graded: " + out.row.problem
-          : "The grader failed on this submission (" + out.row.problem + "); see the course staff.";
+      (verdict == Verdict::NotGradable
+           ? std::string("The submission could not be graded:\n\n")
+           : std::string("The grader failed on this submission (see the course staff):\n\n")) +
+      codeBlock(out.row.problem);
   nlohmann::ordered_json results;
   results["score"] = 0;
   results["output"] = text;
@@ -107,12 +207,18 @@ Outputs notGradable(const BatchEntry& entry, Verdict verdict,
   results["visibility"] = "visible";
   results["tests"] = nlohmann::ordered_json::array();
   out.results_json = results.dump(2, ' ', false, kReplace) + "\n";
-  out.report_md = "# Grading report: " + out.row.dir + "\n\n**" + verdictId(verdict) + "**. " + text + "\n";
+  out.report_md = "# Grading report: " + codeSpan(out.row.dir) + "\n\n**" + verdictId(verdict) +
+                  "**. " + text;
   return out;
 }
 
-Outputs gradeOne(const BatchEntry& entry, const GradeOptions& grade) {
+Outputs gradeOne(const BatchEntry& entry, const BatchOptions& options, const GradeOptions& grade) {
   try {
+    if (!options.one_submission) {
+      const std::vector<std::string> several = submissionsBelow(entry.dir);
+      if (!several.empty())
+        return notGradable(entry, Verdict::NotGradable, severalSubmissionsProblem(entry.dir, several));
+    }
     nlohmann::ordered_json whole_run_view;  // the pictures of report.html (html_report.h)
     GradeReport report = gradeWithWholeRun(entry.dir, grade, whole_run_view);
     Outputs out;
@@ -159,9 +265,13 @@ std::vector<BatchEntry> batchEntries(const std::vector<fs::path>& dirs) {
   std::vector<Candidate> candidates;
   std::set<fs::path> seen;
   for (const fs::path& dir : dirs) {
+    // The folder's own name is kept (a submission given as a link is not followed, so it is not
+    // the folder it points to); the folders above it are resolved.
     std::error_code error;
-    fs::path full = fs::weakly_canonical(fs::absolute(dir), error);
-    if (error) full = fs::absolute(dir).lexically_normal();
+    fs::path given = fs::absolute(dir).lexically_normal();
+    if (given.filename().empty()) given = given.parent_path();
+    fs::path full = fs::weakly_canonical(given.parent_path(), error) / given.filename();
+    if (error) full = given;
     if (!seen.insert(full).second) continue;  // the same directory twice
     Candidate c;
     c.dir = dir;
@@ -290,30 +400,53 @@ int perSubmissionJobs(int jobs, int cores) { return std::max(1, cores / std::max
 
 BatchSummary runBatch(const std::vector<fs::path>& dirs, const BatchOptions& options,
                       std::ostream& progress_out) {
+  // A path that does not exist is a typo of the command, not a submission: nothing is graded.
+  for (const fs::path& dir : dirs) {
+    struct stat st {};
+    if (::lstat(dir.c_str(), &st) != 0 && (errno == ENOENT || errno == ENOTDIR))
+      throw InputError(errnoText(dir) + " (nothing was graded)");
+  }
   const std::vector<BatchEntry> selected = shardEntries(batchEntries(dirs), options.shard);
   std::error_code error;
   fs::create_directories(options.out_dir, error);
   if (error || !fs::is_directory(options.out_dir, error))
-    throw InputError(safeName(options.out_dir.string()) +
-                     ": cannot create the batch folder (--out)");
+    throw InputError(safeName(options.out_dir.string()) + ": cannot create the batch folder (--out)" +
+                     (error ? ": " + error.message() : std::string()));
+  // BATCHDIR itself the user named (a link to it is theirs); inside it nothing is followed.
+  const Fd batch(::open(options.out_dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
+  if (batch.fd < 0) throw InputError(errnoText(options.out_dir) + " (--out)");
   BatchSummary summary;
+  const std::string shard_suffix = options.shard.count == 1
+                                       ? std::string()
+                                       : "-" + std::to_string(options.shard.index) + "-of-" +
+                                             std::to_string(options.shard.count);
   summary.csv = options.csv;
-  if (summary.csv.empty())
-    summary.csv =
-        options.out_dir / (options.shard.count == 1
-                               ? std::string("grades.csv")
-                               : "grades-" + std::to_string(options.shard.index) + "-of-" +
-                                     std::to_string(options.shard.count) + ".csv");
+  if (summary.csv.empty()) summary.csv = options.out_dir / ("grades" + shard_suffix + ".csv");
+  summary.index = options.out_dir / ("index" + shard_suffix + ".html");
+
+  // A folder of the batch that is a link or a file (planted, or the user's) stops the batch before
+  // anything is graded: its results would be written wherever it points.
+  for (const BatchEntry& entry : selected) {
+    struct stat st {};
+    if (::fstatat(batch.fd, entry.name.c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0 &&
+        !S_ISDIR(st.st_mode))
+      throw InputError(safeName((options.out_dir / entry.name).string()) +
+                       ": not a folder of the batch (" +
+                       (S_ISLNK(st.st_mode) ? "a symbolic link" : "not a directory") +
+                       "; results are never written through it: remove it) (nothing was graded)");
+  }
 
   std::vector<const BatchEntry*> pending;
   for (const BatchEntry& entry : selected) {
-    if (!options.regrade && finishedRow(options.out_dir / entry.name)) {
+    if (!options.regrade && finishedRow(batch.fd, options.out_dir, entry.name)) {
       ++summary.skipped;
       continue;
     }
     // Not graded, half graded, or asked to regrade: without its marker the folder counts as
     // not graded until the new row is written, whatever happens in between.
-    fs::remove(options.out_dir / entry.name / kRowFile, error);
+    const Fd folder(::openat(batch.fd, entry.name.c_str(),
+                             O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC));
+    if (folder.fd >= 0) ::unlinkat(folder.fd, kRowFile, 0);
     pending.push_back(&entry);
   }
 
@@ -346,18 +479,17 @@ BatchSummary runBatch(const std::vector<fs::path>& dirs, const BatchOptions& opt
       if (k >= pending.size()) return;
       const BatchEntry& entry = *pending[k];
       const auto graded_start = std::chrono::steady_clock::now();
-      Outputs out = gradeOne(entry, grade);
+      Outputs out = gradeOne(entry, options, grade);
       out.row.seconds = since(graded_start);
       std::lock_guard<std::mutex> lock(mutex);
       try {
-        // OutputFile keeps one temporary for its signal handler: one writer at a time.
-        const fs::path folder = options.out_dir / entry.name;
-        fs::create_directories(folder);
-        writeText(folder / "results.json", out.results_json);
-        writeText(folder / "report.md", out.report_md);
-        if (!out.report_html.empty()) writeText(folder / "report.html", out.report_html);
-        writeText(folder / kRowFile,
-                  rowJson(out.row).dump(2, ' ', false, kReplace) + "\n");  // the marker, last
+        const fs::path path = options.out_dir / entry.name;
+        const Fd folder = openFolder(batch.fd, options.out_dir, entry.name);
+        writeNoFollow(folder.fd, path, "results.json", out.results_json);
+        writeNoFollow(folder.fd, path, "report.md", out.report_md);
+        if (!out.report_html.empty()) writeNoFollow(folder.fd, path, "report.html", out.report_html);
+        writeNoFollow(folder.fd, path, kRowFile,
+                      rowJson(out.row).dump(2, ' ', false, kReplace) + "\n");  // the marker, last
       } catch (...) {
         failure = std::current_exception();
         return;
@@ -379,18 +511,29 @@ BatchSummary runBatch(const std::vector<fs::path>& dirs, const BatchOptions& opt
   // The CSV comes from the markers alone, so a resumed batch gets the same file as one that ran
   // through.
   for (const BatchEntry& entry : selected) {
-    const fs::path path = options.out_dir / entry.name / kRowFile;
-    BatchRow row = rowFromJson(readJsonFile(path.string(), "batch row"), path.string());
-    if (row.verdict != Verdict::Graded) ++summary.failed;
-    summary.rows.push_back(std::move(row));
+    std::optional<BatchRow> row = readRow(batch.fd, options.out_dir, entry.name);
+    if (!row)
+      throw InputError(safeName((options.out_dir / entry.name / kRowFile).string()) +
+                       ": missing after grading");
+    if (row->verdict != Verdict::Graded) {
+      ++summary.failed;
+      summary.not_graded.push_back({row->name, row->verdict});
+    }
+    summary.rows.push_back(std::move(*row));
   }
-  writeText(summary.csv, batchCsv(summary.rows, options.csv_header));
-  // the class overview, from the same markers (html_report.h), beside the CSV
-  writeText(options.out_dir / (options.shard.count == 1
-                                   ? std::string("index.html")
-                                   : "index-" + std::to_string(options.shard.index) + "-of-" +
-                                         std::to_string(options.shard.count) + ".html"),
-            batchIndexHtml(options.out_dir, summary.rows));
+  // The CSV where --csv says (the user named it: written as any named output), else beside the
+  // class overview in BATCHDIR, never through a link there.
+  const std::string csv = batchCsv(summary.rows, options.csv_header);
+  if (options.csv.empty()) {
+    writeNoFollow(batch.fd, options.out_dir, summary.csv.filename().string(), csv);
+  } else {
+    OutputFile out(summary.csv.string());
+    out.stream() << csv;
+    out.commit();
+  }
+  // the class overview, from the same markers (html_report.h)
+  writeNoFollow(batch.fd, options.out_dir, summary.index.filename().string(),
+                batchIndexHtml(options.out_dir, summary.rows));
   return summary;
 }
 

@@ -34,7 +34,8 @@ struct BatchEntry {
 
 // Names for `dirs`, sorted by name: the last path component, made safe for a folder name
 // (characters other than letters, digits, '.', '_', '-' become '_'; a leading '.' gets a '_'
-// before it); when two submissions would get the same name, both take their parent folder's name
+// before it, and so does a name of the batch's own outputs: index.html, grades.csv and their
+// shard forms index-k-of-n.html, grades-k-of-n.csv); when two submissions would get the same name, both take their parent folder's name
 // too ("2022-reference"), and so on. The same directory given twice counts once. Throws
 // InputError when names cannot be made unique.
 std::vector<BatchEntry> batchEntries(const std::vector<std::filesystem::path>& dirs);
@@ -78,6 +79,9 @@ struct BatchOptions {
   Shard shard;            // which part of the sorted submissions this run grades
   bool regrade = false;   // grade again even when row.json exists
   bool quiet = false;     // no progress on stderr
+  // Grade a folder that holds several whole submissions as one (else it is not gradable: the
+  // folder names them; run/submission.h, submissionsBelow).
+  bool one_submission = false;
   GradeOptions grade;     // per submission (probe_jobs and toolchain.jobs are set from cores/jobs)
 };
 
@@ -86,7 +90,9 @@ struct BatchSummary {
   int graded = 0;              // graded by this run
   int skipped = 0;             // already graded (row.json found)
   int failed = 0;              // rows whose verdict is not Graded
+  std::vector<std::pair<std::string, Verdict>> not_graded;  // those rows: name, verdict
   std::filesystem::path csv;
+  std::filesystem::path index;  // the class overview
 };
 
 // Each submission's share of the cores: max(1, cores / jobs), used for its compiles and its probe
@@ -95,7 +101,10 @@ int perSubmissionJobs(int jobs, int cores);
 
 // Grades the shard's submissions (skipping those with a row.json unless `regrade`), writes their
 // folders and then the CSV. Progress goes to `progress_out` (n of N done, failures, ETA). Throws
-// InputError for a bad BATCHDIR or colliding names; a submission's own problems are rows.
+// InputError, before grading anything, for a DIR that does not exist, a bad BATCHDIR or colliding
+// names; a submission's own problems are rows. Inside BATCHDIR nothing is written or read through
+// a link: every file is created new (O_NOFOLLOW | O_EXCL) and renamed into place, and a folder of
+// the batch that is a link stops the batch with its name.
 BatchSummary runBatch(const std::vector<std::filesystem::path>& dirs, const BatchOptions& options,
                       std::ostream& progress_out);
 

@@ -10,6 +10,7 @@
 #include <random>
 #include <regex>
 #include <set>
+#include <sstream>
 #include <thread>
 
 #include "clothref/io/error.h"
@@ -27,14 +28,14 @@ namespace {
 // p.position(j);`): it refers to temporaries that are gone when it is read. Not when the
 // expression ends in a call that returns a plain value (`.normalized()`, `.eval()`, `.norm()`,
 // `.dot(...)`, `.cross3(...)`): those hold a vector or a number and nothing dangles.
-std::vector<std::string> autoExpressionLines(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
+std::vector<SourceQuote> autoExpressionLines(const std::string& file, const std::string& source) {
+  std::istringstream in(source);
   static const std::regex declaration(R"(\bauto\s*&{0,2}\s*\w+\s*=\s*([^;]*);)");
   static const std::regex over_state(
       R"((position|velocity|acceleration)\s*\([^;]*\)\s*[-+*/]|[-+*/]\s*[\w>.-]*(position|velocity|acceleration)\s*\()");
   static const std::regex plain_value(
       R"(\.\s*(normalized|eval|norm|squaredNorm|stableNorm|sum|dot|cross3|cross|value)\s*\([^()]*\)\s*$)");
-  std::vector<std::string> lines;
+  std::vector<SourceQuote> lines;
   int number = 0;
   for (std::string line; std::getline(in, line);) {
     ++number;
@@ -42,8 +43,8 @@ std::vector<std::string> autoExpressionLines(const std::string& path) {
     if (!std::regex_search(line, match, declaration)) continue;
     const std::string value = match[1].str();
     if (!std::regex_search(value, over_state) || std::regex_search(value, plain_value)) continue;
-    lines.push_back("line " + std::to_string(number) + ": `" +
-                    line.substr(line.find_first_not_of(" \t")) + "`");
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    lines.push_back({file, number, line.substr(line.find_first_not_of(" \t"))});
   }
   return lines;
 }
@@ -59,8 +60,7 @@ Verdict submissionVerdict(const GradeReport& report, const std::vector<Verdict>&
   for (const UsedFile& used : report.files)
     if (!used.compiled) happened.push_back(used.status);
   for (const TestResult& t : report.tests)
-    for (const std::string& id : t.diagnoses)
-      if (id == "non-finite") happened.push_back(Verdict::NonFinite);
+    if (t.names("non-finite")) happened.push_back(Verdict::NonFinite);
   return worstVerdict(happened);
 }
 
@@ -167,63 +167,69 @@ ProbeContext probeContext(const GradeReport& report, const Rubric& rubric,
 }
 
 // Stubs whose file is not the student's (missing, or it does not compile or link): stub -> the
-// verdict text every planned test of that stub gets instead of running.
-std::map<std::string, std::string> unavailableStubs(const std::vector<UsedFile>& files,
-                                                    const Catalogue& catalogue) {
-  std::map<std::string, std::string> unavailable;
+// test every planned test of that stub gets instead of running (its output and cause).
+std::map<std::string, TestResult> unavailableStubs(const std::vector<UsedFile>& files) {
+  std::map<std::string, TestResult> unavailable;
   for (const UsedFile& used : files) {
     if (used.compiled) continue;
-    const bool link_error = used.status == Verdict::LinkError;
-    const std::string text =
-        used.status == Verdict::MissingFile
-            ? used.name + " was not found in the submission; its stubs get no points."
-        : link_error ? used.name +
-                           " compiles but does not link (a function it must define is "
-                           "missing or defined twice):\n\n```\n" +
-                           used.problem + "```\n\n" + catalogue.cause("compile-error")
-                     : used.name + " does not compile against the course's headers:\n\n```\n" +
-                           used.problem + "```\n\n" + catalogue.cause("compile-error");
-    for (const auto& stub : stubsOfFile(used.name)) unavailable[stub] = text;
+    TestResult t;
+    if (used.status == Verdict::MissingFile) {
+      t.output = used.name + " was not found in the submission; its stubs get no points.";
+    } else {
+      t.output = used.name + (used.status == Verdict::LinkError
+                                  ? " compiles but does not link (a function it must define is "
+                                    "missing or defined twice):\n\n"
+                                  : " does not compile against the course's headers:\n\n") +
+                 codeBlock(used.problem) +
+                 (used.log.empty() ? std::string()
+                                   : "\nThe whole log of " + used.name +
+                                         " (its own messages):\n\n" + codeBlock(used.log));
+      t.causes = {Cause{"compile-error", true, {}, {}, {}}};
+    }
+    for (const auto& stub : stubsOfFile(used.name)) unavailable[stub] = t;
   }
   return unavailable;
 }
 
 // The planned tests of unavailable stubs: zero points, the compile verdict as their output.
 std::vector<TestResult> unavailableTests(int edition,
-                                         const std::map<std::string, std::string>& unavailable) {
+                                         const std::map<std::string, TestResult>& unavailable) {
   std::vector<TestResult> tests;
   for (const PlannedTest& planned : plannedTests(edition)) {
     auto it = unavailable.find(planned.stub);
     if (it == unavailable.end()) continue;
     TestResult t = makeTest(planned.stub, planned.check, planned.weight);
-    t.output = it->second;
-    t.diagnoses = {"compile-error"};
+    t.output = it->second.output;
+    t.causes = it->second.causes;
     tests.push_back(t);
   }
   return tests;
 }
 
 // A crash next to an `auto` Eigen expression over temporaries: the likely cause (a pattern
-// alone, without the crash, names nothing).
+// alone, without the crash, names nothing). Only lines inside the stub the test grades are
+// quoted: a crash in one stub says nothing of a line in another.
 void addDanglingAutoCauses(const std::vector<UsedFile>& files, const fs::path& scratch,
-                           const Catalogue& catalogue, std::vector<TestResult>& tests) {
+                           std::vector<TestResult>& tests) {
   for (const UsedFile& used : files) {
     if (!used.compiled) continue;
     // The copy in the scratch folder: the student's path is never opened again.
-    const auto lines = autoExpressionLines(
-        (scratch / ("src-" + used.name.substr(0, used.name.size() - 4)) / used.name).string());
+    std::ifstream in(scratch / ("src-" + used.name.substr(0, used.name.size() - 4)) / used.name,
+                     std::ios::binary);
+    const std::string source((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::vector<SourceQuote> lines = autoExpressionLines(used.name, source);
     if (lines.empty()) continue;
+    const auto stubs = stubsOfFile(used.name);
     for (TestResult& t : tests) {
-      const auto stubs = stubsOfFile(used.name);
       if (t.passed() || std::find(stubs.begin(), stubs.end(), t.stub) == stubs.end()) continue;
-      const bool crashed =
-          std::find(t.diagnoses.begin(), t.diagnoses.end(), "crashed") != t.diagnoses.end() ||
-          std::find(t.diagnoses.begin(), t.diagnoses.end(), "undefined-behaviour") !=
-              t.diagnoses.end();
-      if (!crashed) continue;
-      t.diagnoses.push_back("dangling-auto-expression");
-      t.output += "\n" + catalogue.cause("dangling-auto-expression") + " In " + used.name + ":\n\n";
-      for (std::size_t k = 0; k < lines.size() && k < 3; ++k) t.output += "- " + lines[k] + "\n";
+      if (!t.names("crashed") && !t.names("undefined-behaviour")) continue;
+      const StubLines body = stubLines(source, t.stub);
+      std::vector<SourceQuote> inside;
+      for (const SourceQuote& line : lines)
+        if (body.contains(line.line) && inside.size() < 3) inside.push_back(line);
+      if (inside.empty()) continue;
+      Cause& cause = t.addCause("dangling-auto-expression");
+      cause.quotes = inside;
     }
   }
 }
@@ -286,7 +292,8 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
   const SubmissionFiles files = findSubmissionFiles(dir, options.max_file_bytes);
   if (files.found.empty())
     throw InputError(dir.string() + ": none of cloth.cpp, sphere.cpp, integrator.cpp found");
-  report.notes = files.notes;
+  report.notes.assign(files.notes.begin(), files.notes.end());
+  report.choices = files.choices;
   chooseEdition(files, options.edition, report);
   Rubric rubric = defaultRubric(report.edition);
   if (options.rubric_path) rubric = loadRubric(*options.rubric_path, rubric);
@@ -325,18 +332,22 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
       probeContext(report, rubric, catalogue, build, files, isolation, scratch, options);
   SanitizedProbes sanitizer(files, report.edition, toolchain, scratch, context.limits);
   if (!options.toolchain.sanitize) context.sanitizer = &sanitizer;
-  const std::map<std::string, std::string> unavailable = unavailableStubs(build.files, catalogue);
+  const std::map<std::string, TestResult> unavailable = unavailableStubs(build.files);
+  std::map<std::string, std::string> skipped;  // the groups of those stubs do not run
+  for (const auto& [stub, test] : unavailable) skipped[stub] = test.output;
   const auto probe_start = std::chrono::steady_clock::now();
-  auto results = runProbeGroups(probeGroups(report.edition, options.whole_run), context,
-                                unavailable, options.probe_jobs);
+  auto results = runProbeGroups(probeGroups(report.edition, options.whole_run), context, skipped,
+                                options.probe_jobs);
   report.seconds["probes"] = since(probe_start);
 
   report.tests = unavailableTests(report.edition, unavailable);
   for (auto& group : results)
     for (auto& t : group) report.tests.push_back(std::move(t));
-  addDanglingAutoCauses(build.files, scratch.build(), catalogue, report.tests);
+  addDanglingAutoCauses(build.files, scratch.build(), report.tests);
+  fillCauseTexts(catalogue, report.tests);
   sortInCourseOrder(report.tests);
   applyRubric(rubric, report);
+  for (TestResult& t : report.tests) t.visibility = rubric.visibilityOf(t.name(), t.stub);
   report.verdict = submissionVerdict(report, context.limits.log->verdicts);
   if (!options.keep_work.empty()) keepWork(scratch.root(), options.keep_work);
   report.seconds["total"] = since(start);

@@ -4,6 +4,7 @@
 #pragma once
 #include <array>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -157,6 +158,30 @@ struct Sketch {
   std::string differing_means = "differs";  // legend of `differing`: "wrong rest length", ...
 };
 
+// A line of the student's source shown as evidence for a cause: always inside the stub the test
+// grades.
+struct SourceQuote {
+  std::string file;  // "integrator.cpp"
+  int line = 0;      // 1-based
+  std::string text;  // the line as written (the writers make it printable and quote it verbatim)
+  bool operator==(const SourceQuote&) const = default;
+};
+
+// A cause named for a failed check: an id of the catalogue (tools/grader/diagnoses.json), whether
+// the numbers confirm it (likely) or it is a guess, and what the probe measured beside it. Data,
+// never text: every writer renders it the same way (report/outputs.h, causeMarkdown), from the
+// catalogue's text for the id, so the tags, the badges, the overview and the text always agree.
+struct Cause {
+  std::string id;
+  bool likely = true;  // false: shown as "Possible cause (a guess)"
+  std::string detail;  // Markdown measured by the probe for this check, shown after the text
+  std::vector<SourceQuote> quotes;
+  // The catalogue's text for `id` (fillCauseTexts, probes.h; a guess-only entry also clears
+  // `likely`). Empty: the writers name the id alone.
+  std::string text;
+  bool operator==(const Cause&) const = default;
+};
+
 struct TestResult {
   std::string stub;            // course name of the stub, e.g. "RungeKuttaFourth::integrate"
   std::string check;           // what is checked, e.g. "convergence order"
@@ -165,11 +190,43 @@ struct TestResult {
   double max_score = 0;        // points, filled in by the rubric
   double score = 0;            // points, filled in by the rubric
   bool informational = false;  // never scored (e.g. the whole-run comparison)
-  std::string output;          // Markdown: state tried, expected vs actual, likely cause
-  std::vector<std::string> diagnoses;  // catalogue ids named in the output
-  Sketch sketch;                       // the state tried, when a collision or springs check failed
+  // Gradescope's visibility of the test (the rubric's "visibility"; rubric.h visibilityNames())
+  std::string visibility = "visible";
+  // Markdown: state tried, expected vs actual, what was measured. Never the causes' text: the
+  // writers add it from `causes`. Text a submission controls enters it only through codeBlock()
+  // or codeSpan() (text.h).
+  std::string output;
+  std::vector<Cause> causes;  // in the order the probe found them; the likely ones come first
+  Sketch sketch;              // the state tried, when a collision or springs check failed
+  // The whole run's two traces (JSON Lines, docs/trace-format.md), kept in memory for the HTML
+  // report's pictures; null for every other test, or when the student's run did not finish.
+  struct Traces {
+    std::string reference, student;
+  };
+  std::shared_ptr<const Traces> traces;
   std::string name() const { return stub + ": " + check; }
   bool passed() const { return fraction >= 1.0; }
+  // The ids of `causes`, in order (results.json's tags after the stub, the overview's chips).
+  std::vector<std::string> causeIds() const {
+    std::vector<std::string> ids;
+    for (const Cause& cause : causes) ids.push_back(cause.id);
+    return ids;
+  }
+  bool names(const std::string& id) const {
+    for (const Cause& cause : causes)
+      if (cause.id == id) return true;
+    return false;
+  }
+  // Adds the cause `id` unless it is named already (a guess named again as likely becomes likely).
+  Cause& addCause(const std::string& id, bool likely = true) {
+    for (Cause& cause : causes)
+      if (cause.id == id) {
+        cause.likely = cause.likely || likely;
+        return cause;
+      }
+    causes.push_back(Cause{id, likely, {}, {}, {}});
+    return causes.back();
+  }
 };
 
 inline TestResult makeTest(std::string stub, std::string check, double weight) {
@@ -188,6 +245,32 @@ struct UsedFile {
   Verdict status = Verdict::Graded;
   std::string problem;  // the compile or link error (first error quoted), or "missing"
   double compile_seconds = 0;
+  // The whole compile (or link) log of a file that did not build: every message located in the
+  // student's own file, scratch paths removed (compilerLog, run/compiler_messages.h); shown folded
+  // under `problem`. Empty when it says no more than `problem`.
+  std::string log;
+};
+
+// A name found more than once below a submission: the copy used and the others (paths relative to
+// the submission, as found: the writers clean them).
+struct FileChoice {
+  std::string name;                // "cloth.cpp"
+  std::string used;                // "src/cloth.cpp"
+  std::vector<std::string> others;  // "old/cloth.cpp", ...
+  bool operator==(const FileChoice&) const = default;
+};
+
+// A line of a report's notes (files chosen or refused, encodings, a sanitizer's finding): `text` is
+// Markdown on one line, in which every name a submission controls is a code span (text.h), and
+// `block`, when not empty, is shown verbatim under it (a sanitizer report, several lines).
+struct Note {
+  std::string text;
+  std::string block;
+  Note() = default;
+  Note(std::string text_, std::string block_ = {})  // NOLINT: a plain line converts
+      : text(std::move(text_)), block(std::move(block_)) {}
+  Note(const char* text_) : text(text_) {}  // NOLINT
+  bool operator==(const Note&) const = default;
 };
 
 struct GradeReport {
@@ -195,7 +278,8 @@ struct GradeReport {
   int edition = 2022;
   std::string edition_source;  // "detected: ..." or "forced with --edition"
   std::vector<UsedFile> files;
-  std::vector<std::string> notes;  // BOM, CRLF, non-UTF-8 bytes, several candidates, ...
+  std::vector<Note> notes;  // BOM, CRLF, non-UTF-8 bytes, several candidates, ...
+  std::vector<FileChoice> choices;  // names found more than once (the terminal says which was used)
   std::vector<TestResult> tests;
   double score = 0, max_score = 0;
   std::map<std::string, double> stub_score, stub_max;  // per course stub

@@ -96,6 +96,22 @@ Rubric rubricFromJson(const nlohmann::json& document, const std::string& source,
                       "expected true or false, got " + excerpt(on.dump()));
         rubric.accepted_variants[name] = on.get<bool>();
       }
+    } else if (key == "visibility") {
+      requireObject(value, source, pointer);
+      for (const auto& [name, shown] : value.items()) {
+        // a stub's name, or a test's "<stub>: <check>"
+        const std::string stub = name.substr(0, name.find(": "));
+        const auto& stubs = stubNames();
+        if (std::find(stubs.begin(), stubs.end(), stub) == stubs.end())
+          rubricError(source, child(pointer, name), "unknown stub (a stub or \"<stub>: <check>\")");
+        const auto& names = visibilityNames();
+        if (!shown.is_string() ||
+            std::find(names.begin(), names.end(), shown.get<std::string>()) == names.end())
+          rubricError(source, child(pointer, name),
+                      "expected visible, hidden, after_due_date or after_published, got " +
+                          excerpt(shown.dump()));
+        rubric.visibility[name] = shown.get<std::string>();
+      }
     } else {
       rubricError(source, pointer, "unknown field");
     }

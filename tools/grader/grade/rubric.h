@@ -6,7 +6,10 @@
 //    "tolerances": {"force_rel": 1e-4, "collide_rel": 1e-5, "integrate_rel": 2e-5,
 //                   "rest_length_rel": 1e-5, "order": 0.35},
 //    "accepted_variants": {"explicit-as-symplectic": true, "implicit-corrector-v-new": true,
-//                          "symplectic-predictor": true}}
+//                          "symplectic-predictor": true},
+//    "visibility": {"RungeKuttaFourth::integrate": "after_due_date",    Gradescope's visibility
+//                   "Cloth::computeSpringForce: moving state (damper)": "hidden"}}  of a stub's
+//                                                                     tests, or of one test
 #pragma once
 #include <map>
 #include <string>
@@ -36,14 +39,32 @@ inline const std::vector<std::string>& acceptedVariantNames() {
   return names;
 }
 
+// Gradescope's visibilities of a test (results.json "visibility"); "visible" is the default.
+inline const std::vector<std::string>& visibilityNames() {
+  static const std::vector<std::string> names = {"visible", "hidden", "after_due_date",
+                                                 "after_published"};
+  return names;
+}
+
 struct Rubric {
   std::map<std::string, double> stub_points;   // course stub name -> points
   std::map<std::string, double> test_weights;  // full test name -> relative weight
   Tolerances tolerances;
   std::map<std::string, bool> accepted_variants;
+  // stub name or full test name -> one of visibilityNames(); a test's own entry wins
+  std::map<std::string, std::string> visibility;
   bool accepts(const std::string& variant) const {
     auto it = accepted_variants.find(variant);
     return it != accepted_variants.end() && it->second;
+  }
+  // The visibility of the test `test_name` of `stub`: its own, else its stub's, else "visible".
+  const std::string& visibilityOf(const std::string& test_name, const std::string& stub) const {
+    static const std::string visible = "visible";
+    for (const std::string* key : {&test_name, &stub}) {
+      auto it = visibility.find(*key);
+      if (it != visibility.end()) return it->second;
+    }
+    return visible;
   }
 };
 

@@ -2,6 +2,7 @@
 
 #include <iconv.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <vector>
@@ -66,6 +67,23 @@ bool hasC1(std::string_view utf8) {
   return false;
 }
 
+// The controls of text direction (Unicode's Bidi_Control): embeddings, overrides, isolates and
+// marks. Shown escaped, they can no longer make a name display in another order than its bytes.
+bool isBidiControl(char32_t code) {
+  return code == 0x061C || code == 0x200E || code == 0x200F || (code >= 0x202A && code <= 0x202E) ||
+         (code >= 0x2066 && code <= 0x2069);
+}
+
+// The longest run of backticks in `text`.
+std::size_t longestBacktickRun(std::string_view text) {
+  std::size_t longest = 0, run = 0;
+  for (char c : text) {
+    run = c == '`' ? run + 1 : 0;
+    longest = std::max(longest, run);
+  }
+  return longest;
+}
+
 void appendEscape(std::string& out, char32_t code) {
   char buffer[16];
   if (code < 0x100)
@@ -102,6 +120,9 @@ std::string cleanLine(std::string_view line, bool escape_layout, TextRepairs* re
     if (control && !(layout && !escape_layout)) {
       appendEscape(out, code);
       ++local.escaped_controls;
+    } else if (isBidiControl(code)) {
+      appendEscape(out, code);
+      ++local.escaped_bidi;
     } else {
       out.append(line.substr(i, length));
     }
@@ -117,6 +138,7 @@ TextRepairs& TextRepairs::operator+=(const TextRepairs& other) {
   big5_lines += other.big5_lines;
   replaced_bytes += other.replaced_bytes;
   escaped_controls += other.escaped_controls;
+  escaped_bidi += other.escaped_bidi;
   return *this;
 }
 
@@ -128,6 +150,7 @@ std::string TextRepairs::describe() const {
   add(big5_lines, "lines decoded from Big5 (CP950) to UTF-8");
   add(replaced_bytes, "bytes that are neither UTF-8 nor CP950 replaced by U+FFFD");
   add(escaped_controls, "control characters shown as \\xNN");
+  add(escaped_bidi, "text direction controls shown as \\u{NNNN}");
   return out;
 }
 
@@ -160,6 +183,25 @@ std::string safeText(std::string_view text, TextRepairs* repairs) {
 
 std::string safeName(std::string_view name, TextRepairs* repairs) {
   return cleanLine(name, true, repairs);
+}
+
+std::string codeBlock(std::string_view text) {
+  const std::string fence(std::max<std::size_t>(3, longestBacktickRun(text) + 1), '`');
+  std::string out = fence + "\n";
+  out += text;
+  if (!text.empty() && text.back() != '\n') out += '\n';
+  return out + fence + "\n";
+}
+
+std::string codeSpan(std::string_view text) {
+  std::string inside(text);
+  for (char& c : inside)
+    if (c == '\n' || c == '\r') c = ' ';
+  if (inside.empty()) return "` `";
+  const std::string fence(longestBacktickRun(inside) + 1, '`');
+  const bool pad = inside.front() == '`' || inside.back() == '`' || inside.front() == ' ' ||
+                   inside.back() == ' ';
+  return fence + (pad ? " " : "") + inside + (pad ? " " : "") + fence;
 }
 
 }  // namespace clothref::grader

@@ -1,70 +1,83 @@
 'use strict';
 // The class overview (BATCHDIR/index.html, docs/pictures.md): a sortable, filterable table of
-// submissions, a histogram of totals, pass rates per stub and per check, and the named causes with
-// links to the reports that show them. Text from submissions is set with textContent only.
+// submissions that fits the window (every column visible at 1280 px, one line per row, causes as
+// chips), a labelled histogram of totals, pass rates per stub and per check, and the named causes
+// with links to the reports that show them. Submissions the grader could not grade are listed
+// apart and left out of every statistic. Text from submissions is set with textContent only.
 
 function mountClass(root, data) {
-  const subs = data.submissions;
+  const all = data.submissions;
+  // not graded at all (the grader refused the folder, or failed itself): apart from the statistics
+  const apart = all.filter((s) => s.verdict === 'not-gradable' || s.verdict === 'grader-error');
+  const subs = all.filter((s) => !apart.includes(s));
   function element(tag, className, text) {
     const e = document.createElement(tag);
     if (className) e.className = className;
     if (text !== undefined) e.textContent = text;
     return e;
   }
-  const fmt = (v) => (Math.round(v * 100) / 100).toString();
+  // points as every output shows them: rounded to 0.001, no trailing zeros
+  const fmt = (v) => String(Math.round(v * 1000) / 1000);
   const link = (s) => {
     const a = element('a', null, s.submission);
     a.href = s.report.split('/').map(encodeURIComponent).join('/');
     return a;
   };
   const stubs = data.stubs.filter((stub) => subs.some((s) => stub in s.stub_max));
+  const shortName = {
+    'Cloth::initializeSpring': 'springs', 'Cloth::computeSpringForce': 'forces',
+    'Spheres::collide(Cloth*)': 'collide (Cloth*)', 'Spheres::collide()': 'collide ()',
+    // soft hyphens: a narrow column breaks the name where a reader expects it
+    'ExplicitEuler::integrate': 'Ex\u00adplicit', 'ImplicitEuler::integrate': 'Im\u00adplicit',
+    'MidpointEuler::integrate': 'Mid\u00adpoint', 'RungeKuttaFourth::integrate': 'RK4',
+  };
+  const svgNs = 'http://www.w3.org/2000/svg';
+  function svg(tag, attributes, text) {
+    const e = document.createElementNS(svgNs, tag);
+    for (const [k, v] of Object.entries(attributes)) e.setAttribute(k, v);
+    if (text !== undefined) e.textContent = text;
+    return e;
+  }
 
-  // ---- summary and histogram
-  const graded = subs.filter((s) => s.verdict === 'graded');
-  const mean = subs.length ? subs.reduce((sum, s) => sum + s.total, 0) / subs.length : 0;
-  root.appendChild(element('p', 'cl-summary',
-      `${subs.length} submissions, ${graded.length} graded without trouble; mean total ${fmt(mean)}.`));
-  root.appendChild(element('h2', null, 'Totals'));
+  // ---- summary and histogram (graded submissions only)
+  const clean = subs.filter((s) => s.verdict === 'graded');
+  const totals = subs.map((s) => s.total).sort((a, b) => a - b);
+  const mean = totals.length ? totals.reduce((sum, t) => sum + t, 0) / totals.length : 0;
+  const median = totals.length ? (totals[(totals.length - 1) >> 1] + totals[totals.length >> 1]) / 2 : 0;
   const maxTotal = Math.max(1, ...subs.map((s) => s.max || 0));
+  root.appendChild(element('p', 'cl-summary',
+      `${all.length} submissions: ${subs.length} graded (${clean.length} with the verdict ` +
+      `'graded'), mean total ${fmt(mean)} / ${fmt(maxTotal)}, median ${fmt(median)}` +
+      (apart.length ? `; ${apart.length} not graded, listed apart below and left out of the ` +
+                      'statistics.' : '.')));
+  root.appendChild(element('h2', null, 'Totals'));
   const bins = new Array(10).fill(0);
   for (const s of subs) bins[Math.min(9, Math.floor((10 * Math.max(0, s.total)) / maxTotal))]++;
-  const svgNs = 'http://www.w3.org/2000/svg';
-  const hist = document.createElementNS(svgNs, 'svg');
-  hist.setAttribute('class', 'cl-hist');
-  hist.setAttribute('width', '520');
-  hist.setAttribute('height', '150');
+  const left = 44, bottom = 150, barWidth = 56, gap = 4, height = 110;
+  const hist = svg('svg', {class: 'cl-hist', width: left + 10 * (barWidth + gap) + 20, height: 196,
+                           role: 'img', 'aria-label': 'histogram of totals'});
   const top = Math.max(1, ...bins);
+  hist.appendChild(svg('line', {x1: left, y1: bottom, x2: left + 10 * (barWidth + gap), y2: bottom,
+                                stroke: '#888'}));
   bins.forEach((count, i) => {
-    const h = (100 * count) / top;
-    const bar = document.createElementNS(svgNs, 'rect');
-    bar.setAttribute('x', 40 + i * 47);
-    bar.setAttribute('y', 120 - h);
-    bar.setAttribute('width', 43);
-    bar.setAttribute('height', h);
-    bar.setAttribute('fill', '#4a7fb5');
-    bar.setAttribute('class', 'cl-hist-bar');
+    const h = (height * count) / top;
+    const x = left + i * (barWidth + gap);
+    const bar = svg('rect', {x, y: bottom - h, width: barWidth, height: h, fill: '#4a7fb5',
+                             class: 'cl-hist-bar'});
     bar.dataset.count = count;
-    const title = document.createElementNS(svgNs, 'title');
-    title.textContent = `${count} with total in [${fmt((i * maxTotal) / 10)}, ${fmt(((i + 1) * maxTotal) / 10)})`;
-    bar.appendChild(title);
+    const lo = (i * maxTotal) / 10, hi = ((i + 1) * maxTotal) / 10;
+    bar.appendChild(svg('title', {}, `${count} with total in [${fmt(lo)}, ${fmt(hi)}${i === 9 ? ']' : ')'}`));
     hist.appendChild(bar);
-    const label = document.createElementNS(svgNs, 'text');
-    label.setAttribute('x', 40 + i * 47 + 21);
-    label.setAttribute('y', 115 - h);
-    label.setAttribute('text-anchor', 'middle');
-    label.setAttribute('font-size', '11');
-    label.textContent = count ? String(count) : '';
-    hist.appendChild(label);
+    hist.appendChild(svg('text', {x: x + barWidth / 2, y: bottom - h - 4, 'text-anchor': 'middle',
+                                  'font-size': 11, class: 'cl-hist-count'}, count ? String(count) : ''));
+    hist.appendChild(svg('text', {x: x + barWidth / 2, y: bottom + 14, 'text-anchor': 'middle',
+                                  'font-size': 10, class: 'cl-hist-label'},
+                         `${fmt(lo)}–${fmt(hi)}`));
   });
-  for (const [x, text] of [[40, '0'], [510, fmt(maxTotal)]]) {
-    const t = document.createElementNS(svgNs, 'text');
-    t.setAttribute('x', x);
-    t.setAttribute('y', 138);
-    t.setAttribute('font-size', '11');
-    t.setAttribute('text-anchor', x > 40 ? 'end' : 'start');
-    t.textContent = text;
-    hist.appendChild(t);
-  }
+  hist.appendChild(svg('text', {x: left + 5 * (barWidth + gap), y: bottom + 34, 'text-anchor': 'middle',
+                                'font-size': 11}, `total (points of ${fmt(maxTotal)})`));
+  hist.appendChild(svg('text', {x: 12, y: bottom - height / 2, 'text-anchor': 'middle', 'font-size': 11,
+                                transform: `rotate(-90 12 ${bottom - height / 2})`}, 'submissions'));
   root.appendChild(hist);
 
   // ---- the table
@@ -74,26 +87,63 @@ function mountClass(root, data) {
   filter.placeholder = 'filter: name, verdict or cause';
   const shownCount = element('span', 'cl-shown');
   root.append(filter, ' ', shownCount);
+  const maxOf = (stub) => {
+    const maxima = [...new Set(subs.filter((s) => stub in s.stub_max).map((s) => s.stub_max[stub]))];
+    return maxima.length === 1 ? maxima[0] : null;
+  };
+  const causeText = (s) => s.causes.map((c) => c.id + (c.likely ? '' : '?')).join(', ');
+  function chips(s) {
+    const td = element('td', 'cl-causes-cell');
+    td.title = causeText(s);
+    s.causes.slice(0, 2).forEach((c) => {
+      const chip = element('span', 'cl-chip' + (c.likely ? '' : ' cl-guess'), c.id + (c.likely ? '' : '?'));
+      chip.dataset.cause = c.id;
+      td.appendChild(chip);
+    });
+    if (s.causes.length > 2) td.appendChild(element('span', 'cl-more', `+${s.causes.length - 2}`));
+    return td;
+  }
   const columns = [
-    {title: 'submission', value: (s) => s.submission, cell: (s) => link(s)},
+    {title: 'submission', width: 16, value: (s) => s.submission,
+     cell: (s) => { const td = element('td'); td.title = s.submission; td.appendChild(link(s)); return td; }},
     ...stubs.map((stub) => ({
-      title: stub,
+      title: shortName[stub] || stub, full: stub, max: maxOf(stub), width: 5.3,
       value: (s) => (stub in s.stub_scores ? s.stub_scores[stub] : -1),
-      cell: (s) => (stub in s.stub_scores ? `${fmt(s.stub_scores[stub])} / ${fmt(s.stub_max[stub])}` : ''),
+      cell: (s) => {
+        if (!(stub in s.stub_scores)) return element('td');
+        const got = s.stub_scores[stub], max = s.stub_max[stub];
+        const td = element('td', got >= max ? 'cl-full' : got === 0 && max > 0 ? 'cl-none' : '',
+                           maxOf(stub) === null ? `${fmt(got)}/${fmt(max)}` : fmt(got));
+        td.title = `${stub}: ${fmt(got)} / ${fmt(max)}`;
+        return td;
+      },
     })),
-    {title: 'total', value: (s) => s.total, cell: (s) => `${fmt(s.total)} / ${fmt(s.max)}`},
-    {title: 'verdict', value: (s) => s.verdict, cell: (s) => s.verdict},
-    {title: 'causes', value: (s) => s.causes.join(' '), cell: (s) => s.causes.join(', ')},
-    {title: 'seconds', value: (s) => s.seconds, cell: (s) => s.seconds.toFixed(1)},
+    {title: 'total', width: 7.5, value: (s) => s.total,
+     cell: (s) => { const td = element('td', null, `${fmt(s.total)} / ${fmt(s.max)}`); td.title = td.textContent; return td; }},
+    {title: 'verdict', width: 8.5, value: (s) => s.verdict,
+     cell: (s) => { const td = element('td', 'cl-verdict' + (s.verdict === 'graded' ? '' : ' cl-verdict-bad'), s.verdict); td.title = s.verdict; return td; }},
+    {title: 'causes', width: 0, value: (s) => causeText(s), cell: chips},
+    {title: 's', full: 'seconds', width: 3, value: (s) => s.seconds,
+     cell: (s) => element('td', null, s.seconds.toFixed(1))},
   ];
+  const fixed = columns.reduce((sum, c) => sum + c.width, 0);
+  const causes = columns.find((c) => c.title === 'causes');
+  causes.width = Math.max(12, 100 - fixed);
   const table = element('table', 'cl-table cl-submissions');
+  const colgroup = element('colgroup');
+  for (const c of columns) {
+    const col = element('col');
+    col.style.width = `${c.width}%`;
+    colgroup.appendChild(col);
+  }
+  table.appendChild(colgroup);
   const head = table.createTHead().insertRow();
   const body = table.createTBody();
   let sortColumn = 0, sortUp = true;
   function render() {
     const needle = filter.value.trim().toLowerCase();
     const rows = subs.filter((s) => !needle ||
-        [s.submission, s.verdict, ...s.causes].some((text) => text.toLowerCase().includes(needle)));
+        [s.submission, s.verdict, ...s.causes.map((c) => c.id)].some((text) => text.toLowerCase().includes(needle)));
     const value = columns[sortColumn].value;
     rows.sort((a, b) => {
       const x = value(a), y = value(b);
@@ -104,13 +154,7 @@ function mountClass(root, data) {
     for (const s of rows) {
       const tr = body.insertRow();
       tr.dataset.name = s.submission;
-      for (const c of columns) {
-        const td = tr.insertCell();
-        const content = c.cell(s);
-        if (typeof content === 'string') td.textContent = content;
-        else td.appendChild(content);
-      }
-      if (s.verdict !== 'graded') tr.cells[columns.length - 3].className = 'cl-verdict-bad';
+      for (const c of columns) tr.appendChild(c.cell(s));
     }
     head.querySelectorAll('th').forEach((th, i) => {
       th.className = i === sortColumn ? (sortUp ? 'cl-sorted-up' : 'cl-sorted-down') : '';
@@ -119,6 +163,8 @@ function mountClass(root, data) {
   }
   columns.forEach((c, i) => {
     const th = element('th', null, c.title);
+    th.title = c.full || c.title;
+    if (c.max !== undefined && c.max !== null) th.appendChild(element('span', 'cl-max', ` /${fmt(c.max)}`));
     th.addEventListener('click', () => {
       sortUp = sortColumn === i ? !sortUp : true;
       sortColumn = i;
@@ -129,6 +175,22 @@ function mountClass(root, data) {
   filter.addEventListener('input', render);
   root.appendChild(table);
   render();
+
+  // ---- not graded: apart, with why
+  if (apart.length) {
+    root.appendChild(element('h2', null, `Not graded (${apart.length})`));
+    const t = element('table', 'cl-table cl-apart');
+    const h = t.createTHead().insertRow();
+    for (const text of ['submission', 'verdict', 'why']) h.appendChild(element('th', null, text));
+    for (const s of apart) {
+      const tr = t.insertRow();
+      tr.dataset.name = s.submission;
+      tr.insertCell().appendChild(link(s));
+      tr.insertCell().textContent = s.verdict;
+      tr.insertCell().textContent = s.problem || '';
+    }
+    root.appendChild(t);
+  }
 
   // ---- pass rates
   function rateTable(title, rows, className) {
@@ -160,14 +222,14 @@ function mountClass(root, data) {
 
   // ---- named causes
   root.appendChild(element('h2', null, 'Named causes'));
-  const causes = new Map();
+  const named = new Map();
   for (const s of subs)
-    for (const c of s.causes) causes.set(c, [...(causes.get(c) || []), s]);
+    for (const c of s.causes) named.set(c.id, [...(named.get(c.id) || []), s]);
   const list = element('table', 'cl-table cl-causes');
   const ch = list.createTHead().insertRow();
   for (const text of ['cause', 'submissions', 'reports']) ch.appendChild(element('th', null, text));
-  for (const [cause, who] of [...causes].sort((a, b) => b[1].length - a[1].length ||
-                                                       a[0].localeCompare(b[0]))) {
+  for (const [cause, who] of [...named].sort((a, b) => b[1].length - a[1].length ||
+                                                     a[0].localeCompare(b[0]))) {
     const tr = list.insertRow();
     tr.dataset.cause = cause;
     tr.insertCell().textContent = cause;
@@ -179,7 +241,7 @@ function mountClass(root, data) {
       links.appendChild(link(s));
     });
   }
-  if (causes.size === 0) root.appendChild(element('p', null, 'No named cause in this batch.'));
+  if (named.size === 0) root.appendChild(element('p', null, 'No named cause in this batch.'));
   else root.appendChild(list);
   root.dataset.ready = '1';
 }

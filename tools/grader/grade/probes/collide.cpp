@@ -346,9 +346,7 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const Case& c = cases[k];
     if (!answer) {
-      const std::string id = failure.causeId();
-      tests.push_back(util::failedTest(
-          checks[c.check], failure.text + "\n\n" + context.catalogue->cause(id, true), {id}));
+      tests.push_back(util::failedTest(checks[c.check], failure.text, {util::guess(failure.causeId())}));
       continue;
     }
     const int n = static_cast<int>(k);
@@ -426,18 +424,17 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
       }
       const bool matches = distance(actual, v) <= 10 * rel;
       if (!matches) consistent[m] = false;
-      if (matches && std::find(t.diagnoses.begin(), t.diagnoses.end(), id) == t.diagnoses.end())
-        t.diagnoses.push_back(id);
+      if (matches) t.addCause(id);
     }
     non_finite[k] =
         !util::finite(util::flat(actual.sphere_v)) || !util::finite(util::flat(actual.cloth_v)) ||
         !util::finite(util::flat(actual.sphere_x)) || !util::finite(util::flat(actual.cloth_x));
-    if (t.diagnoses.empty()) {
+    if (t.causes.empty()) {
       if (non_finite[k])
-        t.diagnoses.push_back("non-finite");
+        t.addCause("non-finite");
       else if (!sphere_sphere && c.check == kFixedParticle &&
                actual.cloth_v.col(0) != c.state.cloth.particles.velocity.col(0))
-        t.diagnoses.push_back("fixed-particle-massless");
+        t.addCause("fixed-particle-massless");
     }
     failed.push_back(tests.size());
     tests.push_back(t);
@@ -465,20 +462,14 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
     TestResult& t = tests[k];
     // One mistake that explains every case wins over those a single case cannot rule out.
     if (!explains_all.empty()) {
-      std::vector<std::string> kept;
-      for (const auto& id : t.diagnoses)
-        if (explains_all.count(id) || id == "non-finite") kept.push_back(id);
-      if (!kept.empty()) t.diagnoses = kept;
+      std::vector<Cause> kept;
+      for (const Cause& cause : t.causes)
+        if (explains_all.count(cause.id) || cause.id == "non-finite") kept.push_back(cause);
+      if (!kept.empty()) t.causes = kept;
     }
-    if (divides_by_speed &&
-        std::find(t.diagnoses.begin(), t.diagnoses.end(), "non-finite") != t.diagnoses.end())
-      t.diagnoses.insert(t.diagnoses.begin(), "division-by-speed");
-    if (t.diagnoses.empty()) {
-      t.output += "\n" + context.catalogue->cause("unknown", true) + "\n";
-      t.diagnoses.push_back("unknown");
-    } else {
-      for (const auto& id : t.diagnoses) t.output += "\n" + context.catalogue->cause(id) + "\n";
-    }
+    if (divides_by_speed && t.names("non-finite"))
+      t.causes.insert(t.causes.begin(), util::likely("division-by-speed"));
+    if (t.causes.empty()) t.addCause("unknown", false);
   }
   if (answer) {
     TestResult t = util::test(checks.back());
@@ -491,19 +482,15 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
           momentum_report;
       // NaN momentum says nothing of the mass split: the cases' own cause explains it.
       if (momentum_non_finite && divides_by_speed)
-        t.diagnoses = {"division-by-speed", "non-finite"};
+        t.causes = {util::likely("division-by-speed"), util::likely("non-finite")};
       else if (momentum_non_finite)
-        t.diagnoses = {"non-finite"};
+        t.causes = {util::likely("non-finite")};
       else
-        t.diagnoses = {"wrong-mass-split"};
-      for (const auto& id : t.diagnoses)
-        t.output += "\n" + context.catalogue->cause(id, id == "wrong-mass-split") + "\n";
+        t.causes = {util::guess("wrong-mass-split")};
     }
     tests.push_back(t);
   } else {
-    const std::string id = failure.causeId();
-    tests.push_back(util::failedTest(checks.back(),
-                                     failure.text + "\n\n" + context.catalogue->cause(id, true), {id}));
+    tests.push_back(util::failedTest(checks.back(), failure.text, {util::guess(failure.causeId())}));
   }
   return tests;
 }

@@ -190,9 +190,7 @@ std::vector<TestResult> probeForces(const ProbeContext& context) {
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const Case& c = cases[k];
     if (!answer) {
-      const std::string id = failure.causeId();
-      tests.push_back(util::failedTest(
-          checks[c.check], failure.text + "\n\n" + context.catalogue->cause(id, true), {id}));
+      tests.push_back(util::failedTest(checks[c.check], failure.text, {util::guess(failure.causeId())}));
       continue;
     }
     TestResult t = util::test(checks[c.check]);
@@ -241,23 +239,18 @@ std::vector<TestResult> probeForces(const ProbeContext& context) {
         else
           same = (vc - ac).cast<double>().norm() <= 10 * (rel * scale[q] + 1e-6);
       }
-      if (same) t.diagnoses.push_back(id);
+      if (same) t.addCause(id);
     }
-    if (t.diagnoses.empty()) {
+    if (t.causes.empty()) {
       bool fixed_moved = false;
       for (int q = 0; q < kN * kN; ++q)
         if (p.mass[q] == 0 && actual.col(q) != c.acc0.col(q)) fixed_moved = true;
       if (fixed_moved)
-        t.diagnoses.push_back("fixed-particle-moves");
+        t.addCause("fixed-particle-moves");
       else if (!util::finite(util::flat(actual)))
-        t.diagnoses.push_back("non-finite");
+        t.addCause("non-finite");
     }
-    if (t.diagnoses.empty()) {
-      t.output += "\n" + context.catalogue->cause("unknown", true) + "\n";
-      t.diagnoses.push_back("unknown");
-    } else {
-      for (const auto& id : t.diagnoses) t.output += "\n" + context.catalogue->cause(id) + "\n";
-    }
+    if (t.causes.empty()) t.addCause("unknown", false);
     tests.push_back(t);
   }
   return tests;

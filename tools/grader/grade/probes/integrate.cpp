@@ -691,9 +691,10 @@ std::string rk4WeightCause(const IntegratorRun& run, const std::string& source,
 }
 
 // Likely causes of a wrong first step: the numeric signatures of the known mistakes, refined by
-// the simulateOneStep() count and the source (integer literals divided). Adds notes to `output`.
+// the simulateOneStep() count and the source (integer literals divided). Adds notes to `output`;
+// a per-body loop suggested only by the call count is a guess, in `guesses`.
 std::vector<std::string> diagnoseOneStep(const ProbeContext& context, const IntegratorRun& run,
-                                         std::string& output) {
+                                         std::string& output, std::vector<std::string>& guesses) {
   const Method method = run.method;
   const std::vector<std::pair<std::string, Step>> signatures = oneStepSignatures(method);
   std::vector<std::string> ids;
@@ -753,7 +754,7 @@ std::vector<std::string> diagnoseOneStep(const ProbeContext& context, const Inte
   // A per-body loop calls simulateOneStep() once per body and stage.
   if (calls > expected_calls && expected_calls > 0 && calls % expected_calls == 0 &&
       std::find(ids.begin(), ids.end(), "per-body-loop") == ids.end() && ids.empty())
-    output += "\n" + context.catalogue->cause("per-body-loop", true) + "\n";
+    guesses.push_back("per-body-loop");
   return ids;
 }
 
@@ -779,19 +780,26 @@ TestResult checkOneStep(const ProbeContext& context, const IntegratorRun& run) {
                util::vec3(a.cloth.particles.position.col(1)) + ", v " +
                util::vec3(a.cloth.particles.velocity.col(1)) + "; sphere 0: x " +
                util::vec3(a.spheres.particles.position.col(0)) + "\n";
-  std::vector<std::string> ids = diagnoseOneStep(context, run, one.output);
+  std::vector<std::string> guesses;
+  const std::vector<std::string> ids = diagnoseOneStep(context, run, one.output, guesses);
+  for (const auto& id : ids) one.addCause(id);
   if (ids.empty()) {
-    one.output += "\n" + context.catalogue->cause("unknown", true) + "\n";
-    ids.push_back("unknown");
-  } else {
-    for (const auto& id : ids) one.output += "\n" + context.catalogue->cause(id) + "\n";
+    for (const auto& id : guesses) one.addCause(id, false);
+    one.addCause("unknown", false);
   }
-  one.diagnoses = ids;
   return one;
 }
 
+// What the one-step check named as likely first, the mistake the other checks of the stub follow
+// from; "unknown" when it named none.
+std::string firstLikelyCause(const TestResult& one) {
+  for (const Cause& cause : one.causes)
+    if (cause.likely) return cause.id;
+  return "unknown";
+}
+
 // Each body the course method moves must move.
-TestResult checkEveryBody(const ProbeContext& context, const IntegratorRun& run,
+TestResult checkEveryBody(const ProbeContext& /*context*/, const IntegratorRun& run,
                           const TestResult& one) {
   TestResult all = makeTest(run.stub, kChecks[1].name, kChecks[1].weight);
   std::string stuck;
@@ -811,30 +819,25 @@ TestResult checkEveryBody(const ProbeContext& context, const IntegratorRun& run,
                systemText(run.random) + ").\n\n";
   const bool only_spheres = stuck.find("cloth") == std::string::npos;
   // Nothing moved: the one-step diagnosis says why (integer division, ...), when it has one.
-  const bool named = !one.diagnoses.empty() && one.diagnoses.front() != "unknown";
-  const std::string id = only_spheres ? "only-first-body"
-                         : named      ? one.diagnoses.front()
-                                      : "unknown";
-  all.output += context.catalogue->cause(id, id == "unknown") + "\n";
-  all.diagnoses.push_back(id);
+  const std::string first = firstLikelyCause(one);
+  const std::string id = only_spheres ? "only-first-body" : first;
+  all.addCause(id, id != "unknown");
   return all;
 }
 
-TestResult checkDeltaTime(const ProbeContext& context, const IntegratorRun& run) {
+TestResult checkDeltaTime(const ProbeContext& /*context*/, const IntegratorRun& run) {
   TestResult t = makeTest(run.stub, kChecks[2].name, kChecks[2].weight);
   const auto& after = run.answer.f(key::perCase(key::kDtAfter, 0));
   const float dt_after = after.empty() ? std::nanf("") : after[0];
   t.fraction = dt_after == run.random.dt ? 1 : 0;
-  t.output = t.fraction == 1
-                 ? "The global deltaTime is unchanged after integrate()."
-                 : "deltaTime was " + util::num(run.random.dt) + " before integrate() and " +
-                       util::num(dt_after) + " after.\n\n" +
-                       context.catalogue->cause("deltatime-mutated") + "\n";
-  if (t.fraction == 0) t.diagnoses.push_back("deltatime-mutated");
+  t.output = t.fraction == 1 ? "The global deltaTime is unchanged after integrate()."
+                             : "deltaTime was " + util::num(run.random.dt) +
+                                   " before integrate() and " + util::num(dt_after) + " after.\n";
+  if (t.fraction == 0) t.addCause("deltatime-mutated");
   return t;
 }
 
-TestResult checkBackups(const ProbeContext& context, const IntegratorRun& run) {
+TestResult checkBackups(const ProbeContext& /*context*/, const IntegratorRun& run) {
   TestResult t = makeTest(run.stub, kChecks[3].name, kChecks[3].weight);
   const bool alias =
       distance(run.actual, stepped(run.random, variantStep(run.method, Variant::Alias))) <=
@@ -842,10 +845,9 @@ TestResult checkBackups(const ProbeContext& context, const IntegratorRun& run) {
       run.distance > run.rel;
   t.fraction = alias ? 0 : 1;
   t.output = alias ? "The result is exactly what a step gives when the backup follows the live "
-                     "state (same state as the one-step test).\n\n" +
-                         context.catalogue->cause("backup-alias") + "\n"
+                     "state (same state as the one-step test).\n"
                    : "The backed-up start state is not changed by the later stages.";
-  if (alias) t.diagnoses.push_back("backup-alias");
+  if (alias) t.addCause("backup-alias");
   return t;
 }
 
@@ -878,15 +880,13 @@ TestResult checkOrder(const ProbeContext& context, const IntegratorRun& run,
       util::num(expected_order) + " (theory " + std::to_string(kTheoreticalOrder[run.index]) +
       ").\n\n" + table;
   if (order.fraction == 0) {
-    const std::string id =
-        one.fraction == 1 || one.diagnoses.empty() ? "wrong-order" : one.diagnoses.front();
-    order.output += "\n" + context.catalogue->cause(id, id == "unknown") + "\n";
-    order.diagnoses.push_back(id);
+    const std::string id = one.fraction == 1 ? "wrong-order" : firstLikelyCause(one);
+    order.addCause(id, id != "unknown");
   }
   return order;
 }
 
-TestResult checkStability(const ProbeContext& context, const IntegratorRun& run,
+TestResult checkStability(const ProbeContext& /*context*/, const IntegratorRun& run,
                           const TestResult& one) {
   TestResult stable = makeTest(run.stub, kChecks[5].name, kChecks[5].weight);
   const auto& trajectory = run.answer.f(key::perCase(key::kTrajectory, run.stable_case));
@@ -904,12 +904,9 @@ TestResult checkStability(const ProbeContext& context, const IntegratorRun& run,
                   " m (released at 0.2 m; must stay below 0.3 m).\n";
   if (stable.fraction == 0) {
     // The blow-up is a consequence: the one-step finding names the mistake when there is one.
-    const std::string id =
-        one.fraction == 1 || one.diagnoses.empty() || one.diagnoses.front() == "unknown"
-            ? "unstable"
-            : one.diagnoses.front();
-    stable.output += "\n" + context.catalogue->cause(id) + "\n";
-    stable.diagnoses.push_back(id);
+    const std::string first = firstLikelyCause(one);
+    const std::string id = one.fraction == 1 || first == "unknown" ? "unstable" : first;
+    stable.addCause(id);
   }
   return stable;
 }
@@ -951,10 +948,8 @@ std::vector<TestResult> probeIntegrator(const ProbeContext& context, int index) 
   }
   std::vector<TestResult> tests;
   if (!ok) {
-    const std::string id = failure.causeId();
     for (const PlannedTest& check : integratorChecks(index))
-      tests.push_back(
-          util::failedTest(check, failure.text + "\n\n" + context.catalogue->cause(id, true), {id}));
+      tests.push_back(util::failedTest(check, failure.text, {util::guess(failure.causeId())}));
     return tests;
   }
   const TestResult one = checkOneStep(context, run);

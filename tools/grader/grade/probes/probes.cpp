@@ -9,12 +9,14 @@
 
 namespace clothref::grader {
 
-std::string Catalogue::cause(const std::string& id, bool guess) const {
-  auto it = entries.find(id);
-  if (it == entries.end()) return "**Likely cause** (`" + id + "`)";
-  const bool is_guess = guess || it->second.recognised_by == "guess";
-  return std::string(is_guess ? "**Possible cause (a guess)**" : "**Likely cause**") + " (`" + id +
-         "`): " + it->second.text;
+void fillCauseTexts(const Catalogue& catalogue, std::vector<TestResult>& tests) {
+  for (TestResult& test : tests)
+    for (Cause& cause : test.causes) {
+      auto it = catalogue.entries.find(cause.id);
+      if (it == catalogue.entries.end()) continue;  // named by its id alone
+      cause.text = it->second.text;
+      if (it->second.recognised_by == "guess") cause.likely = false;
+    }
 }
 
 Catalogue loadCatalogue(const std::filesystem::path& path) {

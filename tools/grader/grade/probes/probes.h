@@ -23,11 +23,14 @@ struct Diagnosis {
 };
 struct Catalogue {
   std::map<std::string, Diagnosis> entries;
-  // "Likely cause (`id`): text", marked as a guess when `guess` or the entry is a guess.
-  std::string cause(const std::string& id, bool guess = false) const;
 };
 // Throws InputError when the file is missing or malformed.
 Catalogue loadCatalogue(const std::filesystem::path& path);
+
+// Each cause of `tests` gets the catalogue's text for its id (Cause::text), and is a guess when the
+// catalogue recognises it only by guessing (`unknown`). The probes name causes as data; the
+// writers render them (report/outputs.h), so no text of a cause is written anywhere else.
+void fillCauseTexts(const Catalogue& catalogue, std::vector<TestResult>& tests);
 
 struct ProbeContext {
   int edition = 2022;

@@ -9,6 +9,7 @@
 #include "grader/grade/run/build.h"
 #include "clothref/core/cloth.h"
 #include "grader/grade/probes/util.h"
+#include "grader/grade/text.h"
 
 namespace clothref::grader {
 namespace {
@@ -184,17 +185,11 @@ std::string familyLines(const std::map<std::string, int>& counts,
   return out;
 }
 
-std::string causes(const ProbeContext& context, const std::vector<std::string>& ids,
-                   const std::set<std::string>& only) {
-  std::string out;
+// The causes of `ids` that belong to one check (`only`), named as likely on `test`.
+void addCauses(TestResult& test, const std::vector<std::string>& ids,
+               const std::set<std::string>& only) {
   for (const auto& id : ids)
-    if (only.count(id)) {
-      // appended piecewise: GCC 12 warns (-Wrestrict, a false positive) on "\n" + s + "\n"
-      out += '\n';
-      out += context.catalogue->cause(id);
-      out += '\n';
-    }
-  return out;
+    if (only.count(id)) test.addCause(id);
 }
 
 }  // namespace
@@ -221,8 +216,7 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
   if (!student) {
     const std::string id = answer ? "wrong-spring-endpoints" : failure.causeId();
     for (int k : {kConnections, kRestLengths, kTypeLabels})
-      tests.push_back(
-          util::failedTest(checks[k], failure.text + "\n\n" + context.catalogue->cause(id, true), {id}));
+      tests.push_back(util::failedTest(checks[k], failure.text, {util::guess(id)}));
   } else {
     const Comparison c = compare(*student, reference, 25, rest_rel);
     const std::string state =
@@ -241,11 +235,8 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
                            familyLines(c.missing_by_family, c.family_size, "missing") +
                            familyLines(c.extra_by_family, {}, "unexpected") + "\nExamples:\n";
       for (const auto& e : c.connection_examples) connections.output += "- " + e + "\n";
-      connections.output += causes(
-          context, c.diagnoses, {"missing-springs", "duplicate-springs", "wrong-spring-endpoints"});
-      for (const auto& id : c.diagnoses)
-        if (id == "missing-springs" || id == "duplicate-springs" || id == "wrong-spring-endpoints")
-          connections.diagnoses.push_back(id);
+      addCauses(connections, c.diagnoses,
+                {"missing-springs", "duplicate-springs", "wrong-spring-endpoints"});
       connections.sketch = c.connections_sketch;
     } else {
       connections.output = "All " + std::to_string(reference.count) +
@@ -261,11 +252,7 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
                     " (relative). Reference rest lengths: structural " +
                     "|p0 - p1|, shear |p0 - p(N+1)|, bend |p0 - p2| of the initial positions.\n\n";
       for (const auto& e : c.rest_examples) rest.output += "- " + e + "\n";
-      rest.output += causes(context, c.diagnoses,
-                            {"shear-rest-length", "bend-rest-length", "approximate-sqrt2"});
-      for (const auto& id : c.diagnoses)
-        if (id == "shear-rest-length" || id == "bend-rest-length" || id == "approximate-sqrt2")
-          rest.diagnoses.push_back(id);
+      addCauses(rest, c.diagnoses, {"shear-rest-length", "bend-rest-length", "approximate-sqrt2"});
       if (c.wrong_rest) rest.sketch = c.rest_sketch;
     } else {
       rest.output = "Every spring's rest length matches the initial distance of its ends.";
@@ -282,9 +269,8 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
             "- " + std::to_string(count) + " " + kTypeNames[swap.first] + " springs labelled " +
             (swap.second >= 0 && swap.second < 3 ? kTypeNames[swap.second] : "?") + "\n";
       for (const auto& e : c.type_examples) labels.output += "- e.g. " + e + "\n";
-      labels.output += causes(context, c.diagnoses, {"swapped-spring-types"});
       if (c.wrong_type) {
-        labels.diagnoses.push_back("swapped-spring-types");
+        labels.addCause("swapped-spring-types");
         labels.sketch = c.type_sketch;
       }
     } else {
@@ -303,8 +289,10 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
       ").\n\n";
   if (context.probe_small.empty()) {
     small.output = state + "Not run: " +
-                   (context.small_problem.empty() ? std::string("cloth.cpp is not yours")
-                                                  : context.small_problem);
+                   (context.small_problem.empty()
+                        ? std::string("cloth.cpp is not yours")
+                        : "your cloth.cpp did not build at this size:\n\n" +
+                              codeBlock(context.small_problem));
     small.fraction = 0;
   } else {
     util::ProbeFailure small_failure;
@@ -314,16 +302,13 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
     if (small_answer) small_set = studentSprings(*small_answer, n, small_failure.text);
     if (!small_set) {
       small.output = state + small_failure.text + "\n";
-      if (!small_answer) {  // the process's own verdict first: a grader error is never yours
-        small.output += "\n" + context.catalogue->cause(small_failure.causeId(), true) + "\n";
-        small.diagnoses.push_back(small_failure.causeId());
-      }
+      if (!small_answer)  // the process's own verdict first: a grader error is never yours
+        small.addCause(small_failure.causeId(), false);
       if (big_ok && small_failure.verdict != Verdict::GraderError) {
         // Right at 25 and springs to particles a 10 x 10 cloth does not have: measured. A crash
         // at 10 is only suggestive.
         const bool measured = small_answer.has_value();
-        small.output += "\n" + context.catalogue->cause("hard-coded-n25", !measured) + "\n";
-        small.diagnoses.push_back("hard-coded-n25");
+        small.addCause("hard-coded-n25", measured);
       }
     } else {
       const Comparison c = compare(*small_set, referenceSprings(n, context.edition), n, rest_rel);
@@ -343,10 +328,9 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
           small.sketch.differing.insert(small.sketch.differing.end(), more->differing.begin(),
                                         more->differing.end());
         if (big_ok) {
-          small.output += "\n" + context.catalogue->cause("hard-coded-n25") + "\n";
-          small.diagnoses.push_back("hard-coded-n25");
+          small.addCause("hard-coded-n25");
         } else {
-          small.diagnoses = c.diagnoses;
+          for (const auto& id : c.diagnoses) small.addCause(id);
         }
       }
     }

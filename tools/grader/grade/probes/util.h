@@ -12,6 +12,7 @@
 #include "grader/bridge/probe_keys.h"
 #include "clothref/core/types.h"
 #include "grader/grade/probes/probes.h"
+#include "grader/grade/text.h"
 
 namespace clothref::grader {
 // The protocol's names (bridge/probe_keys.h), short in the probe files.
@@ -75,7 +76,7 @@ inline std::optional<probe::ProbeMessage> runGroup(
   failure.text = "The probe process " + run.describe() + ".";
   if (run.status == ChildStatus::NotStarted && !run.grader_problem.empty())
     failure.text += " (" + run.grader_problem + ")";
-  if (!run.stderr_head.empty()) failure.text += "\n\n```\n" + run.stderr_head + "```";
+  if (!run.stderr_head.empty()) failure.text += "\n\n" + codeBlock(run.stderr_head);
   // A crash, or two runs that differ: the instrumented build names the line, when it finds one.
   const bool explain =
       run.status == ChildStatus::Varies || failure.verdict == Verdict::Crashed;
@@ -87,7 +88,7 @@ inline std::optional<probe::ProbeMessage> runGroup(
                           "nothing (the fault may depend on the optimisation level)."
                         : "\n\nThe grader rebuilt your files with AddressSanitizer and "
                           "UndefinedBehaviorSanitizer (`-g -O1`) and ran this probe again; "
-                          "their report:\n\n```\n" + report + "```";
+                          "their report:\n\n" + codeBlock(report);
   }
   return std::nullopt;
 }
@@ -97,13 +98,17 @@ inline TestResult test(const PlannedTest& check) {
   return makeTest(check.stub, check.check, check.weight);
 }
 
+// A cause the numbers confirm, and one they only suggest (results.h, Cause).
+inline Cause likely(const std::string& id) { return Cause{id, true, {}, {}, {}}; }
+inline Cause guess(const std::string& id) { return Cause{id, false, {}, {}, {}}; }
+
 // A test of the group that could not run: zero points, the verdict as output.
 inline TestResult failedTest(const PlannedTest& check, const std::string& why,
-                             const std::vector<std::string>& diagnoses) {
+                             std::vector<Cause> causes) {
   TestResult t = test(check);
   t.fraction = 0;
   t.output = why;
-  t.diagnoses = diagnoses;
+  t.causes = std::move(causes);
   return t;
 }
 

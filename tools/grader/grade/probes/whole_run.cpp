@@ -1,25 +1,93 @@
 // The whole-run check: the student's full simulation (their forces, contacts and explicit Euler,
-// with the course's main loop) of the course scene for a short horizon, written as a clothref
-// trace and compared with clothref's trace by clothref diff. Information only: a correct
-// symplectic explicit drifts from the reference trajectory more than many real bugs do.
-#include <fstream>
+// with the course's main loop) of the course scene for a short horizon, compared with clothref's
+// run of the same scene by clothref's differ. Information only: a correct symplectic explicit
+// drifts from the reference trajectory more than many real bugs do.
+//
+// In memory: the student's states come back in the probe's answer and are seen through
+// BodyViews (trace/body_view.h), turned into trace step lines beside the reference's trace of the
+// scene from findBuiltinScene, and the two texts are compared as streams; nothing is written to
+// disk and no World is built to hold the student's arrays. The two texts stay on the test for the
+// HTML report's pictures.
+#include <sstream>
 
 #include "clothref/diff/diff.h"
 #include "clothref/record/record.h"
-#include "clothref/record/world_views.h"
-#include "clothref/scene/make_world.h"
 #include "clothref/scene/scene.h"
+#include "clothref/trace/body_view.h"
 #include "clothref/trace/format.h"
+#include "clothref/trace/step_line.h"
 #include "grader/grade/probes/util.h"
 
 namespace clothref::grader {
+namespace {
+
+constexpr std::int64_t kSteps = 200, kStride = 20;
+constexpr double kTolerance = 1e-5;  // absolute or relative (clothref diff's combined mode)
+
+// "the cloth's particle 312, velocity y" of a compared value.
+std::string valueName(const ValueDiff& value) {
+  if (value.field == Field::Time) return "the time t";
+  static const char* const kAxes[] = {"x", "y", "z"};
+  return "the " + value.body + "'s " + (value.body == "spheres" ? "sphere " : "particle ") +
+         std::to_string(value.particle) + ", " + std::string(fieldName(value.field)) + " " +
+         (value.component >= 0 && value.component < 3 ? kAxes[value.component] : "?");
+}
+
+std::string unitOf(const ValueDiff& value) {
+  return value.field == Field::Position ? " m" : value.field == Field::Velocity ? " m/s" : " s";
+}
+
+// The comparison as a student reads it: steps and times in the course's units, yours against the
+// reference's, the tolerance; no file names, no units in the last place.
+std::string describe(const DiffReport& report, double dt) {
+  const auto at = [&](std::int64_t step) {
+    return "step " + std::to_string(step) + " (t = " + util::num(double(step) * dt) + " s)";
+  };
+  const auto values = [&](const ValueDiff& value) {
+    return valueName(value) + ": yours " + util::num(value.b) + unitOf(value) +
+           ", the reference's " + util::num(value.a) + unitOf(value);
+  };
+  if (report.verdict == clothref::Verdict::Identical)
+    return "**The runs are identical**: all " + std::to_string(report.steps_compared) +
+           " recorded states (every " + std::to_string(kStride) +
+           "th step) equal the reference's, bit for bit.\n";
+  if (report.verdict == clothref::Verdict::WithinTolerance)
+    return "**The runs are identical within the tolerance** (" + std::string("1e-5") +
+           ", absolute or relative): " + std::to_string(report.values_compared) +
+           " values compared" +
+           (report.worst ? "; the largest difference is " + values(*report.worst) + " at " +
+                               at(report.worst->step)
+                         : std::string()) +
+           ".\n";
+  std::string out = "**The runs differ**";
+  if (report.first_beyond)
+    out += " from " + at(report.first_beyond->step) + ": " + values(*report.first_beyond) + ".";
+  out += " In all, " + std::to_string(report.values_beyond) + " of " +
+         std::to_string(report.values_compared) + " values compared are beyond the tolerance (" +
+         std::string("1e-5") + ", absolute or relative)";
+  if (report.worst && report.first_beyond && !(report.worst->step == report.first_beyond->step &&
+                                               report.worst->particle ==
+                                                   report.first_beyond->particle &&
+                                               report.worst->field == report.first_beyond->field))
+    out += "; the largest difference is " + values(*report.worst) + " at " +
+           at(report.worst->step);
+  out += ".\n";
+  for (const HeaderDiff& header : report.header_diffs)
+    if (header.significant) {
+      out += "\nThe runs' settings differ (" + header.pointer + ").\n";
+      break;
+    }
+  return out;
+}
+
+}  // namespace
 
 std::vector<TestResult> probeWholeRun(const ProbeContext& context) {
   const std::string scene_name = context.edition == 2024 ? "course2024" : "course2022";
   TestResult t = makeTest("Cloth + Spheres + ExplicitEuler (whole run)",
                           "course scene " + scene_name + " for 200 steps (information only)", 0);
   t.informational = true;
-  t.fraction = 1;
+  t.fraction = 0;
   const Scene* scene = findBuiltinScene(scene_name);
   if (!scene) {
     t.output = "Not run: clothref has no scene " + scene_name + ".";
@@ -29,8 +97,17 @@ std::vector<TestResult> probeWholeRun(const ProbeContext& context) {
   settings.method = Method::Explicit;
   settings.precision = Precision::Float;
   settings.dt = scene->dt;
-  settings.steps = 200;
-  settings.stride = 20;
+  settings.steps = kSteps;
+  settings.stride = kStride;
+  // the time of a step as the course's float deltaTime gives it (the reference's trace writes so)
+  const double dt = double(static_cast<float>(settings.dt));
+  const std::string what =
+      "Your cloth.cpp, sphere.cpp and integrator.cpp ran the course's main loop "
+      "(simulateOneStep(), then ExplicitEuler::integrate) on the course scene " +
+      scene_name + " for " + std::to_string(kSteps) + " steps of " + util::num(settings.dt) +
+      " s (" + util::num(double(kSteps) * dt) + " s), and so did the reference; every " +
+      std::to_string(kStride) + "th state is compared. This never changes your score: an "
+      "accepted variant (e.g. symplectic explicit Euler) also differs here.\n\n";
   probe::ProbeMessage request;
   request.texts[key::kGroup] = group::kWholeRun;
   request.ints[key::kMethod] = {0};
@@ -42,70 +119,59 @@ std::vector<TestResult> probeWholeRun(const ProbeContext& context) {
   const auto answer =
       util::runGroup(context, context.probe, group::kWholeRun, request, failure, nullptr, true);
   if (!answer) {
-    t.output = "Your full simulation did not finish: " + failure.text;
+    t.output = what + "Your run did not finish: " + failure.text;
     return {t};
   }
-  const auto dir = context.work_dir / group::kWholeRun;
-  const auto reference_path = dir / "reference.jsonl";
-  const auto student_path = dir / "student.jsonl";
-  {
-    std::ofstream out(reference_path);
-    writeTrace(*scene, settings, out);
+  // The student's states, body by body in the header's order, seen through BodyViews.
+  const nlohmann::ordered_json header = traceHeader(*scene, settings);
+  std::int64_t cloth_n = 0, sphere_n = 0;
+  for (const auto& body : header["bodies"])
+    (body["name"] == "cloth" ? cloth_n : sphere_n) = body["particles"].get<std::int64_t>();
+  const std::int64_t capacity = answer->scalarInt(key::kSphereCapacity, sphere_n);
+  const auto& cx = answer->f(key::kClothPos);
+  const auto& cv = answer->f(key::kClothVel);
+  const auto& sx = answer->f(key::kSpherePos);
+  const auto& sv = answer->f(key::kSphereVel);
+  auto traces = std::make_shared<TestResult::Traces>();
+  traces->student = header.dump() + "\n";
+  std::size_t record = 0;
+  for (std::int64_t s = 0; s <= settings.steps; ++s) {
+    if (!isRecorded(s, settings.steps, settings.stride)) continue;
+    const std::size_t c0 = record * std::size_t(4 * cloth_n);
+    const std::size_t s0 = record * std::size_t(4 * capacity);
+    if (c0 + std::size_t(4 * cloth_n) > cx.size() || c0 + std::size_t(4 * cloth_n) > cv.size() ||
+        s0 + std::size_t(4 * sphere_n) > sx.size() || s0 + std::size_t(4 * sphere_n) > sv.size())
+      break;  // an answer cut short: the comparison says where the run ends
+    std::vector<BodyView<float>> bodies;
+    for (const auto& body : header["bodies"])
+      if (body["name"] == "cloth")
+        bodies.push_back({"cloth", cx.data() + c0, cv.data() + c0, int(cloth_n)});
+      else
+        bodies.push_back({"spheres", sx.data() + s0, sv.data() + s0, int(sphere_n)});
+    appendStepLine(traces->student, s, double(s) * dt,
+                   std::span<const BodyView<float>>(bodies.data(), bodies.size()));
+    ++record;
   }
   {
-    World<float> world = makeWorld<float>(*scene, Method::Explicit, settings.dt);
-    const int cloth_n = world.cloth ? world.cloth->particles.size() : 0;
-    const int sphere_n = world.spheres ? world.spheres->size() : 0;
-    const int capacity = static_cast<int>(answer->scalarInt(key::kSphereCapacity, sphere_n));
-    const auto& cx = answer->f(key::kClothPos);
-    const auto& cv = answer->f(key::kClothVel);
-    const auto& sx = answer->f(key::kSpherePos);
-    const auto& sv = answer->f(key::kSphereVel);
-    std::string text = traceHeader(*scene, settings).dump() + "\n";
-    std::int64_t record = 0;
-    for (std::int64_t s = 0; s <= settings.steps; ++s) {
-      if (!isRecorded(s, settings.steps, settings.stride)) continue;
-      const std::size_t c0 = std::size_t(record) * std::size_t(4 * cloth_n);
-      const std::size_t s0 = std::size_t(record) * std::size_t(4 * capacity);
-      if (c0 + std::size_t(4 * cloth_n) > cx.size() || s0 + std::size_t(4 * sphere_n) > sx.size())
-        break;
-      world.step = s;
-      if (world.cloth) {
-        world.cloth->particles.position =
-            util::matrix({cx.begin() + long(c0), cx.begin() + long(c0 + 4 * cloth_n)}, cloth_n);
-        world.cloth->particles.velocity =
-            util::matrix({cv.begin() + long(c0), cv.begin() + long(c0 + 4 * cloth_n)}, cloth_n);
-      }
-      if (world.spheres) {
-        world.spheres->particles.position =
-            util::matrix({sx.begin() + long(s0), sx.begin() + long(s0 + 4 * sphere_n)}, sphere_n);
-        world.spheres->particles.velocity =
-            util::matrix({sv.begin() + long(s0), sv.begin() + long(s0 + 4 * sphere_n)}, sphere_n);
-      }
-      appendStepLine(text, world);
-      ++record;
-    }
-    std::ofstream out(student_path);
-    out << text;
+    std::ostringstream reference;
+    writeTrace(*scene, settings, reference);
+    traces->reference = reference.str();
   }
   DiffOptions options;
   options.global.mode = ToleranceMode::Combined;
-  options.global.abs = 1e-5;
-  options.global.rel = 1e-5;
+  options.global.abs = kTolerance;
+  options.global.rel = kTolerance;
   options.common_steps = true;
   try {
-    const DiffReport report = diffTraces(reference_path.string(), student_path.string(), options);
-    t.output =
-        "Your cloth.cpp, sphere.cpp and integrator.cpp run the course's main loop "
-        "(simulateOneStep, then ExplicitEuler::integrate) on " +
-        scene_name + " for 200 steps of " + util::num(settings.dt) +
-        " s; `clothref diff` against "
-        "clothref (tolerance 1e-5 absolute or relative). This never changes your score: "
-        "an accepted variant (e.g. symplectic explicit Euler) also differs here.\n\n```\n" +
-        formatReport(report) + "```\n";
+    std::istringstream reference(traces->reference), student(traces->student);
+    const DiffReport report = diffTraces(reference, "the reference", student, "your run", options);
+    t.fraction = report.verdict == clothref::Verdict::Differ ? 0 : 1;
+    t.output = what + describe(report, dt);
   } catch (const std::exception& error) {
-    t.output = "The traces could not be compared: " + std::string(error.what());
+    t.output = what + "Your run could not be compared with the reference's: " +
+               codeSpan(safeName(error.what())) + ".";
   }
+  t.traces = traces;
   return {t};
 }
 

@@ -1,14 +1,13 @@
 #include "grader/grade/report/outputs.h"
 
 #include <cmath>
+#include <map>
 #include <sstream>
 
 #include "grader/grade/text.h"
 
 namespace clothref::grader {
 namespace {
-
-double rounded(double value) { return std::round(value * 1000) / 1000; }
 
 std::string xmlEscape(const std::string& text) {
   std::string out;
@@ -37,9 +36,49 @@ std::string xmlEscape(const std::string& text) {
   return out;
 }
 
-// The report with every text made safe (text.h): valid UTF-8 (Big5 lines decoded, other bytes
-// U+FFFD), control characters escaped, names on one line; plus a note saying what was done. Every
-// writer starts from this, so no byte a submission controls reaches an output unchecked.
+// “check” of a test, as later tests refer to it.
+std::string curlyQuoted(const std::string& text) { return "\xE2\x80\x9C" + text + "\xE2\x80\x9D"; }
+
+std::string causeHead(const Cause& cause) {
+  return std::string(cause.likely ? "**Likely cause**" : "**Possible cause (a guess)**") + " (" +
+         codeSpan(cause.id) + ")" + (cause.text.empty() ? "" : ": " + cause.text);
+}
+
+std::string quoteBlock(const std::vector<SourceQuote>& quotes) {
+  std::string lines;
+  for (const SourceQuote& quote : quotes)
+    lines += quote.file + ":" + std::to_string(quote.line) + ": " + quote.text + "\n";
+  return codeBlock(lines);
+}
+
+// A Markdown block per note, those with a verbatim block after the one-line ones.
+std::string notesMarkdown(const std::vector<Note>& notes) {
+  std::string out;
+  for (const Note& note : notes)
+    if (note.block.empty()) out += "- " + note.text + "\n";
+  for (const Note& note : notes)
+    if (!note.block.empty()) out += "\n" + note.text + "\n\n" + codeBlock(note.block);
+  return out;
+}
+
+std::string statusWord(const TestResult& t) {
+  if (t.informational) return t.passed() ? "identical" : "differs";
+  return t.passed() ? "passed" : "failed";
+}
+
+}  // namespace
+
+double roundedPoints(double value) {
+  const double rounded = std::round(value * 1000) / 1000;
+  return rounded == 0 ? 0.0 : rounded;  // never "-0"
+}
+
+std::string points(double value) {
+  std::ostringstream out;
+  out << roundedPoints(value);
+  return out.str();
+}
+
 GradeReport cleaned(const GradeReport& given) {
   GradeReport report = given;
   TextRepairs repairs;
@@ -52,13 +91,31 @@ GradeReport cleaned(const GradeReport& given) {
     name(file.name);
     name(file.path);
     text(file.problem);
+    text(file.log);
   }
-  for (std::string& note : report.notes) name(note);
+  for (Note& note : report.notes) {
+    name(note.text);
+    text(note.block);
+  }
+  for (FileChoice& choice : report.choices) {
+    name(choice.name);
+    name(choice.used);
+    for (std::string& other : choice.others) name(other);
+  }
   for (TestResult& test : report.tests) {
     name(test.stub);
     name(test.check);
+    name(test.visibility);
     text(test.output);
-    for (std::string& id : test.diagnoses) name(id);
+    for (Cause& cause : test.causes) {
+      name(cause.id);
+      text(cause.detail);
+      text(cause.text);
+      for (SourceQuote& quote : cause.quotes) {
+        name(quote.file);
+        name(quote.text);
+      }
+    }
   }
   if (repairs.any())
     report.notes.push_back("text from the submission made printable and valid UTF-8 (" +
@@ -66,60 +123,121 @@ GradeReport cleaned(const GradeReport& given) {
   return report;
 }
 
-std::string number(double value) {
-  std::ostringstream out;
-  out << rounded(value);
-  return out.str();
+std::string TestText::markdown() const {
+  std::string out = output;
+  for (const auto* blocks : {&likely, &guesses})
+    for (const std::string& block : *blocks) {
+      if (!out.empty() && out.back() != '\n') out += '\n';
+      out += "\n" + block;
+    }
+  return out;
 }
 
-std::string filesSection(const GradeReport& report) {
-  std::string out = "| file | used | status |\n|---|---|---|\n";
+std::vector<TestText> testTexts(const GradeReport& report) {
+  std::vector<TestText> texts;
+  std::map<std::string, std::string> output_shown;  // a long output -> the test that showed it
+  std::map<std::pair<std::string, std::string>, std::string> quotes_shown;  // (stub, quotes) -> check
+  for (const TestResult& t : report.tests) {
+    TestText text;
+    text.output = t.output;
+    const bool shown_failed = !t.passed() && !t.informational;
+    if (shown_failed && t.output.find('\n') != std::string::npos) {
+      auto [it, first] = output_shown.emplace(t.output, t.name());
+      if (!first) text.output = "Same as for " + curlyQuoted(it->second) + " above.\n";
+    }
+    for (const Cause& cause : t.causes) {
+      std::string block = causeHead(cause) + "\n";
+      if (!cause.detail.empty()) block += "\n" + cause.detail + (cause.detail.back() == '\n' ? "" : "\n");
+      if (!cause.quotes.empty()) {
+        const auto key = std::make_pair(t.stub, cause.id + "\n" + quoteBlock(cause.quotes));
+        auto [it, first] = quotes_shown.emplace(key, t.check);
+        block += first ? "\nIn " + codeSpan(cause.quotes.front().file) + ", inside " +
+                             codeSpan(t.stub) + ":\n\n" + quoteBlock(cause.quotes)
+                       : "\nThe lines are quoted under " + curlyQuoted(it->second) + " above.\n";
+      }
+      (cause.likely ? text.likely : text.guesses).push_back(block);
+    }
+    texts.push_back(text);
+  }
+  return texts;
+}
+
+std::string filesMarkdown(const GradeReport& report) {
+  std::string out;
   for (const UsedFile& f : report.files) {
-    std::string status = f.compiled               ? "compiled"
-                         : f.problem == "missing" ? "missing"
-                                                  : "did not build";
-    if (!f.compiled) status += "; our reference version linked instead";
-    out += "| " + f.name + " | " + (f.path.empty() ? "-" : "`" + f.path + "`") + " | " + status +
-           " |\n";
+    out += "- " + f.name + ": " + (f.path.empty() ? std::string("not found") : codeSpan(f.path));
+    if (f.compiled)
+      out += ", compiled\n";
+    else
+      out += std::string(f.status == Verdict::MissingFile ? "" : ", did not build") +
+             "; our reference version linked instead\n";
+  }
+  for (const UsedFile& f : report.files) {
+    if (f.compiled || f.status == Verdict::MissingFile || f.problem.empty()) continue;
+    out += "\n" + codeSpan(f.name) + ", the first error:\n\n" + codeBlock(f.problem);
+    if (!f.log.empty())
+      out += "\nThe whole log of " + codeSpan(f.name) + " (its own messages):\n\n" + codeBlock(f.log);
   }
   return out;
 }
 
-}  // namespace
-
 std::string summaryLine(const GradeReport& given) {
   const GradeReport report = cleaned(given);
   return "graded " + report.submission + " (" + std::to_string(report.edition) +
-         "): " + number(report.score) + " / " + number(report.max_score);
+         "): " + points(report.score) + " / " + points(report.max_score) + ", verdict " +
+         verdictId(report.verdict);
+}
+
+std::vector<std::string> choiceLines(const GradeReport& given) {
+  const GradeReport report = cleaned(given);
+  std::vector<std::string> lines;
+  for (const FileChoice& choice : report.choices) {
+    std::string others;
+    for (const std::string& other : choice.others) others += (others.empty() ? "" : ", ") + other;
+    lines.push_back(choice.name + ": used " + choice.used + "; also found " + others);
+  }
+  return lines;
 }
 
 nlohmann::ordered_json resultsJson(const GradeReport& given) {
   const GradeReport report = cleaned(given);
+  const std::vector<TestText> texts = testTexts(report);
   nlohmann::ordered_json out;
-  out["score"] = rounded(report.score);
-  out["execution_time"] = rounded(report.seconds.count("total") ? report.seconds.at("total") : 0);
+  out["score"] = roundedPoints(report.score);
+  out["execution_time"] =
+      std::round((report.seconds.count("total") ? report.seconds.at("total") : 0) * 1000) / 1000;
   std::string summary = "Edition " + std::to_string(report.edition) + " (" + report.edition_source +
-                        "). Code score " + number(report.score) + " / " + number(report.max_score) +
-                        ". Verdict: " + verdictId(report.verdict) + ".\n\n" + filesSection(report);
+                        "). Code score " + points(report.score) + " / " + points(report.max_score) +
+                        ". Verdict: " + verdictId(report.verdict) + ".\n\n" + filesMarkdown(report);
   if (!report.isolation.empty()) summary += "\nStudent code ran with: " + report.isolation + ".\n";
-  for (const auto& note : report.notes) summary += "\n- " + note;
+  if (!report.notes.empty()) summary += "\n" + notesMarkdown(report.notes);
   out["output"] = summary;
   out["output_format"] = "md";
   out["visibility"] = "visible";
   out["stdout_visibility"] = "hidden";
   nlohmann::ordered_json tests = nlohmann::ordered_json::array();
-  for (const TestResult& t : report.tests) {
+  for (std::size_t k = 0; k < report.tests.size(); ++k) {
+    const TestResult& t = report.tests[k];
     nlohmann::ordered_json test;
     test["name"] = t.name();
-    test["score"] = rounded(t.score);
-    test["max_score"] = rounded(t.max_score);
+    test["score"] = roundedPoints(t.score);
+    test["max_score"] = roundedPoints(t.max_score);
     test["status"] = t.passed() ? "passed" : "failed";
-    test["output"] = t.output;
+    test["output"] = texts[k].markdown();
     test["output_format"] = "md";
-    test["visibility"] = "visible";
+    test["visibility"] = t.visibility;
     nlohmann::ordered_json tags = nlohmann::ordered_json::array({t.stub});
-    for (const auto& id : t.diagnoses) tags.push_back(id);
+    for (const auto& id : t.causeIds()) tags.push_back(id);
     test["tags"] = tags;
+    if (!t.causes.empty() || t.informational) {
+      nlohmann::ordered_json extra;
+      if (t.informational) extra["information_only"] = statusWord(t);
+      nlohmann::ordered_json causes = nlohmann::ordered_json::array();
+      for (const Cause& cause : t.causes)
+        causes.push_back({{"id", cause.id}, {"likely", cause.likely}});
+      if (!t.causes.empty()) extra["causes"] = causes;
+      test["extra_data"] = extra;
+    }
     tests.push_back(test);
   }
   out["tests"] = tests;
@@ -132,8 +250,11 @@ nlohmann::ordered_json resultsJson(const GradeReport& given) {
     files.push_back(
         {{"name", f.name}, {"path", f.path}, {"compiled", f.compiled}, {"problem", f.problem}});
   extra["files"] = files;
-  extra["stub_scores"] = report.stub_score;
-  extra["stub_max"] = report.stub_max;
+  nlohmann::ordered_json stub_scores, stub_max;
+  for (const auto& [stub, value] : report.stub_score) stub_scores[stub] = roundedPoints(value);
+  for (const auto& [stub, value] : report.stub_max) stub_max[stub] = roundedPoints(value);
+  extra["stub_scores"] = stub_scores;
+  extra["stub_max"] = stub_max;
   extra["seconds"] = report.seconds;
   out["extra_data"] = extra;
   return out;
@@ -141,32 +262,43 @@ nlohmann::ordered_json resultsJson(const GradeReport& given) {
 
 std::string junitXml(const GradeReport& given) {
   const GradeReport report = cleaned(given);
+  const std::vector<TestText> texts = testTexts(report);
   int failures = 0;
-  for (const TestResult& t : report.tests) failures += t.passed() ? 0 : 1;
+  for (const TestResult& t : report.tests) failures += t.passed() || t.informational ? 0 : 1;
   std::ostringstream out;
   out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
   out << "<testsuites tests=\"" << report.tests.size() << "\" failures=\"" << failures
       << "\" name=\"clothref grade\">\n";
   out << "  <testsuite name=\"" << xmlEscape(report.submission) << "\" tests=\""
       << report.tests.size() << "\" failures=\"" << failures << "\">\n";
-  out << "    <properties><property name=\"score\" value=\"" << number(report.score)
-      << "\"/><property name=\"max_score\" value=\"" << number(report.max_score)
+  out << "    <properties><property name=\"score\" value=\"" << points(report.score)
+      << "\"/><property name=\"max_score\" value=\"" << points(report.max_score)
       << "\"/><property name=\"edition\" value=\"" << report.edition
       << "\"/><property name=\"verdict\" value=\"" << verdictId(report.verdict)
       << "\"/><property name=\"isolation\" value=\"" << xmlEscape(report.isolation) << "\"/>";
-  // The notes (files chosen or refused, encodings, what text was decoded) on one line.
+  // The notes (files chosen or refused, encodings, what text was decoded) on one line; a note's
+  // block follows its text.
   std::string notes;
-  for (const std::string& note : report.notes) notes += (notes.empty() ? "" : " | ") + note;
+  for (const Note& note : report.notes)
+    notes += (notes.empty() ? "" : " | ") + note.text + (note.block.empty() ? "" : ": " + note.block);
   if (!notes.empty()) out << "<property name=\"notes\" value=\"" << xmlEscape(notes) << "\"/>";
   out << "</properties>\n";
-  for (const TestResult& t : report.tests) {
+  for (std::size_t k = 0; k < report.tests.size(); ++k) {
+    const TestResult& t = report.tests[k];
     out << "    <testcase classname=\"" << xmlEscape(t.stub) << "\" name=\"" << xmlEscape(t.check)
         << "\">";
+    if (t.informational) {
+      // information only: never a failure, whatever it found
+      out << "<system-out>" << xmlEscape("information only, " + statusWord(t) + "\n\n" +
+                                         texts[k].markdown())
+          << "</system-out></testcase>\n";
+      continue;
+    }
     if (!t.passed())
       out << "\n      <failure message=\""
-          << xmlEscape(number(t.score) + " / " + number(t.max_score)) << "\">"
-          << xmlEscape(t.output) << "</failure>\n    ";
-    out << "<system-out>" << xmlEscape(number(t.score) + " / " + number(t.max_score))
+          << xmlEscape(points(t.score) + " / " + points(t.max_score)) << "\">"
+          << xmlEscape(texts[k].markdown()) << "</failure>\n    ";
+    out << "<system-out>" << xmlEscape(points(t.score) + " / " + points(t.max_score))
         << "</system-out></testcase>\n";
   }
   out << "  </testsuite>\n</testsuites>\n";
@@ -175,41 +307,39 @@ std::string junitXml(const GradeReport& given) {
 
 std::string markdownReport(const GradeReport& given) {
   const GradeReport report = cleaned(given);
+  const std::vector<TestText> texts = testTexts(report);
   std::ostringstream out;
-  out << "# Grading report: " << report.submission << "\n\n";
+  out << "# Grading report: " << codeSpan(report.submission) << "\n\n";
   out << "Edition " << report.edition << " (" << report.edition_source << "). **Code score "
-      << number(report.score) << " / " << number(report.max_score) << "**. Verdict: **"
+      << points(report.score) << " / " << points(report.max_score) << "**. Verdict: **"
       << verdictId(report.verdict) << "**.\n\n";
   if (!report.isolation.empty()) out << "Student code ran with: " << report.isolation << ".\n\n";
   out << "| stub | score |\n|---|---|\n";
   for (const auto& stub : stubNames())
     if (report.stub_max.count(stub))
-      out << "| `" << stub << "` | " << number(report.stub_score.at(stub)) << " / "
-          << number(report.stub_max.at(stub)) << " |\n";
-  out << "\n## Files\n\n" << filesSection(report);
-  for (const UsedFile& f : report.files)
-    if (!f.compiled && f.problem != "missing")
-      out << "\n`" << f.name << "`:\n\n```\n" << f.problem << "```\n";
-  if (!report.notes.empty()) {
-    out << "\n";
-    for (const auto& note : report.notes) out << "- " << note << "\n";
-  }
+      out << "| `" << stub << "` | " << points(report.stub_score.at(stub)) << " / "
+          << points(report.stub_max.at(stub)) << " |\n";
+  out << "\n## Files\n\n" << filesMarkdown(report);
+  if (!report.notes.empty()) out << "\n" << notesMarkdown(report.notes);
   out << "\n## Failed checks\n";
   bool any = false;
-  for (const TestResult& t : report.tests) {
+  for (std::size_t k = 0; k < report.tests.size(); ++k) {
+    const TestResult& t = report.tests[k];
     if (t.passed() || t.informational) continue;
     any = true;
-    out << "\n### " << t.name() << " (" << number(t.score) << " / " << number(t.max_score)
+    out << "\n### " << t.name() << " (" << points(t.score) << " / " << points(t.max_score)
         << ")\n\n"
-        << t.output << "\n";
+        << texts[k].markdown() << "\n";
   }
   if (!any) out << "\nNone.\n";
   out << "\n## Passed checks\n\n";
   for (const TestResult& t : report.tests)
     if (t.passed() && !t.informational)
-      out << "- " << t.name() << " (" << number(t.score) << " / " << number(t.max_score) << ")\n";
-  for (const TestResult& t : report.tests)
-    if (t.informational) out << "\n## " << t.name() << "\n\n" << t.output << "\n";
+      out << "- " << t.name() << " (" << points(t.score) << " / " << points(t.max_score) << ")\n";
+  for (std::size_t k = 0; k < report.tests.size(); ++k)
+    if (report.tests[k].informational)
+      out << "\n## " << report.tests[k].name() << ": " << statusWord(report.tests[k]) << "\n\n"
+          << texts[k].markdown() << "\n";
   return out.str();
 }
 

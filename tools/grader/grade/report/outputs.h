@@ -1,18 +1,52 @@
 // Writers for a GradeReport: Gradescope results.json, JUnit XML and a Markdown report. Whatever
 // bytes the report holds (a submission controls many of them), each output is valid UTF-8, the
 // XML is well-formed and no control character reaches a terminal: the writers clean every text
-// with text.h first and add a note saying what was decoded or replaced.
+// with text.h first and add a note saying what was decoded or replaced. In Markdown, text a
+// submission controls is only ever inside a code block or span (text.h), so no renderer makes an
+// element of it.
+//
+// One truth: every output renders the same data the same way. A test's Markdown is its output,
+// then its causes (report.h's Cause: the likely ones, then the guesses, each its own block, with
+// the catalogue's text), repeats folded; the tags, badges and the class overview list the same
+// causes; points are shown rounded to 0.001 everywhere (points()).
 #pragma once
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "grader/grade/results.h"
 
 namespace clothref::grader {
 
+// Points as every output shows them: rounded to 0.001, without trailing zeros ("51.875", "80").
+std::string points(double value);
+// The same rounding as a JSON number (results.json, row.json readers).
+double roundedPoints(double value);
+
+// The report with every text made safe (text.h): valid UTF-8 (Big5 lines decoded, other bytes
+// U+FFFD), control characters escaped, names on one line; plus a note saying what was done. Every
+// writer starts from this.
+GradeReport cleaned(const GradeReport& report);
+
+// What a writer shows of one test of a cleaned report: its output (Markdown), then its causes as
+// Markdown blocks, the likely ones and the guesses apart. Repeats are folded: an output of several
+// lines equal to an earlier test's is shown once and referred to afterwards, and a cause's source
+// quotes are shown on the first test of the stub that names it.
+struct TestText {
+  std::string output;
+  std::vector<std::string> likely, guesses;  // one Markdown block per cause
+  std::string markdown() const;               // all of it, as the Markdown writers show it
+};
+std::vector<TestText> testTexts(const GradeReport& cleaned_report);
+
+// The files and what became of them, as a Markdown list (a name a submission controls in a code
+// span), with each failed build's first error and, folded under it, its whole log.
+std::string filesMarkdown(const GradeReport& cleaned_report);
+
 // Gradescope's results.json: top-level score, execution_time, output (Markdown summary) and one
 // test per check with name ("<course stub>: <check>"), score, max_score, status, output
-// (Markdown), output_format "md", visibility and tags (stub and diagnosis ids).
+// (Markdown), output_format "md", visibility, tags (stub and cause ids) and extra_data (the causes
+// with whether each is likely).
 nlohmann::ordered_json resultsJson(const GradeReport& report);
 
 // JUnit XML: one testsuite per submission, one testcase per check (classname = course stub),
@@ -23,7 +57,10 @@ std::string junitXml(const GradeReport& report);
 // check with its feedback and the list of passed checks.
 std::string markdownReport(const GradeReport& report);
 
-// One line for stderr: "graded DIR (2022): 72.5 / 80".
+// One line for stderr: "graded DIR (2022): 72.5 / 80, verdict graded".
 std::string summaryLine(const GradeReport& report);
+
+// Lines for stderr about choices the grader made (a name found twice: which copy was used).
+std::vector<std::string> choiceLines(const GradeReport& report);
 
 }  // namespace clothref::grader

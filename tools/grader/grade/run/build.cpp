@@ -16,6 +16,7 @@
 
 #include "clothref/io/files.h"
 #include "grader/grade/run/child_process.h"
+#include "grader/grade/run/compiler_messages.h"
 #include "grader/grade/run/tools.h"
 
 #ifndef CLOTHREF_GRADER_COURSE_DIR
@@ -424,46 +425,6 @@ bool prebuildCourse(const CourseToolchain& given, const std::vector<int>& editio
   return true;
 }
 
-std::string firstCompilerError(const std::string& log, const std::string& file_name) {
-  std::istringstream in(log);
-  std::vector<std::string> lines;
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
-  for (std::size_t i = 0; i < lines.size(); ++i) {
-    if (lines[i].find(": error:") == std::string::npos &&
-        lines[i].find("fatal error:") == std::string::npos &&
-        lines[i].find("undefined reference") == std::string::npos)
-      continue;
-    // An error inside a file that is neither the student's nor a course or system header (an
-    // `#include "/etc/shadow"`): name it, never quote its text (the rlimits fallback compiles
-    // with the grader's uid, which may read it).
-    const std::string location = lines[i].substr(0, lines[i].find(':'));
-    if (lines[i].find("undefined reference") == std::string::npos && !location.empty() &&
-        location[0] == '/' && location.rfind("/usr/", 0) != 0 &&
-        location.find("/src-") == std::string::npos &&
-        location.find("/course/") == std::string::npos)
-      return "error in " + location + ", which is not a course header (not quoted)\n";
-    std::string quote;
-    for (std::size_t k = i; k < lines.size() && k < i + 3; ++k) {
-      std::string line = lines[k];
-      // Scratch paths say nothing to a student: keep only the file name.
-      for (std::size_t at; (at = line.find("/src-")) != std::string::npos;) {
-        std::size_t begin = line.rfind(' ', at);
-        begin = begin == std::string::npos ? 0 : begin + 1;
-        const std::size_t end = line.find(file_name, at);
-        if (end == std::string::npos) break;
-        line.replace(begin, end - begin, "");
-      }
-      if (k > i && (line.find(": error:") != std::string::npos ||
-                    line.find(": note:") != std::string::npos ||
-                    line.find("In function") != std::string::npos))
-        break;
-      quote += line + "\n";
-    }
-    return quote;
-  }
-  return lines.empty() ? std::string("(no compiler output)") : lines.front();
-}
-
 ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseToolchain& given,
                        const fs::path& work_dir) {
   // Compiles run inside the scratch folder: every path they get must be absolute.
@@ -477,6 +438,11 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseTo
 
   fs::path pch = precompiledHeader(toolchain, edition, work_dir);
   if (toolchain.kit && !pch.empty()) pch = kitHeader(*toolchain.kit, pch);
+  // What a compile's messages may quote (run/compiler_messages.h): `source` itself and the headers.
+  const auto site = [&](const fs::path& source, const std::string& name) {
+    return CompileSite{work_dir, source, name,
+                       courseHeaderDirs(toolchain.course_dir, edition, toolchain.eigen_include)};
+  };
   // 1. Student files, each alone in its folder; plus cloth.cpp at the second size.
   std::vector<std::vector<std::string>> commands;
   std::vector<std::string> names;
@@ -513,7 +479,9 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseTo
   for (std::size_t k = 0; k < names.size(); ++k) {
     if (names[k] == "cloth-small") {
       small_compiled = runs[k].ok;
-      if (!runs[k].ok) build.small_problem = firstCompilerError(runs[k].output, "cloth.cpp");
+      if (!runs[k].ok)
+        build.small_problem = firstCompilerError(
+            runs[k].output, site(work_dir / "src-cloth" / "cloth.cpp", "cloth.cpp"));
       continue;
     }
     for (UsedFile& used : build.files)
@@ -522,7 +490,9 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseTo
         used.compile_seconds = runs[k].seconds;
         if (!runs[k].ok) {
           used.status = Verdict::CompileError;
-          used.problem = firstCompilerError(runs[k].output, used.name);
+          const CompileSite where = site(work_dir / ("src-" + stem(used.name)) / used.name, used.name);
+          used.problem = firstCompilerError(runs[k].output, where);
+          used.log = compilerLog(runs[k].output, where);
         }
       }
   }
@@ -546,7 +516,9 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseTo
   for (std::size_t k = 0; k < runs.size(); ++k)
     if (!runs[k].ok) {
       build.problem = "our reference " + names[k] + " for " + ed +
-                      " does not compile: " + firstCompilerError(runs[k].output, names[k]);
+                      " does not compile: " +
+                      firstCompilerError(runs[k].output,
+                                         site(toolchain.reference_dir / ed / names[k], names[k]));
       return build;
     }
   build.compile_seconds =
@@ -583,7 +555,9 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseTo
   for (UsedFile& used : build.files) {
     if (linked.ok) break;
     if (!used.compiled) continue;
-    const std::string error = firstCompilerError(linked.output, used.name);
+    const CompileSite where = site({}, used.name);
+    const std::string error = firstCompilerError(linked.output, where);
+    const std::string log = compilerLog(linked.output, where);
     std::vector<std::string> ref =
         compileCommand(ours, edition, ours.reference_dir / ed / used.name,
                        work_dir / (stem(used.name) + "-ref.o"), 25, pch);
@@ -596,12 +570,13 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseTo
       used.compiled = false;
       used.status = Verdict::LinkError;
       used.problem = "link error: " + error;
+      used.log = log;
       objects = swapped;
       linked = retry;
     }
   }
   if (!linked.ok) {
-    build.problem = "the probe does not link: " + firstCompilerError(linked.output, "");
+    build.problem = "the probe does not link: " + firstCompilerError(linked.output, site({}, ""));
     return build;
   }
   // The second-size springs probe: the student's cloth.cpp rebuilt, the rest as above.
@@ -612,7 +587,8 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseTo
     build.probe_small = work_dir / "probe-small";
     const ToolRun small_link = link(small, build.probe_small);
     build.small_ok = small_link.ok;
-    if (!small_link.ok) build.small_problem = firstCompilerError(small_link.output, "cloth.cpp");
+    if (!small_link.ok)
+      build.small_problem = firstCompilerError(small_link.output, site({}, "cloth.cpp"));
   }
   build.link_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - link_start).count();

@@ -90,8 +90,4 @@ std::filesystem::path objectCachePath(const CourseToolchain& toolchain,
                                       const std::filesystem::path& source,
                                       const std::filesystem::path& work_dir);
 
-// The first compiler error of `log` with up to two following lines, scratch paths replaced by
-// the file's name.
-std::string firstCompilerError(const std::string& log, const std::string& file_name);
-
 }  // namespace clothref::grader

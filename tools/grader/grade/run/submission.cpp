@@ -106,7 +106,7 @@ void walk(int dir_fd, const std::string& prefix, int depth, Walk& w) {
       continue;
     }
     if (wanted)
-      w.notes.push_back(*wanted + ": refused " + safeName(relative) + ": " + kindOf(st.st_mode) +
+      w.notes.push_back(*wanted + ": refused " + codeSpan(safeName(relative)) + ": " + kindOf(st.st_mode) +
                         "; only regular files inside the submission are read");
     else if (S_ISLNK(st.st_mode))
       w.other_links.push_back(relative);
@@ -216,14 +216,92 @@ bool readRegularFileBeneath(int root_fd, const std::string& relative, std::size_
   return true;
 }
 
+namespace {
+
+// The submission folder named by the caller: the folders on the way to it may be links (the
+// caller's own), the folder itself may not (a link named like a submission, planted among them,
+// would have the grader read, as root, whatever it points to). A trailing '/' is dropped first: it
+// would make the kernel follow a last link. -1 with errno set when it cannot be opened.
+int openSubmissionFolder(const std::filesystem::path& dir) {
+  std::string path = dir.string();
+  while (path.size() > 1 && path.back() == '/') path.pop_back();
+  return open(path.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+}
+
+// Why `dir` did not open (errno `error`); O_DIRECTORY on a link says ENOTDIR: named for what it is.
+std::string openProblem(const std::filesystem::path& dir, int error) {
+  std::string path = dir.string();
+  while (path.size() > 1 && path.back() == '/') path.pop_back();
+  struct stat st {};
+  if (error == ELOOP || (error == ENOTDIR && lstat(path.c_str(), &st) == 0 && S_ISLNK(st.st_mode)))
+    return "a symbolic link (a submission folder given as a link is not followed)";
+  if (error == ENOTDIR)
+    return "not a directory (a submission is a directory holding cloth.cpp, sphere.cpp and "
+           "integrator.cpp)";
+  return std::strerror(error);
+}
+
+}  // namespace
+
+std::vector<std::string> submissionsBelow(const std::filesystem::path& dir) {
+  const int root_fd = openSubmissionFolder(dir);
+  if (root_fd < 0) return {};
+  std::vector<std::string> whole;
+  Walk top;
+  walk(root_fd, "", kMaxDepth, top);  // depth kMaxDepth: the top level only
+  bool files_at_top = false;
+  for (const auto& [name, paths] : top.candidates)
+    for (const std::string& path : paths) files_at_top = files_at_top || depthOf(path) == 0;
+  DIR* listing = files_at_top ? nullptr : fdopendir(dup(root_fd));
+  std::vector<std::string> folders;
+  if (listing) {
+    rewinddir(listing);  // the walk above read the same open directory to its end
+    while (const dirent* entry = readdir(listing)) {
+      const std::string name = entry->d_name;
+      if (name == "." || name == ".." || name == "__MACOSX" || name == ".git" ||
+          name.rfind("._", 0) == 0)
+        continue;
+      struct stat st {};
+      if (fstatat(root_fd, name.c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0 && S_ISDIR(st.st_mode))
+        folders.push_back(name);
+    }
+    closedir(listing);
+  }
+  std::sort(folders.begin(), folders.end());
+  for (const std::string& folder : folders) {
+    const int sub = openBeneath(root_fd, folder, O_RDONLY | O_DIRECTORY);
+    if (sub < 0) continue;
+    Walk w;
+    walk(sub, "", 1, w);
+    close(sub);
+    bool all = true;
+    for (const std::string& wanted : studentFileNames()) all = all && !w.candidates[wanted].empty();
+    if (all) whole.push_back(folder);
+  }
+  close(root_fd);
+  if (whole.size() < 2) whole.clear();
+  return whole;
+}
+
+std::string severalSubmissionsProblem(const std::filesystem::path& dir,
+                                      const std::vector<std::string>& names) {
+  std::string list;
+  for (std::size_t k = 0; k < names.size() && k < 5; ++k)
+    list += (k ? ", " : "") + safeName(names[k]);
+  if (names.size() > 5) list += ", ...";
+  std::string shown = dir.string();
+  while (shown.size() > 1 && shown.back() == '/') shown.pop_back();
+  shown = safeName(shown);
+  return std::to_string(names.size()) + " submissions below " + shown + " (" + list +
+         "): give them as " + shown + "/* with --out BATCHDIR, or --one-submission to grade " +
+         shown + " as one";
+}
+
 SubmissionFiles findSubmissionFiles(const std::filesystem::path& dir, std::size_t max_file_bytes) {
-  // The folder named by the caller (not by the student) may itself be reached through a link;
-  // nothing below it is.
-  const int root_fd = open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (root_fd < 0)
-    throw InputError(safeName(dir.string()) +
-                     ": not a directory (a submission is a directory holding "
-                     "cloth.cpp, sphere.cpp and integrator.cpp)");
+  // The folder named by the caller (not by the student) may itself be reached through folders
+  // that are links, but it is no link itself; nothing below it is followed either.
+  const int root_fd = openSubmissionFolder(dir);
+  if (root_fd < 0) throw InputError(safeName(dir.string()) + ": " + openProblem(dir, errno));
   Walk w;
   walk(root_fd, "", 0, w);
   SubmissionFiles files;
@@ -231,7 +309,7 @@ SubmissionFiles findSubmissionFiles(const std::filesystem::path& dir, std::size_
   if (!w.other_links.empty()) {
     std::string list;
     for (std::size_t k = 0; k < w.other_links.size() && k < 3; ++k)
-      list += (k ? ", " : "") + safeName(w.other_links[k]);
+      list += (k ? ", " : "") + codeSpan(safeName(w.other_links[k]));
     files.notes.push_back(std::to_string(w.other_links.size()) +
                           " symbolic link(s) not followed: " + list +
                           (w.other_links.size() > 3 ? ", ..." : ""));
@@ -245,7 +323,8 @@ SubmissionFiles findSubmissionFiles(const std::filesystem::path& dir, std::size_
       const bool refused = std::any_of(w.notes.begin(), w.notes.end(), [&](const auto& note) {
         return note.rfind(wanted + ": refused ", 0) == 0;
       });
-      if (!refused) files.notes.push_back(wanted + ": not found below " + safeName(dir.string()));
+      if (!refused)
+        files.notes.push_back(wanted + ": not found below " + codeSpan(safeName(dir.string())));
       continue;
     }
     const auto rank = [&](const std::string& p) {
@@ -261,11 +340,11 @@ SubmissionFiles findSubmissionFiles(const std::filesystem::path& dir, std::size_
     for (const std::string& candidate : list) {
       std::string why;
       if (!chosen.empty()) {
-        others.push_back(safeName(candidate));
+        others.push_back(candidate);
       } else if (readRegularFileBeneath(root_fd, candidate, max_file_bytes, bytes, why)) {
         chosen = candidate;
       } else {
-        files.notes.push_back(wanted + ": refused " + safeName(candidate) + ": " + why);
+        files.notes.push_back(wanted + ": refused " + codeSpan(safeName(candidate)) + ": " + why);
       }
     }
     if (chosen.empty()) continue;
@@ -273,8 +352,10 @@ SubmissionFiles findSubmissionFiles(const std::filesystem::path& dir, std::size_
     files.bytes[wanted] = bytes;
     if (!others.empty()) {
       std::string text;
-      for (std::size_t k = 0; k < others.size(); ++k) text += (k ? ", " : "") + others[k];
-      files.notes.push_back(wanted + ": used " + safeName(chosen) + "; also found " + text);
+      for (std::size_t k = 0; k < others.size(); ++k)
+        text += (k ? ", " : "") + codeSpan(safeName(others[k]));
+      files.notes.push_back(wanted + ": used " + codeSpan(safeName(chosen)) + "; also found " + text);
+      files.choices.push_back({wanted, chosen, others});
     }
     const bool bom = bytes.rfind("\xEF\xBB\xBF", 0) == 0;
     const bool crlf = bytes.find("\r\n") != std::string::npos;
@@ -287,6 +368,88 @@ SubmissionFiles findSubmissionFiles(const std::filesystem::path& dir, std::size_
   }
   close(root_fd);
   return files;
+}
+
+namespace {
+
+// `source` with every comment and string or character literal blanked (newlines kept, so line
+// numbers stay).
+std::string blankedCode(const std::string& source) {
+  std::string out = source;
+  const auto blank = [&](std::size_t from, std::size_t to) {
+    for (std::size_t k = from; k < to && k < out.size(); ++k)
+      if (out[k] != '\n') out[k] = ' ';
+  };
+  for (std::size_t i = 0; i < source.size();) {
+    if (source.compare(i, 2, "//") == 0) {
+      const std::size_t end = std::min(source.find('\n', i), source.size());
+      blank(i, end);
+      i = end;
+    } else if (source.compare(i, 2, "/*") == 0) {
+      const std::size_t close = source.find("*/", i + 2);
+      const std::size_t end = close == std::string::npos ? source.size() : close + 2;
+      blank(i, end);
+      i = end;
+    } else if (source[i] == '"' || source[i] == '\'') {
+      const char quote = source[i];
+      std::size_t k = i + 1;
+      for (; k < source.size() && source[k] != quote && source[k] != '\n'; ++k)
+        if (source[k] == '\\') ++k;
+      blank(i, k + 1);
+      i = k + 1;
+    } else {
+      ++i;
+    }
+  }
+  return out;
+}
+
+int lineAt(const std::string& text, std::size_t offset) {
+  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + long(offset), '\n'));
+}
+
+}  // namespace
+
+StubLines stubLines(const std::string& source, const std::string& stub) {
+  const std::string code = blankedCode(source);
+  // "Spheres::collide(Cloth*)" -> the name, and what its parameters must look like
+  const std::size_t paren = stub.find('(');
+  const std::string name = stub.substr(0, paren);
+  const std::string wanted_params =
+      paren == std::string::npos ? std::string() : stub.substr(paren + 1, stub.size() - paren - 2);
+  const bool check_params = paren != std::string::npos;
+  const std::size_t colons = name.find("::");
+  const std::regex head("\\b" + name.substr(0, colons) + "\\s*::\\s*" + name.substr(colons + 2) +
+                        "\\s*\\(");
+  for (auto it = std::sregex_iterator(code.begin(), code.end(), head); it != std::sregex_iterator();
+       ++it) {
+    std::size_t k = std::size_t(it->position() + it->length());  // after '('
+    int depth = 1;
+    const std::size_t params_begin = k;
+    for (; k < code.size() && depth > 0; ++k) depth += code[k] == '(' ? 1 : code[k] == ')' ? -1 : 0;
+    if (depth != 0) break;
+    std::string params = code.substr(params_begin, k - 1 - params_begin);
+    params.erase(std::remove_if(params.begin(), params.end(),
+                                [](char c) { return std::isspace(static_cast<unsigned char>(c)); }),
+                 params.end());
+    if (check_params) {
+      const bool wants_none = wanted_params.empty();
+      const bool none = params.empty() || params == "void";
+      if (wants_none != none) continue;
+      if (!wants_none && params.find(wanted_params.substr(0, wanted_params.find('*'))) ==
+                             std::string::npos)
+        continue;
+    }
+    const std::size_t open = code.find_first_of("{;", k);
+    if (open == std::string::npos || code[open] == ';') continue;  // a declaration
+    int braces = 0;
+    for (std::size_t e = open; e < code.size(); ++e) {
+      braces += code[e] == '{' ? 1 : code[e] == '}' ? -1 : 0;
+      if (braces == 0) return {lineAt(code, open), lineAt(code, e)};
+    }
+    return {lineAt(code, open), lineAt(code, code.size())};
+  }
+  return {};
 }
 
 int detectEdition(const SubmissionFiles& files, std::string& why) {

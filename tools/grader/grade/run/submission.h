@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "grader/grade/results.h"
+
 namespace clothref::grader {
 
 inline const std::vector<std::string>& studentFileNames() {
@@ -19,7 +21,9 @@ struct SubmissionFiles {
   // file name -> its bytes, read once through a descriptor that was checked to be a regular
   // file inside the submission: the only copy of the student's text anything else sees.
   std::map<std::string, std::string> bytes;
-  std::vector<std::string> notes;  // one line each: choices made, encodings seen, refusals
+  // One line of Markdown each (names in code spans): choices made, encodings seen, refusals.
+  std::vector<std::string> notes;
+  std::vector<FileChoice> choices;  // every name found more than once, and which copy was used
 };
 
 // Student files are small; a larger one is refused rather than read (`--max-file-bytes`).
@@ -37,6 +41,17 @@ inline constexpr std::size_t kDefaultMaxSourceBytes = 16u << 20;
 SubmissionFiles findSubmissionFiles(const std::filesystem::path& dir,
                                     std::size_t max_file_bytes = kDefaultMaxSourceBytes);
 
+// The folders directly below `dir` that each hold a whole submission (cloth.cpp, sphere.cpp and
+// integrator.cpp somewhere below them), sorted, when there are two or more of them and `dir`
+// itself holds none of the three files at its top: `dir` is then a folder of submissions, not
+// one (grading it would silently grade one of them). Empty otherwise, or when `dir` cannot be
+// opened. Walked as findSubmissionFiles walks: no link followed.
+std::vector<std::string> submissionsBelow(const std::filesystem::path& dir);
+// The one line that refuses such a folder: "3 submissions below subs (a, b, c): give them as
+// subs/* with --out BATCHDIR, or --one-submission to grade subs as one".
+std::string severalSubmissionsProblem(const std::filesystem::path& dir,
+                                      const std::vector<std::string>& names);
+
 // Opens `relative` (no "..", no leading '/') below the open directory `root_fd` without
 // following any symbolic link on the way: openat2(RESOLVE_BENEATH | RESOLVE_NO_SYMLINKS), or
 // where the kernel lacks openat2 (or `use_openat2` is false, for tests) one openat(O_NOFOLLOW)
@@ -49,6 +64,17 @@ int openBeneath(int root_fd, const std::string& relative, int flags, bool use_op
 // FIFO", "larger than N bytes", ...) otherwise.
 bool readRegularFileBeneath(int root_fd, const std::string& relative, std::size_t max_bytes,
                             std::string& bytes, std::string& why, bool use_openat2 = true);
+
+// The lines of a stub's body in a student file: from the line of its opening brace to the line of
+// its closing one (1-based); first = 0 when the file defines no such function.
+struct StubLines {
+  int first = 0, last = 0;
+  bool contains(int line) const { return first > 0 && line >= first && line <= last; }
+};
+// Finds the definition of `stub`, a course name from stubTable() ("RungeKuttaFourth::integrate",
+// "Spheres::collide(Cloth*)", "Spheres::collide()": a parameter list in the name picks the
+// overload), ignoring comments and string literals and skipping declarations.
+StubLines stubLines(const std::string& source, const std::string& stub);
 
 // 2024 when sphere.cpp defines Spheres::setVelocity (or cloth.cpp uses textureBuffer), 2022 when
 // sphere.cpp defines Spheres::collide(); 0 when neither is found. `why` says what decided.
