@@ -284,6 +284,37 @@ TEST(StageFit, EveryStubInFloatAtARoundStep) {
   for (const Case& c : cases()) checkCase<float>(c, 0.01);
 }
 
+// The recorded stages lie far enough apart that one coefficient moved to its nearest other
+// rational (a gap of at least 1/132 with denominators up to 12) misses the recorded numbers by many
+// times the tolerance, while the right form reproduces them to well under it.
+TEST(StageFit, NeighbouringRationalsMissByManyTolerances) {
+  for (const Case& c : cases()) {
+    if (c.name != "rk4" && c.name != "implicit" && c.name != "midpoint") continue;
+    const StageFit fit = fitStages(record<float>(c.f, kStageStep));
+    double worst_right = 0, closest_wrong = 1e300;
+    for (int q = 1; q <= int(fit.states.size()); ++q) {
+      const BodyState& at = recordedState(fit.record, q, kCloth);
+      for (bool position : {true, false}) {
+        const Fitted& f = position ? fit.states[std::size_t(q - 1)].x : fit.states[std::size_t(q - 1)].v;
+        const std::vector<double>& recorded = position ? at.x : at.v;
+        ASSERT_TRUE(f.fits) << c.name;
+        worst_right = std::max(worst_right, formResidual(fit, kCloth, f.form, recorded));
+        for (std::size_t t = 0; t < f.form.size(); ++t)
+          for (const Rational delta : {Rational(1, 132), Rational(-1, 132)}) {
+            Form moved = f.form;
+            moved[t].coef = moved[t].coef + delta;
+            closest_wrong = std::min(closest_wrong, formResidual(fit, kCloth, moved, recorded));
+          }
+      }
+    }
+    std::cout << c.name << ": the fit's worst residual " << worst_right
+              << " tolerances; a coefficient off by 1/132 misses by at least " << closest_wrong
+              << " tolerances\n";
+    EXPECT_LT(worst_right, 0.25) << c.name;
+    EXPECT_GT(closest_wrong, 100.0) << c.name;
+  }
+}
+
 std::string explained(const std::string& name, const SourceHints& hints = {}) {
   for (const Case& c : cases())
     if (c.name == name) {
