@@ -354,7 +354,10 @@ TEST(StageText, SaysWhereTheStubLeavesTheCourseInItsTerms) {
   EXPECT_TRUE(contains(kao, "| evaluation 2 | x1 + h/2·v1 | v1 + h/2·a1 |")) << kao;
   EXPECT_TRUE(contains(kao, "| the result | x0 + h/8·(v0 + 3·v1 + 3·v2 + v3) |")) << kao;
   const std::string half = explained("rk4 deltaTime /= 2");
-  EXPECT_TRUE(contains(half, "with a step of 0.5·h")) << half;
+  EXPECT_TRUE(contains(half, "From there on your stages are the course's with a step of 0.5·h"))
+      << half;
+  const std::string ho = explained("midpoint corrector h/2");
+  EXPECT_TRUE(contains(ho, "That state is the course's with a step of 0.5·h")) << ho;
   const std::string body = explained("midpoint per body");
   EXPECT_TRUE(contains(body, "| evaluation 1, spheres | at their start | at their start |")) << body;
 }

@@ -4,12 +4,19 @@
 // fit made (integer division, an aliasing backup), never makes one.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <regex>
 
 #include "grader/grade/probes/stage_methods.h"
 
 namespace clothref::grader::stages {
 namespace {
+
+std::string number(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.6g", value);
+  return buffer;
+}
 
 void addCause(StageExplanation& e, const std::string& id, bool likely, const std::string& why) {
   for (StageCause& c : e.causes)
@@ -128,8 +135,8 @@ StageExplanation explainStages(const StageFit& fit, int method, const SourceHint
   const bool dt_changed = fit.record.h_after != h;
   if (dt_changed)
     addCause(e, "deltatime-mutated", true,
-             "deltaTime is " + std::to_string(fit.record.h_after / h).substr(0, 6) +
-                 "·h after integrate(), not h");
+             "deltaTime is " + number(fit.record.h_after) + " s after integrate(), not h = " +
+                 number(h) + " s");
   if (e.course || !e.accepted.empty()) return e;
 
   // A step other than h: the first departing state equals the course's with h·s.
@@ -154,7 +161,7 @@ StageExplanation explainStages(const StageFit& fit, int method, const SourceHint
       const bool throughout = e.departure.state == 1 && later.state == 0;
       if (!dt_changed && throughout)
         addCause(e, "deltatime-mutated", false,
-                 "every stage uses a step of " + std::to_string(s).substr(0, 6) + "·h");
+                 "every stage uses a step of " + number(s) + "·h");
     }
   }
 

@@ -92,7 +92,10 @@ std::string stageJson(const StageFit& fit, const StageExplanation& e) {
                       {"x_residual", s.x.residual},
                       {"v_residual", s.v.residual},
                       {"same_as", s.same_as},
-                      {"spheres", int(s.spheres)}});
+                      {"spheres", s.spheres == SpheresAre::Same      ? "same stage"
+                                  : s.spheres == SpheresAre::AtStart ? "at their start"
+                                  : s.spheres == SpheresAre::Own     ? "own stage"
+                                                                     : "no combination"}});
   out["states"] = states;
   nlohmann::json causes = nlohmann::json::array();
   for (const StageCause& c : e.causes)

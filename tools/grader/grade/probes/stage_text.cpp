@@ -141,10 +141,13 @@ std::string stageText(const StageFit& fit, const StageExplanation& e) {
   if (same > 0)
     out += "The result is the state handed to simulateOneStep() at evaluation " +
            std::to_string(same) + ", unchanged: what that call computed is never used.\n";
-  if (e.scale != 1)
-    out += "From there on your stages equal the course's with a step of " + number(e.scale) +
-           "·h (" + number(e.scale * fit.record.h) + " s) instead of h = " + number(fit.record.h) +
-           " s.\n";
+  if (e.scale != 1) {
+    const std::string subject = e.departure.what == "spheres" ? "There the spheres are"
+                                : e.departure.state == 1      ? "From there on your stages are"
+                                                              : "That state is";
+    out += subject + " the course's with a step of " + number(e.scale) + "·h (" +
+           number(e.scale * fit.record.h) + " s) instead of h = " + number(fit.record.h) + " s.\n";
+  }
   if (!e.equals.empty()) {
     int n = 0;
     for (const MethodTable& t : methodTables())
