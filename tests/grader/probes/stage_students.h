@@ -120,6 +120,7 @@ enum class Rk {
   IntegerSixth,    // (1 / 6) * (k1 + 2 k2 + 2 k3 + k4): nothing added
   MixedFinal,      // the position adds the velocity k's
   MixedStage,      // stage 2's position adds kv1 / 2
+  K4xInVelocity,   // the velocity update adds k4x (h·v3) instead of k4v
   FromCurrent,     // stages from the live (previous stage) state, result from the backup
   Alias,           // Eigen::Ref backup: stages and result from the live state
   FromNewVelocity,  // stage x = x0 + dt c (v0 + kv c)
@@ -187,7 +188,8 @@ void rungeKutta(const Bodies<T>& ps, const std::function<void()>& sim, T& dt, Rk
     } else {
       const T sixth = kind == Rk::IntegerSixth ? T(1 / 6) : T(1) / T(6);
       p.position = bx + (kxs[0][i] + T(2) * kxs[1][i] + T(2) * kxs[2][i] + kxs[3][i]) * sixth;
-      p.velocity = bv + (kv[0][i] + T(2) * kv[1][i] + T(2) * kv[2][i] + kv[3][i]) * sixth;
+      const M& kv4 = kind == Rk::K4xInVelocity ? kx[3][i] : kv[3][i];
+      p.velocity = bv + (kv[0][i] + T(2) * kv[1][i] + T(2) * kv[2][i] + kv4) * sixth;
     }
   }
 }

@@ -208,6 +208,8 @@ const std::vector<Case>& cases() {
            {false, "", "", 4, "position", {"rk4-wrong-weights"}}),
       make("rk4 kv in the position", 3, rk(R::MixedFinal),
            {false, "", "", 4, "position", {"rk4-mixed-increments"}, {}, "x0 + h/6·(a0 + 2·a1 + 2·a2 + a3)"}),
+      make("rk4 k4x in the velocity", 3, rk(R::K4xInVelocity),
+           {false, "", "", 4, "velocity", {"rk4-mixed-increments"}, {}, "v0 + h/6·v3 + h/6·(a0 + 2·a1 + 2·a2)"}),
       make("rk4 kv in stage 2", 3, rk(R::MixedStage),
            {false, "", "", 2, "position", {"rk4-mixed-increments"}, {}, "x0 + h/2·a1", "x0 + h/2·v1"}),
       make("rk4 stages from the current state (liu)", 3, rk(R::FromCurrent),
@@ -360,6 +362,26 @@ TEST(StageText, SaysWhereTheStubLeavesTheCourseInItsTerms) {
   EXPECT_TRUE(contains(ho, "That state is the course's with a step of 0.5·h")) << ho;
   const std::string body = explained("midpoint per body");
   EXPECT_TRUE(contains(body, "| evaluation 1, spheres | at their start | at their start |")) << body;
+}
+
+// More calls than are recorded: the count is said, the first 16 are fitted.
+TEST(StageText, ManyCallsAreCountedAndTheFirstSixteenFitted) {
+  const auto busy = [](const auto& ps, const auto& sim, auto& dt) {
+    for (int k = 0; k < 20; ++k) sim();
+    for (auto* p : ps) {
+      p->position += p->velocity * dt;
+      p->velocity += p->acceleration * dt;
+    }
+  };
+  const StageRecord r = record<float>(busy, kStageStep);
+  EXPECT_EQ(r.calls, 20);
+  const StageFit fit = fitStages(r);
+  EXPECT_EQ(fit.recorded, kMaxRecordedCalls);
+  const StageExplanation e = explainStages(fit, 1, {});
+  const std::string text = stageText(fit, e);
+  EXPECT_EQ(e.equals, "explicit") << text;
+  EXPECT_TRUE(contains(text, "(Only the first 16 calls were recorded.)")) << text;
+  EXPECT_TRUE(contains(text, "simulateOneStep() 20 times, at the start state.")) << text;
 }
 
 TEST(StageForms, RationalsAndTextAreExact) {
