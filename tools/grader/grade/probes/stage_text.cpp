@@ -101,7 +101,8 @@ std::string stageText(const StageFit& fit, const StageExplanation& e) {
   for (int q = 1; q <= int(fit.states.size()); ++q) {
     const StageState& s = fit.states[std::size_t(q - 1)];
     const auto cell = [&](const Fitted& f) {
-      return f.fits ? text(f.course, m) : "no combination (off by " + number(f.residual) + " roundings)";
+      return f.fits ? text(f.course, m)
+                    : "no combination (off by " + number(f.residual * kUlps) + " float roundings)";
     };
     std::string row = "| " + stateName(q, m) + " | " + cell(s.x) + " | " + cell(s.v) + " |\n";
     if (s.spheres == SpheresAre::AtStart)
