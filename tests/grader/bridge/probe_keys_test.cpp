@@ -25,7 +25,10 @@ TEST(ProbeKeys, EveryKeyAndGroupIsDistinct) {
       key::kSpringEnd,  key::kSpringType, key::kSpringRest,    key::kParticlesPerEdge,
       key::kSpringCoef, key::kDamperCoef, key::kParams,        key::kFlags,
       key::kDt,         key::kSteps,      key::kStride,        key::kDtAfter,
-      key::kCalls,      key::kTrajectory, key::kSphereCapacity};
+      key::kCalls,      key::kTrajectory, key::kSphereCapacity, key::kRecordStages,
+      key::kStartClothPos, key::kStartClothVel, key::kStartClothAcc, key::kStartSpherePos,
+      key::kStartSphereVel, key::kStartSphereAcc, key::kEvalClothPos, key::kEvalClothVel,
+      key::kEvalClothAcc, key::kEvalSpherePos, key::kEvalSphereVel, key::kEvalSphereAcc};
   EXPECT_EQ(std::set<std::string>(keys.begin(), keys.end()).size(), keys.size());
   const std::vector<std::string> groups = {group::kSprings,      group::kForces,
                                            group::kCollideCloth, group::kCollideSpheres,

@@ -68,6 +68,29 @@ inline constexpr const char* kCalls = "calls";
 // float[4 n x records]: cloth positions (m) every stride steps, concatenated
 inline constexpr const char* kTrajectory = "trajectory";
 
+// ---- integrate, the stage record (docs/grading.md, "Integrators explained by their stages")
+// int[1] (request, per case): 1 = record this case's stages (a contact-free case of one step)
+inline constexpr const char* kRecordStages = "record_stages";
+inline constexpr int kMaxStageRecords = 16;  // simulateOneStep() calls recorded per case
+// (answer, per recorded case) The start: the state integrate() receives, after the simulate()
+// before it. float[4 n] / float[4 s] each; the accelerations are our simulate()'s (m/s^2).
+inline constexpr const char* kStartClothPos = "start.cloth.pos";    // m
+inline constexpr const char* kStartClothVel = "start.cloth.vel";    // m/s
+inline constexpr const char* kStartClothAcc = "start.cloth.acc";    // m/s^2
+inline constexpr const char* kStartSpherePos = "start.sphere.pos";  // m
+inline constexpr const char* kStartSphereVel = "start.sphere.vel";  // m/s
+inline constexpr const char* kStartSphereAcc = "start.sphere.acc";  // m/s^2
+// Each simulateOneStep() call integrate() makes (the first kMaxStageRecords; key kCalls counts
+// them all): the state handed to it and the accelerations it produced, float[4 n x r] /
+// float[4 s x r] for r recorded calls, concatenated in call order. The result after integrate()
+// is in the body-state keys (kClothPos, kClothVel, kSpherePos, kSphereVel) as for every case.
+inline constexpr const char* kEvalClothPos = "eval.cloth.pos";    // m
+inline constexpr const char* kEvalClothVel = "eval.cloth.vel";    // m/s
+inline constexpr const char* kEvalClothAcc = "eval.cloth.acc";    // m/s^2
+inline constexpr const char* kEvalSpherePos = "eval.sphere.pos";  // m
+inline constexpr const char* kEvalSphereVel = "eval.sphere.vel";  // m/s
+inline constexpr const char* kEvalSphereAcc = "eval.sphere.acc";  // m/s^2
+
 // ---- whole-run (answer): the body-state keys hold every record's state, concatenated, and
 inline constexpr const char* kSphereCapacity = "sphere_capacity";  // int[1]: spheres per record
 

@@ -264,15 +264,41 @@ void probeIntegrate(const ProbeMessage& in, ProbeMessage& out) {
     const std::int64_t stride = in.scalarInt(perCase(key::kStride, k), 0);
     std::int64_t calls = 0;
     std::vector<Particles*> bodies{&w.cloth, &w.spheres};
+    // The stage record (a contact-free case): every state handed to simulateOneStep() and the
+    // accelerations it produced, in call order; cloth and spheres positions, velocities, a.
+    const bool record = in.scalarInt(perCase(key::kRecordStages, k), 0) != 0;
+    std::vector<float> stages[6];
+    const auto append = [](std::vector<float>& to, const std::vector<float>& values) {
+      to.insert(to.end(), values.begin(), values.end());
+    };
     std::function<void(void)> simulateOneStep = [&] {
       ++calls;
+      const bool keep = record && calls <= probe::key::kMaxStageRecords;
+      if (keep) {
+        append(stages[0], save(w.cloth.position()));
+        append(stages[1], save(w.cloth.velocity()));
+        append(stages[3], save(w.spheres.position()));
+        append(stages[4], save(w.spheres.velocity()));
+      }
       simulate(w);
+      if (keep) {
+        append(stages[2], save(w.cloth.acceleration()));
+        append(stages[5], save(w.spheres.acceleration()));
+      }
     };
     std::vector<float> trajectory;
     float dtAfter = dt;
     for (std::int64_t step = 0; step < steps; ++step) {
       deltaTime = dt;  // a student's integrate may change it; each step starts from the probe's
       simulate(w);
+      if (record && step == 0) {
+        out.floats[perCase(key::kStartClothPos, k)] = save(w.cloth.position());
+        out.floats[perCase(key::kStartClothVel, k)] = save(w.cloth.velocity());
+        out.floats[perCase(key::kStartClothAcc, k)] = save(w.cloth.acceleration());
+        out.floats[perCase(key::kStartSpherePos, k)] = save(w.spheres.position());
+        out.floats[perCase(key::kStartSphereVel, k)] = save(w.spheres.velocity());
+        out.floats[perCase(key::kStartSphereAcc, k)] = save(w.spheres.acceleration());
+      }
       integrator.integrate(bodies, simulateOneStep);
       if (step == 0) dtAfter = deltaTime;
       if (stride > 0 && (step + 1) % stride == 0) {
@@ -287,6 +313,11 @@ void probeIntegrate(const ProbeMessage& in, ProbeMessage& out) {
     out.floats[perCase(key::kDtAfter, k)] = {dtAfter};
     out.ints[perCase(key::kCalls, k)] = {calls};
     out.floats[perCase(key::kTrajectory, k)] = trajectory;
+    if (record) {
+      const char* names[6] = {key::kEvalClothPos,  key::kEvalClothVel,  key::kEvalClothAcc,
+                              key::kEvalSpherePos, key::kEvalSphereVel, key::kEvalSphereAcc};
+      for (int r = 0; r < 6; ++r) out.floats[perCase(names[r], k)] = stages[r];
+    }
   }
 }
 

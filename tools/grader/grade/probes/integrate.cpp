@@ -5,6 +5,7 @@
 // method's stability limit. Known mistakes are recognised by simulating them here and comparing.
 #include <Eigen/QR>
 #include <complex>
+#include <fstream>
 #include <functional>
 #include <mutex>
 #include <random>
@@ -17,6 +18,7 @@
 #include "clothref/scene/scene.h"
 #include "clothref/verify/analytic.h"
 #include "clothref/verify/verify.h"
+#include "grader/grade/probes/stages.h"
 #include "grader/grade/probes/util.h"
 
 namespace clothref::grader {
@@ -314,6 +316,16 @@ double stabilityLimit(Method method) {
   return lo;
 }
 
+// The stage record's system (stages.h): the random state of case 0 with another seed and no
+// contact, so that simulateOneStep() only sets accelerations, generic nonlinear functions of the
+// state (springs, damper, drag), at the step stages::kStageStep.
+System stageSystem(std::uint64_t seed, bool course_size, int edition) {
+  System s = course_size ? courseSystem(seed + 1000, edition) : randomSystem(seed + 1000);
+  s.contact = false;
+  s.dt = stages::kStageStep;
+  return s;
+}
+
 void addSystem(probe::ProbeMessage& m, int k, const System& s, std::int64_t steps,
                std::int64_t stride) {
   const auto at = [k](const char* name) { return key::perCase(name, k); };
@@ -455,6 +467,7 @@ struct IntegratorRun {
   int spring_particles = 2;  // cloth size of the spring systems
   double limit = 0, stable_dt = 0;
   int stable_case = 0;
+  int stage_case = 0;  // the contact-free case whose stages are recorded (stages.h)
   probe::ProbeMessage answer;
   System start;  // the random state after the simulateOneStep() that precedes integrate()
   System actual, expected;
@@ -505,7 +518,11 @@ bool runIntegrator(const ProbeContext& context, int index, bool course_size, Int
   const std::int64_t stable_stride = std::max<std::int64_t>(1, stable_steps / 100);
   addSystem(request, run.stable_case, springSystem(float(run.stable_dt), run.spring_particles),
             stable_steps, stable_stride);
-  request.ints[key::kCases] = {run.stable_case + 1};
+  // Last: the stage record, one step of a contact-free random state (stages.h).
+  run.stage_case = run.stable_case + 1;
+  addSystem(request, run.stage_case, stageSystem(seed, course_size, context.edition), 1, 0);
+  request.ints[key::perCase(key::kRecordStages, run.stage_case)] = {1};
+  request.ints[key::kCases] = {run.stage_case + 1};
 
   ProbeContext quiet = context;
   if (!log) quiet.limits.log = nullptr;  // a crash that the course-size retry may still grade
@@ -921,6 +938,20 @@ std::vector<PlannedTest> integratorChecks(int method) {
   return checks;
 }
 
+// The stage explanation (stages.h) of the recorded case, as JSON beside the probe's files when
+// the work folder is kept (--keep-work); the report does not show it yet.
+void keepStages(const ProbeContext& context, const IntegratorRun& run, bool course_size) {
+  stages::StageRecord record;
+  if (!context.limits.keep_files ||
+      !stages::stageRecordFrom(run.answer, run.stage_case, double(stages::kStageStep), record))
+    return;
+  const stages::StageFit fit = stages::fitStages(record);
+  const stages::StageExplanation explanation =
+      stages::explainStages(fit, run.index, stages::sourceHints(stubSource(context, run.stub)));
+  std::ofstream(context.work_dir / integratorFolder(run.index, course_size) / "stages.json")
+      << stages::stageJson(fit, explanation);
+}
+
 std::vector<TestResult> probeIntegrator(const ProbeContext& context, int index) {
   const Method method = kMethods[index];
   IntegratorRun run;
@@ -952,6 +983,7 @@ std::vector<TestResult> probeIntegrator(const ProbeContext& context, int index) 
       tests.push_back(util::failedTest(check, failure.text, {util::guess(failure.causeId())}));
     return tests;
   }
+  keepStages(context, run, !note.empty());
   const TestResult one = checkOneStep(context, run);
   tests.push_back(one);
   tests.push_back(checkEveryBody(context, run, one));
