@@ -9,6 +9,7 @@
 
 #include "clothref/core/cloth.h"
 #include "clothref/core/spheres.h"
+#include "grader/grade/probes/formula_variants.h"
 #include "grader/grade/probes/util.h"
 
 namespace clothref::grader {
@@ -17,78 +18,17 @@ namespace {
 constexpr int kN = 25;
 const float kRadii[] = {0.5f, 0.5f, 1.0f};
 
-enum class ContactMistake {
-  None,
-  NoApproachCheck,
-  RestitutionFull,
-  CorrectionSphereOnly,
-  CorrectionOtherOnly,
-  NoCorrection,
-  FixedMassless,
-  FirstSphereOnly,
-  NormalSign,
-  TouchingSkipped,
-  RestitutionZero,
-  RestitutionOne,
-  PairTwice,
-  ImpulseNotDivided
-};
-
 struct State {
   Cloth<float> cloth;
   Spheres<float> spheres;
 };
 
-// One contact in the course's form with one mistake switched on. a = sphere i, b = body j.
-void contact(Particles<float>& a, int i, Particles<float>& b, int j, float reach, float e,
-             ContactMistake m) {
-  Vec4<float> n = a.position.col(i) - b.position.col(j);
-  if (m == ContactMistake::NormalSign) n = -n;
-  const float penetration = reach - n.norm();
-  if (penetration < 0 || (m == ContactMistake::TouchingSkipped && penetration <= 0)) return;
-  n.normalize();
-  if (m == ContactMistake::RestitutionZero) e = 0;
-  if (m == ContactMistake::RestitutionOne) e = 1;
-  const Vec4<float> relative = a.velocity.col(i) - b.velocity.col(j);
-  const float approach = relative.dot(n);
-  if (approach < 0 || m == ContactMistake::NoApproachCheck) {
-    if (m == ContactMistake::FixedMassless) {
-      // The textbook mass formula with mass 0 meaning massless.
-      const float ma = a.mass[i], mb = b.mass[j];
-      const Vec4<float> ua = n * a.velocity.col(i).dot(n), ub = n * b.velocity.col(j).dot(n);
-      const Vec4<float> va = (ma * ua + mb * ub + mb * e * (ub - ua)) / (ma + mb);
-      const Vec4<float> vb = (ma * ua + mb * ub + ma * e * (ua - ub)) / (ma + mb);
-      a.velocity.col(i) += va - ua;
-      b.velocity.col(j) += vb - ub;
-    } else {
-      const Vec4<float> u =
-          m == ContactMistake::RestitutionFull ? relative : Vec4<float>(n * approach);
-      const Vec4<float> impulse =
-          m == ContactMistake::ImpulseNotDivided
-              ? Vec4<float>(-(1 + e) * u)
-              : Vec4<float>((-(1 + e) * u) / (b.inverse_mass[j] + a.inverse_mass[i]));
-      a.velocity.col(i) += impulse * a.inverse_mass[i];
-      b.velocity.col(j) -= impulse * b.inverse_mass[j];
-    }
-  }
-  if (m == ContactMistake::NoCorrection) return;
-  const Vec4<float> c = (penetration * n) * 0.15f;
-  if (m != ContactMistake::CorrectionOtherOnly) a.position.col(i) += c;
-  if (m != ContactMistake::CorrectionSphereOnly) b.position.col(j) -= c;
-}
-
-void collideVariant(State& s, bool sphere_sphere, float e, ContactMistake m) {
-  auto& sp = s.spheres.particles;
-  const int count = m == ContactMistake::FirstSphereOnly ? 1 : s.spheres.size();
-  if (!sphere_sphere) {
-    for (int i = 0; i < count; ++i)
-      for (int j = 0; j < s.cloth.particles.size(); ++j)
-        contact(sp, i, s.cloth.particles, j, s.spheres.radius[i], e, m);
-    return;
-  }
-  for (int i = 0; i < count; ++i)
-    for (int j = m == ContactMistake::PairTwice ? 0 : i + 1; j < s.spheres.size(); ++j)
-      if (j != i) contact(sp, i, sp, j, s.spheres.radius[i] + s.spheres.radius[j], e, m);
+// The library's stub: the expected answer.
+void collideCourse(State& s, bool sphere_sphere, float e) {
+  if (sphere_sphere)
+    collide(s.spheres, e, 0.15f);
+  else
+    collide(s.spheres, s.cloth, e, 0.15f);
 }
 
 State baseState(int edition) {
@@ -346,7 +286,8 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const Case& c = cases[k];
     if (!answer) {
-      tests.push_back(util::failedTest(checks[c.check], failure.text, {util::guess(failure.causeId())}));
+      tests.push_back(
+          util::failedTest(checks[c.check], failure.text, {util::guess(failure.causeId())}));
       continue;
     }
     const int n = static_cast<int>(k);
@@ -355,10 +296,7 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
                          util::matrix(answer->f(key::perCase(key::kSpherePos, n)), 3),
                          util::matrix(answer->f(key::perCase(key::kSphereVel, n)), 3)};
     State reference = c.state;
-    if (sphere_sphere)
-      collide(reference.spheres, e, 0.15f);
-    else
-      collide(reference.spheres, reference.cloth, e, 0.15f);
+    collideCourse(reference, sphere_sphere, e);
     const Outcome expected = outcomeOf(reference);
     if (c.free_bodies) {
       const Vec4<double> before = momentum(c.state, outcomeOf(c.state));
@@ -416,7 +354,7 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
     for (std::size_t m = 0; m < signatures.size(); ++m) {
       const auto& [mistake, id] = signatures[m];
       State variant = c.state;
-      collideVariant(variant, sphere_sphere, e, mistake);
+      collideWithMistake(variant.spheres, variant.cloth, sphere_sphere, e, 0.15f, mistake);
       const Outcome v = outcomeOf(variant);
       if (distance(v, expected) <= rel) {  // this case cannot tell them apart
         consistent[m] = false;             // ... but the student's numbers are not the course's
@@ -446,8 +384,9 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
       for (std::size_t m = 0; m < signatures.size(); ++m) {
         if (!consistent[m]) continue;
         State variant = cases[k].state, reference = cases[k].state;
-        collideVariant(variant, sphere_sphere, e, signatures[m].first);
-        collideVariant(reference, sphere_sphere, e, ContactMistake::None);
+        collideWithMistake(variant.spheres, variant.cloth, sphere_sphere, e, 0.15f,
+                           signatures[m].first);
+        collideCourse(reference, sphere_sphere, e);
         if (distance(outcomeOf(variant), outcomeOf(reference)) > 10 * rel) consistent[m] = false;
       }
     }
@@ -490,7 +429,8 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
     }
     tests.push_back(t);
   } else {
-    tests.push_back(util::failedTest(checks.back(), failure.text, {util::guess(failure.causeId())}));
+    tests.push_back(
+        util::failedTest(checks.back(), failure.text, {util::guess(failure.causeId())}));
   }
   return tests;
 }
