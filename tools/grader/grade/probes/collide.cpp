@@ -9,164 +9,14 @@
 
 #include "clothref/core/cloth.h"
 #include "clothref/core/spheres.h"
+#include "grader/grade/probes/collide_cases.h"
 #include "grader/grade/probes/formula_variants.h"
 #include "grader/grade/probes/util.h"
 
 namespace clothref::grader {
 namespace {
 
-constexpr int kN = 25;
-const float kRadii[] = {0.5f, 0.5f, 1.0f};
-
-struct State {
-  Cloth<float> cloth;
-  Spheres<float> spheres;
-};
-
-// The library's stub: the expected answer.
-void collideCourse(State& s, bool sphere_sphere, float e) {
-  if (sphere_sphere)
-    collide(s.spheres, e, 0.15f);
-  else
-    collide(s.spheres, s.cloth, e, 0.15f);
-}
-
-State baseState(int edition) {
-  State s;
-  s.cloth.particles = initializeVertex<float>(kN, 2.0f, edition == 2024 ? 1.0f : 0.0f, 1.0f);
-  for (int i = 0; i < kN; ++i)
-    for (int j = 0; j < kN; ++j)  // parked 50 m below, 3 m apart: nothing touches them
-      s.cloth.particles.position.col(i * kN + j) =
-          Vec4<float>(-36.0f + 3.0f * float(j), -50.0f, -36.0f + 3.0f * float(i), 1.0f);
-  for (int corner : {0, kN - 1, kN * (kN - 1), kN * kN - 1})
-    setMass(s.cloth.particles, corner, 0.0f);
-  for (int k = 0; k < 3; ++k)
-    addSphere(s.spheres, Vec4<float>(100.0f * float(k + 1), 100, 0, 1), kRadii[k], 1000.0f);
-  return s;
-}
-
-// Rows of the check tables (checkTable()): one case each, then momentum over them all.
-enum ClothCheck {
-  kClothApproaching,
-  kClothSeparating,
-  kSeveralSpheres,
-  kSphereAtIndex2,
-  kFixedParticle,
-  kClothDeep,
-  kClothTouching,
-  kClothMomentum
-};
-enum SphereCheck {
-  kSpheresApproaching,
-  kSpheresSeparating,
-  kChain,
-  kPairWithoutSphere0,
-  kSpheresDeep,
-  kSpheresTouching,
-  kUnequalMasses,
-  kSpheresMomentum
-};
-
-struct Case {
-  int check;  // a row of the check table
-  State state;
-  std::vector<int> spheres, particles;  // the bodies the case places (for the report)
-  bool free_bodies = true;              // momentum must be conserved
-};
-
-void place(State& s, bool sphere, int index, Vec4<float> x, Vec4<float> v) {
-  auto& p = sphere ? s.spheres.particles : s.cloth.particles;
-  p.position.col(index) = x;
-  p.velocity.col(index) = v;
-}
-Vec4<float> P(float x, float y, float z) { return Vec4<float>(x, y, z, 1); }
-Vec4<float> V(float x, float y, float z) { return Vec4<float>(x, y, z, 0); }
-
-std::vector<Case> clothCases(int edition) {
-  std::vector<Case> cases;
-  const auto make = [&](ClothCheck check, std::vector<int> spheres, std::vector<int> particles,
-                        const std::function<void(State&)>& setup, bool free_bodies = true) {
-    Case c{check, baseState(edition), std::move(spheres), std::move(particles), free_bodies};
-    setup(c.state);
-    cases.push_back(std::move(c));
-  };
-  make(kClothApproaching, {0}, {312}, [](State& s) {
-    place(s, true, 0, P(0.1f, 0.42f, -0.05f), V(0.3f, -2, 0.1f));
-    place(s, false, 312, P(0, 0, 0), V(0.2f, 0.5f, -0.1f));
-  });
-  make(kClothSeparating, {0}, {312}, [](State& s) {
-    place(s, true, 0, P(0.05f, 0.45f, 0), V(0, 1.5f, 0.2f));
-    place(s, false, 312, P(0, 0, 0), V(0, -0.3f, 0));
-  });
-  make(kSeveralSpheres, {0, 1, 2}, {100, 200, 312}, [](State& s) {
-    place(s, false, 100, P(-5, 0, 0), V(0, 0, 0));
-    place(s, false, 200, P(5, 0, 0), V(0, 0.1f, 0));
-    place(s, false, 312, P(0, 0, 5), V(0, 0, 0));
-    place(s, true, 0, P(-4.95f, 0.4f, 0), V(0, -1, 0));
-    place(s, true, 1, P(4.9f, 0.45f, 0.05f), V(0.5f, -1, 0));
-    place(s, true, 2, P(0, 0.9f, 5.2f), V(0, -0.5f, 0.3f));
-  });
-  make(kSphereAtIndex2, {2}, {312}, [](State& s) {
-    place(s, true, 2, P(0.3f, 0.85f, 0), V(0, -1, 0));
-    place(s, false, 312, P(0, 0, 0), V(0, 0, 0));
-  });
-  make(
-      kFixedParticle, {0}, {0},
-      [](State& s) {
-        place(s, false, 0, P(0, 0, 0), V(0, 0, 0));
-        place(s, true, 0, P(0, 0.45f, 0.05f), V(0.2f, -1, 0));
-      },
-      false);
-  make(kClothDeep, {0}, {312}, [](State& s) {
-    place(s, true, 0, P(0.05f, 0.1f, 0.02f), V(0, -1, 0.5f));
-    place(s, false, 312, P(0, 0, 0), V(0, 0.2f, 0));
-  });
-  make(kClothTouching, {0}, {312}, [](State& s) {
-    place(s, true, 0, P(0, 0.5f, 0), V(0, -1, 0));
-    place(s, false, 312, P(0, 0, 0), V(0, 0, 0));
-  });
-  return cases;
-}
-
-std::vector<Case> sphereCases(int edition) {
-  std::vector<Case> cases;
-  const auto make = [&](SphereCheck check, std::vector<int> spheres,
-                        const std::function<void(State&)>& setup) {
-    Case c{check, baseState(edition), std::move(spheres), {}, true};
-    setup(c.state);
-    cases.push_back(std::move(c));
-  };
-  make(kSpheresApproaching, {0, 1}, [](State& s) {
-    place(s, true, 0, P(0, 0, 0), V(1, 0.2f, 0));
-    place(s, true, 1, P(0.9f, 0.1f, 0), V(-0.5f, 0, 0.3f));
-  });
-  make(kSpheresSeparating, {0, 1}, [](State& s) {
-    place(s, true, 0, P(0, 0, 0), V(-1, 0, 0));
-    place(s, true, 1, P(0.95f, 0, 0), V(0.5f, 0, 0));
-  });
-  make(kChain, {0, 1, 2}, [](State& s) {
-    place(s, true, 0, P(0, 0, 0), V(1, 0, 0));
-    place(s, true, 1, P(0.95f, 0, 0), V(0, 0, 0));
-    place(s, true, 2, P(2.4f, 0.05f, 0), V(-1, 0, 0));
-  });
-  make(kPairWithoutSphere0, {1, 2}, [](State& s) {
-    place(s, true, 1, P(0, 0, 0), V(0.5f, 0, 0));
-    place(s, true, 2, P(1.4f, 0.2f, 0), V(-0.5f, 0, 0.1f));
-  });
-  make(kSpheresDeep, {0, 1}, [](State& s) {
-    place(s, true, 0, P(0, 0, 0), V(0.3f, 0, 0));
-    place(s, true, 1, P(0.3f, 0.05f, 0.02f), V(-0.3f, 0, 0));
-  });
-  make(kSpheresTouching, {0, 1}, [](State& s) {
-    place(s, true, 0, P(0, 0, 0), V(1, 0, 0));
-    place(s, true, 1, P(1, 0, 0), V(0, 0, 0));
-  });
-  make(kUnequalMasses, {0, 2}, [](State& s) {
-    place(s, true, 0, P(0, 0, 0), V(2, 0, 0));
-    place(s, true, 2, P(1.45f, 0.1f, 0), V(0, 0, 0));
-  });
-  return cases;
-}
+using namespace contacts;
 
 struct Outcome {
   Mat4X<float> cloth_x, cloth_v, sphere_x, sphere_v;
@@ -201,27 +51,6 @@ Vec4<double> momentum(const State& s, const Outcome& o) {
   for (int i = 0; i < s.spheres.size(); ++i)
     total += double(s.spheres.particles.mass[i]) * o.sphere_v.col(i).cast<double>();
   return total;
-}
-
-// The check tables (collideChecks()): the names in the enums' order, each check worth 1.
-constexpr const char* kClothCheckNames[] = {
-    "approaching pair", "separating pair",  "several spheres",  "sphere at index 2",
-    "fixed particle",   "deep penetration", "touching exactly", "momentum conserved"};
-constexpr const char* kSphereCheckNames[] = {
-    "approaching pair", "separating pair",  "three spheres in a chain", "pair without sphere 0",
-    "deep penetration", "touching exactly", "unequal masses",           "momentum conserved"};
-static_assert(std::size(kClothCheckNames) == kClothMomentum + 1);
-static_assert(std::size(kSphereCheckNames) == kSpheresMomentum + 1);
-
-std::vector<PlannedTest> checkTable(bool sphere_sphere) {
-  const std::string& stub = stubName(sphere_sphere ? Stub::CollideSpheres : Stub::CollideCloth);
-  std::vector<PlannedTest> checks;
-  for (const char* name :
-       sphere_sphere
-           ? std::vector<const char*>(std::begin(kSphereCheckNames), std::end(kSphereCheckNames))
-           : std::vector<const char*>(std::begin(kClothCheckNames), std::end(kClothCheckNames)))
-    checks.push_back({stub, name, 1});
-  return checks;
 }
 
 std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_sphere) {
@@ -354,7 +183,7 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
     for (std::size_t m = 0; m < signatures.size(); ++m) {
       const auto& [mistake, id] = signatures[m];
       State variant = c.state;
-      collideWithMistake(variant.spheres, variant.cloth, sphere_sphere, e, 0.15f, mistake);
+      collideWithMistake(variant.spheres, variant.cloth, sphere_sphere, e, kCorrection, mistake);
       const Outcome v = outcomeOf(variant);
       if (distance(v, expected) <= rel) {  // this case cannot tell them apart
         consistent[m] = false;             // ... but the student's numbers are not the course's
@@ -384,7 +213,7 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
       for (std::size_t m = 0; m < signatures.size(); ++m) {
         if (!consistent[m]) continue;
         State variant = cases[k].state, reference = cases[k].state;
-        collideWithMistake(variant.spheres, variant.cloth, sphere_sphere, e, 0.15f,
+        collideWithMistake(variant.spheres, variant.cloth, sphere_sphere, e, kCorrection,
                            signatures[m].first);
         collideCourse(reference, sphere_sphere, e);
         if (distance(outcomeOf(variant), outcomeOf(reference)) > 10 * rel) consistent[m] = false;
