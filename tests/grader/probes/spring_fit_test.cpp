@@ -23,7 +23,8 @@ enum class Change {
   NoDamper,
   Unnormalised,
   OneEnd,
-  MassNotInverse
+  MassNotInverse,
+  WholeSign  // the ends or += and -= swapped: both terms flipped
 };
 
 // A 6 x 6 cloth of the course's grid, perturbed and moving (`moving` false: at rest), with fixed,
@@ -51,11 +52,11 @@ SpringCase makeCase(Change change, bool moving, unsigned seed) {
   for (const auto& s : c.springs) {
     const std::size_t i = std::size_t(s.start), j = std::size_t(s.end);
     const float ks = change == Change::SpringHalved ? float(kSpring / 2)
-                     : change == Change::SpringSign ? float(-kSpring)
-                                                    : float(kSpring);
-    const float kd = change == Change::DamperSign ? float(-kDamper)
-                     : change == Change::NoDamper ? 0.0f
-                                                  : float(kDamper);
+                     : change == Change::SpringSign || change == Change::WholeSign ? float(-kSpring)
+                                                                                   : float(kSpring);
+    const float kd = change == Change::DamperSign || change == Change::WholeSign ? float(-kDamper)
+                     : change == Change::NoDamper                                ? 0.0f
+                                                                                 : float(kDamper);
     float force[4];
     formula::springForce(x[i].data(), x[j].data(), v[i].data(), v[j].data(), float(s.rest), ks,
                          change == Change::Unnormalised ? 0.0f : kd, force);
@@ -112,7 +113,8 @@ TEST(SpringFit, EachChangeIsNamed) {
                   {Change::NoDamper, "missing-damper", "k_d fits as 0"},
                   {Change::Unnormalised, "damper-not-normalised", "unit direction"},
                   {Change::OneEnd, "force-one-end-only", "start particle"},
-                  {Change::MassNotInverse, "mass-not-inverse", "not the inverse mass"}};
+                  {Change::MassNotInverse, "mass-not-inverse", "not the inverse mass"},
+                  {Change::WholeSign, "spring-force-sign", "the whole force has the wrong sign"}};
   for (const auto& e : expected) {
     const auto findings = explain(e.change);
     ASSERT_EQ(findings.size(), 1u) << e.cause;

@@ -3,6 +3,7 @@
 // touching exactly, unequal masses) compared with clothref's contact code, plus momentum.
 // Three spheres are added once; unused ones and the rest of the cloth are parked far away, so
 // each case touches only the bodies it names and the loop order cannot matter.
+#include <algorithm>
 #include <functional>
 #include <iterator>
 #include <set>
@@ -10,6 +11,7 @@
 #include "clothref/core/cloth.h"
 #include "clothref/core/spheres.h"
 #include "grader/grade/probes/collide_cases.h"
+#include "grader/grade/probes/contact_fit.h"
 #include "grader/grade/probes/formula_variants.h"
 #include "grader/grade/probes/util.h"
 
@@ -53,6 +55,71 @@ Vec4<double> momentum(const State& s, const Outcome& o) {
   return total;
 }
 
+// Whether the call left the case's total momentum unchanged (to 1e-5 of the momenta involved).
+bool conserves(const Case& c, const Outcome& after) {
+  double scale = 0;
+  for (int q : c.spheres)
+    scale += c.state.spheres.particles.mass[q] *
+             c.state.spheres.particles.velocity.col(q).cast<double>().norm();
+  for (int q : c.particles)
+    scale += c.state.cloth.particles.mass[q] *
+             c.state.cloth.particles.velocity.col(q).cast<double>().norm();
+  const Vec4<double> change = momentum(c.state, after) - momentum(c.state, outcomeOf(c.state));
+  return change.norm() <= 1e-5 * (1 + scale);
+}
+
+// The pairs of a case that touch before the call, each read back in the course's terms
+// (contact_fit.h) from the student's result; a body in two contacts is left out (its change mixes
+// both).
+int readPairs(const Case& c, bool sphere_sphere, const Outcome& actual,
+              std::vector<ContactReading>& readings) {
+  const auto& sp = c.state.spheres.particles;
+  const auto& cp = c.state.cloth.particles;
+  struct Pair {
+    int a, b;  // sphere index, and the other body's (a sphere or a particle)
+  };
+  std::vector<Pair> pairs;
+  const auto reach = [&](int a, int b) {
+    return sphere_sphere ? c.state.spheres.radius[a] + c.state.spheres.radius[b]
+                         : c.state.spheres.radius[a];
+  };
+  const Particles<float>& others = sphere_sphere ? sp : cp;  // body b's kind
+  for (int a : c.spheres)
+    for (int b : sphere_sphere ? c.spheres : c.particles) {
+      if (sphere_sphere && b <= a) continue;
+      if ((sp.position.col(a) - others.position.col(b)).norm() <= reach(a, b))
+        pairs.push_back({a, b});
+    }
+  const auto contacts = [&](int body, bool sphere) {
+    int count = 0;
+    for (const Pair& p : pairs)
+      count += (sphere && p.a == body) || (sphere == sphere_sphere && p.b == body);
+    return count;
+  };
+  const auto xyz = [](const Mat4X<float>& m, int i) {
+    return std::array<double, 3>{m(0, i), m(1, i), m(2, i)};
+  };
+  for (const Pair& p : pairs) {
+    if (contacts(p.a, true) != 1 || contacts(p.b, sphere_sphere) != 1) continue;
+    const Mat4X<float>& bx = sphere_sphere ? actual.sphere_x : actual.cloth_x;
+    const Mat4X<float>& bv = sphere_sphere ? actual.sphere_v : actual.cloth_v;
+    ContactCase pair;
+    pair.xa = xyz(sp.position, p.a);
+    pair.va = xyz(sp.velocity, p.a);
+    pair.xb = xyz(others.position, p.b);
+    pair.vb = xyz(others.velocity, p.b);
+    pair.xa_after = xyz(actual.sphere_x, p.a);
+    pair.va_after = xyz(actual.sphere_v, p.a);
+    pair.xb_after = xyz(bx, p.b);
+    pair.vb_after = xyz(bv, p.b);
+    pair.inverse_mass_a = sp.inverse_mass[p.a];
+    pair.inverse_mass_b = others.inverse_mass[p.b];
+    pair.contact_distance = reach(p.a, p.b);
+    readings.push_back(readContact(pair));
+  }
+  return static_cast<int>(pairs.size());
+}
+
 std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_sphere) {
   const std::vector<PlannedTest> checks = checkTable(sphere_sphere);
   const float e = sphere_sphere ? 0.8f : 0.0f;
@@ -93,6 +160,7 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
     signatures.push_back({ContactMistake::PairTwice, "pair-processed-twice"});
   } else {
     signatures.push_back({ContactMistake::FixedMassless, "fixed-particle-massless"});
+    signatures.push_back({ContactMistake::SphereZeroForAll, "first-sphere-only"});
   }
   std::vector<TestResult> tests;
   std::string momentum_report;
@@ -101,7 +169,9 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
   // A mistake is consistent when its simulation gives the student's numbers in every case, the
   // passed ones included; a case may not tell two mistakes apart, the whole probe usually does.
   std::vector<bool> consistent(signatures.size(), bool(answer));
-  std::vector<std::size_t> failed;  // indices into tests, causes still to be written
+  std::vector<std::size_t> failed;       // indices into tests, causes still to be written
+  std::vector<ContactReading> readings;  // the touching pairs of every case
+  std::vector<bool> touching(cases.size(), false);  // a failed case has a pair in contact
   // NaN or infinity out of the student's call, per case, and whether the case had a body at rest
   // (velocity exactly 0): NaN only where a body rests is a division by its speed.
   std::vector<bool> non_finite(cases.size(), false), at_rest(cases.size(), false);
@@ -127,26 +197,18 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
     State reference = c.state;
     collideCourse(reference, sphere_sphere, e);
     const Outcome expected = outcomeOf(reference);
-    if (c.free_bodies) {
+    if (c.free_bodies && !conserves(c, actual)) {
       const Vec4<double> before = momentum(c.state, outcomeOf(c.state));
       const Vec4<double> after = momentum(c.state, actual);
-      double scale = 0;
-      for (int q : c.spheres)
-        scale += c.state.spheres.particles.mass[q] *
-                 c.state.spheres.particles.velocity.col(q).cast<double>().norm();
-      for (int q : c.particles)
-        scale += c.state.cloth.particles.mass[q] *
-                 c.state.cloth.particles.velocity.col(q).cast<double>().norm();
-      if (!((after - before).norm() <= 1e-5 * (1 + scale))) {
-        momentum_ok = false;
-        momentum_non_finite = momentum_non_finite || !after.allFinite();
-        momentum_report += "- " + checks[c.check].check + ": total momentum before " +
-                           util::vec3(before.cast<float>()) + ", after your call " +
-                           util::vec3(after.cast<float>()) + "\n";
-      }
+      momentum_ok = false;
+      momentum_non_finite = momentum_non_finite || !after.allFinite();
+      momentum_report += "- " + checks[c.check].check + ": total momentum before " +
+                         util::vec3(before.cast<float>()) + ", after your call " +
+                         util::vec3(after.cast<float>()) + "\n";
     }
     TestResult t = util::test(checks[c.check]);
     if (distance(actual, expected) <= rel) {
+      readPairs(c, sphere_sphere, actual, readings);
       t.fraction = 1;
       t.output = "Velocities and positions of every body match.";
       tests.push_back(t);
@@ -203,6 +265,7 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
                actual.cloth_v.col(0) != c.state.cloth.particles.velocity.col(0))
         t.addCause("fixed-particle-massless");
     }
+    touching[k] = readPairs(c, sphere_sphere, actual, readings) > 0;
     failed.push_back(tests.size());
     tests.push_back(t);
   }
@@ -226,19 +289,65 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
   bool divides_by_speed = std::find(non_finite.begin(), non_finite.end(), true) != non_finite.end();
   for (std::size_t k = 0; k < cases.size(); ++k)
     if (non_finite[k] != at_rest[k]) divides_by_speed = false;
+  // What the numbers say in the course's terms (contact_fit.h): the one quantity that differs.
+  const std::vector<ContactFinding> findings =
+      answer ? explainContacts(readings, e, kCorrection) : std::vector<ContactFinding>{};
+  // Likely: a simulated mistake that gives the student's numbers in every case, or else what
+  // every touching pair reads back the same. A mistake only some cases match is a guess.
+  std::set<std::string> likely = explains_all;
+  if (likely.empty())
+    for (const ContactFinding& f : findings)
+      if (!f.cause.empty()) likely.insert(f.cause);
+  const auto finding = [&](const std::string& id) -> const ContactFinding* {
+    for (const ContactFinding& f : findings)
+      if (f.cause == id) return &f;
+    return nullptr;
+  };
+  std::map<std::string, std::string> detailed;  // cause -> the check above that shows it
   for (std::size_t k : failed) {
     TestResult& t = tests[k];
-    // One mistake that explains every case wins over those a single case cannot rule out.
-    if (!explains_all.empty()) {
-      std::vector<Cause> kept;
-      for (const Cause& cause : t.causes)
-        if (explains_all.count(cause.id) || cause.id == "non-finite") kept.push_back(cause);
-      if (!kept.empty()) t.causes = kept;
+    std::vector<Cause> causes, guesses;
+    for (Cause cause : t.causes) {
+      cause.likely = cause.id == "non-finite" || likely.count(cause.id);
+      (cause.likely ? causes : guesses).push_back(cause);
     }
+    for (const std::string& id : likely)  // read from the pairs, not simulated
+      if (touching[k] && finding(id) &&
+          std::none_of(causes.begin(), causes.end(), [&](const Cause& c) { return c.id == id; }))
+        causes.push_back(util::likely(id));
+    for (Cause& cause : causes)  // the measurement once per stub, the first check it fails
+      if (const ContactFinding* f = finding(cause.id))
+        cause.detail = detailed.emplace(cause.id, t.check).second
+                           ? "Measured: " + f->text + "."
+                           : "Measured as under *" + detailed[cause.id] + "* above.";
     if (divides_by_speed && t.names("non-finite"))
-      t.causes.insert(t.causes.begin(), util::likely("division-by-speed"));
-    if (t.causes.empty()) t.addCause("unknown", false);
+      causes.insert(causes.begin(), util::likely("division-by-speed"));
+    // Nothing explains every case: unknown, with what matched this case as the nearest guesses.
+    if (causes.empty()) causes.push_back(util::guess("unknown"));
+    if (!causes.front().likely) causes.insert(causes.end(), guesses.begin(), guesses.end());
+    t.causes = causes;
   }
+  // The likely causes that break momentum: a simulated mistake that does in some case, or an
+  // impulse split read from the pairs.
+  std::vector<std::string> breaks_momentum;
+  for (std::size_t m = 0; m < signatures.size(); ++m) {
+    const std::string id = signatures[m].second;
+    if (!likely.count(id) || std::count(breaks_momentum.begin(), breaks_momentum.end(), id))
+      continue;
+    for (const Case& c : cases) {
+      State variant = c.state;
+      collideWithMistake(variant.spheres, variant.cloth, sphere_sphere, e, kCorrection,
+                         signatures[m].first);
+      if (c.free_bodies && !conserves(c, outcomeOf(variant))) {
+        breaks_momentum.push_back(id);
+        break;
+      }
+    }
+  }
+  if (const ContactFinding* f = finding("wrong-mass-split");
+      f && likely.count(f->cause) &&
+      !std::count(breaks_momentum.begin(), breaks_momentum.end(), f->cause))
+    breaks_momentum.push_back(f->cause);
   if (answer) {
     TestResult t = util::test(checks.back());
     t.fraction = momentum_ok ? 1 : 0;
@@ -253,6 +362,11 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
         t.causes = {util::likely("division-by-speed"), util::likely("non-finite")};
       else if (momentum_non_finite)
         t.causes = {util::likely("non-finite")};
+      else if (!breaks_momentum.empty())
+        for (const std::string& id : breaks_momentum) {
+          Cause& cause = t.addCause(id);
+          if (const ContactFinding* f = finding(id)) cause.detail = "Measured: " + f->text + ".";
+        }
       else
         t.causes = {util::guess("wrong-mass-split")};
     }

@@ -2,10 +2,14 @@
 // moving states, with existing accelerations (accumulation) and with fixed and heavy particles.
 // Accelerations are compared with clothref's per particle, within force_rel times the sum of the
 // magnitudes that meet at that particle (so reordered float sums pass, wrong physics does not).
+#include <algorithm>
+#include <map>
 #include <random>
+#include <set>
 
 #include "clothref/core/cloth.h"
 #include "grader/grade/probes/formula_variants.h"
+#include "grader/grade/probes/spring_fit.h"
 #include "grader/grade/probes/util.h"
 
 namespace clothref::grader {
@@ -51,6 +55,20 @@ Mismatch compare(const Mat4X<float>& actual, const Mat4X<float>& expected,
   return m;
 }
 
+// Whether two answers agree at every particle within `rel` of its force scale (non-finite
+// values must be non-finite in both).
+bool sameAnswer(const Mat4X<float>& a, const Mat4X<float>& b, const std::vector<double>& scale,
+                double rel) {
+  for (int q = 0; q < a.cols(); ++q) {
+    if (!a.col(q).allFinite() || !b.col(q).allFinite()) {
+      if (a.col(q).allFinite() != b.col(q).allFinite()) return false;
+    } else if ((a.col(q) - b.col(q)).cast<double>().norm() > rel * scale[q] + 1e-6) {
+      return false;
+    }
+  }
+  return true;
+}
+
 // Rows of forcesChecks(), the probe's check table: one case each.
 enum ForceCheck { kRandom, kMoving, kAccumulates, kFixedAndHeavy };
 
@@ -59,6 +77,25 @@ struct Case {
   Cloth<float> cloth;
   Mat4X<float> acc0;
 };
+
+// A case and the student's answer as spring_fit reads them: the change to the accelerations.
+SpringCase springCase(const Case& c, const Mat4X<float>& actual) {
+  const auto& p = c.cloth.particles;
+  SpringCase out;
+  const auto xyz = [](const Mat4X<float>& m, int i) {
+    return std::array<double, 3>{m(0, i), m(1, i), m(2, i)};
+  };
+  for (int i = 0; i < p.size(); ++i) {
+    out.x.push_back(xyz(p.position, i));
+    out.v.push_back(xyz(p.velocity, i));
+    out.mass.push_back(p.mass[i]);
+    const Mat4X<float> change = actual.col(i) - c.acc0.col(i);
+    out.change.push_back(xyz(change, 0));
+  }
+  for (const auto& s : c.cloth.springs)
+    out.springs.push_back({int(s.start), int(s.end), double(s.rest_length)});
+  return out;
+}
 
 }  // namespace
 
@@ -145,13 +182,32 @@ std::vector<TestResult> probeForces(const ProbeContext& context) {
   const auto answer = util::runGroup(context, context.probe, group::kForces, request, failure);
   const std::vector<PlannedTest> checks = forcesChecks();
   std::vector<TestResult> tests;
-  for (std::size_t k = 0; k < cases.size(); ++k) {
-    const Case& c = cases[k];
-    if (!answer) {
+  if (!answer) {
+    for (const Case& c : cases)
       tests.push_back(
           util::failedTest(checks[c.check], failure.text, {util::guess(failure.causeId())}));
-      continue;
-    }
+    return tests;
+  }
+  const std::pair<ForceMistake, const char*> signatures[] = {
+      {ForceMistake::Assign, "assign-not-accumulate"},
+      {ForceMistake::SpringSign, "spring-force-sign"},
+      {ForceMistake::DamperSign, "damper-sign"},
+      {ForceMistake::NoDamper, "missing-damper"},
+      {ForceMistake::DamperUnnormalised, "damper-not-normalised"},
+      {ForceMistake::OneEnd, "force-one-end-only"},
+      {ForceMistake::MassNotInverse, "mass-not-inverse"},
+      {ForceMistake::DivideByMass, "fixed-particle-moves"}};
+  constexpr std::size_t kSignatures = std::size(signatures);
+  // A mistake is consistent when its variant gives the student's numbers in every case where it
+  // differs from the course's, the passed cases included.
+  std::vector<bool> consistent(kSignatures, true);
+  std::vector<std::vector<bool>> matches(cases.size(), std::vector<bool>(kSignatures, false));
+  std::vector<SpringReading>
+      readings;  // every case read back as the course's force, constants free
+  std::vector<std::size_t> failed;
+  std::vector<bool> non_finite(cases.size(), false);
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    const Case& c = cases[k];
     TestResult t = util::test(checks[c.check]);
     const Mat4X<float> actual =
         util::matrix(answer->f(key::perCase(key::kClothAcc, static_cast<int>(k))), kN * kN);
@@ -160,6 +216,13 @@ std::vector<TestResult> probeForces(const ProbeContext& context) {
     computeSpringForce(reference);
     const Mat4X<float>& expected = reference.particles.acceleration;
     const auto scale = scales(c.cloth, c.acc0);
+    readings.push_back(readSprings(springCase(c, actual), rel));
+    for (std::size_t m = 0; m < kSignatures; ++m) {
+      const Mat4X<float> variant = springAccelerations(c.cloth, c.acc0, signatures[m].first);
+      if ((variant - expected).cwiseAbs().maxCoeff() == 0.0f) continue;  // indistinguishable here
+      matches[k][m] = sameAnswer(variant, actual, scale, 10 * rel);
+      consistent[m] = consistent[m] && matches[k][m];
+    }
     const Mismatch m = compare(actual, expected, scale, rel);
     if (m.count == 0) {
       t.fraction = 1;
@@ -180,40 +243,47 @@ std::vector<TestResult> probeForces(const ProbeContext& context) {
         util::num(p.mass[i]) + "\n" + "- acceleration before the call " +
         util::vec3(c.acc0.col(i)) + "\n" + "- expected after " + util::vec3(expected.col(i)) +
         "\n" + "- actual after " + util::vec3(actual.col(i)) + "\n";
-    const std::pair<ForceMistake, const char*> signatures[] = {
-        {ForceMistake::Assign, "assign-not-accumulate"},
-        {ForceMistake::SpringSign, "spring-force-sign"},
-        {ForceMistake::DamperSign, "damper-sign"},
-        {ForceMistake::NoDamper, "missing-damper"},
-        {ForceMistake::DamperUnnormalised, "damper-not-normalised"},
-        {ForceMistake::OneEnd, "force-one-end-only"},
-        {ForceMistake::MassNotInverse, "mass-not-inverse"},
-        {ForceMistake::DivideByMass, "fixed-particle-moves"}};
-    for (const auto& [mistake, id] : signatures) {
-      const Mat4X<float> variant = springAccelerations(c.cloth, c.acc0, mistake);
-      if ((variant - expected).cwiseAbs().maxCoeff() == 0.0f) continue;  // indistinguishable here
-      bool same = true;
-      for (int q = 0; q < kN * kN && same; ++q) {
-        const auto& vc = variant.col(q);
-        const auto& ac = actual.col(q);
-        if (!vc.allFinite() || !ac.allFinite())
-          same = vc.allFinite() == ac.allFinite();
-        else
-          same = (vc - ac).cast<double>().norm() <= 10 * (rel * scale[q] + 1e-6);
-      }
-      if (same) t.addCause(id);
-    }
-    if (t.causes.empty()) {
-      bool fixed_moved = false;
-      for (int q = 0; q < kN * kN; ++q)
-        if (p.mass[q] == 0 && actual.col(q) != c.acc0.col(q)) fixed_moved = true;
-      if (fixed_moved)
+    // Measured properties, whatever else explains the numbers.
+    for (int q = 0; q < kN * kN; ++q)
+      if (p.mass[q] == 0 && actual.col(q) != c.acc0.col(q)) {
         t.addCause("fixed-particle-moves");
-      else if (!util::finite(util::flat(actual)))
-        t.addCause("non-finite");
-    }
-    if (t.causes.empty()) t.addCause("unknown", false);
+        break;
+      }
+    non_finite[k] = !util::finite(util::flat(actual));
+    failed.push_back(tests.size());
     tests.push_back(t);
+  }
+  // Likely: a mistake whose variant gives the student's numbers in every case, or else the
+  // constants and form every case reads back the same (spring_fit.h). The rest are guesses.
+  const std::vector<SpringFinding> findings =
+      explainSprings(readings, base.spring_coef, base.damper_coef);
+  std::set<std::string> likely;
+  for (std::size_t m = 0; m < kSignatures; ++m)
+    if (consistent[m] &&
+        std::any_of(failed.begin(), failed.end(), [&](std::size_t k) { return matches[k][m]; }))
+      likely.insert(signatures[m].second);
+  if (likely.empty())
+    for (const SpringFinding& f : findings) likely.insert(f.cause);
+  std::map<std::string, std::string> detailed;  // cause -> the check above that shows it
+  for (std::size_t k : failed) {
+    TestResult& t = tests[k];
+    std::vector<Cause> guesses;
+    for (std::size_t m = 0; m < kSignatures; ++m)
+      if (matches[k][m] && likely.count(signatures[m].second))
+        t.addCause(signatures[m].second);
+      else if (matches[k][m])
+        guesses.push_back(util::guess(signatures[m].second));
+    for (const SpringFinding& f : findings) {
+      if (!likely.count(f.cause)) continue;
+      Cause& cause = t.addCause(f.cause);
+      cause.detail = detailed.emplace(f.cause, t.check).second
+                         ? "Measured: " + f.text + "."
+                         : "Measured as under *" + detailed[f.cause] + "* above.";
+    }
+    if (t.causes.empty() && non_finite[k]) t.addCause("non-finite");
+    // Nothing explains every case: unknown, with what matched this case as the nearest guesses.
+    if (t.causes.empty()) t.addCause("unknown", false);
+    if (!t.causes.front().likely) t.causes.insert(t.causes.end(), guesses.begin(), guesses.end());
   }
   return tests;
 }

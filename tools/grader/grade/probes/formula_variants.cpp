@@ -67,9 +67,11 @@ void collideWithMistake(Spheres<float>& spheres, Cloth<float>& cloth, bool spher
   const int count = mistake == ContactMistake::FirstSphereOnly ? 1 : spheres.size();
   // The loops of the library's two collide stubs (core/spheres.cpp), their ranges switchable.
   if (!sphere_sphere) {
-    for (int i = 0; i < count; ++i)
+    for (int i = 0; i < count; ++i) {
+      const int a = mistake == ContactMistake::SphereZeroForAll ? 0 : i;
       for (int j = 0; j < cloth.particles.size(); ++j)
-        contact(sp, i, cloth.particles, j, spheres.radius[i], restitution, correction, variant);
+        contact(sp, a, cloth.particles, j, spheres.radius[a], restitution, correction, variant);
+    }
     return;
   }
   for (int i = 0; i < count; ++i)

@@ -44,7 +44,8 @@ enum class ContactMistake {
   CorrectionOtherOnly,
   NoCorrection,
   FixedMassless,
-  FirstSphereOnly,  // only sphere 0 is tested
+  FirstSphereOnly,   // only sphere 0 is tested
+  SphereZeroForAll,  // the loop over i uses position(0), radius(0): sphere 0 once per sphere
   NormalSign,
   TouchingSkipped,
   RestitutionZero,  // coefRestitution overwritten

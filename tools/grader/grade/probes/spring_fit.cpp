@@ -141,6 +141,15 @@ std::vector<SpringFinding> explainSprings(const std::vector<SpringReading>& read
   };
   const std::optional<double> ks = common([](const SpringReading& r) { return r.spring_coef; });
   const std::optional<double> kd = common([](const SpringReading& r) { return r.damper_coef; });
+  // Both terms flipped is one mistake: the whole force applied the wrong way round (the ends or
+  // += and -= swapped).
+  if (ks && kd && same(*ks, -spring_coef) && same(*kd, -damper_coef)) {
+    add("spring-force-sign",
+        "the whole force has the wrong sign, the Hooke and the damper terms both (k_s fits as " +
+            number(*ks) + " N/m, k_d as " + number(*kd) +
+            " N s/m): a stretched spring pushes its ends apart");
+    return findings;
+  }
   if (ks && !same(*ks, spring_coef)) {
     if (same(*ks, -spring_coef))
       add("spring-force-sign",
