@@ -54,7 +54,8 @@ TEST(FormulaVariants, EverySpringMistakeChangesARandomState) {
   for (ForceMistake m :
        {ForceMistake::Assign, ForceMistake::SpringSign, ForceMistake::DamperSign,
         ForceMistake::NoDamper, ForceMistake::DamperUnnormalised, ForceMistake::OneEnd,
-        ForceMistake::MassNotInverse, ForceMistake::DivideByMass})
+        ForceMistake::MassNotInverse, ForceMistake::DivideByMass, ForceMistake::OtherEndOnly,
+        ForceMistake::AssignTotal, ForceMistake::AssignTotalGravity})
     EXPECT_FALSE(sameBits(springAccelerations(cloth, acc0, m), course)) << int(m);
 }
 

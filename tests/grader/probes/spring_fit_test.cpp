@@ -24,7 +24,9 @@ enum class Change {
   Unnormalised,
   OneEnd,
   MassNotInverse,
-  WholeSign  // the ends or += and -= swapped: both terms flipped
+  WholeSign,  // the ends or += and -= swapped: both terms flipped
+  EndOnly,
+  UnnormalisedTwice  // k_d ((v_s - v_e) . d) d
 };
 
 // A 6 x 6 cloth of the course's grid, perturbed and moving (`moving` false: at rest), with fixed,
@@ -58,8 +60,15 @@ SpringCase makeCase(Change change, bool moving, unsigned seed) {
                      : change == Change::NoDamper                                ? 0.0f
                                                                                  : float(kDamper);
     float force[4];
-    formula::springForce(x[i].data(), x[j].data(), v[i].data(), v[j].data(), float(s.rest), ks,
-                         change == Change::Unnormalised ? 0.0f : kd, force);
+    formula::springForce(
+        x[i].data(), x[j].data(), v[i].data(), v[j].data(), float(s.rest), ks,
+        change == Change::Unnormalised || change == Change::UnnormalisedTwice ? 0.0f : kd, force);
+    if (change == Change::UnnormalisedTwice) {  // k_d (dv . d) d
+      float d[4], dv[4];
+      for (int k = 0; k < 4; ++k) d[k] = x[i][k] - x[j][k], dv[k] = v[i][k] - v[j][k];
+      const float along = formula::dot4(dv, d);
+      for (int k = 0; k < 4; ++k) force[k] += d[k] * (kd * along);
+    }
     if (change == Change::Unnormalised) {  // k_d (dv . d) along the unit direction
       float d[4], dv[4];
       for (int k = 0; k < 4; ++k) d[k] = x[i][k] - x[j][k], dv[k] = v[i][k] - v[j][k];
@@ -71,7 +80,7 @@ SpringCase makeCase(Change change, bool moving, unsigned seed) {
       return change == Change::MassNotInverse ? m : m == 0 ? 0.0f : 1.0f / m;
     };
     for (int k = 0; k < 4; ++k) {
-      a[i][k] -= force[k] * weight(i);
+      if (change != Change::EndOnly) a[i][k] -= force[k] * weight(i);
       if (change != Change::OneEnd) a[j][k] += force[k] * weight(j);
     }
   }
@@ -114,7 +123,9 @@ TEST(SpringFit, EachChangeIsNamed) {
                   {Change::Unnormalised, "damper-not-normalised", "unit direction"},
                   {Change::OneEnd, "force-one-end-only", "start particle"},
                   {Change::MassNotInverse, "mass-not-inverse", "not the inverse mass"},
-                  {Change::WholeSign, "spring-force-sign", "the whole force has the wrong sign"}};
+                  {Change::WholeSign, "spring-force-sign", "the whole force has the wrong sign"},
+                  {Change::EndOnly, "force-one-end-only", "end particle"},
+                  {Change::UnnormalisedTwice, "damper-not-normalised", "in both places"}};
   for (const auto& e : expected) {
     const auto findings = explain(e.change);
     ASSERT_EQ(findings.size(), 1u) << e.cause;

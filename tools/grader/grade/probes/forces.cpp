@@ -196,7 +196,10 @@ std::vector<TestResult> probeForces(const ProbeContext& context) {
       {ForceMistake::DamperUnnormalised, "damper-not-normalised"},
       {ForceMistake::OneEnd, "force-one-end-only"},
       {ForceMistake::MassNotInverse, "mass-not-inverse"},
-      {ForceMistake::DivideByMass, "fixed-particle-moves"}};
+      {ForceMistake::DivideByMass, "fixed-particle-moves"},
+      {ForceMistake::OtherEndOnly, "force-one-end-only"},
+      {ForceMistake::AssignTotal, "assign-not-accumulate"},
+      {ForceMistake::AssignTotalGravity, "assign-not-accumulate"}};
   constexpr std::size_t kSignatures = std::size(signatures);
   // A mistake is consistent when its variant gives the student's numbers in every case where it
   // differs from the course's, the passed cases included.

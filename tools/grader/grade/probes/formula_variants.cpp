@@ -13,6 +13,12 @@ Mat4X<float> springAccelerations(const Cloth<float>& cloth, const Mat4X<float>& 
   variant.damper_unnormalised = mistake == ForceMistake::DamperUnnormalised;
   const auto& p = cloth.particles;
   Mat4X<float> a = acc0;
+  if (mistake == ForceMistake::AssignTotal || mistake == ForceMistake::AssignTotalGravity) {
+    // The course's gravity as students write it, in m/s^2.
+    const Vec4<float> gravity(0.0f, mistake == ForceMistake::AssignTotalGravity ? -9.8f : 0.0f,
+                              0.0f, 0.0f);
+    for (int i = 0; i < p.size(); ++i) a.col(i) = p.mass[i] != 0 ? gravity : Vec4<float>::Zero();
+  }
   // The loop of the library's computeSpringForce (core/cloth.cpp), its accumulation switchable.
   for (const auto& s : cloth.springs) {
     const int i = int(s.start), j = int(s.end);
@@ -27,7 +33,7 @@ Mat4X<float> springAccelerations(const Cloth<float>& cloth, const Mat4X<float>& 
       a.col(i) = -f * wi;
       a.col(j) = f * wj;
     } else {
-      a.col(i) -= f * wi;
+      if (mistake != ForceMistake::OtherEndOnly) a.col(i) -= f * wi;
       if (mistake != ForceMistake::OneEnd) a.col(j) += f * wj;
     }
   }

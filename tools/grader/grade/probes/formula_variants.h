@@ -27,9 +27,12 @@ enum class ForceMistake {
   DamperSign,
   NoDamper,
   DamperUnnormalised,
-  OneEnd,          // only the start particle gets its force
-  MassNotInverse,  // F * m
-  DivideByMass     // F / m: a fixed particle (m = 0) gets infinity
+  OneEnd,             // only the start particle gets its force
+  MassNotInverse,     // F * m
+  DivideByMass,       // F / m: a fixed particle (m = 0) gets infinity
+  OtherEndOnly,       // only the end particle gets its force
+  AssignTotal,        // the springs' sum assigned: a = sum F / m, what was there is lost
+  AssignTotalGravity  // ... and gravity added back by hand to every free particle
 };
 
 // Stub 2 with one mistake: `cloth`'s accelerations are `acc0` plus the springs' (shape 4 x N).
