@@ -10,6 +10,7 @@
 
 #include "clothref/core/cloth.h"
 #include "clothref/core/spheres.h"
+#include "grader/grade/probes/cause_evidence.h"
 #include "grader/grade/probes/collide_cases.h"
 #include "grader/grade/probes/contact_fit.h"
 #include "grader/grade/probes/formula_variants.h"
@@ -166,11 +167,10 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
   std::string momentum_report;
   bool momentum_ok = true;
   bool momentum_non_finite = false;  // a failed case's momentum is NaN or infinite
-  // A mistake is consistent when its simulation gives the student's numbers in every case, the
-  // passed ones included; a case may not tell two mistakes apart, the whole probe usually does.
-  std::vector<bool> consistent(signatures.size(), bool(answer));
-  std::vector<std::size_t> failed;       // indices into tests, causes still to be written
-  std::vector<ContactReading> readings;  // the touching pairs of every case
+  std::vector<std::string> ids;
+  for (const auto& signature : signatures) ids.push_back(signature.second);
+  CauseEvidence evidence = makeEvidence(cases.size(), ids);
+  std::vector<ContactReading> readings;             // the touching pairs of every case
   std::vector<bool> touching(cases.size(), false);  // a failed case has a pair in contact
   // NaN or infinity out of the student's call, per case, and whether the case had a body at rest
   // (velocity exactly 0): NaN only where a body rests is a division by its speed.
@@ -207,7 +207,16 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
                          util::vec3(after.cast<float>()) + "\n";
     }
     TestResult t = util::test(checks[c.check]);
+    for (std::size_t m = 0; m < signatures.size(); ++m) {
+      State variant = c.state;
+      collideWithMistake(variant.spheres, variant.cloth, sphere_sphere, e, kCorrection,
+                         signatures[m].first);
+      const Outcome v = outcomeOf(variant);
+      evidence.differs[k][m] = distance(v, expected) > rel;
+      evidence.matches[k][m] = distance(actual, v) <= 10 * rel;
+    }
     if (distance(actual, expected) <= rel) {
+      evidence.passed[k] = true;
       readPairs(c, sphere_sphere, actual, readings);
       t.fraction = 1;
       t.output = "Velocities and positions of every body match.";
@@ -242,91 +251,39 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
     for (int q : c.particles)
       body("cloth particle", "particle", q, cloth.position, cloth.velocity, cloth.mass[q], 0,
            expected.cloth_x, expected.cloth_v, actual.cloth_x, actual.cloth_v);
-    for (std::size_t m = 0; m < signatures.size(); ++m) {
-      const auto& [mistake, id] = signatures[m];
-      State variant = c.state;
-      collideWithMistake(variant.spheres, variant.cloth, sphere_sphere, e, kCorrection, mistake);
-      const Outcome v = outcomeOf(variant);
-      if (distance(v, expected) <= rel) {  // this case cannot tell them apart
-        consistent[m] = false;             // ... but the student's numbers are not the course's
-        continue;
-      }
-      const bool matches = distance(actual, v) <= 10 * rel;
-      if (!matches) consistent[m] = false;
-      if (matches) t.addCause(id);
-    }
+    // Measured directly: NaN out of the call, or the fixed particle's velocity changed.
     non_finite[k] =
         !util::finite(util::flat(actual.sphere_v)) || !util::finite(util::flat(actual.cloth_v)) ||
         !util::finite(util::flat(actual.sphere_x)) || !util::finite(util::flat(actual.cloth_x));
-    if (t.causes.empty()) {
-      if (non_finite[k])
-        t.addCause("non-finite");
-      else if (!sphere_sphere && c.check == kFixedParticle &&
-               actual.cloth_v.col(0) != c.state.cloth.particles.velocity.col(0))
-        t.addCause("fixed-particle-massless");
-    }
+    if (non_finite[k])
+      evidence.measured[k].push_back("non-finite");
+    else if (!sphere_sphere && c.check == kFixedParticle &&
+             actual.cloth_v.col(0) != c.state.cloth.particles.velocity.col(0))
+      evidence.measured[k].push_back("fixed-particle-massless");
     touching[k] = readPairs(c, sphere_sphere, actual, readings) > 0;
-    failed.push_back(tests.size());
     tests.push_back(t);
   }
-  // Passed cases: a mistake whose simulation differs from the course there is refuted.
-  if (answer)
-    for (std::size_t k = 0; k < cases.size(); ++k) {
-      if (!tests[k].passed()) continue;
-      for (std::size_t m = 0; m < signatures.size(); ++m) {
-        if (!consistent[m]) continue;
-        State variant = cases[k].state, reference = cases[k].state;
-        collideWithMistake(variant.spheres, variant.cloth, sphere_sphere, e, kCorrection,
-                           signatures[m].first);
-        collideCourse(reference, sphere_sphere, e);
-        if (distance(outcomeOf(variant), outcomeOf(reference)) > 10 * rel) consistent[m] = false;
-      }
-    }
-  std::set<std::string> explains_all;
-  for (std::size_t m = 0; m < signatures.size(); ++m)
-    if (consistent[m]) explains_all.insert(signatures[m].second);
   // Every case with a body at rest went non-finite and no other case did: measured, not guessed.
   bool divides_by_speed = std::find(non_finite.begin(), non_finite.end(), true) != non_finite.end();
   for (std::size_t k = 0; k < cases.size(); ++k)
     if (non_finite[k] != at_rest[k]) divides_by_speed = false;
-  // What the numbers say in the course's terms (contact_fit.h): the one quantity that differs.
+  // What the numbers say in the course's terms (contact_fit.h): the one quantity that differs,
+  // shown on the cases with a touching pair.
   const std::vector<ContactFinding> findings =
       answer ? explainContacts(readings, e, kCorrection) : std::vector<ContactFinding>{};
-  // Likely: a simulated mistake that gives the student's numbers in every case, or else what
-  // every touching pair reads back the same. A mistake only some cases match is a guess.
-  std::set<std::string> likely = explains_all;
-  if (likely.empty())
-    for (const ContactFinding& f : findings)
-      if (!f.cause.empty()) likely.insert(f.cause);
+  for (const ContactFinding& f : findings)
+    if (!f.cause.empty()) evidence.findings.push_back({f.cause, f.text});
   const auto finding = [&](const std::string& id) -> const ContactFinding* {
     for (const ContactFinding& f : findings)
       if (f.cause == id) return &f;
     return nullptr;
   };
-  std::map<std::string, std::string> detailed;  // cause -> the check above that shows it
-  for (std::size_t k : failed) {
-    TestResult& t = tests[k];
-    std::vector<Cause> causes, guesses;
-    for (Cause cause : t.causes) {
-      cause.likely = cause.id == "non-finite" || likely.count(cause.id);
-      (cause.likely ? causes : guesses).push_back(cause);
-    }
-    for (const std::string& id : likely)  // read from the pairs, not simulated
-      if (touching[k] && finding(id) &&
-          std::none_of(causes.begin(), causes.end(), [&](const Cause& c) { return c.id == id; }))
-        causes.push_back(util::likely(id));
-    for (Cause& cause : causes)  // the measurement once per stub, the first check it fails
-      if (const ContactFinding* f = finding(cause.id))
-        cause.detail = detailed.emplace(cause.id, t.check).second
-                           ? "Measured: " + f->text + "."
-                           : "Measured as under *" + detailed[cause.id] + "* above.";
-    if (divides_by_speed && t.names("non-finite"))
-      causes.insert(causes.begin(), util::likely("division-by-speed"));
-    // Nothing explains every case: unknown, with what matched this case as the nearest guesses.
-    if (causes.empty()) causes.push_back(util::guess("unknown"));
-    if (!causes.front().likely) causes.insert(causes.end(), guesses.begin(), guesses.end());
-    t.causes = causes;
-  }
+  const std::set<std::string> likely = answer ? likelyCauses(evidence) : std::set<std::string>{};
+  if (answer) nameCauses(evidence, likely, touching, tests);
+  if (divides_by_speed)
+    for (TestResult& t : tests)
+      if (!t.passed() && t.names("non-finite"))
+        t.causes.insert(t.causes.begin(), util::likely("division-by-speed"));
   // The likely causes that break momentum: a simulated mistake that does in some case, or an
   // impulse split read from the pairs.
   std::vector<std::string> breaks_momentum;

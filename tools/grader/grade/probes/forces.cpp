@@ -2,12 +2,10 @@
 // moving states, with existing accelerations (accumulation) and with fixed and heavy particles.
 // Accelerations are compared with clothref's per particle, within force_rel times the sum of the
 // magnitudes that meet at that particle (so reordered float sums pass, wrong physics does not).
-#include <algorithm>
-#include <map>
 #include <random>
-#include <set>
 
 #include "clothref/core/cloth.h"
+#include "grader/grade/probes/cause_evidence.h"
 #include "grader/grade/probes/formula_variants.h"
 #include "grader/grade/probes/spring_fit.h"
 #include "grader/grade/probes/util.h"
@@ -200,15 +198,10 @@ std::vector<TestResult> probeForces(const ProbeContext& context) {
       {ForceMistake::OtherEndOnly, "force-one-end-only"},
       {ForceMistake::AssignTotal, "assign-not-accumulate"},
       {ForceMistake::AssignTotalGravity, "assign-not-accumulate"}};
-  constexpr std::size_t kSignatures = std::size(signatures);
-  // A mistake is consistent when its variant gives the student's numbers in every case where it
-  // differs from the course's, the passed cases included.
-  std::vector<bool> consistent(kSignatures, true);
-  std::vector<std::vector<bool>> matches(cases.size(), std::vector<bool>(kSignatures, false));
-  std::vector<SpringReading>
-      readings;  // every case read back as the course's force, constants free
-  std::vector<std::size_t> failed;
-  std::vector<bool> non_finite(cases.size(), false);
+  std::vector<std::string> ids;
+  for (const auto& signature : signatures) ids.push_back(signature.second);
+  CauseEvidence evidence = makeEvidence(cases.size(), ids);
+  std::vector<SpringReading> readings;  // each case read as the course's force, constants free
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const Case& c = cases[k];
     TestResult t = util::test(checks[c.check]);
@@ -220,14 +213,14 @@ std::vector<TestResult> probeForces(const ProbeContext& context) {
     const Mat4X<float>& expected = reference.particles.acceleration;
     const auto scale = scales(c.cloth, c.acc0);
     readings.push_back(readSprings(springCase(c, actual), rel));
-    for (std::size_t m = 0; m < kSignatures; ++m) {
+    for (std::size_t m = 0; m < ids.size(); ++m) {
       const Mat4X<float> variant = springAccelerations(c.cloth, c.acc0, signatures[m].first);
-      if ((variant - expected).cwiseAbs().maxCoeff() == 0.0f) continue;  // indistinguishable here
-      matches[k][m] = sameAnswer(variant, actual, scale, 10 * rel);
-      consistent[m] = consistent[m] && matches[k][m];
+      evidence.differs[k][m] = !sameAnswer(variant, expected, scale, rel);
+      evidence.matches[k][m] = sameAnswer(variant, actual, scale, 10 * rel);
     }
     const Mismatch m = compare(actual, expected, scale, rel);
     if (m.count == 0) {
+      evidence.passed[k] = true;
       t.fraction = 1;
       t.output = "All " + std::to_string(kN * kN) + " accelerations match (within " +
                  util::num(rel) + " of the force scale at each particle).";
@@ -246,48 +239,17 @@ std::vector<TestResult> probeForces(const ProbeContext& context) {
         util::num(p.mass[i]) + "\n" + "- acceleration before the call " +
         util::vec3(c.acc0.col(i)) + "\n" + "- expected after " + util::vec3(expected.col(i)) +
         "\n" + "- actual after " + util::vec3(actual.col(i)) + "\n";
-    // Measured properties, whatever else explains the numbers.
-    for (int q = 0; q < kN * kN; ++q)
+    for (int q = 0; q < kN * kN; ++q)  // measured: shown whatever else explains the numbers
       if (p.mass[q] == 0 && actual.col(q) != c.acc0.col(q)) {
         t.addCause("fixed-particle-moves");
         break;
       }
-    non_finite[k] = !util::finite(util::flat(actual));
-    failed.push_back(tests.size());
+    if (!util::finite(util::flat(actual))) evidence.measured[k].push_back("non-finite");
     tests.push_back(t);
   }
-  // Likely: a mistake whose variant gives the student's numbers in every case, or else the
-  // constants and form every case reads back the same (spring_fit.h). The rest are guesses.
-  const std::vector<SpringFinding> findings =
-      explainSprings(readings, base.spring_coef, base.damper_coef);
-  std::set<std::string> likely;
-  for (std::size_t m = 0; m < kSignatures; ++m)
-    if (consistent[m] &&
-        std::any_of(failed.begin(), failed.end(), [&](std::size_t k) { return matches[k][m]; }))
-      likely.insert(signatures[m].second);
-  if (likely.empty())
-    for (const SpringFinding& f : findings) likely.insert(f.cause);
-  std::map<std::string, std::string> detailed;  // cause -> the check above that shows it
-  for (std::size_t k : failed) {
-    TestResult& t = tests[k];
-    std::vector<Cause> guesses;
-    for (std::size_t m = 0; m < kSignatures; ++m)
-      if (matches[k][m] && likely.count(signatures[m].second))
-        t.addCause(signatures[m].second);
-      else if (matches[k][m])
-        guesses.push_back(util::guess(signatures[m].second));
-    for (const SpringFinding& f : findings) {
-      if (!likely.count(f.cause)) continue;
-      Cause& cause = t.addCause(f.cause);
-      cause.detail = detailed.emplace(f.cause, t.check).second
-                         ? "Measured: " + f.text + "."
-                         : "Measured as under *" + detailed[f.cause] + "* above.";
-    }
-    if (t.causes.empty() && non_finite[k]) t.addCause("non-finite");
-    // Nothing explains every case: unknown, with what matched this case as the nearest guesses.
-    if (t.causes.empty()) t.addCause("unknown", false);
-    if (!t.causes.front().likely) t.causes.insert(t.causes.end(), guesses.begin(), guesses.end());
-  }
+  for (const SpringFinding& f : explainSprings(readings, base.spring_coef, base.damper_coef))
+    evidence.findings.push_back({f.cause, f.text});
+  nameCauses(evidence, likelyCauses(evidence), std::vector<bool>(cases.size(), true), tests);
   return tests;
 }
 
