@@ -30,9 +30,9 @@ inline T dot4(const T* a, const T* b) {
 // ContactVariant, tools/grader/grade/probes/formula_variants.h, read at run time); its tests prove
 // the no-mistake variant bit-equal to the library's stubs.
 struct CourseSpring {
-  static constexpr bool spring_negated = false;      // k_s (|d| - rest) with the wrong sign
-  static constexpr bool damper_negated = false;      // the damper term with the wrong sign
-  static constexpr bool no_damper = false;           // no damper term
+  static constexpr bool spring_negated = false;       // k_s (|d| - rest) with the wrong sign
+  static constexpr bool damper_negated = false;       // the damper term with the wrong sign
+  static constexpr bool no_damper = false;            // no damper term
   static constexpr bool damper_unnormalised = false;  // damper along d, not n
 };
 struct CourseContact {
