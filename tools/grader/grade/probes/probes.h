@@ -10,10 +10,11 @@
 #include <string>
 #include <vector>
 
-#include "grader/grade/run/child_process.h"
-#include "grader/grade/run/sanitize.h"
+#include "grader/grade/probes/edition.h"
 #include "grader/grade/results.h"
 #include "grader/grade/rubric.h"
+#include "grader/grade/run/child_process.h"
+#include "grader/grade/run/sanitize.h"
 
 namespace clothref::grader {
 
@@ -34,6 +35,7 @@ void fillCauseTexts(const Catalogue& catalogue, std::vector<TestResult>& tests);
 
 struct ProbeContext {
   int edition = 2022;
+  Edition course = courseEdition(2022);  // the same edition as a record: its course scene's values
   Rubric rubric;
   const Catalogue* catalogue = nullptr;
   std::filesystem::path probe;        // the linked probe executable (N = 25)
