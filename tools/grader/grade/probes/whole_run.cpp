@@ -105,11 +105,12 @@ std::vector<TestResult> probeWholeRun(const ProbeContext& context) {
       "(simulateOneStep(), then ExplicitEuler::integrate) on the course scene " +
       scene_name + " for " + std::to_string(kSteps) + " steps of " + util::num(settings.dt) +
       " s (" + util::num(double(kSteps) * dt) + " s), and so did the reference; every " +
-      std::to_string(kStride) + "th state is compared. This never changes your score: an "
+      std::to_string(kStride) +
+      "th state is compared. This never changes your score: an "
       "accepted variant (e.g. symplectic explicit Euler) also differs here.\n\n";
   probe::ProbeMessage request;
   request.texts[key::kGroup] = group::kWholeRun;
-  request.ints[key::kMethod] = {0};
+  request.ints[key::kMethod] = {util::methodRow(settings.method)};
   request.floats[key::kDt] = {float(settings.dt)};
   request.ints[key::kSteps] = {settings.steps};
   request.ints[key::kStride] = {settings.stride};
