@@ -448,6 +448,15 @@ constexpr bool servesEveryGroupOnce() {
 }
 static_assert(servesEveryGroupOnce(), "kGroups must have one row per name of probe::group");
 
+// Runs the row named `name`; false when no row is. Unrolled over the rows, so that each call is
+// a direct call the compiler may inline, as a hand-written chain's would be (a crash report
+// quotes the same driver frames as before the table).
+template <std::size_t... row>
+bool serve(const std::string& name, const ProbeMessage& in, ProbeMessage& out,
+           std::index_sequence<row...>) {
+  return ((name == kGroups[row].name && (kGroups[row].run(in, out), true)) || ...);
+}
+
 bool writeAll(int fd, const std::string& data) {
   size_t done = 0;
   while (done < data.size()) {
@@ -472,11 +481,8 @@ int main() {
   out.nonce = in->nonce;
   const std::string name = in->text(key::kGroup);
   try {
-    const Group* served = nullptr;
-    for (const Group& row : kGroups)
-      if (name == row.name) served = &row;
-    if (!served) throw BadRequest{"unknown group '" + name + "'"};
-    served->run(*in, out);
+    if (!serve(name, *in, out, std::make_index_sequence<std::size(kGroups)>()))
+      throw BadRequest{"unknown group '" + name + "'"};
   } catch (const BadRequest& bad) {
     std::fprintf(stderr, "probe driver: %s\n", bad.why.c_str());
     return 70;
