@@ -69,7 +69,8 @@ set(GRADER_run_MAY "\"grader/bridge/" "\"grader/grade/run/" "\"grader/grade/(res
 set(GRADER_probes_FILES "^grade/probes/")
 set(GRADER_probes_MAY "\"grader/bridge/" "\"grader/grade/run/" "\"grader/grade/probes/"
     "\"grader/grade/(results|rubric|text)\\.h\""
-    "\"clothref/(base|core|io|scene|solver|trace|diff|record|verify)/" "<Eigen/" "<nlohmann/")
+    "\"clothref/(base|core|io|scene|solver|trace|diff|record|verify|formula)/" "<Eigen/"
+    "<nlohmann/")
 # the writers: the top level (results, and grade.h / batch.h), the pages; never run or probes
 set(GRADER_report_FILES "^grade/report/")
 set(GRADER_report_MAY "\"grader/grade/report/" "\"grader/grade/[^/]+$" "\"clothref/io/" "\"pages/"

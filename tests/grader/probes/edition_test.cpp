@@ -37,6 +37,9 @@ TEST(Edition, TheTwoEditionsDifferWhereTheCoursesDo) {
   EXPECT_FALSE(e2024.sphere_sphere_collision);
   EXPECT_TRUE(e2022.sphere_external_force);
   EXPECT_FALSE(e2024.sphere_external_force);
+  // the same gravity, down (the mistakes' variants use one value for both editions)
+  EXPECT_EQ(e2022.gravity, e2024.gravity);
+  EXPECT_LT(e2022.gravity[1], 0);
   for (const Edition* e : {&e2022, &e2024}) {
     EXPECT_EQ(e->particles_per_edge, 25);
     EXPECT_EQ(e->correction, 0.15);
