@@ -87,6 +87,16 @@ if(NOT ROOT AND NOT GRADER)
   message(FATAL_ERROR "CheckIncludes.cmake: pass -DROOT=<path to lib/clothref> and/or "
                       "-DGRADER=<path to tools/grader>")
 endif()
+# Relative to the working directory: GLOB_RECURSE ... RELATIVE finds nothing under a relative
+# path, so a check of no file would pass.
+foreach(tree ROOT GRADER)
+  if(${tree})
+    get_filename_component(${tree} "${${tree}}" ABSOLUTE)
+    if(NOT IS_DIRECTORY "${${tree}}")
+      message(FATAL_ERROR "CheckIncludes.cmake: ${tree}=${${tree}} is not a folder")
+    endif()
+  endif()
+endforeach()
 set(violations 0)
 
 # The include of `line` as written ("clothref/io/error.h" or <vector>, delimiters kept), or "".

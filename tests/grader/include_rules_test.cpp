@@ -18,11 +18,12 @@ namespace {
 namespace fs = std::filesystem;
 const fs::path kRoot = CLOTHREF_SOURCE_DIR;
 
-// The checker on the grader tree at `grader`: its exit code and output, each run of white space
-// (CMake wraps its messages) one space.
-std::pair<int, std::string> check(const fs::path& grader) {
-  const std::string command = std::string(CLOTHREF_CMAKE) + " -DGRADER='" + grader.string() +
-                              "' -P '" + (kRoot / "cmake/CheckIncludes.cmake").string() + "' 2>&1";
+// The checker on the grader tree at `grader` (relative: to `from`): its exit code and output,
+// each run of white space (CMake wraps its messages) one space.
+std::pair<int, std::string> check(const fs::path& grader, const fs::path& from = kRoot) {
+  const std::string command = "cd '" + from.string() + "' && " + std::string(CLOTHREF_CMAKE) +
+                              " -DGRADER='" + grader.string() + "' -P '" +
+                              (kRoot / "cmake/CheckIncludes.cmake").string() + "' 2>&1";
   FILE* pipe = ::popen(command.c_str(), "r");
   if (!pipe) return {-1, ""};
   std::string output;
@@ -84,6 +85,19 @@ TEST(GraderIncludeRules, EachBrokenRuleIsNamedWithItsFileAndLine) {
   EXPECT_NE(output.find(std::to_string(broken.size()) + " include rule violation(s)"),
             std::string::npos)
       << output;
+}
+
+// A relative path (as docs/layout.md writes the command) checks the same files: it once found
+// none, and a check of no file passed.
+TEST(GraderIncludeRules, ARelativePathChecksTheTree) {
+  clothref::test::TempDir temp;
+  fs::copy(kRoot / "tools/grader", temp.path() / "grader", fs::copy_options::recursive);
+  std::ofstream(temp.path() / "grader/grade/run/tools.h", std::ios::app)
+      << "#include \"grader/grade/probes/probes.h\"\n";
+  const auto [code, output] = check("grader", temp.path());
+  EXPECT_NE(code, 0) << output;
+  EXPECT_NE(output.find("tools/grader/grade/run/tools.h:"), std::string::npos) << output;
+  EXPECT_NE(check("no-such-folder", temp.path()).first, 0);
 }
 
 // A file in a folder without rules fails: a new room needs its rules.
