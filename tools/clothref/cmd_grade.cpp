@@ -119,7 +119,8 @@ Command addGradeCommand(CLI::App& root) {
   app->add_option("--html", options->html,
                   "write the HTML report here (checks, the whole run beside the reference)");
   app->add_option("--rubric", options->rubric,
-                  "JSON rubric: weights, tolerances, accepted variants")
+                  "JSON rubric: weights, tolerances, accepted variants, per-mistake or per-check "
+                  "scoring")
       ->check(CLI::ExistingFile);
   app->add_option("--timeout", options->timeout,
                   "wall-clock limit per probe process, seconds (at most 86400)")

@@ -107,6 +107,7 @@ GradeReport cleaned(const GradeReport& given) {
     name(test.check);
     name(test.visibility);
     text(test.output);
+    text(test.rubric_note);
     for (Cause& cause : test.causes) {
       name(cause.id);
       text(cause.detail);
@@ -145,6 +146,8 @@ std::vector<TestText> testTexts(const GradeReport& report) {
       auto [it, first] = output_shown.emplace(t.output, t.name());
       if (!first) text.output = "Same as for " + curlyQuoted(it->second) + " above.\n";
     }
+    if (!t.rubric_note.empty())
+      text.output = t.rubric_note + (text.output.empty() ? "\n" : "\n\n" + text.output);
     for (const Cause& cause : t.causes) {
       std::string block = causeHead(cause) + "\n";
       if (!cause.detail.empty()) block += "\n" + cause.detail + (cause.detail.back() == '\n' ? "" : "\n");
