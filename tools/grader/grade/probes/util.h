@@ -1,5 +1,6 @@
 // Helpers shared by the probe files: conversions between clothref matrices and probe arrays,
-// Markdown formatting of small states, and running a group's child with the failure verdicts.
+// numbers and expected-against-yours comparisons (compare_text.h), and running a group's child
+// with the failure verdicts.
 #pragma once
 #include <Eigen/Core>
 #include <cmath>
@@ -9,8 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "grader/bridge/probe_keys.h"
 #include "clothref/core/types.h"
+#include "grader/bridge/probe_keys.h"
+#include "grader/grade/probes/compare_text.h"
 #include "grader/grade/probes/probes.h"
 #include "grader/grade/text.h"
 
@@ -35,15 +37,6 @@ inline std::vector<float> flat(const VecX<float>& v) {
   return std::vector<float>(v.data(), v.data() + v.size());
 }
 
-inline std::string num(double value) {
-  std::ostringstream out;
-  out << std::setprecision(7) << value;
-  return out.str();
-}
-inline std::string vec3(const Eigen::Ref<const Eigen::Vector4f>& v) {
-  return "(" + num(v[0]) + ", " + num(v[1]) + ", " + num(v[2]) + ")";
-}
-
 // Why a probe group has no usable answer: the run's verdict (never read back from words) and the
 // text for the report (the verdict line, then the first lines of stderr).
 struct ProbeFailure {
@@ -62,10 +55,12 @@ struct ProbeFailure {
 // Runs `request` in a fresh folder under the context's work dir, twice (runProbeTwice: the
 // answer depends on the files alone) unless `once` (information only, never scored). On failure
 // returns nullopt and fills `failure`.
-inline std::optional<probe::ProbeMessage> runGroup(
-    const ProbeContext& context, const std::filesystem::path& executable, const std::string& folder,
-    probe::ProbeMessage request, ProbeFailure& failure, ChildRun* run_out = nullptr,
-    bool once = false) {
+inline std::optional<probe::ProbeMessage> runGroup(const ProbeContext& context,
+                                                   const std::filesystem::path& executable,
+                                                   const std::string& folder,
+                                                   probe::ProbeMessage request,
+                                                   ProbeFailure& failure,
+                                                   ChildRun* run_out = nullptr, bool once = false) {
   const auto dir = context.work_dir / folder;
   std::filesystem::create_directories(dir);
   ChildRun run = once ? runProbe(executable, request, dir, context.limits)
@@ -78,8 +73,7 @@ inline std::optional<probe::ProbeMessage> runGroup(
     failure.text += " (" + run.grader_problem + ")";
   if (!run.stderr_head.empty()) failure.text += "\n\n" + codeBlock(run.stderr_head);
   // A crash, or two runs that differ: the instrumented build names the line, when it finds one.
-  const bool explain =
-      run.status == ChildStatus::Varies || failure.verdict == Verdict::Crashed;
+  const bool explain = run.status == ChildStatus::Varies || failure.verdict == Verdict::Crashed;
   if (explain && context.sanitizer && executable == context.probe) {
     const std::string report = context.sanitizer->explain(request, dir / "sanitize");
     failure.text += report.empty()
@@ -88,7 +82,8 @@ inline std::optional<probe::ProbeMessage> runGroup(
                           "nothing (the fault may depend on the optimisation level)."
                         : "\n\nThe grader rebuilt your files with AddressSanitizer and "
                           "UndefinedBehaviorSanitizer (`-g -O1`) and ran this probe again; "
-                          "their report:\n\n" + codeBlock(report);
+                          "their report:\n\n" +
+                              codeBlock(report);
   }
   return std::nullopt;
 }

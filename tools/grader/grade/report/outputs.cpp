@@ -211,6 +211,7 @@ nlohmann::ordered_json resultsJson(const GradeReport& given) {
                         ". Verdict: " + verdictId(report.verdict) + ".\n\n" + filesMarkdown(report);
   if (!report.isolation.empty()) summary += "\nStudent code ran with: " + report.isolation + ".\n";
   if (!report.notes.empty()) summary += "\n" + notesMarkdown(report.notes);
+  summary += "\n" + std::string(kNumberLegend) + "\n";
   out["output"] = summary;
   out["output_format"] = "md";
   out["visibility"] = "visible";
@@ -321,7 +322,7 @@ std::string markdownReport(const GradeReport& given) {
           << points(report.stub_max.at(stub)) << " |\n";
   out << "\n## Files\n\n" << filesMarkdown(report);
   if (!report.notes.empty()) out << "\n" << notesMarkdown(report.notes);
-  out << "\n## Failed checks\n";
+  out << "\n## Failed checks\n\n" << kNumberLegend << "\n";
   bool any = false;
   for (std::size_t k = 0; k < report.tests.size(); ++k) {
     const TestResult& t = report.tests[k];

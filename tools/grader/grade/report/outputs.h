@@ -18,6 +18,15 @@
 
 namespace clothref::grader {
 
+// How the checks' numbers read (probes/compare_text.h writes them), said once at the top of every
+// report (results.json's summary, report.md, report.html) and in docs/grading.md.
+inline constexpr const char* kNumberLegend =
+    "How to read the checks: numbers have 6 significant digits (C's `%.6g`: 0.000371004, "
+    "7.45961e-05), and the numbers of one comparison share one notation. Where yours differs from "
+    "the expected value by more than the tolerance, that component is **bold** in both, and the "
+    "line under it says by how much and how many times the tolerance that is (the tolerance and "
+    "the ratio to 2 significant digits).";
+
 // Points as every output shows them: rounded to 0.001, without trailing zeros ("51.875", "80").
 std::string points(double value);
 // The same rounding as a JSON number (results.json, row.json readers).
