@@ -373,9 +373,9 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
       if (!((after - before).norm() <= 1e-5 * (1 + scale))) {
         momentum_ok = false;
         momentum_non_finite = momentum_non_finite || !after.allFinite();
-        momentum_report += "- " + checks[c.check].check + ": total momentum before " +
-                           util::vec3(before.cast<float>()) + ", after your call " +
-                           util::vec3(after.cast<float>()) + "\n";
+        momentum_report += util::compareVectors(
+            checks[c.check].check + ": total momentum after your call (expected: as before it)",
+            before, after, util::Tolerance{1e-5 * (1 + scale), 0}, "kg m/s");
       }
     }
     TestResult t = util::test(checks[c.check]);
@@ -394,10 +394,12 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
                           const Mat4X<float>& xe, const Mat4X<float>& ve, const Mat4X<float>& xa,
                           const Mat4X<float>& va) {
       t.output += "- " + std::string(what) + " " + std::to_string(index) + " (mass " +
-                  util::num(mass) + "): x " + util::vec3(x0.col(index)) + ", v " +
-                  util::vec3(v0.col(index)) + "\n  - expected x " + util::vec3(xe.col(index)) +
-                  ", v " + util::vec3(ve.col(index)) + "\n  - actual   x " +
-                  util::vec3(xa.col(index)) + ", v " + util::vec3(va.col(index)) + "\n";
+                  util::num(mass) + "), before the call: x " + util::vec3(x0.col(index)) +
+                  " m, v " + util::vec3(v0.col(index)) + " m/s\n" +
+                  util::compareVectors("x after the call", xe.col(index), xa.col(index),
+                                       util::Tolerance{rel, rel}, "m", "  ") +
+                  util::compareVectors("v after the call", ve.col(index), va.col(index),
+                                       util::Tolerance{rel, rel}, "m/s", "  ");
       const auto xyz = [index](const Mat4X<float>& m) {
         return std::array<float, 3>{m(0, index), m(1, index), m(2, index)};
       };
