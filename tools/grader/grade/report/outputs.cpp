@@ -68,6 +68,16 @@ std::string statusWord(const TestResult& t) {
 
 }  // namespace
 
+std::pair<int, int> checksPassed(const GradeReport& report, const std::string& stub) {
+  int passed = 0, total = 0;
+  for (const TestResult& t : report.tests)
+    if (t.stub == stub && !t.informational) {
+      ++total;
+      passed += t.passed();
+    }
+  return {passed, total};
+}
+
 double roundedPoints(double value) {
   const double rounded = std::round(value * 1000) / 1000;
   return rounded == 0 ? 0.0 : rounded;  // never "-0"
@@ -136,7 +146,8 @@ std::string TestText::markdown() const {
 std::vector<TestText> testTexts(const GradeReport& report) {
   std::vector<TestText> texts;
   std::map<std::string, std::string> output_shown;  // a long output -> the test that showed it
-  std::map<std::pair<std::string, std::string>, std::string> quotes_shown;  // (stub, quotes) -> check
+  std::map<std::pair<std::string, std::string>, std::string>
+      quotes_shown;  // (stub, quotes) -> check
   for (const TestResult& t : report.tests) {
     TestText text;
     text.output = t.output;
@@ -147,7 +158,8 @@ std::vector<TestText> testTexts(const GradeReport& report) {
     }
     for (const Cause& cause : t.causes) {
       std::string block = causeHead(cause) + "\n";
-      if (!cause.detail.empty()) block += "\n" + cause.detail + (cause.detail.back() == '\n' ? "" : "\n");
+      if (!cause.detail.empty())
+        block += "\n" + cause.detail + (cause.detail.back() == '\n' ? "" : "\n");
       if (!cause.quotes.empty()) {
         const auto key = std::make_pair(t.stub, cause.id + "\n" + quoteBlock(cause.quotes));
         auto [it, first] = quotes_shown.emplace(key, t.check);
@@ -176,7 +188,8 @@ std::string filesMarkdown(const GradeReport& report) {
     if (f.compiled || f.status == Verdict::MissingFile || f.problem.empty()) continue;
     out += "\n" + codeSpan(f.name) + ", the first error:\n\n" + codeBlock(f.problem);
     if (!f.log.empty())
-      out += "\nThe whole log of " + codeSpan(f.name) + " (its own messages):\n\n" + codeBlock(f.log);
+      out +=
+          "\nThe whole log of " + codeSpan(f.name) + " (its own messages):\n\n" + codeBlock(f.log);
   }
   return out;
 }
@@ -281,7 +294,8 @@ std::string junitXml(const GradeReport& given) {
   // block follows its text.
   std::string notes;
   for (const Note& note : report.notes)
-    notes += (notes.empty() ? "" : " | ") + note.text + (note.block.empty() ? "" : ": " + note.block);
+    notes +=
+        (notes.empty() ? "" : " | ") + note.text + (note.block.empty() ? "" : ": " + note.block);
   if (!notes.empty()) out << "<property name=\"notes\" value=\"" << xmlEscape(notes) << "\"/>";
   out << "</properties>\n";
   for (std::size_t k = 0; k < report.tests.size(); ++k) {
@@ -290,8 +304,8 @@ std::string junitXml(const GradeReport& given) {
         << "\">";
     if (t.informational) {
       // information only: never a failure, whatever it found
-      out << "<system-out>" << xmlEscape("information only, " + statusWord(t) + "\n\n" +
-                                         texts[k].markdown())
+      out << "<system-out>"
+          << xmlEscape("information only, " + statusWord(t) + "\n\n" + texts[k].markdown())
           << "</system-out></testcase>\n";
       continue;
     }

@@ -1,0 +1,53 @@
+// The grader's Markdown as HTML (tools/grader/grade/report/markdown_html.cpp): every character
+// escaped, the likely causes and the guesses in blocks of their own.
+#include "grader/grade/report/markdown_html.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "report_samples.h"
+
+namespace clothref::grader {
+namespace {
+
+TEST(MarkdownHtml, MarkdownBecomesEscapedHtml) {
+  const std::string html =
+      markdownToHtml("text with `code` and **bold** <i>\n\n- one\n  - two\n\n```\na < b\n```\n");
+  EXPECT_EQ(html,
+            "<p>text with <code>code</code> and <strong>bold</strong> &lt;i&gt;</p>\n"
+            "<ul>\n<li>one</li>\n<li>two</li>\n</ul>\n<pre><code>a &lt; b\n</code></pre>\n");
+}
+
+// The summary's file table (report.cpp's filesSection) must not reach Gradescope as raw pipes.
+TEST(MarkdownHtml, MarkdownTablesBecomeHtmlTables) {
+  const std::string html = markdownToHtml(
+      "before\n| file | used |\n|---|---|\n| cloth.cpp | `a<b` |\n| x.cpp |  |\nafter\n");
+  EXPECT_EQ(html,
+            "<p>before</p>\n<table>\n<tr><th>file</th><th>used</th></tr>\n"
+            "<tr><td>cloth.cpp</td><td><code>a&lt;b</code></td></tr>\n"
+            "<tr><td>x.cpp</td><td></td></tr>\n</table>\n<p>after</p>\n");
+}
+
+// A check's likely causes and its guesses: each group a block of its own, each cause a paragraph,
+// never run into the output's last paragraph nor into each other.
+TEST(MarkdownHtml, LikelyCausesAndGuessesAreBlocksOfTheirOwn) {
+  TestText text;
+  text.output = "Expected 1, yours 2.";
+  text.likely = {"**Likely cause** (`a`): one.\n", "**Likely cause** (`b`): two.\n"};
+  text.guesses = {"**Possible cause (a guess)** (`c`): three.\n"};
+  const std::string html = testHtml(text);
+  EXPECT_EQ(html,
+            "<p>Expected 1, yours 2.</p>\n"
+            "<div class=\"gr-likely\"><p><strong>Likely cause</strong> (<code>a</code>): one.</p>\n"
+            "<p><strong>Likely cause</strong> (<code>b</code>): two.</p>\n</div>\n"
+            "<div class=\"gr-guesses\"><p><strong>Possible cause (a guess)</strong> "
+            "(<code>c</code>): three.</p>\n</div>\n");
+  // the Markdown the other writers show: each block after a blank line
+  EXPECT_EQ(text.markdown(),
+            "Expected 1, yours 2.\n\n**Likely cause** (`a`): one.\n\n**Likely cause** (`b`): "
+            "two.\n\n**Possible cause (a guess)** (`c`): three.\n");
+}
+
+}  // namespace
+}  // namespace clothref::grader
