@@ -16,7 +16,17 @@ TEST(MarkdownHtml, MarkdownBecomesEscapedHtml) {
       markdownToHtml("text with `code` and **bold** <i>\n\n- one\n  - two\n\n```\na < b\n```\n");
   EXPECT_EQ(html,
             "<p>text with <code>code</code> and <strong>bold</strong> &lt;i&gt;</p>\n"
-            "<ul>\n<li>one</li>\n<li>two</li>\n</ul>\n<pre><code>a &lt; b\n</code></pre>\n");
+            "<ul>\n<li>one\n<ul>\n<li>two</li>\n</ul>\n</li>\n</ul>\n<pre><code>a &lt; b\n"
+            "</code></pre>\n");
+}
+
+// A comparison's note under it ("  - y differs by ...") is a list inside its item, as CommonMark
+// reads it; a line back at the outer indent closes the inner list.
+TEST(MarkdownHtml, AnIndentedItemIsAListInsideTheItemAbove) {
+  EXPECT_EQ(markdownToHtml("- a\n  - b\n  - c\n- d\ntext\n"),
+            "<ul>\n<li>a\n<ul>\n<li>b</li>\n<li>c</li>\n</ul>\n</li>\n<li>d</li>\n</ul>\n"
+            "<p>text</p>\n");
+  EXPECT_EQ(markdownToHtml("  - x\n- y\n"), "<ul>\n<li>x</li>\n<li>y</li>\n</ul>\n");
 }
 
 // The summary's file table (report.cpp's filesSection) must not reach Gradescope as raw pipes.

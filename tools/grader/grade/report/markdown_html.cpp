@@ -66,12 +66,17 @@ std::string markdownToHtml(std::string_view markdown) {
   std::istringstream lines{std::string(markdown)};
   std::string line;
   std::size_t fence = 0;  // the open fence's length, 0 outside a code block
-  bool list = false, paragraph = false, table = false;
+  bool paragraph = false, table = false;
+  // the open lists' indents, outermost first; each one's last <li> stays open for a nested list
+  std::vector<std::size_t> lists;
+  const auto closeLists = [&](std::size_t keep) {
+    for (; lists.size() > keep; lists.pop_back()) out += "</li>\n</ul>\n";
+  };
   const auto close = [&] {
-    if (list) out += "</ul>\n";
+    closeLists(0);
     if (paragraph) out += "</p>\n";
     if (table) out += "</table>\n";
-    list = paragraph = table = false;
+    paragraph = table = false;
   };
   // "| a | b |" rows: the first is the header, a "|---|" row under it is dropped.
   const auto cells = [](const std::string& row) {
@@ -124,16 +129,20 @@ std::string markdownToHtml(std::string_view markdown) {
     if (table) out += "</table>\n";
     table = false;
     if (line.compare(indent, 2, "- ") == 0) {
-      line.erase(0, indent);
       if (paragraph) out += "</p>\n";
       paragraph = false;
-      if (!list) out += "<ul>\n";
-      list = true;
-      out += "<li>" + inlineMarkdown(std::string_view(line).substr(2)) + "</li>\n";
+      // deeper than the open item: a list inside it; else back out to the item's own level
+      while (lists.size() > 1 && indent < lists.back()) closeLists(lists.size() - 1);
+      if (lists.empty() || indent > lists.back()) {
+        out += lists.empty() ? "<ul>\n<li>" : "\n<ul>\n<li>";
+        lists.push_back(indent);
+      } else {
+        out += "</li>\n<li>";
+      }
+      out += inlineMarkdown(std::string_view(line).substr(indent + 2));
       continue;
     }
-    if (list) out += "</ul>\n";
-    list = false;
+    closeLists(0);
     if (line.rfind("#", 0) == 0) {
       if (paragraph) out += "</p>\n";
       paragraph = false;
