@@ -1,5 +1,5 @@
 """BATCHDIR/index.html, the class overview, in headless Chromium (ctest browser_class;
-tools/grader/grade/report/html_report.cpp, tools/pages/assets/class.js).
+tools/grader/grade/report/class_page.cpp, tools/pages/assets/class.js).
 
 Usage: class_page_test.py --cli build/bin/clothref --screenshots DIR
 

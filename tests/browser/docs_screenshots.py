@@ -10,7 +10,8 @@ import sys
 from PIL import Image
 
 NAMES = ['view-pair-overlay.png', 'view-pair-side.png', 'report.png', 'report-sketch.png',
-         'report-whole-run.png', 'class-index.png', 'gradescope-results.png']
+         'report-whole-run.png', 'class-index.png', 'gradescope-results.png',
+         'gradescope-picture.png']
 # class-index-1280.png and class-index-1920.png in docs/pictures are of the corpus batch (80
 # submissions), taken by hand as docs/pictures.md says; the test's own are of its fixture.
 

@@ -8,9 +8,16 @@ green when it has full marks, red otherwise, its `output` below. Outputs are ren
 `output_format`: `html` as it is, `md` through python3-markdown (tables, fenced code), `text` in a
 <pre>. Tests whose `visibility` is `hidden` are left out, as students would not see them.
 
-    render(results: dict) -> str        the page (no script, no external resource)
+A test's `output_format` may differ from the others' (Gradescope reads it per test): clothref gives
+`html` for a failed check with a picture (inline SVG, then its text escaped) and `md` for the rest.
+
+    render(results: dict) -> str        the page (no script of its own, no external resource)
+    active_content(page: str) -> list   whatever in a page could run or load: script, iframe,
+                                        object, embed, link, base, meta refresh, form elements,
+                                        on* attributes, javascript: and external URLs
 """
 import html
+import html.parser
 
 import markdown
 
@@ -66,3 +73,35 @@ def render(results):
             + f'<h2>Tests ({len(tests)})</h2>' + ''.join(blocks) + '</div>'
             f'<aside class="gs-side"><div class="gs-total">Autograder Score<strong id="gs-score">'
             f'{_number(score)} / {_number(maximum)}</strong></div></aside></main></body></html>')
+
+
+class _Active(html.parser.HTMLParser):
+    RUNS = {'script', 'iframe', 'frame', 'object', 'embed', 'link', 'base', 'form', 'applet',
+            'foreignobject', 'animate', 'set', 'use', 'image'}
+
+    def __init__(self):
+        super().__init__(convert_charrefs=True)
+        self.found = []
+
+    def handle_starttag(self, tag, attrs):
+        if tag in self.RUNS or (tag == 'meta' and any(n == 'http-equiv' for n, _ in attrs)):
+            self.found.append(f'<{tag}>')
+        for name, value in attrs:
+            value = (value or '').strip().lower()
+            if name.startswith('on'):
+                self.found.append(f'<{tag} {name}=...>')
+            elif name in ('href', 'src', 'xlink:href', 'action', 'formaction', 'srcset',
+                          'background', 'poster', 'data'):
+                self.found.append(f'<{tag} {name}={value[:40]}>')
+            elif 'url(' in value and 'url(#' not in value:
+                self.found.append(f'<{tag} {name}={value[:40]}>')
+            elif value.startswith('javascript:'):
+                self.found.append(f'<{tag} {name}=javascript:...>')
+
+
+def active_content(page):
+    """Everything in `page` that could run or load something (empty for an inert page)."""
+    parser = _Active()
+    parser.feed(page)
+    parser.close()
+    return parser.found

@@ -12,8 +12,9 @@ The submission (the 2022 reference, then):
   - a second integrator.cpp in a folder named <img src=x onerror=alert(4)> (the note naming it);
   - the submission's own folder is named with an <img> and U+202E (the report's heading).
 Checks: every output is graded (exit 0); in the rendered results page and report.md there is no
-<img>, no <script>, no attribute named on*; the hostile texts are there as text; U+202E is
-shown escaped. No browser is needed: skipped (77) only without python3-markdown.
+<img>, no <script>, no attribute named on*, nothing that could run or load
+(gradescope_page.active_content; a test given as HTML included); the hostile texts are there as
+text; U+202E is shown escaped. No browser is needed: skipped (77) only without python3-markdown.
 """
 import argparse
 import html.parser
@@ -37,7 +38,9 @@ class Elements(html.parser.HTMLParser):
         self.tags, self.attributes, self.text = [], [], []
 
     def handle_starttag(self, tag, attrs):
-        self.tags.append(tag)
+        # our own pictures (class gr-sketch: a failed check's state, drawn from numbers) aside
+        if tag != 'svg' or not (dict(attrs).get('class') or '').startswith('gr-sketch'):
+            self.tags.append(tag)
         self.attributes.extend(name for name, _ in attrs)
 
     def handle_data(self, data):
@@ -131,6 +134,8 @@ def main():
             check(not written, f'{what}: no element the submission wrote ({written})')
             handlers = [a for a in elements.attributes if a.startswith('on')]
             check(not handlers, f'{what}: no event handler attribute ({handlers})')
+            active = gradescope_page.active_content(page)
+            check(not active, f'{what}: nothing that could run or load ({active})')
             text = ''.join(elements.text)
             for k in (1, 2, 3, 4):
                 check(f'onerror=alert({k})' in text, f'{what}: hostile text {k} shown as text')

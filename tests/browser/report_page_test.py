@@ -6,10 +6,13 @@ Usage: report_page_test.py --cli build/bin/clothref --source SOURCE_DIR --cache 
 Grades the corpus's 2022 reference with the mutant cloth-normal-reversed's sphere.cpp (collision
 normal reversed: Spheres::collide(Cloth*) loses points, cause collision-normal-sign) and checks:
 no console message, no network request, the stub table, the failed checks open with the named
-cause and a picture of the state it tried, the whole run's viewer mounted side by side with four stills that are not blank, and
-results.json's top-level output is HTML while its tests stay Markdown. Then the same results.json
-as Gradescope shows it (gradescope_page.py): the total, one block per test, the failed ones red
-with their Markdown rendered. Screenshots: report.png, report-sketch.png, report-whole-run.png, gradescope-results.png.
+cause and a picture of the state it tried, the whole run's viewer mounted side by side with four
+stills that are not blank, and results.json's top-level output is HTML, as are the failed checks
+with a picture (the others stay Markdown). Then the same results.json as Gradescope shows it
+(gradescope_page.py): the total, one block per test, the failed ones red with their Markdown
+rendered, a visible picture in each HTML test, and nothing on the page that could run.
+Screenshots: report.png, report-sketch.png, report-whole-run.png, gradescope-results.png,
+gradescope-picture.png.
 """
 import glob
 import json
@@ -46,8 +49,15 @@ def main():
             data = json.load(f)
         checks.check(data.get('output_format') == 'html' and '<table>' in data.get('output', ''),
                      "results.json: the top-level output is HTML")
-        checks.check(all(t.get('output_format') == 'md' for t in data['tests']),
-                     'results.json: every test keeps its Markdown output')
+        # a failed check with a picture is HTML (the picture inline), every other stays Markdown
+        html_tests = [t for t in data['tests'] if t.get('output_format') == 'html']
+        collide = [t for t in data['tests']
+                   if t['tags'][0] == 'Spheres::collide(Cloth*)' and t['status'] == 'failed']
+        checks.check(all(t.get('output_format') in ('md', 'html') for t in data['tests']) and
+                     all(t['status'] == 'failed' and '<svg ' in t['output'] for t in html_tests) and
+                     collide and all(t.get('output_format') == 'html' for t in collide),
+                     f'results.json: {len(html_tests)} failed checks with a picture are HTML '
+                     f'({len(collide)} collision checks among them), the others Markdown')
         b = browser.Browser(height=1400)
         try:
             url = b.open(page)
@@ -130,6 +140,29 @@ def check_gradescope_page(b, checks, data, page, screenshot):
                  f'{table} rows) and the files, each path in code ({listed})')
     raw = b.js("return document.body.textContent.includes('|---')")
     checks.check(not raw, 'Gradescope page: no Markdown table left unrendered')
+    # the pictures: one per HTML test, drawn, and nothing on the page can run
+    pictures = b.js("return [...document.querySelectorAll('.gs-test')].filter("
+                    "(t) => t.querySelector('svg.gr-sketch')).length")
+    wanted = sum(1 for t in tests if t.get('output_format') == 'html')
+    checks.check(pictures == wanted and wanted > 0,
+                 f'Gradescope page: a picture in each HTML test ({pictures} of {wanted})')
+    if pictures:
+        b.js("document.querySelector('.gs-failed svg.gr-sketch').scrollIntoView()")
+        size = b.js("const r = document.querySelector('.gs-failed svg.gr-sketch')"
+                    ".getBoundingClientRect(); return [r.width, r.height]")
+        drawn = browser.non_background_fraction(b.element_image('.gs-failed svg.gr-sketch'))
+        checks.check(size[0] > 200 and size[1] > 150 and drawn > 0.02,
+                     f'Gradescope page: the first picture is visible ({size[0]:.0f} x '
+                     f'{size[1]:.0f} px, {drawn:.0%} drawn)')
+        b.save_screenshot(os.path.join(os.path.dirname(screenshot), 'gradescope-picture.png'))
+        b.js("window.scrollTo(0, 0)")
+    scripts = b.js("return document.scripts.length")
+    handlers = b.js("return [...document.querySelectorAll('*')].flatMap((e) => "
+                    "[...e.attributes].map((a) => a.name)).filter((n) => n.startsWith('on'))")
+    active = gradescope_page.active_content(gradescope_page.render(data))
+    checks.check(scripts == 0 and not handlers and not active,
+                 f'Gradescope page: nothing can run ({scripts} scripts, handlers {handlers}, '
+                 f'{active})')
     # tall enough to show the total, the summary and the first red blocks in one picture
     b.driver.set_window_size(1200, 2300)
     b.save_screenshot(screenshot)

@@ -38,10 +38,10 @@ std::string safeText(std::string_view text, TextRepairs* repairs = nullptr);
 std::string safeName(std::string_view name, TextRepairs* repairs = nullptr);
 
 // Markdown that shows `text` as it is, whatever it holds, in every renderer (CommonMark,
-// Gradescope's, python-markdown, html_report.h's): every text a submission or a tool controls
-// (compiler output, a probe's stderr, quoted source lines, names) reaches Markdown only through
-// these two. Neither cleans the text: give it safeText / safeName output (the writers clean again,
-// which changes no backtick).
+// Gradescope's, python-markdown, report/markdown_html.h's): every text a submission or a tool
+// controls (compiler output, a probe's stderr, quoted source lines, names) reaches Markdown only
+// through these two. Neither cleans the text: give it safeText / safeName output (the writers clean
+// again, which changes no backtick).
 //
 // A fenced block: its fence is a run of backticks longer than the longest run inside `text` (at
 // least three), so no line of the text can close it; it starts and ends on a line of its own

@@ -56,8 +56,8 @@ Vec4<double> momentum(const State& s, const Outcome& o) {
   return total;
 }
 
-// Whether the call left the case's total momentum unchanged (to 1e-5 of the momenta involved).
-bool conserves(const Case& c, const Outcome& after) {
+// How far the case's total momentum may move: 1e-5 of the momenta involved (float sums).
+double momentumTolerance(const Case& c) {
   double scale = 0;
   for (int q : c.spheres)
     scale += c.state.spheres.particles.mass[q] *
@@ -65,8 +65,13 @@ bool conserves(const Case& c, const Outcome& after) {
   for (int q : c.particles)
     scale += c.state.cloth.particles.mass[q] *
              c.state.cloth.particles.velocity.col(q).cast<double>().norm();
+  return 1e-5 * (1 + scale);
+}
+
+// Whether the call left the case's total momentum unchanged (within momentumTolerance).
+bool conserves(const Case& c, const Outcome& after) {
   const Vec4<double> change = momentum(c.state, after) - momentum(c.state, outcomeOf(c.state));
-  return change.norm() <= 1e-5 * (1 + scale);
+  return change.norm() <= momentumTolerance(c);
 }
 
 // The pairs of a case that touch before the call, each read back in the course's terms
@@ -202,9 +207,9 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
       const Vec4<double> after = momentum(c.state, actual);
       momentum_ok = false;
       momentum_non_finite = momentum_non_finite || !after.allFinite();
-      momentum_report += "- " + checks[c.check].check + ": total momentum before " +
-                         util::vec3(before.cast<float>()) + ", after your call " +
-                         util::vec3(after.cast<float>()) + "\n";
+      momentum_report += util::compareVectors(
+          checks[c.check].check + ": total momentum after your call (expected: as before it)",
+          before, after, util::Tolerance{momentumTolerance(c), 0}, "kg m/s");
     }
     TestResult t = util::test(checks[c.check]);
     for (std::size_t m = 0; m < signatures.size(); ++m) {
@@ -232,10 +237,12 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
                           const Mat4X<float>& xe, const Mat4X<float>& ve, const Mat4X<float>& xa,
                           const Mat4X<float>& va) {
       t.output += "- " + std::string(what) + " " + std::to_string(index) + " (mass " +
-                  util::num(mass) + "): x " + util::vec3(x0.col(index)) + ", v " +
-                  util::vec3(v0.col(index)) + "\n  - expected x " + util::vec3(xe.col(index)) +
-                  ", v " + util::vec3(ve.col(index)) + "\n  - actual   x " +
-                  util::vec3(xa.col(index)) + ", v " + util::vec3(va.col(index)) + "\n";
+                  util::num(mass) + "), before the call: x " + util::vec3(x0.col(index)) +
+                  " m, v " + util::vec3(v0.col(index)) + " m/s\n" +
+                  util::compareVectors("x after the call", xe.col(index), xa.col(index),
+                                       util::Tolerance{rel, rel}, "m", "  ") +
+                  util::compareVectors("v after the call", ve.col(index), va.col(index),
+                                       util::Tolerance{rel, rel}, "m/s", "  ");
       const auto xyz = [index](const Mat4X<float>& m) {
         return std::array<float, 3>{m(0, index), m(1, index), m(2, index)};
       };

@@ -789,14 +789,15 @@ TestResult checkOneStep(const ProbeContext& context, const IntegratorRun& run) {
   }
   const System& e = run.expected;
   const System& a = run.actual;
-  one.output = "State: " + systemText(run.random) + ".\n\nAfter one step:\n\n" +
-               "- expected (course method) particle 1: x " +
-               util::vec3(e.cloth.particles.position.col(1)) + ", v " +
-               util::vec3(e.cloth.particles.velocity.col(1)) + "; sphere 0: x " +
-               util::vec3(e.spheres.particles.position.col(0)) + "\n" + "- actual particle 1: x " +
-               util::vec3(a.cloth.particles.position.col(1)) + ", v " +
-               util::vec3(a.cloth.particles.velocity.col(1)) + "; sphere 0: x " +
-               util::vec3(a.spheres.particles.position.col(0)) + "\n";
+  const util::Tolerance tolerance{run.rel, run.rel};
+  one.output = "State: " + systemText(run.random) +
+               ".\n\nAfter one step (expected: the course method's):\n\n" +
+               util::compareVectors("cloth particle 1, x", e.cloth.particles.position.col(1),
+                                    a.cloth.particles.position.col(1), tolerance, "m") +
+               util::compareVectors("cloth particle 1, v", e.cloth.particles.velocity.col(1),
+                                    a.cloth.particles.velocity.col(1), tolerance, "m/s") +
+               util::compareVectors("sphere 0, x", e.spheres.particles.position.col(0),
+                                    a.spheres.particles.position.col(0), tolerance, "m");
   std::vector<std::string> guesses;
   const std::vector<std::string> ids = diagnoseOneStep(context, run, one.output, guesses);
   for (const auto& id : ids) one.addCause(id);

@@ -132,9 +132,9 @@ Comparison compare(const SpringSet& student, const SpringSet& reference, int n, 
       ++c.wrong_rest;
       c.rest_sketch.differing.push_back(pairOf(pair));
       if (c.rest_examples.size() < 3)
-        c.rest_examples.push_back(pairText(pair, n) + " (" + kTypeNames[ref_type] +
-                                  "): expected rest length " + util::num(ref_rest) + ", got " +
-                                  util::num(rest));
+        c.rest_examples.push_back(util::compareNumbers(
+            "rest length of " + pairText(pair, n) + " (" + kTypeNames[ref_type] + ")", ref_rest,
+            rest, util::Tolerance{0, rest_rel}, "m"));
     }
     if (type != ref_type) {
       ++c.wrong_type;
@@ -142,7 +142,7 @@ Comparison compare(const SpringSet& student, const SpringSet& reference, int n, 
       c.type_sketch.differing.push_back(pairOf(pair));
       if (c.type_examples.size() < 3)
         c.type_examples.push_back(pairText(pair, n) + ": expected " + kTypeNames[ref_type] +
-                                  ", got " + (type >= 0 && type < 3 ? kTypeNames[type] : "?"));
+                                  ", yours " + (type >= 0 && type < 3 ? kTypeNames[type] : "?"));
     }
   }
   for (const auto& [pair, entries] : student.pairs) {
@@ -234,7 +234,7 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
     if (errors) {
       connections.fraction = std::min(connections.fraction, 0.5);
       connections.output = state + "Expected " + std::to_string(reference.count) +
-                           " springs, got " + std::to_string(student->count) + ": " +
+                           " springs, yours " + std::to_string(student->count) + ": " +
                            std::to_string(c.missing) + " missing, " + std::to_string(c.extra) +
                            " unexpected, " + std::to_string(c.duplicates) + " duplicated.\n\n" +
                            familyLines(c.missing_by_family, c.family_size, "missing") +
@@ -254,9 +254,9 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
     if (c.wrong_rest || !c.matched) {
       rest.output = state + std::to_string(c.wrong_rest) + " of " + std::to_string(c.matched) +
                     " matching springs have a rest length off by more than " + util::num(rest_rel) +
-                    " (relative). Reference rest lengths: structural " +
+                    " (relative, the tolerance). Reference rest lengths: structural " +
                     "|p0 - p1|, shear |p0 - p(N+1)|, bend |p0 - p2| of the initial positions.\n\n";
-      for (const auto& e : c.rest_examples) rest.output += "- " + e + "\n";
+      for (const auto& e : c.rest_examples) rest.output += e;
       addCauses(rest, c.diagnoses, {"shear-rest-length", "bend-rest-length", "approximate-sqrt2"});
       if (c.wrong_rest) rest.sketch = c.rest_sketch;
     } else {

@@ -1,5 +1,6 @@
 // Helpers shared by the probe files: conversions between clothref matrices and probe arrays,
-// Markdown formatting of small states, and running a group's child with the failure verdicts.
+// numbers and expected-against-yours comparisons (compare_text.h), and running a group's child
+// with the failure verdicts.
 #pragma once
 #include <Eigen/Core>
 #include <cmath>
@@ -12,6 +13,7 @@
 #include "clothref/core/method.h"
 #include "clothref/core/types.h"
 #include "grader/bridge/probe_keys.h"
+#include "grader/grade/probes/compare_text.h"
 #include "grader/grade/probes/probes.h"
 #include "grader/grade/text.h"
 
@@ -42,15 +44,6 @@ inline std::int64_t methodRow(Method method) {
   for (std::size_t row = 0; row < kMethods.size(); ++row)
     if (kMethods[row].method == method) return static_cast<std::int64_t>(row);
   return -1;  // not in the table: the driver refuses it
-}
-
-inline std::string num(double value) {
-  std::ostringstream out;
-  out << std::setprecision(7) << value;
-  return out.str();
-}
-inline std::string vec3(const Eigen::Ref<const Eigen::Vector4f>& v) {
-  return "(" + num(v[0]) + ", " + num(v[1]) + ", " + num(v[2]) + ")";
 }
 
 // Why a probe group has no usable answer: the run's verdict (never read back from words) and the

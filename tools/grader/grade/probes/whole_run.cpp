@@ -8,6 +8,8 @@
 // scene from findBuiltinScene, and the two texts are compared as streams; nothing is written to
 // disk and no World is built to hold the student's arrays. The two texts stay on the test for the
 // HTML report's pictures.
+#include <algorithm>
+#include <cmath>
 #include <sstream>
 
 #include "clothref/diff/diff.h"
@@ -34,43 +36,52 @@ std::string valueName(const ValueDiff& value) {
 }
 
 std::string unitOf(const ValueDiff& value) {
-  return value.field == Field::Position ? " m" : value.field == Field::Velocity ? " m/s" : " s";
+  return value.field == Field::Position ? "m" : value.field == Field::Velocity ? "m/s" : "s";
 }
 
-// The comparison as a student reads it: steps and times in the course's units, yours against the
-// reference's, the tolerance; no file names, no units in the last place.
+// The comparison as a student reads it: steps and times in the course's units, the reference's
+// value as the expected one beside yours (compare_text.h), the tolerance; no file names, no units
+// in the last place.
 std::string describe(const DiffReport& report, double dt) {
   const auto at = [&](std::int64_t step) {
     return "step " + std::to_string(step) + " (t = " + util::num(double(step) * dt) + " s)";
   };
+  // clothref diff's combined rule: within 1e-5 absolute or 1e-5 relative to the larger value
   const auto values = [&](const ValueDiff& value) {
-    return valueName(value) + ": yours " + util::num(value.b) + unitOf(value) +
-           ", the reference's " + util::num(value.a) + unitOf(value);
+    const double larger = std::max(std::abs(value.a), std::abs(value.b));
+    const util::Tolerance tolerance{std::max(kTolerance, kTolerance * larger), 0};
+    return util::compareNumbers(valueName(value) + " at " + at(value.step), value.a, value.b,
+                                tolerance, unitOf(value));
   };
   if (report.verdict == clothref::Verdict::Identical)
     return "**The runs are identical**: all " + std::to_string(report.steps_compared) +
            " recorded states (every " + std::to_string(kStride) +
            "th step) equal the reference's, bit for bit.\n";
   if (report.verdict == clothref::Verdict::WithinTolerance)
-    return "**The runs are identical within the tolerance** (" + std::string("1e-5") +
+    return "**The runs are identical within the tolerance** (" + util::num(kTolerance) +
            ", absolute or relative): " + std::to_string(report.values_compared) +
            " values compared" +
-           (report.worst ? "; the largest difference is " + values(*report.worst) + " at " +
-                               at(report.worst->step)
-                         : std::string()) +
-           ".\n";
+           (report.worst ? "; the largest difference, the reference's value as the expected "
+                           "one:\n\n" +
+                               values(*report.worst)
+                         : std::string(".\n"));
   std::string out = "**The runs differ**";
   if (report.first_beyond)
-    out += " from " + at(report.first_beyond->step) + ": " + values(*report.first_beyond) + ".";
-  out += " In all, " + std::to_string(report.values_beyond) + " of " +
+    out += " from " + at(report.first_beyond->step) +
+           " (the reference's value as the expected one):\n\n" + values(*report.first_beyond) +
+           "\n";
+  else
+    out += ". ";
+  out += "In all, " + std::to_string(report.values_beyond) + " of " +
          std::to_string(report.values_compared) + " values compared are beyond the tolerance (" +
-         std::string("1e-5") + ", absolute or relative)";
+         util::num(kTolerance) + ", absolute or relative)";
   if (report.worst && report.first_beyond &&
       !(report.worst->step == report.first_beyond->step &&
         report.worst->particle == report.first_beyond->particle &&
         report.worst->field == report.first_beyond->field))
-    out += "; the largest difference is " + values(*report.worst) + " at " + at(report.worst->step);
-  out += ".\n";
+    out += "; the largest difference:\n\n" + values(*report.worst);
+  else
+    out += ".\n";
   for (const HeaderDiff& header : report.header_diffs)
     if (header.significant) {
       out += "\nThe runs' settings differ (" + header.pointer + ").\n";

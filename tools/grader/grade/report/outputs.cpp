@@ -68,6 +68,16 @@ std::string statusWord(const TestResult& t) {
 
 }  // namespace
 
+std::pair<int, int> checksPassed(const GradeReport& report, const std::string& stub) {
+  int passed = 0, total = 0;
+  for (const TestResult& t : report.tests)
+    if (t.stub == stub && !t.informational) {
+      ++total;
+      passed += t.passed();
+    }
+  return {passed, total};
+}
+
 double roundedPoints(double value) {
   const double rounded = std::round(value * 1000) / 1000;
   return rounded == 0 ? 0.0 : rounded;  // never "-0"
@@ -217,6 +227,7 @@ nlohmann::ordered_json resultsJson(const GradeReport& given) {
                         ". Verdict: " + verdictId(report.verdict) + ".\n\n" + filesMarkdown(report);
   if (!report.isolation.empty()) summary += "\nStudent code ran with: " + report.isolation + ".\n";
   if (!report.notes.empty()) summary += "\n" + notesMarkdown(report.notes);
+  summary += "\n" + std::string(kNumberLegend) + "\n";
   out["output"] = summary;
   out["output_format"] = "md";
   out["visibility"] = "visible";
@@ -328,7 +339,7 @@ std::string markdownReport(const GradeReport& given) {
           << points(report.stub_max.at(stub)) << " |\n";
   out << "\n## Files\n\n" << filesMarkdown(report);
   if (!report.notes.empty()) out << "\n" << notesMarkdown(report.notes);
-  out << "\n## Failed checks\n";
+  out << "\n## Failed checks\n\n" << kNumberLegend << "\n";
   bool any = false;
   for (std::size_t k = 0; k < report.tests.size(); ++k) {
     const TestResult& t = report.tests[k];

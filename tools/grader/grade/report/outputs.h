@@ -12,11 +12,24 @@
 #pragma once
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "grader/grade/results.h"
 
 namespace clothref::grader {
+
+// How the checks' numbers read (probes/compare_text.h writes them), said once at the top of every
+// report (results.json's summary, report.md, report.html) and in docs/grading.md.
+inline constexpr const char* kNumberLegend =
+    "How to read the checks: numbers have 6 significant digits (C's `%.6g`: 0.000371004, "
+    "7.45961e-05), and the numbers of one comparison share one notation. Where yours differs from "
+    "the expected value by more than the tolerance, that component is **bold** in both, and the "
+    "line under it says by how much and how many times the tolerance that is (the tolerance and "
+    "the ratio to 2 significant digits).";
+
+// Checks of `stub` that count for points, and how many of them passed (the pages' stub tables).
+std::pair<int, int> checksPassed(const GradeReport& report, const std::string& stub);
 
 // Points as every output shows them: rounded to 0.001, without trailing zeros ("51.875", "80").
 std::string points(double value);
@@ -35,7 +48,7 @@ GradeReport cleaned(const GradeReport& report);
 struct TestText {
   std::string output;
   std::vector<std::string> likely, guesses;  // one Markdown block per cause
-  std::string markdown() const;               // all of it, as the Markdown writers show it
+  std::string markdown() const;              // all of it, as the Markdown writers show it
 };
 std::vector<TestText> testTexts(const GradeReport& cleaned_report);
 

@@ -1,0 +1,44 @@
+// A report with what a student controls in every field the pages show (a folder name with an
+// <img>, a path with <b>, a byte that is not UTF-8, a </pre><script> in a check's output), one
+// passed and one failed check: the pages' tests start from it (tests/grader/report/*_test.cpp).
+#pragma once
+#include <cstddef>
+#include <string>
+
+#include "grader/grade/results.h"
+
+namespace clothref::grader::test_samples {
+
+inline GradeReport sampleReport() {
+  GradeReport report;
+  report.submission = "subs/<img src=x onerror=alert(1)>";
+  report.edition = 2022;
+  report.edition_source = "detected";
+  report.files = {{"cloth.cpp", "src/<b>cloth.cpp", true, Verdict::Graded, "", 0, ""},
+                  {"sphere.cpp", "", false, Verdict::MissingFile, "missing", 0, ""}};
+  report.notes = {"non-UTF-8 bytes \xFF in integrator.cpp"};
+  TestResult pass = makeTest("Cloth::initializeSpring", "connections at N = 25", 1);
+  pass.fraction = 1;
+  pass.score = pass.max_score = 6;
+  TestResult fail = makeTest("Spheres::collide(Cloth*)", "approaching pair", 1);
+  fail.max_score = 1.25;
+  fail.output =
+      "State tried:\n\n- sphere 0: x (0.1, 0.42, -0.05)\n  - expected x (1, 2, 3) - actual "
+      "x (1, 2, 4)\n\n```\n</pre><script>alert(2)</script>\n```\n\n**Likely cause** "
+      "(`collision-normal-sign`): <the normal>";
+  fail.causes = {Cause{"collision-normal-sign", true, {}, {}, "<the normal>"}};
+  report.tests = {pass, fail};
+  report.stub_score = {{"Cloth::initializeSpring", 6}, {"Spheres::collide(Cloth*)", 0}};
+  report.stub_max = {{"Cloth::initializeSpring", 6}, {"Spheres::collide(Cloth*)", 1.25}};
+  report.score = 6;
+  report.max_score = 7.25;
+  return report;
+}
+
+inline std::size_t countOf(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+}  // namespace clothref::grader::test_samples
