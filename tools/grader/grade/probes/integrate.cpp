@@ -7,16 +7,17 @@
 //   integrate_run.cpp        one run of the probe: request, answer, the course's result
 //   integrate_mistakes.cpp   the mistake simulators and the accepted variants
 //   integrate_diagnosis.cpp  likely causes of a wrong first step
+//   integrate_stages.cpp     the stage explanation of the run, its Markdown and causes
 //   integrate_text.cpp       the Markdown
+#include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <mutex>
 
 #include "clothref/verify/verify.h"
 #include "grader/grade/probes/integrate_diagnosis.h"
 #include "grader/grade/probes/integrate_mistakes.h"
+#include "grader/grade/probes/integrate_stages.h"
 #include "grader/grade/probes/integrate_text.h"
-#include "grader/grade/probes/stages.h"
 
 namespace clothref::grader {
 namespace {
@@ -40,7 +41,32 @@ constexpr CheckInfo kChecks[] = {
     {Check::Stability, "stable below the stability limit", 1, false},
 };
 
-TestResult checkOneStep(const ProbeContext& context, const IntegratorRun& run) {
+// The causes of a wrong first step: what the stage fit shows is likely, with what the numbers of
+// the random state show when the fit agrees or has nothing; a finding of the numbers that the fit
+// does not show becomes a possibility (the two never give contradicting likely causes). With no
+// likely cause: the possibilities, then `unknown`.
+void addOneStepCauses(TestResult& one, const std::vector<std::string>& numeric,
+                      const std::vector<std::string>& guesses, const RunStages& stages) {
+  const std::vector<std::string> fitted = stages.causes(true);
+  std::vector<std::string> likely = fitted.empty() ? numeric : fitted, possible;
+  for (const std::string& id : numeric)
+    if (std::find(likely.begin(), likely.end(), id) == likely.end())
+      // deltaTime's value after integrate() is read, not fitted
+      (id == "deltatime-mutated" ? likely : possible).push_back(id);
+  for (const std::string& id : stages.causes(false)) possible.push_back(id);
+  for (const std::string& id : guesses) possible.push_back(id);
+  for (const std::string& id : likely) {
+    Cause& cause = one.addCause(id);
+    if (const auto* c = stages.cause(id); c && c->likely)
+      cause.detail = "Measured: " + c->why + ".";
+  }
+  for (const std::string& id : possible)
+    if (std::find(likely.begin(), likely.end(), id) == likely.end()) one.addCause(id, false);
+  if (likely.empty()) one.addCause("unknown", false);
+}
+
+TestResult checkOneStep(const ProbeContext& context, const IntegratorRun& run,
+                        const RunStages& stages) {
   TestResult one = makeTest(run.stub, kChecks[0].name, kChecks[0].weight);
   std::string matched_variant;
   for (const auto& [what, step] : acceptedVariants(context.rubric, run.method))
@@ -55,11 +81,7 @@ TestResult checkOneStep(const ProbeContext& context, const IntegratorRun& run) {
   one.output = oneStepText(run);
   std::vector<std::string> guesses;
   const std::vector<std::string> ids = diagnoseOneStep(context, run, one.output, guesses);
-  for (const auto& id : ids) one.addCause(id);
-  if (ids.empty()) {
-    for (const auto& id : guesses) one.addCause(id, false);
-    one.addCause("unknown", false);
-  }
+  addOneStepCauses(one, ids, guesses, stages);
   return one;
 }
 
@@ -123,8 +145,15 @@ TestResult checkBackups(const IntegratorRun& run) {
   return t;
 }
 
-TestResult checkOrder(const ProbeContext& context, const IntegratorRun& run,
-                      const TestResult& one) {
+// The cause a later check follows from when the one-step check passed: the stage fit's first
+// likely cause (at h = kStageStep, where the stub is stable), or `otherwise`.
+std::string causeAfterPassedStep(const RunStages& stages, const std::string& otherwise) {
+  const std::vector<std::string> fitted = stages.causes(true);
+  return fitted.empty() ? otherwise : fitted.front();
+}
+
+TestResult checkOrder(const ProbeContext& context, const IntegratorRun& run, const TestResult& one,
+                      const RunStages& stages) {
   TestResult order = makeTest(run.stub, kChecks[4].name, kChecks[4].weight);
   std::vector<double> student_errors, reference_errors;
   for (std::size_t k = 0; k < run.dts.size(); ++k) {
@@ -142,13 +171,15 @@ TestResult checkOrder(const ProbeContext& context, const IntegratorRun& run,
       usable && std::abs(observed - expected_order) <= context.rubric.tolerances.order ? 1 : 0;
   order.output = orderText(run, student_errors, reference_errors, usable, observed, expected_order);
   if (order.fraction == 0) {
-    const std::string id = one.fraction == 1 ? "wrong-order" : firstLikelyCause(one);
+    const std::string id =
+        one.fraction == 1 ? causeAfterPassedStep(stages, "wrong-order") : firstLikelyCause(one);
     order.addCause(id, id != "unknown");
   }
   return order;
 }
 
-TestResult checkStability(const IntegratorRun& run, const TestResult& one) {
+TestResult checkStability(const IntegratorRun& run, const TestResult& one,
+                          const RunStages& stages) {
   TestResult stable = makeTest(run.stub, kChecks[5].name, kChecks[5].weight);
   const auto& trajectory = run.answer.f(key::perCase(key::kTrajectory, run.stable_case));
   const std::size_t per_record = 4 * std::size_t(run.spring_particles);
@@ -162,24 +193,25 @@ TestResult checkStability(const IntegratorRun& run, const TestResult& one) {
   if (stable.fraction == 0) {
     // The blow-up is a consequence: the one-step finding names the mistake when there is one.
     const std::string first = firstLikelyCause(one);
-    const std::string id = one.fraction == 1 || first == "unknown" ? "unstable" : first;
+    const std::string id = one.fraction == 1    ? causeAfterPassedStep(stages, "unstable")
+                           : first == "unknown" ? "unstable"
+                                                : first;
     stable.addCause(id);
   }
   return stable;
 }
 
-// The stage explanation (stages.h) of the recorded case, as JSON beside the probe's files when
-// the work folder is kept (--keep-work); the report does not show it yet.
-void keepStages(const ProbeContext& context, const IntegratorRun& run, bool course_size) {
-  stages::StageRecord record;
-  if (!context.limits.keep_files ||
-      !stages::stageRecordFrom(run.answer, run.stage_case, double(stages::kStageStep), record))
-    return;
-  const stages::StageFit fit = stages::fitStages(record);
-  const stages::StageExplanation explanation =
-      stages::explainStages(fit, run.index, stages::sourceHints(stubSource(context, run.stub)));
-  std::ofstream(context.work_dir / integratorFolder(run.index, course_size) / "stages.json")
-      << stages::stageJson(fit, explanation);
+// The stage explanation once per stub: on its first failed check; later failed checks refer to it.
+void addStages(std::vector<TestResult>& tests, const RunStages& stages) {
+  const std::string text = stages.markdown();
+  if (text.empty()) return;
+  const TestResult* first = nullptr;
+  for (TestResult& t : tests) {
+    if (t.fraction >= 1) continue;
+    t.output += (t.output.empty() || t.output.back() == '\n' ? "" : "\n") +
+                (first ? stagesShownUnder(first->check) : text);
+    if (!first) first = &t;
+  }
 }
 
 }  // namespace
@@ -223,14 +255,15 @@ std::vector<TestResult> probeIntegrator(const ProbeContext& context, int index) 
       tests.push_back(util::failedTest(check, failure.text, {util::guess(failure.causeId())}));
     return tests;
   }
-  keepStages(context, run, !note.empty());
-  const TestResult one = checkOneStep(context, run);
+  const RunStages stages = explainRun(context, run, !note.empty());
+  const TestResult one = checkOneStep(context, run, stages);
   tests.push_back(one);
   tests.push_back(checkEveryBody(run, one));
   tests.push_back(checkDeltaTime(run));
   if (method != Method::Explicit) tests.push_back(checkBackups(run));
-  tests.push_back(checkOrder(context, run, one));
-  tests.push_back(checkStability(run, one));
+  tests.push_back(checkOrder(context, run, one, stages));
+  tests.push_back(checkStability(run, one, stages));
+  addStages(tests, stages);
   if (!note.empty())
     for (TestResult& t : tests) t.output = note + t.output;
   return tests;

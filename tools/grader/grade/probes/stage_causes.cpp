@@ -78,11 +78,46 @@ void stateFindings(const StageFit& fit, int q, const MethodState& course, int me
         continue;
       const int expected = terms[0].index;
       if (t.block == (position ? 'v' : 'a') && t.index != expected) {
-        if (position && t.index == q) own_velocity = true;
-        else wrong_stage = true;
+        if (position && t.index == q)
+          own_velocity = true;
+        else
+          wrong_stage = true;
       }
     }
   }
+}
+
+// The factor c for which the result's velocity of `body` is c times the course's result velocity
+// (v = c·(v0 + h·a0) for forward Euler), to rounding; 0 when there is none.
+double velocityFactor(const StageFit& fit, const MethodState& course_result) {
+  std::vector<int> map;
+  for (int k = 0; k <= fit.recorded + 1; ++k) map.push_back(k);
+  Form want;
+  if (!toForm(fit, methodForm(course_result, false, map, fit.recorded + 1), want)) return 0;
+  const std::vector<double>& recorded = recordedState(fit.record, fit.recorded + 1, kCloth).v;
+  std::vector<double> value(recorded.size(), 0.0), magnitude(recorded.size(), 0.0);
+  for (const Term& t : want) {
+    const std::vector<double>& col = column(fit, kCloth, t.gen);
+    if (col.size() != recorded.size()) return 0;
+    const double c = t.coef.value() * std::pow(fit.record.h, t.power);
+    for (std::size_t i = 0; i < col.size(); ++i) {
+      value[i] += c * col[i];
+      magnitude[i] += std::abs(c * col[i]);
+    }
+  }
+  double along = 0, norm = 0;
+  for (std::size_t i = 0; i < recorded.size(); ++i) {
+    along += recorded[i] * value[i];
+    norm += value[i] * value[i];
+  }
+  if (!(norm > 0)) return 0;
+  const double c = along / norm;
+  constexpr double kUnit = 1.0 / 16777216.0;  // 2^-24: the multiplication by c is one rounding more
+  for (std::size_t i = 0; i < recorded.size(); ++i)
+    if (!(std::abs(recorded[i] - c * value[i]) <=
+          kUlps * kUnit * (std::abs(recorded[i]) + std::abs(c) * magnitude[i])))
+      return 0;
+  return c;
 }
 
 }  // namespace
@@ -135,14 +170,15 @@ StageExplanation explainStages(const StageFit& fit, int method, const SourceHint
   const bool dt_changed = fit.record.h_after != h;
   if (dt_changed)
     addCause(e, "deltatime-mutated", true,
-             "deltaTime is " + number(fit.record.h_after) + " s after integrate(), not h = " +
-                 number(h) + " s");
+             "deltaTime is " + number(fit.record.h_after) +
+                 " s after integrate(), not h = " + number(h) + " s");
   if (e.course || !e.accepted.empty()) return e;
 
   // A step other than h: the first departing state equals the course's with h·s.
   const int m = fit.recorded, result = m + 1;
   const auto methodState = [&](int q) -> const MethodState& {
-    return q <= int(course.evaluations.size()) ? course.evaluations[std::size_t(q - 1)] : course.result;
+    return q <= int(course.evaluations.size()) ? course.evaluations[std::size_t(q - 1)]
+                                               : course.result;
   };
   Departure later = e.departure;
   if (e.equals.empty() && e.departure.what != "calls" && e.departure.state >= 1 &&
@@ -160,8 +196,7 @@ StageExplanation explainStages(const StageFit& fit, int method, const SourceHint
       later = departure(fit, course, s);
       const bool throughout = e.departure.state == 1 && later.state == 0;
       if (!dt_changed && throughout)
-        addCause(e, "deltatime-mutated", false,
-                 "every stage uses a step of " + number(s) + "·h");
+        addCause(e, "deltatime-mutated", false, "every stage uses a step of " + number(s) + "·h");
     }
   }
 
@@ -170,6 +205,15 @@ StageExplanation explainStages(const StageFit& fit, int method, const SourceHint
   bool at_start = false;
   for (int q = 1; q <= m; ++q) at_start = at_start || fit.states[std::size_t(q - 1)].same_as == 0;
   const bool nothing_added = m > 0 && fit.result().same_as == m;
+  if (e.equals == "heun")
+    addCause(
+        e, "heun-method", true,
+        "the result averages the slopes at the start and at the prediction: x0 + h/2·(v0 + v1)");
+  // The predictor-corrector whose result (only) is the course's at h/2: the step advances h/2.
+  if ((method == 1 || method == 2) && e.departure.state == result && e.scale != 1 &&
+      sameStep(e.scale, 0.5) && !dt_changed)
+    addCause(e, "half-step-corrector", true,
+             "the result is the course's with a step of h/2: x0 + h/2·v1, v0 + h/2·a1");
   if (method == 2 && e.equals.rfind("implicit", 0) == 0)
     addCause(e, "midpoint-full-step", true, "the prediction takes the full step x0 + h·v0");
   if (method != 0 && is_explicit) {
@@ -216,7 +260,9 @@ StageExplanation explainStages(const StageFit& fit, int method, const SourceHint
                                             (at_scale(true) && at_scale(false)));
     if (fit.states[std::size_t(q - 1)].same_as == 0 && method != 0 && !is_explicit) {
       const bool half = method == 2 && hints.integer_half;
-      if (half) addCause(e, "integer-division-half", true, "evaluation at the unchanged start state and 1 / 2 in the source");
+      if (half)
+        addCause(e, "integer-division-half", true,
+                 "evaluation at the unchanged start state and 1 / 2 in the source");
       addCause(e, "no-reevaluation", !half, "simulateOneStep() runs at the unchanged start state");
     }
   }
@@ -252,8 +298,7 @@ StageExplanation explainStages(const StageFit& fit, int method, const SourceHint
   bool step_known = e.scale == 1;
   for (int d = 1; d <= kMaxDenominator && !step_known; ++d) {
     const double n = std::round(e.scale * d);
-    if (n != 0 && sameStep(e.scale, n / d))
-      step = Rational(std::int64_t(n), d), step_known = true;
+    if (n != 0 && sameStep(e.scale, n / d)) step = Rational(std::int64_t(n), d), step_known = true;
   }
   if (method == 3 && m >= 3 && !mixed && !result_on_previous && r.x.fits && r.v.fits &&
       !is_explicit && step_known && stages_explained) {
@@ -300,8 +345,18 @@ StageExplanation explainStages(const StageFit& fit, int method, const SourceHint
                  "the position adds " + text(t.coef) + "·h²·a0");
   }
   if (e.calls < e.course_calls && e.causes.empty())
-    addCause(e, "no-reevaluation", true, "simulateOneStep() is called fewer times than the method needs");
+    addCause(e, "no-reevaluation", true,
+             "simulateOneStep() is called fewer times than the method needs");
 
+  // A result velocity scaled down as a whole (v *= 0.999: damping added by hand).
+  if (e.departure.state == result && e.departure.what == "velocity" && r.x.fits) {
+    const double c = velocityFactor(fit, course.result);
+    if (c > 0.5 && c < 1 && !sameStep(c, 1)) {
+      e.damping = c;
+      addCause(e, "velocity-damped", true,
+               "the result's velocity is " + number(c) + " times the course's");
+    }
+  }
   // The bodies: all at one stage, and all integrated.
   bool split = false;
   for (int q = 1; q <= m; ++q) {

@@ -36,7 +36,8 @@ bool stageRecordFrom(const probe::ProbeMessage& answer, int k, double h, StageRe
                               {key::kStartSpherePos, key::kStartSphereVel, key::kStartSphereAcc}};
   const char* evals[2][3] = {{key::kEvalClothPos, key::kEvalClothVel, key::kEvalClothAcc},
                              {key::kEvalSpherePos, key::kEvalSphereVel, key::kEvalSphereAcc}};
-  const char* results[2][2] = {{key::kClothPos, key::kClothVel}, {key::kSpherePos, key::kSphereVel}};
+  const char* results[2][2] = {{key::kClothPos, key::kClothVel},
+                               {key::kSpherePos, key::kSphereVel}};
   std::size_t records = std::size_t(-1);
   for (int b = 0; b < 2; ++b) {
     BodyState& start = record.start[std::size_t(b)];
@@ -81,6 +82,7 @@ std::string stageJson(const StageFit& fit, const StageExplanation& e) {
   out["accepted"] = e.accepted;
   out["equals"] = e.equals;
   out["scale"] = e.scale;
+  out["damping"] = e.damping;
   out["departure"] = {{"state", e.departure.state},
                       {"what", e.departure.what},
                       {"yours", e.departure.yours},
