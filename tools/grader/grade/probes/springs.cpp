@@ -6,9 +6,9 @@
 #include <map>
 #include <set>
 
-#include "grader/grade/run/build.h"
 #include "clothref/core/cloth.h"
 #include "grader/grade/probes/util.h"
+#include "grader/grade/run/build.h"
 #include "grader/grade/text.h"
 
 namespace clothref::grader {
@@ -26,9 +26,12 @@ struct SpringSet {
   int count = 0;
 };
 
-SpringSet referenceSprings(int n, int edition) {
+// Ours on an n x n cloth of the course's size, height and particle mass.
+SpringSet referenceSprings(int n, const Edition& course) {
   Cloth<float> cloth;
-  cloth.particles = initializeVertex<float>(n, 2.0f, edition == 2024 ? 1.0f : 0.0f, 1.0f);
+  cloth.particles = initializeVertex<float>(n, static_cast<float>(course.cloth_half_extent),
+                                            static_cast<float>(course.cloth_height),
+                                            static_cast<float>(course.particle_mass));
   initializeSpring(cloth, n);
   SpringSet set;
   for (const auto& s : cloth.springs) {
@@ -210,18 +213,20 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
   auto answer = util::runGroup(context, context.probe, group::kSprings, request, failure);
   const std::vector<PlannedTest> checks = springsChecks();
   std::optional<SpringSet> student;
-  const SpringSet reference = referenceSprings(25, context.edition);
-  if (answer) student = studentSprings(*answer, 25, failure.text);
+  const int course_n = context.course.particles_per_edge;  // the probe's build and the course's
+  const SpringSet reference = referenceSprings(course_n, context.course);
+  if (answer) student = studentSprings(*answer, course_n, failure.text);
   bool big_ok = false;
   if (!student) {
     const std::string id = answer ? "wrong-spring-endpoints" : failure.causeId();
     for (int k : {kConnections, kRestLengths, kTypeLabels})
       tests.push_back(util::failedTest(checks[k], failure.text, {util::guess(id)}));
   } else {
-    const Comparison c = compare(*student, reference, 25, rest_rel);
-    const std::string state =
-        "The course cloth: 25 x 25 particles, built by your `Cloth()` "
-        "(your `initializeVertex` and `initializeSpring`).\n\n";
+    const Comparison c = compare(*student, reference, course_n, rest_rel);
+    const std::string state = "The course cloth: " + std::to_string(course_n) + " x " +
+                              std::to_string(course_n) +
+                              " particles, built by your `Cloth()` (your `initializeVertex` and "
+                              "`initializeSpring`).\n\n";
     TestResult connections = util::test(checks[kConnections]);
     const int errors = c.missing + c.extra + c.duplicates;
     connections.fraction =
@@ -288,11 +293,11 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
       " cloth (your cloth.cpp compiled again with particlesPerEdge = " + std::to_string(n) +
       ").\n\n";
   if (context.probe_small.empty()) {
-    small.output = state + "Not run: " +
-                   (context.small_problem.empty()
-                        ? std::string("cloth.cpp is not yours")
-                        : "your cloth.cpp did not build at this size:\n\n" +
-                              codeBlock(context.small_problem));
+    small.output =
+        state + "Not run: " +
+        (context.small_problem.empty()
+             ? std::string("cloth.cpp is not yours")
+             : "your cloth.cpp did not build at this size:\n\n" + codeBlock(context.small_problem));
     small.fraction = 0;
   } else {
     util::ProbeFailure small_failure;
@@ -311,7 +316,7 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
         small.addCause("hard-coded-n25", measured);
       }
     } else {
-      const Comparison c = compare(*small_set, referenceSprings(n, context.edition), n, rest_rel);
+      const Comparison c = compare(*small_set, referenceSprings(n, context.course), n, rest_rel);
       const bool ok = c.missing + c.extra + c.duplicates + c.wrong_rest + c.wrong_type == 0;
       small.fraction = ok ? 1.0 : 0.0;
       if (ok) {

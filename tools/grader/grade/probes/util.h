@@ -9,8 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "grader/bridge/probe_keys.h"
+#include "clothref/core/method.h"
 #include "clothref/core/types.h"
+#include "grader/bridge/probe_keys.h"
 #include "grader/grade/probes/probes.h"
 #include "grader/grade/text.h"
 
@@ -33,6 +34,14 @@ inline Mat4X<float> matrix(const std::vector<float>& values, int columns) {
 }
 inline std::vector<float> flat(const VecX<float>& v) {
   return std::vector<float>(v.data(), v.data() + v.size());
+}
+
+// The row of `method` in clothref's method table (core/method.h): how the protocol names an
+// integrator (key::kMethod).
+inline std::int64_t methodRow(Method method) {
+  for (std::size_t row = 0; row < kMethods.size(); ++row)
+    if (kMethods[row].method == method) return static_cast<std::int64_t>(row);
+  return -1;  // not in the table: the driver refuses it
 }
 
 inline std::string num(double value) {
@@ -62,10 +71,12 @@ struct ProbeFailure {
 // Runs `request` in a fresh folder under the context's work dir, twice (runProbeTwice: the
 // answer depends on the files alone) unless `once` (information only, never scored). On failure
 // returns nullopt and fills `failure`.
-inline std::optional<probe::ProbeMessage> runGroup(
-    const ProbeContext& context, const std::filesystem::path& executable, const std::string& folder,
-    probe::ProbeMessage request, ProbeFailure& failure, ChildRun* run_out = nullptr,
-    bool once = false) {
+inline std::optional<probe::ProbeMessage> runGroup(const ProbeContext& context,
+                                                   const std::filesystem::path& executable,
+                                                   const std::string& folder,
+                                                   probe::ProbeMessage request,
+                                                   ProbeFailure& failure,
+                                                   ChildRun* run_out = nullptr, bool once = false) {
   const auto dir = context.work_dir / folder;
   std::filesystem::create_directories(dir);
   ChildRun run = once ? runProbe(executable, request, dir, context.limits)
@@ -78,8 +89,7 @@ inline std::optional<probe::ProbeMessage> runGroup(
     failure.text += " (" + run.grader_problem + ")";
   if (!run.stderr_head.empty()) failure.text += "\n\n" + codeBlock(run.stderr_head);
   // A crash, or two runs that differ: the instrumented build names the line, when it finds one.
-  const bool explain =
-      run.status == ChildStatus::Varies || failure.verdict == Verdict::Crashed;
+  const bool explain = run.status == ChildStatus::Varies || failure.verdict == Verdict::Crashed;
   if (explain && context.sanitizer && executable == context.probe) {
     const std::string report = context.sanitizer->explain(request, dir / "sanitize");
     failure.text += report.empty()
@@ -88,7 +98,8 @@ inline std::optional<probe::ProbeMessage> runGroup(
                           "nothing (the fault may depend on the optimisation level)."
                         : "\n\nThe grader rebuilt your files with AddressSanitizer and "
                           "UndefinedBehaviorSanitizer (`-g -O1`) and ran this probe again; "
-                          "their report:\n\n" + codeBlock(report);
+                          "their report:\n\n" +
+                              codeBlock(report);
   }
   return std::nullopt;
 }
