@@ -37,8 +37,9 @@ struct System {
 // bit-equal.
 void simulate(System& s);
 
-// The library's method of course integrator `index` (0 explicit .. 3 RK4, the course's
-// currentIntegrator): the method-table row whose course class is the stub's.
+// The library's method of course integrator `index`: the row of clothref's method table (how the
+// probe protocol names it, key::kMethod), 0 explicit .. 3 RK4 as the course's currentIntegrator
+// (IntegrateSystems.IntegratorsAreTheLibrarysCourseRows checks each row's class is the stub's).
 Method integratorMethod(int index);
 
 using Step = std::function<void(System&)>;
