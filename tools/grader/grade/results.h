@@ -196,6 +196,9 @@ struct TestResult {
   // writers add it from `causes`. Text a submission controls enters it only through codeBlock()
   // or codeSpan() (text.h).
   std::string output;
+  // Markdown the rubric shows before `output` (per-mistake scoring: "One mistake (`id`) explains
+  // every failed check of this stub: ..."); set by applyRubric on a stub's first failed check.
+  std::string rubric_note;
   std::vector<Cause> causes;  // in the order the probe found them; the likely ones come first
   Sketch sketch;              // the state tried, when a collision or springs check failed
   // The whole run's two traces (JSON Lines, docs/trace-format.md), kept in memory for the HTML
@@ -254,8 +257,8 @@ struct UsedFile {
 // A name found more than once below a submission: the copy used and the others (paths relative to
 // the submission, as found: the writers clean them).
 struct FileChoice {
-  std::string name;                // "cloth.cpp"
-  std::string used;                // "src/cloth.cpp"
+  std::string name;                 // "cloth.cpp"
+  std::string used;                 // "src/cloth.cpp"
   std::vector<std::string> others;  // "old/cloth.cpp", ...
   bool operator==(const FileChoice&) const = default;
 };
@@ -278,7 +281,7 @@ struct GradeReport {
   int edition = 2022;
   std::string edition_source;  // "detected: ..." or "forced with --edition"
   std::vector<UsedFile> files;
-  std::vector<Note> notes;  // BOM, CRLF, non-UTF-8 bytes, several candidates, ...
+  std::vector<Note> notes;          // BOM, CRLF, non-UTF-8 bytes, several candidates, ...
   std::vector<FileChoice> choices;  // names found more than once (the terminal says which was used)
   std::vector<TestResult> tests;
   double score = 0, max_score = 0;

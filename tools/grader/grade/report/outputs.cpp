@@ -107,6 +107,7 @@ GradeReport cleaned(const GradeReport& given) {
     name(test.check);
     name(test.visibility);
     text(test.output);
+    text(test.rubric_note);
     for (Cause& cause : test.causes) {
       name(cause.id);
       text(cause.detail);
@@ -136,7 +137,8 @@ std::string TestText::markdown() const {
 std::vector<TestText> testTexts(const GradeReport& report) {
   std::vector<TestText> texts;
   std::map<std::string, std::string> output_shown;  // a long output -> the test that showed it
-  std::map<std::pair<std::string, std::string>, std::string> quotes_shown;  // (stub, quotes) -> check
+  // (stub, quotes) -> the check that quoted them
+  std::map<std::pair<std::string, std::string>, std::string> quotes_shown;
   for (const TestResult& t : report.tests) {
     TestText text;
     text.output = t.output;
@@ -145,9 +147,12 @@ std::vector<TestText> testTexts(const GradeReport& report) {
       auto [it, first] = output_shown.emplace(t.output, t.name());
       if (!first) text.output = "Same as for " + curlyQuoted(it->second) + " above.\n";
     }
+    if (!t.rubric_note.empty())
+      text.output = t.rubric_note + (text.output.empty() ? "\n" : "\n\n" + text.output);
     for (const Cause& cause : t.causes) {
       std::string block = causeHead(cause) + "\n";
-      if (!cause.detail.empty()) block += "\n" + cause.detail + (cause.detail.back() == '\n' ? "" : "\n");
+      if (!cause.detail.empty())
+        block += "\n" + cause.detail + (cause.detail.back() == '\n' ? "" : "\n");
       if (!cause.quotes.empty()) {
         const auto key = std::make_pair(t.stub, cause.id + "\n" + quoteBlock(cause.quotes));
         auto [it, first] = quotes_shown.emplace(key, t.check);
@@ -176,7 +181,8 @@ std::string filesMarkdown(const GradeReport& report) {
     if (f.compiled || f.status == Verdict::MissingFile || f.problem.empty()) continue;
     out += "\n" + codeSpan(f.name) + ", the first error:\n\n" + codeBlock(f.problem);
     if (!f.log.empty())
-      out += "\nThe whole log of " + codeSpan(f.name) + " (its own messages):\n\n" + codeBlock(f.log);
+      out +=
+          "\nThe whole log of " + codeSpan(f.name) + " (its own messages):\n\n" + codeBlock(f.log);
   }
   return out;
 }
@@ -280,7 +286,8 @@ std::string junitXml(const GradeReport& given) {
   // block follows its text.
   std::string notes;
   for (const Note& note : report.notes)
-    notes += (notes.empty() ? "" : " | ") + note.text + (note.block.empty() ? "" : ": " + note.block);
+    notes +=
+        (notes.empty() ? "" : " | ") + note.text + (note.block.empty() ? "" : ": " + note.block);
   if (!notes.empty()) out << "<property name=\"notes\" value=\"" << xmlEscape(notes) << "\"/>";
   out << "</properties>\n";
   for (std::size_t k = 0; k < report.tests.size(); ++k) {
@@ -289,8 +296,8 @@ std::string junitXml(const GradeReport& given) {
         << "\">";
     if (t.informational) {
       // information only: never a failure, whatever it found
-      out << "<system-out>" << xmlEscape("information only, " + statusWord(t) + "\n\n" +
-                                         texts[k].markdown())
+      out << "<system-out>"
+          << xmlEscape("information only, " + statusWord(t) + "\n\n" + texts[k].markdown())
           << "</system-out></testcase>\n";
       continue;
     }
