@@ -69,11 +69,11 @@ set(GRADER_run_MAY "\"grader/bridge/" "\"grader/grade/run/" "\"grader/grade/(res
 set(GRADER_probes_FILES "^grade/probes/")
 set(GRADER_probes_MAY "\"grader/bridge/" "\"grader/grade/run/" "\"grader/grade/probes/"
     "\"grader/grade/(results|rubric|text)\\.h\""
-    "\"clothref/(base|core|io|scene|solver|trace|diff|record|verify|formula)/" "<Eigen/"
+    "\"clothref/(base|core|io|scene|solver|trace|diff|record|verify|formula|analysis)/" "<Eigen/"
     "<nlohmann/")
 # the writers: the top level (results, and grade.h / batch.h), the pages; never run or probes
 set(GRADER_report_FILES "^grade/report/")
-set(GRADER_report_MAY "\"grader/grade/report/" "\"grader/grade/[^/]+$" "\"clothref/io/" "\"pages/"
+set(GRADER_report_MAY "\"grader/grade/report/" "\"grader/grade/[^/]+$" "\"clothref/io/" "\"clothref/trace/" "\"pages/"
     "<nlohmann/" "<fmt/" "<stdlib\\.h>")
 # the top level (grade, batch, rubric, text, results): of the probes only their table, probes.h
 set(GRADER_grade_FILES "^grade/[^/]+$")

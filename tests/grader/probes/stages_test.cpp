@@ -181,6 +181,8 @@ const std::vector<Case>& cases() {
            {false, "", "", 1, "position", {"position-not-integrated"}, {}, "x0", "x0 + h·v0"}),
       make("explicit, particles[0]", 0, ex(E::FirstOnly),
            {false, "", "", 1, "spheres", {"only-first-body"}}),
+      make("explicit, v *= 0.9987 (pan)", 0, ex(E::Damped),
+           {false, "", "", 1, "velocity", {"velocity-damped"}, {}, "", "v0 + h·a0", false}),
       make("implicit", 1, pc(1, P::Course), {true, "", "implicit"}),
       make("implicit v new", 1, pc(1, P::VNew),
            {false, "implicit-corrector-v-new", "implicit-v-new"}),
@@ -207,7 +209,15 @@ const std::vector<Case>& cases() {
       make("implicit without simulateOneStep", 1, pc(1, P::NoSimulate),
            {false, "", "symplectic", 1, "calls", {"no-reevaluation"}}),
       make("implicit Heun", 1, pc(1, P::Heun),
-           {false, "", "heun", 2, "position", {}, {}, "x0 + h/2·v0 + h/2·v1", "x0 + h·v1"}),
+           {false,
+            "",
+            "heun",
+            2,
+            "position",
+            {"heun-method"},
+            {},
+            "x0 + h/2·v0 + h/2·v1",
+            "x0 + h·v1"}),
       make("implicit per body", 1, pc(1, P::PerBody),
            {false, "", "", 1, "spheres", {"per-body-loop"}}),
       make("implicit particles[0]", 1, pc(1, P::FirstOnly),
@@ -233,7 +243,7 @@ const std::vector<Case>& cases() {
       make("midpoint prediction in locals", 2, pc(0.5, P::Locals),
            {false, "", "", 1, "position", {"no-reevaluation"}, {}, "x0", "x0 + h/2·v0"}),
       make("midpoint corrector h/2", 2, pc(0.5, P::HalfCorrector),
-           {false, "", "", 2, "position", {}, {}, "x0 + h/2·v1", "x0 + h·v1"}),
+           {false, "", "", 2, "position", {"half-step-corrector"}, {}, "x0 + h/2·v1", "x0 + h·v1"}),
       make("midpoint deltaTime = 1e-4f", 2, pc(0.5, P::HardCodedStep),
            {false, "", "", 2, "position", {"deltatime-mutated"}, {}, "", "x0 + h·v1", false}),
       make("midpoint per body", 2, pc(0.5, P::PerBody),
@@ -463,6 +473,8 @@ TEST(StageText, SaysWhereTheStubLeavesTheCourseInItsTerms) {
       << half;
   const std::string ho = explained("midpoint corrector h/2");
   EXPECT_TRUE(contains(ho, "That state is the course's with a step of 0.5·h")) << ho;
+  const std::string pan = explained("explicit, v *= 0.9987 (pan)");
+  EXPECT_TRUE(contains(pan, "The result velocity is 0.9987·(v0 + h·a0)")) << pan;
   const std::string body = explained("midpoint per body");
   EXPECT_TRUE(contains(body, "| evaluation 1, spheres | at their start | at their start |"))
       << body;

@@ -7,6 +7,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -228,7 +229,8 @@ TEST(GradeThroughTheCli, LinkedFilesAreRefusedInASingleGradeAndInABatch) {
   for (const std::string& file : {temp.file("r.json"), temp.file("batch/linked/results.json")}) {
     const nlohmann::json results = nlohmann::json::parse(test::readText(file));
     const std::string output = results["output"].get<std::string>();
-    EXPECT_NE(output.find("cloth.cpp: refused <code>src/cloth.cpp</code>: a symbolic link"), std::string::npos)
+    EXPECT_NE(output.find("cloth.cpp: refused <code>src/cloth.cpp</code>: a symbolic link"),
+              std::string::npos)
         << output;
     EXPECT_NE(output.find("integrator.cpp: refused <code>integrator.cpp</code>: a symbolic link"),
               std::string::npos)
@@ -256,6 +258,33 @@ TEST(DetectEdition, FromTheDefinitionsNotFromComments) {
   EXPECT_EQ(detectEdition(files, why), 2022);
   sphere = "int nothing;\n";
   EXPECT_EQ(detectEdition(files, why), 0);
+}
+
+TEST(StubCode, TheBodyWithCommentsAndLiteralsBlankedAndDeclarationsSkipped) {
+  const std::string source =
+      "void MidpointEuler::integrate(const std::vector<Particles*>&, std::function<void()>) "
+      "const;\n"
+      "// MidpointEuler::integrate(x) { in a comment }\n"
+      "void MidpointEuler :: integrate(const std::vector<Particles*>& ps,\n"
+      "                               std::function<void()> f) const {\n"
+      "  float h = 1 / 2;  // step 1/6\n"
+      "  const char* s = \"{ 1 / 6 }\"; /* } */\n"
+      "}\n"
+      "void RungeKuttaFourth::integrate() const {}\n";
+  const std::string body = stubCode(source, "MidpointEuler::integrate");
+  EXPECT_EQ(body.front(), '{');
+  EXPECT_EQ(body.back(), '}');
+  EXPECT_NE(body.find("float h = 1 / 2;"), std::string::npos) << body;
+  for (const char* gone : {"1/6", "{ 1 / 6 }", "step", "/*"})
+    EXPECT_EQ(body.find(gone), std::string::npos) << gone << " in\n" << body;
+  EXPECT_EQ(std::count(body.begin(), body.end(), '\n'), 3) << "newlines kept";
+  const StubLines lines = stubLines(source, "MidpointEuler::integrate");
+  EXPECT_EQ(lines.first, 4);
+  EXPECT_EQ(lines.last, 7);
+  EXPECT_EQ(stubCode(source, "RungeKuttaFourth::integrate"), "{}");
+  EXPECT_EQ(stubCode(source, "ImplicitEuler::integrate"), "");
+  const std::string blanked = blankedCode("a // b\n'c' \"d\" /* e */ f");
+  EXPECT_EQ(blanked, "a" + std::string(5, ' ') + "\n" + std::string(16, ' ') + "f");
 }
 
 }  // namespace

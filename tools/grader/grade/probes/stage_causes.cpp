@@ -87,6 +87,39 @@ void stateFindings(const StageFit& fit, int q, const MethodState& course, int me
   }
 }
 
+// The factor c for which the result's velocity of `body` is c times the course's result velocity
+// (v = c·(v0 + h·a0) for forward Euler), to rounding; 0 when there is none.
+double velocityFactor(const StageFit& fit, const MethodState& course_result) {
+  std::vector<int> map;
+  for (int k = 0; k <= fit.recorded + 1; ++k) map.push_back(k);
+  Form want;
+  if (!toForm(fit, methodForm(course_result, false, map, fit.recorded + 1), want)) return 0;
+  const std::vector<double>& recorded = recordedState(fit.record, fit.recorded + 1, kCloth).v;
+  std::vector<double> value(recorded.size(), 0.0), magnitude(recorded.size(), 0.0);
+  for (const Term& t : want) {
+    const std::vector<double>& col = column(fit, kCloth, t.gen);
+    if (col.size() != recorded.size()) return 0;
+    const double c = t.coef.value() * std::pow(fit.record.h, t.power);
+    for (std::size_t i = 0; i < col.size(); ++i) {
+      value[i] += c * col[i];
+      magnitude[i] += std::abs(c * col[i]);
+    }
+  }
+  double along = 0, norm = 0;
+  for (std::size_t i = 0; i < recorded.size(); ++i) {
+    along += recorded[i] * value[i];
+    norm += value[i] * value[i];
+  }
+  if (!(norm > 0)) return 0;
+  const double c = along / norm;
+  constexpr double kUnit = 1.0 / 16777216.0;  // 2^-24: the multiplication by c is one rounding more
+  for (std::size_t i = 0; i < recorded.size(); ++i)
+    if (!(std::abs(recorded[i] - c * value[i]) <=
+          kUlps * kUnit * (std::abs(recorded[i]) + std::abs(c) * magnitude[i])))
+      return 0;
+  return c;
+}
+
 }  // namespace
 
 SourceHints sourceHints(const std::string& source) {
@@ -172,6 +205,15 @@ StageExplanation explainStages(const StageFit& fit, int method, const SourceHint
   bool at_start = false;
   for (int q = 1; q <= m; ++q) at_start = at_start || fit.states[std::size_t(q - 1)].same_as == 0;
   const bool nothing_added = m > 0 && fit.result().same_as == m;
+  if (e.equals == "heun")
+    addCause(
+        e, "heun-method", true,
+        "the result averages the slopes at the start and at the prediction: x0 + h/2·(v0 + v1)");
+  // The predictor-corrector whose result (only) is the course's at h/2: the step advances h/2.
+  if ((method == 1 || method == 2) && e.departure.state == result && e.scale != 1 &&
+      sameStep(e.scale, 0.5) && !dt_changed)
+    addCause(e, "half-step-corrector", true,
+             "the result is the course's with a step of h/2: x0 + h/2·v1, v0 + h/2·a1");
   if (method == 2 && e.equals.rfind("implicit", 0) == 0)
     addCause(e, "midpoint-full-step", true, "the prediction takes the full step x0 + h·v0");
   if (method != 0 && is_explicit) {
@@ -306,6 +348,15 @@ StageExplanation explainStages(const StageFit& fit, int method, const SourceHint
     addCause(e, "no-reevaluation", true,
              "simulateOneStep() is called fewer times than the method needs");
 
+  // A result velocity scaled down as a whole (v *= 0.999: damping added by hand).
+  if (e.departure.state == result && e.departure.what == "velocity" && r.x.fits) {
+    const double c = velocityFactor(fit, course.result);
+    if (c > 0.5 && c < 1 && !sameStep(c, 1)) {
+      e.damping = c;
+      addCause(e, "velocity-damped", true,
+               "the result's velocity is " + number(c) + " times the course's");
+    }
+  }
   // The bodies: all at one stage, and all integrated.
   bool split = false;
   for (int q = 1; q <= m; ++q) {

@@ -82,6 +82,7 @@ std::string stageJson(const StageFit& fit, const StageExplanation& e) {
   out["accepted"] = e.accepted;
   out["equals"] = e.equals;
   out["scale"] = e.scale;
+  out["damping"] = e.damping;
   out["departure"] = {{"state", e.departure.state},
                       {"what", e.departure.what},
                       {"yours", e.departure.yours},

@@ -154,6 +154,13 @@ std::string stageText(const StageFit& fit, const StageExplanation& e) {
     out += subject + " the course's with a step of " + number(e.scale) + "·h (" +
            number(e.scale * fit.record.h) + " s) instead of h = " + number(fit.record.h) + " s.\n";
   }
+  if (e.damping != 1) {
+    std::vector<int> map;
+    for (int k = 0; k <= m + 1; ++k) map.push_back(k);
+    out += "The result velocity is " + number(e.damping) + "·(" +
+           text(methodForm(course.result, false, map, m + 1), m) +
+           "): the course's velocity scaled down, damping the course does not have.\n";
+  }
   if (!e.equals.empty()) {
     int n = 0;
     for (const MethodTable& t : methodTables())

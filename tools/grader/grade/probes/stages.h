@@ -187,7 +187,8 @@ struct StageExplanation {
   std::string accepted;  // the accepted variant's rubric switch it equals, or ""
   std::string equals;    // the known method the whole stub equals (table id), or ""
   std::string equals_name;
-  double scale = 1;  // a consistent factor on h (deltaTime changed), 1 = none
+  double scale = 1;    // a consistent factor on h (deltaTime changed), 1 = none
+  double damping = 1;  // the result's velocity times this factor (v *= c), 1 = none
   Departure departure;
   std::vector<StageCause> causes;
 };

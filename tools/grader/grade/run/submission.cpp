@@ -25,28 +25,6 @@ std::string lower(std::string s) {
   return s;
 }
 
-// Removes comments and string literals so a definition in a comment does not decide the edition.
-std::string codeOnly(const std::string& source) {
-  std::string out;
-  for (std::size_t i = 0; i < source.size(); ++i) {
-    if (source.compare(i, 2, "//") == 0) {
-      while (i < source.size() && source[i] != '\n') ++i;
-      out += '\n';
-    } else if (source.compare(i, 2, "/*") == 0) {
-      const std::size_t end = source.find("*/", i + 2);
-      i = end == std::string::npos ? source.size() : end + 1;
-      out += ' ';
-    } else if (source[i] == '"') {
-      for (++i; i < source.size() && source[i] != '"'; ++i)
-        if (source[i] == '\\') ++i;
-      out += "\"\"";
-    } else {
-      out += source[i];
-    }
-  }
-  return out;
-}
-
 // A walk is bounded: an archive of a whole home folder must not keep the grader busy.
 constexpr int kMaxDepth = 24;
 constexpr std::size_t kMaxEntries = 200000;
@@ -106,8 +84,8 @@ void walk(int dir_fd, const std::string& prefix, int depth, Walk& w) {
       continue;
     }
     if (wanted)
-      w.notes.push_back(*wanted + ": refused " + codeSpan(safeName(relative)) + ": " + kindOf(st.st_mode) +
-                        "; only regular files inside the submission are read");
+      w.notes.push_back(*wanted + ": refused " + codeSpan(safeName(relative)) + ": " +
+                        kindOf(st.st_mode) + "; only regular files inside the submission are read");
     else if (S_ISLNK(st.st_mode))
       w.other_links.push_back(relative);
     if (!S_ISDIR(st.st_mode)) continue;
@@ -354,7 +332,8 @@ SubmissionFiles findSubmissionFiles(const std::filesystem::path& dir, std::size_
       std::string text;
       for (std::size_t k = 0; k < others.size(); ++k)
         text += (k ? ", " : "") + codeSpan(safeName(others[k]));
-      files.notes.push_back(wanted + ": used " + codeSpan(safeName(chosen)) + "; also found " + text);
+      files.notes.push_back(wanted + ": used " + codeSpan(safeName(chosen)) + "; also found " +
+                            text);
       files.choices.push_back({wanted, chosen, others});
     }
     const bool bom = bytes.rfind("\xEF\xBB\xBF", 0) == 0;
@@ -370,10 +349,6 @@ SubmissionFiles findSubmissionFiles(const std::filesystem::path& dir, std::size_
   return files;
 }
 
-namespace {
-
-// `source` with every comment and string or character literal blanked (newlines kept, so line
-// numbers stay).
 std::string blankedCode(const std::string& source) {
   std::string out = source;
   const auto blank = [&](std::size_t from, std::size_t to) {
@@ -404,14 +379,15 @@ std::string blankedCode(const std::string& source) {
   return out;
 }
 
+namespace {
+
 int lineAt(const std::string& text, std::size_t offset) {
   return 1 + static_cast<int>(std::count(text.begin(), text.begin() + long(offset), '\n'));
 }
 
-}  // namespace
-
-StubLines stubLines(const std::string& source, const std::string& stub) {
-  const std::string code = blankedCode(source);
+// The offsets of the braces around the body of `stub` in `code` (blanked): {open, close}, close =
+// code.size() when the body never closes; {npos, npos} when the file defines no such function.
+std::pair<std::size_t, std::size_t> stubSpan(const std::string& code, const std::string& stub) {
   // "Spheres::collide(Cloth*)" -> the name, and what its parameters must look like
   const std::size_t paren = stub.find('(');
   const std::string name = stub.substr(0, paren);
@@ -436,8 +412,8 @@ StubLines stubLines(const std::string& source, const std::string& stub) {
       const bool wants_none = wanted_params.empty();
       const bool none = params.empty() || params == "void";
       if (wants_none != none) continue;
-      if (!wants_none && params.find(wanted_params.substr(0, wanted_params.find('*'))) ==
-                             std::string::npos)
+      if (!wants_none &&
+          params.find(wanted_params.substr(0, wanted_params.find('*'))) == std::string::npos)
         continue;
     }
     const std::size_t open = code.find_first_of("{;", k);
@@ -445,17 +421,33 @@ StubLines stubLines(const std::string& source, const std::string& stub) {
     int braces = 0;
     for (std::size_t e = open; e < code.size(); ++e) {
       braces += code[e] == '{' ? 1 : code[e] == '}' ? -1 : 0;
-      if (braces == 0) return {lineAt(code, open), lineAt(code, e)};
+      if (braces == 0) return {open, e};
     }
-    return {lineAt(code, open), lineAt(code, code.size())};
+    return {open, code.size()};
   }
-  return {};
+  return {std::string::npos, std::string::npos};
+}
+
+}  // namespace
+
+StubLines stubLines(const std::string& source, const std::string& stub) {
+  const std::string code = blankedCode(source);
+  const auto [open, close] = stubSpan(code, stub);
+  if (open == std::string::npos) return {};
+  return {lineAt(code, open), lineAt(code, close)};
+}
+
+std::string stubCode(const std::string& source, const std::string& stub) {
+  const std::string code = blankedCode(source);
+  const auto [open, close] = stubSpan(code, stub);
+  if (open == std::string::npos) return "";
+  return code.substr(open, close - open + 1);
 }
 
 int detectEdition(const SubmissionFiles& files, std::string& why) {
   const auto source = [&](const std::string& name) {
     auto it = files.bytes.find(name);
-    return it == files.bytes.end() ? std::string() : codeOnly(it->second);
+    return it == files.bytes.end() ? std::string() : blankedCode(it->second);
   };
   const std::string sphere = source("sphere.cpp");
   if (std::regex_search(sphere, std::regex(R"(Spheres\s*::\s*setVelocity\s*\()"))) {
