@@ -35,7 +35,8 @@ GradeReport sampleReport() {
       "State tried:\n\n- sphere 0: x (0.1, 0.42, -0.05)\n  - expected x (1, 2, 3) - actual "
       "x (1, 2, 4)\n\n```\n</pre><script>alert(2)</script>\n```\n\n**Likely cause** "
       "(`collision-normal-sign`): <the normal>";
-  fail.causes = {Cause{"collision-normal-sign", true, {}, {}, "<the normal>"}};
+  fail.causes = {Cause{"collision-normal-sign", true, {}, {}, "<the normal>",
+                       "<why> it points inwards", "n = -n;  // mistake <b>\nn = xs - xc;  // fix"}};
   report.tests = {pass, fail};
   report.stub_score = {{"Cloth::initializeSpring", 6}, {"Spheres::collide(Cloth*)", 0}};
   report.stub_max = {{"Cloth::initializeSpring", 6}, {"Spheres::collide(Cloth*)", 1.25}};
@@ -198,6 +199,12 @@ TEST(HtmlReport, StudentReportEscapesAndKeepsEveryCheck) {
   EXPECT_NE(page.find("connections at N = 25"), std::string::npos);
   EXPECT_NE(page.find("approaching pair"), std::string::npos);
   EXPECT_NE(page.find("<span class=\"gr-cause\">collision-normal-sign</span>"), std::string::npos);
+  // the cause's why and example, escaped, the example as a code block
+  EXPECT_NE(page.find("<p><strong>Why</strong>: &lt;why&gt; it points inwards</p>"),
+            std::string::npos);
+  EXPECT_NE(
+      page.find("<pre><code>n = -n;  // mistake &lt;b&gt;\nn = xs - xc;  // fix\n</code></pre>"),
+      std::string::npos);
   EXPECT_NE(page.find("<li>expected x (1, 2, 3) - actual x (1, 2, 4)</li>"), std::string::npos);
   // no whole run: no viewer and no script at all
   EXPECT_EQ(page.find("<script"), std::string::npos);
