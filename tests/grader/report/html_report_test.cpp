@@ -1,6 +1,6 @@
-// The grader's pages (tools/grader/grade/report/html_report.cpp): the student's report, the Gradescope
-// summary and the class overview escape what a student controls, keep every check, and are built
-// from the batch's files alone. In a real browser: tests/browser/.
+// The grader's pages (tools/grader/grade/report/html_report.cpp): the student's report, the
+// Gradescope summary and the class overview escape what a student controls, keep every check, and
+// are built from the batch's files alone. In a real browser: tests/browser/.
 #include "grader/grade/report/html_report.h"
 
 #include <gtest/gtest.h>
@@ -35,8 +35,13 @@ GradeReport sampleReport() {
       "State tried:\n\n- sphere 0: x (0.1, 0.42, -0.05)\n  - expected x (1, 2, 3) - actual "
       "x (1, 2, 4)\n\n```\n</pre><script>alert(2)</script>\n```\n\n**Likely cause** "
       "(`collision-normal-sign`): <the normal>";
-  fail.causes = {Cause{"collision-normal-sign", true, {}, {}, "<the normal>",
-                       "<why> it points inwards", "n = -n;  // mistake <b>\nn = xs - xc;  // fix"}};
+  fail.causes = {Cause{"collision-normal-sign",
+                       true,
+                       {},
+                       {},
+                       "<the normal>",
+                       "<why> it points inwards",
+                       "n = -n;  // mistake <b>\nn = xs - xc;  // fix"}};
   report.tests = {pass, fail};
   report.stub_score = {{"Cloth::initializeSpring", 6}, {"Spheres::collide(Cloth*)", 0}};
   report.stub_max = {{"Cloth::initializeSpring", 6}, {"Spheres::collide(Cloth*)", 1.25}};
@@ -139,15 +144,17 @@ TEST(HtmlReport, SketchLabelsNeverCoverEachOther) {
     const double y = std::stod(svg.substr(y_at));
     const std::size_t text_at = svg.find('>', at) + 1;
     const std::string text = svg.substr(text_at, svg.find('<', text_at) - text_at);
-    if (text.rfind("sphere ", 0) == 0 || text.rfind("particle ", 0) == 0) found.push_back({x, y, text});
+    if (text.rfind("sphere ", 0) == 0 || text.rfind("particle ", 0) == 0)
+      found.push_back({x, y, text});
   }
   EXPECT_GE(found.size(), 4u) << svg;  // all four in the overview at least
   for (std::size_t i = 0; i < found.size(); ++i)
     for (std::size_t j = i + 1; j < found.size(); ++j) {
       const Label& a = found[i];
       const Label& b = found[j];
-      const bool apart = a.x + 6.2 * double(a.text.size()) <= b.x || b.x + 6.2 * double(b.text.size()) <= a.x ||
-                         a.y <= b.y - 12 || b.y <= a.y - 12;
+      const bool apart = a.x + 6.2 * double(a.text.size()) <= b.x ||
+                         b.x + 6.2 * double(b.text.size()) <= a.x || a.y <= b.y - 12 ||
+                         b.y <= a.y - 12;
       EXPECT_TRUE(apart) << a.text << " at " << a.x << "," << a.y << " covers " << b.text << " at "
                          << b.x << "," << b.y;
     }

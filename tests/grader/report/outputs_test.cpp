@@ -23,12 +23,18 @@ namespace {
 std::string pagesEscape(const std::string& text) {
   std::string out;
   for (char c : text) {
-    if (c == '&') out += "&amp;";
-    else if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '"') out += "&quot;";
-    else if (c == '\'') out += "&#39;";
-    else out += c;
+    if (c == '&')
+      out += "&amp;";
+    else if (c == '<')
+      out += "&lt;";
+    else if (c == '>')
+      out += "&gt;";
+    else if (c == '"')
+      out += "&quot;";
+    else if (c == '\'')
+      out += "&#39;";
+    else
+      out += c;
   }
   return out;
 }
@@ -220,7 +226,8 @@ TEST(AllWriters, AnyBytesInValidUtf8OutAndTheReportSaysWhatWasDecoded) {
   }
   EXPECT_EQ(summaryLine(report).find('\n'), std::string::npos);
   EXPECT_EQ(
-      markdownReport(report).rfind("# Grading report: `sub\\x0A\xEF\xBF\xBD\\x1B]0;x\\x07`\n", 0), 0u)
+      markdownReport(report).rfind("# Grading report: `sub\\x0A\xEF\xBF\xBD\\x1B]0;x\\x07`\n", 0),
+      0u)
       << markdownReport(report);
 }
 
@@ -342,12 +349,14 @@ TEST(Quotes, ACauseQuotesOnlyTheLinesOfTheStubItGradesOncePerStub) {
   std::string integrator = "#include <cstdlib>\n" + test::readText(reference / "integrator.cpp");
   const std::string backup = "  for (const auto &p : particles) backup.push_back(*p);\n";
   const auto pattern = [](const std::string& name, bool crash) {
-    return "  auto " + name + " = particles[0]->position(0) - particles[0]->velocity(0);\n  (void)" +
-           name + ";\n" + (crash ? "  std::abort();\n" : "");
+    return "  auto " + name +
+           " = particles[0]->position(0) - particles[0]->velocity(0);\n  (void)" + name + ";\n" +
+           (crash ? "  std::abort();\n" : "");
   };
   std::size_t at = 0;
-  for (const auto& [name, crash] : {std::pair{"implicit_diff", false},
-                                    std::pair{"midpoint_diff", true}, std::pair{"rk4_diff", true}}) {
+  for (const auto& [name, crash] :
+       {std::pair{"implicit_diff", false}, std::pair{"midpoint_diff", true},
+        std::pair{"rk4_diff", true}}) {
     at = integrator.find(backup, at);
     ASSERT_NE(at, std::string::npos) << name;
     at += backup.size();
@@ -356,7 +365,8 @@ TEST(Quotes, ACauseQuotesOnlyTheLinesOfTheStubItGradesOncePerStub) {
   test::writeText(dir / "integrator.cpp", integrator);
   const auto line_of = [&](const std::string& name) {
     const std::size_t where = integrator.find("auto " + name);
-    return std::to_string(1 + std::count(integrator.begin(), integrator.begin() + long(where), '\n'));
+    return std::to_string(1 +
+                          std::count(integrator.begin(), integrator.begin() + long(where), '\n'));
   };
   const auto run = test::runCli("grade '" + dir.string() + "' --results '" + temp.file("r.json") +
                                 "' --no-whole-run --timeout 10 --cache-dir '" +
@@ -372,12 +382,14 @@ TEST(Quotes, ACauseQuotesOnlyTheLinesOfTheStubItGradesOncePerStub) {
       named[stub] += test["tags"][k] == "dangling-auto-expression";
   }
   for (const auto& [stub, own, others] :
-       {std::tuple{"MidpointEuler::integrate", "midpoint_diff", std::vector{"rk4_diff", "implicit_diff"}},
+       {std::tuple{"MidpointEuler::integrate", "midpoint_diff",
+                   std::vector{"rk4_diff", "implicit_diff"}},
         std::tuple{"RungeKuttaFourth::integrate", "rk4_diff",
                    std::vector{"midpoint_diff", "implicit_diff"}}}) {
     EXPECT_EQ(named[stub], 6) << stub;  // every test of the crashed stub names the cause
     EXPECT_EQ(occurrences(outputs[stub], "integrator.cpp:" + line_of(own) + ": auto " + own), 1u)
-        << stub << ":\n" << outputs[stub];  // its own line, once
+        << stub << ":\n"
+        << outputs[stub];  // its own line, once
     for (const char* other : others)
       EXPECT_EQ(outputs[stub].find(other), std::string::npos) << stub << " quotes " << other;
   }
@@ -391,9 +403,10 @@ TEST(Quotes, ACauseQuotesOnlyTheLinesOfTheStubItGradesOncePerStub) {
 // (`id`)"), in order.
 std::vector<std::string> markdownCauses(const std::string& text) {
   std::vector<std::string> ids;
-  static const std::regex cause(R"(\*\*(?:Likely cause|Possible cause \(a guess\))\*\* \(`([^`]+)`\))");
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), cause); it != std::sregex_iterator();
-       ++it)
+  static const std::regex cause(
+      R"(\*\*(?:Likely cause|Possible cause \(a guess\))\*\* \(`([^`]+)`\))");
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), cause);
+       it != std::sregex_iterator(); ++it)
     ids.push_back((*it)[1].str());
   return ids;
 }
@@ -417,18 +430,20 @@ TEST(OneTruth, EveryOutputNamesTheSameCausesAndTheSamePoints) {
       corpus / "2022/big5-shear-aliased-midpoint-first",
       corpus / "2024/swapped-damper-sign-per-body-midpoint",
       corpus / "2022/float-half-sixth-position-full-velocity"};
-  const std::string common = " --timeout 10 --cache-dir '" + std::string(CLOTHREF_GRADER_CACHE) + "'";
+  const std::string common =
+      " --timeout 10 --cache-dir '" + std::string(CLOTHREF_GRADER_CACHE) + "'";
   std::string batch_args = "grade";
   for (const auto& dir : dirs) batch_args += " '" + dir.string() + "'";
-  const auto batch = test::runCli(batch_args + " --out '" + temp.file("batch") + "' --jobs 2" + common);
+  const auto batch =
+      test::runCli(batch_args + " --out '" + temp.file("batch") + "' --jobs 2" + common);
   ASSERT_EQ(batch.exit_code, 0) << batch.output;
   const std::string csv = test::readText(temp.path() / "batch" / "grades.csv");
   const std::string index = test::readText(temp.path() / "batch" / "index.html");
   const std::string data_open = "<script type=\"application/json\" id=\"class-data\">";
   const std::size_t data_at = index.find(data_open);
   ASSERT_NE(data_at, std::string::npos);
-  const nlohmann::json overview = nlohmann::json::parse(
-      index.substr(data_at + data_open.size(), index.find("</script>", data_at) - data_at - data_open.size()));
+  const nlohmann::json overview = nlohmann::json::parse(index.substr(
+      data_at + data_open.size(), index.find("</script>", data_at) - data_at - data_open.size()));
   for (const auto& dir : dirs) {
     const std::string name = dir.filename().string();
     SCOPED_TRACE(name);
@@ -443,10 +458,11 @@ TEST(OneTruth, EveryOutputNamesTheSameCausesAndTheSamePoints) {
     const std::string md = test::readText(prefix + ".md");
     const std::string xml = test::readText(prefix + ".xml");
     const std::string html = test::readText(prefix + ".html");
-    const nlohmann::json row = nlohmann::json::parse(test::readText(temp.path() / "batch" / name / "row.json"));
+    const nlohmann::json row =
+        nlohmann::json::parse(test::readText(temp.path() / "batch" / name / "row.json"));
     // no scratch path of the grader in any of them (report.html embedded the whole run's)
     for (const std::string& text : {md, xml, html, results.dump(), batch_results.dump(),
-                                     test::readText(temp.path() / "batch" / name / "report.html")})
+                                    test::readText(temp.path() / "batch" / name / "report.html")})
       for (const char* scratch : {"clothref-grade-", "clothref-report-", "/src-cloth/"})
         EXPECT_EQ(text.find(scratch), std::string::npos) << scratch;
     // points: one rounding everywhere
@@ -455,7 +471,8 @@ TEST(OneTruth, EveryOutputNamesTheSameCausesAndTheSamePoints) {
     EXPECT_EQ(points(row["total"].get<double>()), total);
     EXPECT_NE(csv.find("\n" + name + ","), std::string::npos);
     const std::string csv_row = csv.substr(csv.find("\n" + name + ",") + 1);
-    EXPECT_NE(csv_row.substr(0, csv_row.find('\n')).find("," + total + ","), std::string::npos) << csv_row;
+    EXPECT_NE(csv_row.substr(0, csv_row.find('\n')).find("," + total + ","), std::string::npos)
+        << csv_row;
     EXPECT_NE(md.find("**Code score " + total + " / "), std::string::npos);
     EXPECT_NE(html.find("<strong>Score " + total + " / "), std::string::npos);
     EXPECT_NE(xml.find("<property name=\"score\" value=\"" + total + "\"/>"), std::string::npos);

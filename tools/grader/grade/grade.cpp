@@ -179,10 +179,11 @@ std::map<std::string, TestResult> unavailableStubs(const std::vector<UsedFile>& 
       t.output = used.name + " was not found in the submission; its stubs get no points.";
       t.addCause(cause::kMissingFile);
     } else {
-      t.output = used.name + (used.status == Verdict::LinkError
-                                  ? " compiles but does not link (a function it must define is "
-                                    "missing or defined twice):\n\n"
-                                  : " does not compile against the course's headers:\n\n") +
+      t.output = used.name +
+                 (used.status == Verdict::LinkError
+                      ? " compiles but does not link (a function it must define is "
+                        "missing or defined twice):\n\n"
+                      : " does not compile against the course's headers:\n\n") +
                  codeBlock(used.problem) +
                  (used.log.empty() ? std::string()
                                    : "\nThe whole log of " + used.name +
@@ -219,7 +220,8 @@ void addDanglingAutoCauses(const std::vector<UsedFile>& files, const fs::path& s
     // The copy in the scratch folder: the student's path is never opened again.
     std::ifstream in(scratch / ("src-" + used.name.substr(0, used.name.size() - 4)) / used.name,
                      std::ios::binary);
-    const std::string source((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string source((std::istreambuf_iterator<char>(in)),
+                             std::istreambuf_iterator<char>());
     const std::vector<SourceQuote> lines = autoExpressionLines(used.name, source);
     if (lines.empty()) continue;
     const auto stubs = stubsOfFile(used.name);

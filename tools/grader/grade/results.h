@@ -257,8 +257,8 @@ struct UsedFile {
 // A name found more than once below a submission: the copy used and the others (paths relative to
 // the submission, as found: the writers clean them).
 struct FileChoice {
-  std::string name;                // "cloth.cpp"
-  std::string used;                // "src/cloth.cpp"
+  std::string name;                 // "cloth.cpp"
+  std::string used;                 // "src/cloth.cpp"
   std::vector<std::string> others;  // "old/cloth.cpp", ...
   bool operator==(const FileChoice&) const = default;
 };
@@ -281,7 +281,7 @@ struct GradeReport {
   int edition = 2022;
   std::string edition_source;  // "detected: ..." or "forced with --edition"
   std::vector<UsedFile> files;
-  std::vector<Note> notes;  // BOM, CRLF, non-UTF-8 bytes, several candidates, ...
+  std::vector<Note> notes;          // BOM, CRLF, non-UTF-8 bytes, several candidates, ...
   std::vector<FileChoice> choices;  // names found more than once (the terminal says which was used)
   std::vector<TestResult> tests;
   double score = 0, max_score = 0;

@@ -11,10 +11,10 @@
 #include <vector>
 
 #include "grader/grade/catalogue.h"
-#include "grader/grade/run/child_process.h"
-#include "grader/grade/run/sanitize.h"
 #include "grader/grade/results.h"
 #include "grader/grade/rubric.h"
+#include "grader/grade/run/child_process.h"
+#include "grader/grade/run/sanitize.h"
 
 namespace clothref::grader {
 

@@ -6,10 +6,10 @@
 #include <map>
 #include <set>
 
-#include "grader/grade/run/build.h"
 #include "clothref/core/cloth.h"
 #include "grader/grade/cause_ids.h"
 #include "grader/grade/probes/util.h"
+#include "grader/grade/run/build.h"
 #include "grader/grade/text.h"
 
 namespace clothref::grader {
@@ -290,11 +290,11 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
       " cloth (your cloth.cpp compiled again with particlesPerEdge = " + std::to_string(n) +
       ").\n\n";
   if (context.probe_small.empty()) {
-    small.output = state + "Not run: " +
-                   (context.small_problem.empty()
-                        ? std::string("cloth.cpp is not yours")
-                        : "your cloth.cpp did not build at this size:\n\n" +
-                              codeBlock(context.small_problem));
+    small.output =
+        state + "Not run: " +
+        (context.small_problem.empty()
+             ? std::string("cloth.cpp is not yours")
+             : "your cloth.cpp did not build at this size:\n\n" + codeBlock(context.small_problem));
     small.fraction = 0;
   } else {
     util::ProbeFailure small_failure;

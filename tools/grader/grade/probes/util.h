@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "grader/bridge/probe_keys.h"
 #include "clothref/core/types.h"
+#include "grader/bridge/probe_keys.h"
 #include "grader/grade/cause_ids.h"
 #include "grader/grade/probes/probes.h"
 #include "grader/grade/text.h"
@@ -63,10 +63,12 @@ struct ProbeFailure {
 // Runs `request` in a fresh folder under the context's work dir, twice (runProbeTwice: the
 // answer depends on the files alone) unless `once` (information only, never scored). On failure
 // returns nullopt and fills `failure`.
-inline std::optional<probe::ProbeMessage> runGroup(
-    const ProbeContext& context, const std::filesystem::path& executable, const std::string& folder,
-    probe::ProbeMessage request, ProbeFailure& failure, ChildRun* run_out = nullptr,
-    bool once = false) {
+inline std::optional<probe::ProbeMessage> runGroup(const ProbeContext& context,
+                                                   const std::filesystem::path& executable,
+                                                   const std::string& folder,
+                                                   probe::ProbeMessage request,
+                                                   ProbeFailure& failure,
+                                                   ChildRun* run_out = nullptr, bool once = false) {
   const auto dir = context.work_dir / folder;
   std::filesystem::create_directories(dir);
   ChildRun run = once ? runProbe(executable, request, dir, context.limits)
@@ -79,8 +81,7 @@ inline std::optional<probe::ProbeMessage> runGroup(
     failure.text += " (" + run.grader_problem + ")";
   if (!run.stderr_head.empty()) failure.text += "\n\n" + codeBlock(run.stderr_head);
   // A crash, or two runs that differ: the instrumented build names the line, when it finds one.
-  const bool explain =
-      run.status == ChildStatus::Varies || failure.verdict == Verdict::Crashed;
+  const bool explain = run.status == ChildStatus::Varies || failure.verdict == Verdict::Crashed;
   if (explain && context.sanitizer && executable == context.probe) {
     const std::string report = context.sanitizer->explain(request, dir / "sanitize");
     failure.text += report.empty()
@@ -89,7 +90,8 @@ inline std::optional<probe::ProbeMessage> runGroup(
                           "nothing (the fault may depend on the optimisation level)."
                         : "\n\nThe grader rebuilt your files with AddressSanitizer and "
                           "UndefinedBehaviorSanitizer (`-g -O1`) and ran this probe again; "
-                          "their report:\n\n" + codeBlock(report);
+                          "their report:\n\n" +
+                              codeBlock(report);
   }
   return std::nullopt;
 }

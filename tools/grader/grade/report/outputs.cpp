@@ -214,7 +214,8 @@ std::string filesMarkdown(const GradeReport& report) {
     if (f.compiled || f.status == Verdict::MissingFile || f.problem.empty()) continue;
     out += "\n" + codeSpan(f.name) + ", the first error:\n\n" + codeBlock(f.problem);
     if (!f.log.empty())
-      out += "\nThe whole log of " + codeSpan(f.name) + " (its own messages):\n\n" + codeBlock(f.log);
+      out +=
+          "\nThe whole log of " + codeSpan(f.name) + " (its own messages):\n\n" + codeBlock(f.log);
   }
   return out;
 }
@@ -318,7 +319,8 @@ std::string junitXml(const GradeReport& given) {
   // block follows its text.
   std::string notes;
   for (const Note& note : report.notes)
-    notes += (notes.empty() ? "" : " | ") + note.text + (note.block.empty() ? "" : ": " + note.block);
+    notes +=
+        (notes.empty() ? "" : " | ") + note.text + (note.block.empty() ? "" : ": " + note.block);
   if (!notes.empty()) out << "<property name=\"notes\" value=\"" << xmlEscape(notes) << "\"/>";
   out << "</properties>\n";
   for (std::size_t k = 0; k < report.tests.size(); ++k) {
@@ -327,8 +329,8 @@ std::string junitXml(const GradeReport& given) {
         << "\">";
     if (t.informational) {
       // information only: never a failure, whatever it found
-      out << "<system-out>" << xmlEscape("information only, " + statusWord(t) + "\n\n" +
-                                         texts[k].markdown())
+      out << "<system-out>"
+          << xmlEscape("information only, " + statusWord(t) + "\n\n" + texts[k].markdown())
           << "</system-out></testcase>\n";
       continue;
     }

@@ -37,7 +37,7 @@ GradeReport cleaned(const GradeReport& report);
 struct TestText {
   std::string output;
   std::vector<std::string> likely, guesses;  // one Markdown block per cause
-  std::string markdown() const;               // all of it, as the Markdown writers show it
+  std::string markdown() const;              // all of it, as the Markdown writers show it
 };
 std::vector<TestText> testTexts(const GradeReport& cleaned_report);
 
