@@ -199,10 +199,10 @@ TEST(ViewCli, BoundedByWhatItReadsNotByTheHeadersClaim) {
     if (!pair.empty()) args.push_back(pair);
     args.insert(args.end(), {"-o", dir.file("view.html")});
     const auto start = std::chrono::steady_clock::now();
-    const test::ProcessResult run =
-        test::runCliDirect(args, dir.path(), "", 1ull << 30);
+    const test::ProcessResult run = test::runCliDirect(args, dir.path(), "", 1ull << 30);
     EXPECT_EQ(run.exit_code, 2) << run.stderr_text;
-    EXPECT_NE(run.stderr_text.find("trace ends after step 0"), std::string::npos) << run.stderr_text;
+    EXPECT_NE(run.stderr_text.find("trace ends after step 0"), std::string::npos)
+        << run.stderr_text;
     EXPECT_EQ(run.stderr_text.find("out of memory"), std::string::npos) << run.stderr_text;
     EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(5));
     EXPECT_LT(run.max_rss_kb, 200 * 1024) << "KiB";
@@ -224,8 +224,8 @@ TEST(ViewCli, DifferentStridesMeetAtTheirCommonSteps) {
     ASSERT_TRUE(data.is_object());
     EXPECT_EQ(data["recorded"], 3);
     EXPECT_EQ(data["difference"]["steps"], nlohmann::json({0, 6, 10}));
-    EXPECT_EQ(data["frame_steps"], std::string(frames) == "2" ? nlohmann::json({0, 10})
-                                                              : nlohmann::json({0, 6, 10}));
+    EXPECT_EQ(data["frame_steps"],
+              std::string(frames) == "2" ? nlohmann::json({0, 10}) : nlohmann::json({0, 6, 10}));
   }
 }
 

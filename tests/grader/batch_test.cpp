@@ -283,10 +283,13 @@ TEST(Cli, NamedOutputsAreCheckedBeforeGrading) {
   const struct {
     std::string args, message;
   } cases[] = {
-      {"--html /nonexistent-dir/r.html", "--html /nonexistent-dir/r.html: /nonexistent-dir: No such file or directory"},
-      {"--results '" + temp.file("link.json") + "'", "a symbolic link; outputs are never written through a link"},
+      {"--html /nonexistent-dir/r.html",
+       "--html /nonexistent-dir/r.html: /nonexistent-dir: No such file or directory"},
+      {"--results '" + temp.file("link.json") + "'",
+       "a symbolic link; outputs are never written through a link"},
       {"--report '" + temp.file("target.json/x.md") + "'", "Not a directory"},
-      {"--out '" + temp.file("b") + "' --csv /nonexistent-dir/g.csv", "/nonexistent-dir: No such file or directory"},
+      {"--out '" + temp.file("b") + "' --csv /nonexistent-dir/g.csv",
+       "/nonexistent-dir: No such file or directory"},
   };
   for (const auto& c : cases) {
     const auto start = std::chrono::steady_clock::now();
@@ -305,27 +308,31 @@ TEST(Cli, NamedOutputsAreCheckedBeforeGrading) {
 TEST(Cli, AFolderOfSeveralSubmissionsIsRefusedUnlessAskedFor) {
   TempDir temp;
   const fs::path subs = temp.path() / "subs";
-  for (const char* name : {"alice", "bob", "carol"})
-    materialise("2022/reference", subs / name);
-  const auto alone = runCli("grade '" + subs.string() + "' --results '" + temp.file("r.json") + "'");
+  for (const char* name : {"alice", "bob", "carol"}) materialise("2022/reference", subs / name);
+  const auto alone =
+      runCli("grade '" + subs.string() + "' --results '" + temp.file("r.json") + "'");
   EXPECT_EQ(alone.exit_code, 2) << alone.output;
-  EXPECT_NE(alone.output.find("3 submissions below " + subs.string() +
-                              " (alice, bob, carol): give them as " + subs.string() + "/* with --out"),
-            std::string::npos)
+  EXPECT_NE(
+      alone.output.find("3 submissions below " + subs.string() +
+                        " (alice, bob, carol): give them as " + subs.string() + "/* with --out"),
+      std::string::npos)
       << alone.output;
   EXPECT_EQ(std::count(alone.output.begin(), alone.output.end(), '\n'), 1) << alone.output;
   EXPECT_FALSE(fs::exists(temp.file("r.json")));
-  const auto asked = runCli("grade '" + subs.string() + "' --one-submission --no-whole-run --cache-dir '" +
-                            std::string(CLOTHREF_GRADER_CACHE) + "' --results '" + temp.file("r.json") + "'");
+  const auto asked =
+      runCli("grade '" + subs.string() + "' --one-submission --no-whole-run --cache-dir '" +
+             std::string(CLOTHREF_GRADER_CACHE) + "' --results '" + temp.file("r.json") + "'");
   EXPECT_EQ(asked.exit_code, 0) << asked.output;
   // the choice is said on the terminal: the first copy of each name, the others found
-  EXPECT_NE(asked.output.find("clothref grade: cloth.cpp: used alice/"), std::string::npos) << asked.output;
+  EXPECT_NE(asked.output.find("clothref grade: cloth.cpp: used alice/"), std::string::npos)
+      << asked.output;
   EXPECT_NE(asked.output.find("also found bob/"), std::string::npos) << asked.output;
   EXPECT_NE(asked.output.find(": 80 / 80, verdict graded"), std::string::npos) << asked.output;
   const auto batch = runCli("grade '" + subs.string() + "' --out '" + temp.file("batch") +
                             "' --no-whole-run --quiet");
   EXPECT_EQ(batch.exit_code, 0) << batch.output;
-  const nlohmann::json row = nlohmann::json::parse(readText(temp.path() / "batch" / "subs" / "row.json"));
+  const nlohmann::json row =
+      nlohmann::json::parse(readText(temp.path() / "batch" / "subs" / "row.json"));
   EXPECT_EQ(row["verdict"], "not-gradable");
   EXPECT_NE(row["problem"].get<std::string>().find("3 submissions below"), std::string::npos);
 }
@@ -444,9 +451,10 @@ TEST_F(Batch, NothingIsWrittenOrReadThroughALinkInsideTheBatchFolder) {
   EXPECT_NE(readText(out / "grades.csv").find("reference,2022"), std::string::npos);
   const nlohmann::json row = nlohmann::json::parse(readText(out / "linked" / "row.json"));
   EXPECT_EQ(row["verdict"], "not-gradable");
-  EXPECT_NE(row["problem"].get<std::string>().find("a symbolic link (a submission folder given as a "
-                                                   "link is not followed)"),
-            std::string::npos)
+  EXPECT_NE(
+      row["problem"].get<std::string>().find("a symbolic link (a submission folder given as a "
+                                             "link is not followed)"),
+      std::string::npos)
       << row.dump();
 }
 

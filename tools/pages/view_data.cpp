@@ -30,7 +30,7 @@ std::int64_t commonStepCount(const TraceHeader& a, const TraceHeader* b) {
   if (!b) return a.steps / a.stride + 1 + (a.steps % a.stride != 0 ? 1 : 0);
   const std::int64_t end = std::min(a.steps, b->steps);
   const Wide lcm = Wide(a.stride) / std::gcd(a.stride, b->stride) * b->stride;  // no overflow
-  std::int64_t n = std::int64_t(Wide(end) / lcm) + 1;        // the multiples of both, 0 first
+  std::int64_t n = std::int64_t(Wide(end) / lcm) + 1;  // the multiples of both, 0 first
   // a last step off the strides that both record (one step when both traces end there)
   const auto counts = [&](std::int64_t last) {
     return last <= end && Wide(last) % lcm != 0 && isRecorded(a, last) && isRecorded(*b, last);
@@ -203,8 +203,8 @@ nlohmann::ordered_json viewerData(const std::vector<TraceSource>& sources,
   std::vector<float> positions[2];
   std::vector<float> distance;
   std::vector<double> frame_t;
-  std::vector<float> largest;          // per common step, two traces only
-  std::vector<std::int64_t> common;    // the common steps read, in order
+  std::vector<float> largest;        // per common step, two traces only
+  std::vector<std::int64_t> common;  // the common steps read, in order
   nlohmann::ordered_json frame_steps = nlohmann::ordered_json::array();
   std::optional<std::int64_t> first_difference;
   double first_difference_t = 0, largest_difference = 0;
@@ -217,8 +217,7 @@ nlohmann::ordered_json viewerData(const std::vector<TraceSource>& sources,
       more[0] = readers[0]->next();
       if (two) more[1] = readers[1]->next();
     }
-    while (two && more[0] && more[1] &&
-           readers[0]->prefix().step != readers[1]->prefix().step) {
+    while (two && more[0] && more[1] && readers[0]->prefix().step != readers[1]->prefix().step) {
       const int behind = readers[0]->prefix().step < readers[1]->prefix().step ? 0 : 1;
       more[behind] = readers[std::size_t(behind)]->next();
     }
@@ -276,8 +275,8 @@ nlohmann::ordered_json viewerData(const std::vector<TraceSource>& sources,
   data["version"] = 1;
   data["traces"] = nlohmann::ordered_json::array();
   for (std::size_t r = 0; r < readers.size(); ++r)
-    data["traces"].push_back(
-        traceInfo(*readers[r], options.labels.empty() ? labelOf(sources[r].name) : options.labels[r]));
+    data["traces"].push_back(traceInfo(
+        *readers[r], options.labels.empty() ? labelOf(sources[r].name) : options.labels[r]));
   data["bodies"] = nlohmann::ordered_json::array();
   for (const TraceBody& body : a.bodies)
     data["bodies"].push_back({{"name", body.name}, {"particles", body.particles}});

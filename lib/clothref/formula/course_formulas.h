@@ -24,21 +24,49 @@ inline T dot4(const T* a, const T* b) {
   return (a[0] * b[0] + a[2] * b[2]) + (a[1] * b[1] + a[3] * b[3]);
 }
 
+// The course's spring force and contact as the default variants of the two formulas below:
+// every switch is off at compile time, so the library's code is the course's line for line. The
+// grader models a student's mistake as a variant with one switch on (SpringVariant and
+// ContactVariant, tools/grader/grade/probes/formula_variants.h, read at run time); its tests prove
+// the no-mistake variant bit-equal to the library's stubs.
+struct CourseSpring {
+  static constexpr bool spring_negated = false;       // k_s (|d| - rest) with the wrong sign
+  static constexpr bool damper_negated = false;       // the damper term with the wrong sign
+  static constexpr bool no_damper = false;            // no damper term
+  static constexpr bool damper_unnormalised = false;  // damper along d, not n
+};
+struct CourseContact {
+  static constexpr bool normal_flipped = false;     // n points from a to b
+  static constexpr bool touching_skipped = false;   // penetration 0 is no contact
+  static constexpr bool separating_pushed = false;  // an impulse also when the bodies separate
+  static constexpr bool full_velocity = false;      // J from v_rel, not its normal part
+  static constexpr bool undivided = false;          // J not divided by 1/m_a + 1/m_b
+  static constexpr bool massless_fixed = false;     // the mass formula, 1/m = 0 read as m = 0
+  static constexpr bool moves_a = true;             // the correction moves body a
+  static constexpr bool moves_b = true;             // ... and body b
+};
+
 // Stub 2's per-spring force (Cloth::computeSpringForce): with d = x_s - x_e and n = d / |d|,
 //   F = n (k_d ((v_s - v_e) . n) + k_s (|d| - rest))
 // the force on the start particle is -F, on the end particle +F (newtons).
-template <typename T>
+template <typename T, typename Variant = CourseSpring>
 inline void springForce(const T* x_start, const T* x_end, const T* v_start, const T* v_end,
-                        T rest_length, T spring_coef, T damper_coef, T force[4]) {
-  T n[4];
-  for (int k = 0; k < 4; ++k) n[k] = x_start[k] - x_end[k];
+                        T rest_length, T spring_coef, T damper_coef, T force[4],
+                        const Variant& variant = {}) {
+  T d[4], n[4];
+  for (int k = 0; k < 4; ++k) d[k] = n[k] = x_start[k] - x_end[k];
   const T squared = dot4(n, n);
   const T length = std::sqrt(squared);
   if (squared > T(0))  // Eigen's normalize leaves a zero vector alone
     for (int k = 0; k < 4; ++k) n[k] = n[k] / length;
   T relative[4];
   for (int k = 0; k < 4; ++k) relative[k] = v_start[k] - v_end[k];
-  const T scalar = damper_coef * dot4(relative, n) + spring_coef * (length - rest_length);
+  T damper = damper_coef * dot4(relative, variant.damper_unnormalised ? d : n);
+  T spring = spring_coef * (length - rest_length);
+  if (variant.spring_negated) spring = -spring;
+  if (variant.damper_negated) damper = -damper;
+  if (variant.no_damper) damper = T(0);
+  const T scalar = damper + spring;
   for (int k = 0; k < 4; ++k) force[k] = n[k] * scalar;
 }
 
@@ -49,14 +77,17 @@ inline void springForce(const T* x_start, const T* x_end, const T* v_start, cons
 //   n (v_rel . n) first: -(1 + e) n s would round differently when e != 0);
 //   then the positions move apart by (penetration n) correction each.
 // Returns whether the bodies were in contact.
-template <typename T>
+template <typename T, typename Variant = CourseContact>
 inline bool resolveContact(T* x_a, T* v_a, T inverse_mass_a, T* x_b, T* v_b, T inverse_mass_b,
-                           T contact_distance, T restitution, T correction) {
+                           T contact_distance, T restitution, T correction,
+                           const Variant& variant = {}) {
   T n[4];
   for (int k = 0; k < 4; ++k) n[k] = x_a[k] - x_b[k];
+  if (variant.normal_flipped)
+    for (int k = 0; k < 4; ++k) n[k] = -n[k];
   const T squared = dot4(n, n);
   const T penetration = contact_distance - std::sqrt(squared);
-  if (penetration < T(0)) return false;
+  if (penetration < T(0) || (variant.touching_skipped && penetration <= T(0))) return false;
   if (squared > T(0)) {
     const T length = std::sqrt(squared);
     for (int k = 0; k < 4; ++k) n[k] = n[k] / length;
@@ -64,19 +95,32 @@ inline bool resolveContact(T* x_a, T* v_a, T inverse_mass_a, T* x_b, T* v_b, T i
   T relative[4];
   for (int k = 0; k < 4; ++k) relative[k] = v_a[k] - v_b[k];
   const T approach = dot4(relative, n);
-  if (approach < T(0)) {
+  if (variant.massless_fixed && (approach < T(0) || variant.separating_pushed)) {
+    // The textbook exchange of normal velocities u with masses, a fixed body's m = 0 as massless.
+    const T m_a = inverse_mass_a > T(0) ? T(1) / inverse_mass_a : T(0);
+    const T m_b = inverse_mass_b > T(0) ? T(1) / inverse_mass_b : T(0);
+    const T normal_a = dot4(v_a, n), normal_b = dot4(v_b, n);
+    for (int k = 0; k < 4; ++k) {
+      const T u_a = n[k] * normal_a, u_b = n[k] * normal_b;
+      const T new_a = (m_a * u_a + m_b * u_b + m_b * restitution * (u_b - u_a)) / (m_a + m_b);
+      const T new_b = (m_a * u_a + m_b * u_b + m_a * restitution * (u_a - u_b)) / (m_a + m_b);
+      v_a[k] += new_a - u_a;
+      v_b[k] += new_b - u_b;
+    }
+  } else if (approach < T(0) || variant.separating_pushed) {
     const T factor = -(T(1) + restitution);
     const T denominator = inverse_mass_b + inverse_mass_a;
     for (int k = 0; k < 4; ++k) {
-      const T impulse = (factor * (n[k] * approach)) / denominator;
+      const T normal = variant.full_velocity ? relative[k] : n[k] * approach;
+      const T impulse = variant.undivided ? factor * normal : (factor * normal) / denominator;
       v_a[k] += impulse * inverse_mass_a;
       v_b[k] -= impulse * inverse_mass_b;
     }
   }
   for (int k = 0; k < 4; ++k) {
     const T shift = (penetration * n[k]) * correction;
-    x_a[k] += shift;
-    x_b[k] -= shift;
+    if (variant.moves_a) x_a[k] += shift;
+    if (variant.moves_b) x_b[k] -= shift;
   }
   return true;
 }

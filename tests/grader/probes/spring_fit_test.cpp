@@ -23,7 +23,10 @@ enum class Change {
   NoDamper,
   Unnormalised,
   OneEnd,
-  MassNotInverse
+  MassNotInverse,
+  WholeSign,  // the ends or += and -= swapped: both terms flipped
+  EndOnly,
+  UnnormalisedTwice  // k_d ((v_s - v_e) . d) d
 };
 
 // A 6 x 6 cloth of the course's grid, perturbed and moving (`moving` false: at rest), with fixed,
@@ -51,14 +54,21 @@ SpringCase makeCase(Change change, bool moving, unsigned seed) {
   for (const auto& s : c.springs) {
     const std::size_t i = std::size_t(s.start), j = std::size_t(s.end);
     const float ks = change == Change::SpringHalved ? float(kSpring / 2)
-                     : change == Change::SpringSign ? float(-kSpring)
-                                                    : float(kSpring);
-    const float kd = change == Change::DamperSign ? float(-kDamper)
-                     : change == Change::NoDamper ? 0.0f
-                                                  : float(kDamper);
+                     : change == Change::SpringSign || change == Change::WholeSign ? float(-kSpring)
+                                                                                   : float(kSpring);
+    const float kd = change == Change::DamperSign || change == Change::WholeSign ? float(-kDamper)
+                     : change == Change::NoDamper                                ? 0.0f
+                                                                                 : float(kDamper);
     float force[4];
-    formula::springForce(x[i].data(), x[j].data(), v[i].data(), v[j].data(), float(s.rest), ks,
-                         change == Change::Unnormalised ? 0.0f : kd, force);
+    formula::springForce(
+        x[i].data(), x[j].data(), v[i].data(), v[j].data(), float(s.rest), ks,
+        change == Change::Unnormalised || change == Change::UnnormalisedTwice ? 0.0f : kd, force);
+    if (change == Change::UnnormalisedTwice) {  // k_d (dv . d) d
+      float d[4], dv[4];
+      for (int k = 0; k < 4; ++k) d[k] = x[i][k] - x[j][k], dv[k] = v[i][k] - v[j][k];
+      const float along = formula::dot4(dv, d);
+      for (int k = 0; k < 4; ++k) force[k] += d[k] * (kd * along);
+    }
     if (change == Change::Unnormalised) {  // k_d (dv . d) along the unit direction
       float d[4], dv[4];
       for (int k = 0; k < 4; ++k) d[k] = x[i][k] - x[j][k], dv[k] = v[i][k] - v[j][k];
@@ -70,7 +80,7 @@ SpringCase makeCase(Change change, bool moving, unsigned seed) {
       return change == Change::MassNotInverse ? m : m == 0 ? 0.0f : 1.0f / m;
     };
     for (int k = 0; k < 4; ++k) {
-      a[i][k] -= force[k] * weight(i);
+      if (change != Change::EndOnly) a[i][k] -= force[k] * weight(i);
       if (change != Change::OneEnd) a[j][k] += force[k] * weight(j);
     }
   }
@@ -112,7 +122,10 @@ TEST(SpringFit, EachChangeIsNamed) {
                   {Change::NoDamper, "missing-damper", "k_d fits as 0"},
                   {Change::Unnormalised, "damper-not-normalised", "unit direction"},
                   {Change::OneEnd, "force-one-end-only", "start particle"},
-                  {Change::MassNotInverse, "mass-not-inverse", "not the inverse mass"}};
+                  {Change::MassNotInverse, "mass-not-inverse", "not the inverse mass"},
+                  {Change::WholeSign, "spring-force-sign", "the whole force has the wrong sign"},
+                  {Change::EndOnly, "force-one-end-only", "end particle"},
+                  {Change::UnnormalisedTwice, "damper-not-normalised", "in both places"}};
   for (const auto& e : expected) {
     const auto findings = explain(e.change);
     ASSERT_EQ(findings.size(), 1u) << e.cause;

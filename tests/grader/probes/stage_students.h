@@ -15,18 +15,18 @@ using Bodies = std::vector<Particles<T>*>;
 
 enum class Pc {  // implicit (fraction 1) and midpoint (1/2) shapes
   Course,
-  VNew,                // corrector: v first, then x with the new v (accepted)
+  VNew,                 // corrector: v first, then x with the new v (accepted)
   SymplecticPredictor,  // predictor: v first, then x (accepted)
-  AliasDifference,     // `auto tmp = particles;` then x += (v - tmp.v) dt, v += (a - tmp.a) dt
-  SimulateFirst,       // `auto tmp = particles;` simulateOneStep() at the start, then explicit
-  AliasLive,           // pointer backup: the corrector starts from the live (predicted) state
-  NoSimulate,          // predictor and corrector, simulateOneStep() never called
-  Locals,              // the prediction kept in local matrices, evaluated at the start
-  Heun,                // corrector averages the start and predicted derivatives
-  HalfCorrector,       // the corrector also takes h/2 (a local h)
-  HardCodedStep,       // deltaTime /= 2 for the prediction, then deltaTime = 1e-4f
-  PerBody,             // each body alone: predict, simulate, correct
-  FirstOnly            // particles[0] only
+  AliasDifference,      // `auto tmp = particles;` then x += (v - tmp.v) dt, v += (a - tmp.a) dt
+  SimulateFirst,        // `auto tmp = particles;` simulateOneStep() at the start, then explicit
+  AliasLive,            // pointer backup: the corrector starts from the live (predicted) state
+  NoSimulate,           // predictor and corrector, simulateOneStep() never called
+  Locals,               // the prediction kept in local matrices, evaluated at the start
+  Heun,                 // corrector averages the start and predicted derivatives
+  HalfCorrector,        // the corrector also takes h/2 (a local h)
+  HardCodedStep,        // deltaTime /= 2 for the prediction, then deltaTime = 1e-4f
+  PerBody,              // each body alone: predict, simulate, correct
+  FirstOnly             // particles[0] only
 };
 
 template <typename T>
@@ -46,12 +46,14 @@ void predictCorrect(const Bodies<T>& ps, const std::function<void()>& sim, T& dt
   Bodies<T> bodies = ps;
   if (kind == Pc::FirstOnly) bodies.resize(1);
   std::vector<M> x0, v0, a0;
-  for (auto* p : bodies) x0.push_back(p->position), v0.push_back(p->velocity), a0.push_back(p->acceleration);
+  for (auto* p : bodies)
+    x0.push_back(p->position), v0.push_back(p->velocity), a0.push_back(p->acceleration);
   if (kind == Pc::SimulateFirst) {
     const Bodies<T> tmp = ps;  // "backup"
     sim();
     for (std::size_t i = 0; i < bodies.size(); ++i) {
-      bodies[i]->position += bodies[i]->velocity * dt + (bodies[i]->velocity - tmp[i]->velocity) * dt;
+      bodies[i]->position +=
+          bodies[i]->velocity * dt + (bodies[i]->velocity - tmp[i]->velocity) * dt;
       bodies[i]->velocity += bodies[i]->acceleration * dt;
     }
     return;
@@ -116,21 +118,21 @@ void predictCorrect(const Bodies<T>& ps, const std::function<void()>& sim, T& dt
 
 enum class Rk {
   Course,
-  Quarter,         // weights 1/4 each
-  IntegerSixth,    // (1 / 6) * (k1 + 2 k2 + 2 k3 + k4): nothing added
-  MixedFinal,      // the position adds the velocity k's
-  MixedStage,      // stage 2's position adds kv1 / 2
-  K4xInVelocity,   // the velocity update adds k4x (h·v3) instead of k4v
-  FromCurrent,     // stages from the live (previous stage) state, result from the backup
-  Alias,           // Eigen::Ref backup: stages and result from the live state
+  Quarter,          // weights 1/4 each
+  IntegerSixth,     // (1 / 6) * (k1 + 2 k2 + 2 k3 + k4): nothing added
+  MixedFinal,       // the position adds the velocity k's
+  MixedStage,       // stage 2's position adds kv1 / 2
+  K4xInVelocity,    // the velocity update adds k4x (h·v3) instead of k4v
+  FromCurrent,      // stages from the live (previous stage) state, result from the backup
+  Alias,            // Eigen::Ref backup: stages and result from the live state
   FromNewVelocity,  // stage x = x0 + dt c (v0 + kv c)
-  Discarded,       // result x0 + k1
-  FromV0,          // every position k from v0
-  PerBody,         // each body with its own stages
-  ThreeEighths,    // the 3/8-rule Runge-Kutta method
-  KaoStyle,        // stages from the previous stage, weights 1/8 3/8 3/8 1/8
-  HalfStep,        // deltaTime /= 2 at the start, never restored
-  HalfStepQuarter  // deltaTime /= 2 and weights 1/4
+  Discarded,        // result x0 + k1
+  FromV0,           // every position k from v0
+  PerBody,          // each body with its own stages
+  ThreeEighths,     // the 3/8-rule Runge-Kutta method
+  KaoStyle,         // stages from the previous stage, weights 1/8 3/8 3/8 1/8
+  HalfStep,         // deltaTime /= 2 at the start, never restored
+  HalfStepQuarter   // deltaTime /= 2 and weights 1/4
 };
 
 template <typename T>
@@ -157,8 +159,12 @@ void rungeKutta(const Bodies<T>& ps, const std::function<void()>& sim, T& dt, Rk
       Particles<T>& p = *ps[i];
       const M bx = live ? M(p.position) : x0[i], bv = live ? M(p.velocity) : v0[i];
       if (kind == Rk::ThreeEighths) {
-        const M dx = s == 0 ? M(kx[0][i] * third) : s == 1 ? M(kx[1][i] - kx[0][i] * third) : M(kx[0][i] - kx[1][i] + kx[2][i]);
-        const M dv = s == 0 ? M(kv[0][i] * third) : s == 1 ? M(kv[1][i] - kv[0][i] * third) : M(kv[0][i] - kv[1][i] + kv[2][i]);
+        const M dx = s == 0   ? M(kx[0][i] * third)
+                     : s == 1 ? M(kx[1][i] - kx[0][i] * third)
+                              : M(kx[0][i] - kx[1][i] + kx[2][i]);
+        const M dv = s == 0   ? M(kv[0][i] * third)
+                     : s == 1 ? M(kv[1][i] - kv[0][i] * third)
+                              : M(kv[0][i] - kv[1][i] + kv[2][i]);
         p.position = x0[i] + dx;
         p.velocity = v0[i] + dv;
         continue;
@@ -174,7 +180,8 @@ void rungeKutta(const Bodies<T>& ps, const std::function<void()>& sim, T& dt, Rk
   }
   for (std::size_t i = 0; i < n; ++i) {
     Particles<T>& p = *ps[i];
-    const M bx = kind == Rk::Alias ? M(p.position) : x0[i], bv = kind == Rk::Alias ? M(p.velocity) : v0[i];
+    const M bx = kind == Rk::Alias ? M(p.position) : x0[i],
+            bv = kind == Rk::Alias ? M(p.velocity) : v0[i];
     const auto& kxs = kind == Rk::MixedFinal ? kv : kx;
     if (kind == Rk::Discarded) {
       p.position = bx + kx[0][i];

@@ -82,15 +82,16 @@ TEST_P(Handwritten, StageExplanationsAgreeWithTheLabels) {
     for (const auto& cause : stages["causes"])
       (cause["likely"].get<bool>() ? likely : possible).insert(cause["id"].get<std::string>());
     std::string said;
-    if (stages["course"].get<bool>()) said = "the course's method, stage by stage";
+    if (stages["course"].get<bool>())
+      said = "the course's method, stage by stage";
     else if (!stages["accepted"].get<std::string>().empty())
       said = "accepted variant `" + stages["accepted"].get<std::string>() + "`";
     else {
       const auto& d = stages["departure"];
       const int state = d["state"], recorded = stages["recorded"];
       const std::string where = state > recorded ? "result" : "evaluation " + std::to_string(state);
-      said = where + " " + d["what"].get<std::string>() + ": yours " + d["yours"].get<std::string>() +
-             ", course's " + d["course"].get<std::string>();
+      said = where + " " + d["what"].get<std::string>() + ": yours " +
+             d["yours"].get<std::string>() + ", course's " + d["course"].get<std::string>();
       if (!stages["equals"].get<std::string>().empty())
         said += "; equals `" + stages["equals"].get<std::string>() + "`";
       if (stages["scale"].get<double>() != 1.0)
@@ -101,10 +102,12 @@ TEST_P(Handwritten, StageExplanationsAgreeWithTheLabels) {
              joined(likely) + " | " + joined(possible) + " |\n";
     if (full)
       EXPECT_TRUE(stages["course"].get<bool>() || !stages["accepted"].get<std::string>().empty())
-          << kStubs[method] << ": labelled full\n" << stages["text"].get<std::string>();
+          << kStubs[method] << ": labelled full\n"
+          << stages["text"].get<std::string>();
     else
       EXPECT_FALSE(stages["course"].get<bool>() || !stages["accepted"].get<std::string>().empty())
-          << kStubs[method] << ": labelled as losing points\n" << stages["text"].get<std::string>();
+          << kStubs[method] << ": labelled as losing points\n"
+          << stages["text"].get<std::string>();
     for (const auto& id : likely)
       EXPECT_TRUE(!full && allowed.count(id))
           << kStubs[method] << ": likely " << id << " contradicts the label\n"

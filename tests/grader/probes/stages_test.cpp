@@ -1,9 +1,9 @@
 // The stage fit (grade/probes/stages.h) on records made here, as the probe driver makes them: a
-// 4 x 4 cloth (corners fixed, k_s = 500, k_d = 5, randomly perturbed) and two spheres under gravity,
-// no contact, one step of dt = 0.01 of a stub written the way students write (stage_students.h),
-// in float and in double. Every course method is recognised with its rationals, each accepted
-// variant as accepted, each known mistake with its catalogue id and its first departure, two
-// mistakes at once as both.
+// 4 x 4 cloth (corners fixed, k_s = 500, k_d = 5, randomly perturbed) and two spheres under
+// gravity, no contact, one step of dt = 0.01 of a stub written the way students write
+// (stage_students.h), in float and in double. Every course method is recognised with its rationals,
+// each accepted variant as accepted, each known mistake with its catalogue id and its first
+// departure, two mistakes at once as both.
 #include "grader/grade/probes/stages.h"
 
 #include <gtest/gtest.h>
@@ -101,8 +101,16 @@ struct Expect {
          int departure_ = 0, std::string what_ = "", std::set<std::string> likely_ = {},
          std::set<std::string> possible_ = {}, std::string yours_ = "", std::string theirs_ = "",
          bool fits_ = true)
-      : course(course_), accepted(accepted_), equals(equals_), departure(departure_), what(what_),
-        likely(likely_), possible(possible_), yours(yours_), theirs(theirs_), fits(fits_) {}
+      : course(course_),
+        accepted(accepted_),
+        equals(equals_),
+        departure(departure_),
+        what(what_),
+        likely(likely_),
+        possible(possible_),
+        yours(yours_),
+        theirs(theirs_),
+        fits(fits_) {}
   bool course;
   std::string accepted, equals;
   int departure;  // the state of the first departure (0 none; recorded + 1 the result)
@@ -155,40 +163,71 @@ const std::vector<Case>& cases() {
   using E = st::Ex;
   static const std::vector<Case> all = {
       make("explicit", 0, ex(E::Course), {true, "", "explicit"}),
-      make("explicit symplectic", 0, ex(E::Symplectic), {false, "explicit-as-symplectic", "symplectic"}),
+      make("explicit symplectic", 0, ex(E::Symplectic),
+           {false, "explicit-as-symplectic", "symplectic"}),
       make("explicit + a dt^2/2", 0, ex(E::Taylor),
-           {false, "", "", 1, "position", {"position-uses-acceleration"}, {}, "x0 + h·v0 + h²/2·a0", "x0 + h·v0"}),
+           {false,
+            "",
+            "",
+            1,
+            "position",
+            {"position-uses-acceleration"},
+            {},
+            "x0 + h·v0 + h²/2·a0",
+            "x0 + h·v0"}),
       make("explicit, x only", 0, ex(E::PositionOnly),
            {false, "", "", 1, "velocity", {"velocity-not-integrated"}, {}, "v0", "v0 + h·a0"}),
       make("explicit, v only", 0, ex(E::VelocityOnly),
            {false, "", "", 1, "position", {"position-not-integrated"}, {}, "x0", "x0 + h·v0"}),
-      make("explicit, particles[0]", 0, ex(E::FirstOnly), {false, "", "", 1, "spheres", {"only-first-body"}}),
+      make("explicit, particles[0]", 0, ex(E::FirstOnly),
+           {false, "", "", 1, "spheres", {"only-first-body"}}),
       make("implicit", 1, pc(1, P::Course), {true, "", "implicit"}),
-      make("implicit v new", 1, pc(1, P::VNew), {false, "implicit-corrector-v-new", "implicit-v-new"}),
+      make("implicit v new", 1, pc(1, P::VNew),
+           {false, "implicit-corrector-v-new", "implicit-v-new"}),
       make("implicit symplectic predictor", 1, pc(1, P::SymplecticPredictor),
            {false, "symplectic-predictor", "implicit-symplectic-predictor"}),
       make("implicit alias difference (chen)", 1, pc(1, P::AliasDifference),
-           {false, "", "explicit", 2, "position", {"backup-alias"}, {"no-reevaluation"}, "x0 + h·v0", "x0 + h·v1"},
+           {false,
+            "",
+            "explicit",
+            2,
+            "position",
+            {"backup-alias"},
+            {"no-reevaluation"},
+            "x0 + h·v0",
+            "x0 + h·v1"},
            alias()),
       make("implicit alias difference, no pattern", 1, pc(1, P::AliasDifference),
            {false, "", "explicit", 2, "position", {"no-reevaluation"}, {"backup-alias"}}),
       make("implicit simulate first (the issue's words)", 1, pc(1, P::SimulateFirst),
-           {false, "", "explicit", 1, "position", {"no-reevaluation"}, {}, "x0", "x0 + h·v0"}, alias()),
+           {false, "", "explicit", 1, "position", {"no-reevaluation"}, {}, "x0", "x0 + h·v0"},
+           alias()),
       make("implicit alias live (lee)", 1, pc(1, P::AliasLive),
            {false, "", "", 2, "position", {"backup-alias"}, {}, "x1 + h·v1", "x0 + h·v1"}),
       make("implicit without simulateOneStep", 1, pc(1, P::NoSimulate),
            {false, "", "symplectic", 1, "calls", {"no-reevaluation"}}),
       make("implicit Heun", 1, pc(1, P::Heun),
            {false, "", "heun", 2, "position", {}, {}, "x0 + h/2·v0 + h/2·v1", "x0 + h·v1"}),
-      make("implicit per body", 1, pc(1, P::PerBody), {false, "", "", 1, "spheres", {"per-body-loop"}}),
-      make("implicit particles[0]", 1, pc(1, P::FirstOnly), {false, "", "", 1, "spheres", {"only-first-body"}}),
+      make("implicit per body", 1, pc(1, P::PerBody),
+           {false, "", "", 1, "spheres", {"per-body-loop"}}),
+      make("implicit particles[0]", 1, pc(1, P::FirstOnly),
+           {false, "", "", 1, "spheres", {"only-first-body"}}),
       make("midpoint", 2, pc(0.5, P::Course), {true, "", "midpoint"}),
       make("midpoint symplectic predictor", 2, pc(0.5, P::SymplecticPredictor),
            {false, "symplectic-predictor", "midpoint-symplectic-predictor"}),
       make("midpoint full step", 2, pc(1, P::Course),
-           {false, "", "implicit", 1, "position", {"midpoint-full-step"}, {}, "x0 + h·v0", "x0 + h/2·v0"}),
+           {false,
+            "",
+            "implicit",
+            1,
+            "position",
+            {"midpoint-full-step"},
+            {},
+            "x0 + h·v0",
+            "x0 + h/2·v0"}),
       make("midpoint 1 / 2", 2, pc(0, P::Course),
-           {false, "", "explicit", 1, "position", {"integer-division-half"}, {"no-reevaluation"}}, half()),
+           {false, "", "explicit", 1, "position", {"integer-division-half"}, {"no-reevaluation"}},
+           half()),
       make("midpoint zero half step, no pattern", 2, pc(0, P::Course),
            {false, "", "explicit", 1, "position", {"no-reevaluation"}}),
       make("midpoint prediction in locals", 2, pc(0.5, P::Locals),
@@ -197,33 +236,89 @@ const std::vector<Case>& cases() {
            {false, "", "", 2, "position", {}, {}, "x0 + h/2·v1", "x0 + h·v1"}),
       make("midpoint deltaTime = 1e-4f", 2, pc(0.5, P::HardCodedStep),
            {false, "", "", 2, "position", {"deltatime-mutated"}, {}, "", "x0 + h·v1", false}),
-      make("midpoint per body", 2, pc(0.5, P::PerBody), {false, "", "", 1, "spheres", {"per-body-loop"}}),
+      make("midpoint per body", 2, pc(0.5, P::PerBody),
+           {false, "", "", 1, "spheres", {"per-body-loop"}}),
       make("rk4", 3, rk(R::Course), {true, "", "rk4"}),
       make("rk4 quarter weights", 3, rk(R::Quarter),
-           {false, "", "", 4, "position", {"rk4-wrong-weights"}, {}, "x0 + h/4·(v0 + v1 + v2 + v3)",
+           {false,
+            "",
+            "",
+            4,
+            "position",
+            {"rk4-wrong-weights"},
+            {},
+            "x0 + h/4·(v0 + v1 + v2 + v3)",
             "x0 + h/6·(v0 + 2·v1 + 2·v2 + v3)"}),
       make("rk4 1 / 6", 3, rk(R::IntegerSixth),
-           {false, "", "", 4, "position", {"integer-division-rk4"}, {"rk4-wrong-weights"}, "x0"}, sixth()),
+           {false, "", "", 4, "position", {"integer-division-rk4"}, {"rk4-wrong-weights"}, "x0"},
+           sixth()),
       make("rk4 zero weights, no pattern", 3, rk(R::IntegerSixth),
            {false, "", "", 4, "position", {"rk4-wrong-weights"}}),
       make("rk4 kv in the position", 3, rk(R::MixedFinal),
-           {false, "", "", 4, "position", {"rk4-mixed-increments"}, {}, "x0 + h/6·(a0 + 2·a1 + 2·a2 + a3)"}),
+           {false,
+            "",
+            "",
+            4,
+            "position",
+            {"rk4-mixed-increments"},
+            {},
+            "x0 + h/6·(a0 + 2·a1 + 2·a2 + a3)"}),
       make("rk4 k4x in the velocity", 3, rk(R::K4xInVelocity),
-           {false, "", "", 4, "velocity", {"rk4-mixed-increments"}, {}, "v0 + h/6·v3 + h/6·(a0 + 2·a1 + 2·a2)"}),
+           {false,
+            "",
+            "",
+            4,
+            "velocity",
+            {"rk4-mixed-increments"},
+            {},
+            "v0 + h/6·v3 + h/6·(a0 + 2·a1 + 2·a2)"}),
       make("rk4 kv in stage 2", 3, rk(R::MixedStage),
-           {false, "", "", 2, "position", {"rk4-mixed-increments"}, {}, "x0 + h/2·a1", "x0 + h/2·v1"}),
+           {false,
+            "",
+            "",
+            2,
+            "position",
+            {"rk4-mixed-increments"},
+            {},
+            "x0 + h/2·a1",
+            "x0 + h/2·v1"}),
       make("rk4 stages from the current state (liu)", 3, rk(R::FromCurrent),
-           {false, "", "", 2, "position", {"rk4-stage-not-from-backup"}, {}, "x1 + h/2·v1", "x0 + h/2·v1"}),
+           {false,
+            "",
+            "",
+            2,
+            "position",
+            {"rk4-stage-not-from-backup"},
+            {},
+            "x1 + h/2·v1",
+            "x0 + h/2·v1"}),
       make("rk4 Eigen::Ref backup (tang)", 3, rk(R::Alias),
            {false, "", "", 2, "position", {"backup-alias"}, {"rk4-stage-not-from-backup"}}),
       make("rk4 stage from the new velocity (yang)", 3, rk(R::FromNewVelocity),
-           {false, "", "", 1, "position", {"rk4-stage-from-wrong-increment"}, {}, "x0 + h/2·v1", "x0 + h/2·v0"}),
+           {false,
+            "",
+            "",
+            1,
+            "position",
+            {"rk4-stage-from-wrong-increment"},
+            {},
+            "x0 + h/2·v1",
+            "x0 + h/2·v0"}),
       make("rk4 k1 only (lee)", 3, rk(R::Discarded),
            {false, "", "explicit", 4, "position", {"rk4-stages-discarded"}, {}, "x0 + h·v0"}),
       make("rk4 position k from v0 (chang)", 3, rk(R::FromV0),
-           {false, "", "", 2, "position", {"rk4-mixed-increments"}, {}, "x0 + h/2·v0", "x0 + h/2·v1"}),
+           {false,
+            "",
+            "",
+            2,
+            "position",
+            {"rk4-mixed-increments"},
+            {},
+            "x0 + h/2·v0",
+            "x0 + h/2·v1"}),
       make("rk4 per body", 3, rk(R::PerBody), {false, "", "", 1, "spheres", {"per-body-loop"}}),
-      make("rk4 3/8 rule", 3, rk(R::ThreeEighths), {false, "", "rk4-three-eighths", 1, "position", {}}),
+      make("rk4 3/8 rule", 3, rk(R::ThreeEighths),
+           {false, "", "rk4-three-eighths", 1, "position", {}}),
       make("rk4 previous stages and 3/8 weights (kao)", 3, rk(R::KaoStyle),
            {false, "", "", 2, "position", {"rk4-stage-not-from-backup", "rk4-wrong-weights"}}),
       make("rk4 deltaTime /= 2", 3, rk(R::HalfStep),
@@ -239,8 +334,10 @@ double worst_residual = 0;  // over every state that fits, of the cases checked 
 template <typename T>
 void checkCase(const Case& c, double step) {
   const StageRecord r = [&] {
-    if constexpr (std::is_same_v<T, float>) return record<float>(c.f, step);
-    else return record<double>(c.d, step);
+    if constexpr (std::is_same_v<T, float>)
+      return record<float>(c.f, step);
+    else
+      return record<double>(c.d, step);
   }();
   const StageFit fit = fitStages(r);
   const StageExplanation e = explainStages(fit, c.method, c.hints);
@@ -259,7 +356,9 @@ void checkCase(const Case& c, double step) {
   EXPECT_EQ(e.course, x.course);
   EXPECT_EQ(e.accepted, x.accepted);
   EXPECT_EQ(e.equals, x.equals);
-  const int departure = x.departure == 0 ? 0 : x.departure > fit.recorded + 1 ? fit.recorded + 1 : x.departure;
+  const int departure = x.departure == 0                 ? 0
+                        : x.departure > fit.recorded + 1 ? fit.recorded + 1
+                                                         : x.departure;
   if (!x.course && x.accepted.empty()) {
     EXPECT_EQ(e.departure.state, departure);
     EXPECT_EQ(e.departure.what, x.what);
@@ -305,7 +404,8 @@ TEST(StageFit, NeighbouringRationalsMissByManyTolerances) {
     for (int q = 1; q <= int(fit.states.size()); ++q) {
       const BodyState& at = recordedState(fit.record, q, kCloth);
       for (bool position : {true, false}) {
-        const Fitted& f = position ? fit.states[std::size_t(q - 1)].x : fit.states[std::size_t(q - 1)].v;
+        const Fitted& f =
+            position ? fit.states[std::size_t(q - 1)].x : fit.states[std::size_t(q - 1)].v;
         const std::vector<double>& recorded = position ? at.x : at.v;
         ASSERT_TRUE(f.fits) << c.name;
         worst_right = std::max(worst_right, formResidual(fit, kCloth, f.form, recorded));
@@ -344,12 +444,15 @@ bool contains(const std::string& text, const std::string& part) {
 TEST(StageText, SaysWhereTheStubLeavesTheCourseInItsTerms) {
   const std::string issue = explained("implicit simulate first (the issue's words)");
   EXPECT_TRUE(contains(issue, "Evaluation 1 position: yours x0, the course's x0 + h·v0.")) << issue;
-  EXPECT_TRUE(contains(issue, "This is forward Euler (the course's explicit Euler): "
-                              "simulateOneStep() once, at the start state."))
+  EXPECT_TRUE(contains(issue,
+                       "This is forward Euler (the course's explicit Euler): "
+                       "simulateOneStep() once, at the start state."))
       << issue;
   const std::string chen = explained("implicit alias difference (chen)");
-  EXPECT_TRUE(contains(chen, "The result position: yours x0 + h·v0, the course's x0 + h·v1.")) << chen;
-  EXPECT_TRUE(contains(chen, "simulateOneStep() once, and what it computes is never used.")) << chen;
+  EXPECT_TRUE(contains(chen, "The result position: yours x0 + h·v0, the course's x0 + h·v1."))
+      << chen;
+  EXPECT_TRUE(contains(chen, "simulateOneStep() once, and what it computes is never used."))
+      << chen;
   const std::string full = explained("midpoint full step");
   EXPECT_TRUE(contains(full, "This is the course's implicit Euler")) << full;
   const std::string kao = explained("rk4 previous stages and 3/8 weights (kao)");
@@ -361,7 +464,8 @@ TEST(StageText, SaysWhereTheStubLeavesTheCourseInItsTerms) {
   const std::string ho = explained("midpoint corrector h/2");
   EXPECT_TRUE(contains(ho, "That state is the course's with a step of 0.5·h")) << ho;
   const std::string body = explained("midpoint per body");
-  EXPECT_TRUE(contains(body, "| evaluation 1, spheres | at their start | at their start |")) << body;
+  EXPECT_TRUE(contains(body, "| evaluation 1, spheres | at their start | at their start |"))
+      << body;
 }
 
 // More calls than are recorded: the count is said, the first 16 are fitted.
@@ -388,8 +492,12 @@ TEST(StageForms, RationalsAndTextAreExact) {
   EXPECT_EQ(Rational(2, -4), Rational(-1, 2));
   EXPECT_EQ(Rational(1, 6) + Rational(1, 3), Rational(1, 2));
   EXPECT_EQ(text(Rational(1, 6) * Rational(3)), "1/2");
-  CourseForm rk4{'x', 0, {{Rational(1, 6), 1, 'v', 0}, {Rational(1, 3), 1, 'v', 1},
-                          {Rational(1, 3), 1, 'v', 2}, {Rational(1, 6), 1, 'v', 3}}};
+  CourseForm rk4{'x',
+                 0,
+                 {{Rational(1, 6), 1, 'v', 0},
+                  {Rational(1, 3), 1, 'v', 1},
+                  {Rational(1, 3), 1, 'v', 2},
+                  {Rational(1, 6), 1, 'v', 3}}};
   EXPECT_EQ(text(rk4, 3), "x0 + h/6·(v0 + 2·v1 + 2·v2 + v3)");
   CourseForm taylor{'x', 0, {{Rational(1), 1, 'v', 0}, {Rational(1, 2), 2, 'a', 0}}};
   EXPECT_EQ(text(taylor, 0), "x0 + h·v0 + h²/2·a0");

@@ -52,7 +52,8 @@ TEST(FirstCompilerError, QuotesOnlyTheStudentsFileAndHeadersWhateverTheSpelling)
   const std::string work = "/tmp/clothref-grade-1-2";
   const auto first = [&](const std::string& location) {
     return firstCompilerError("In file included from " + work + "/src-cloth/cloth.cpp:1:\n" +
-                                  location + ":1:1: error: 'root' does not name a type\n"
+                                  location +
+                                  ":1:1: error: 'root' does not name a type\n"
                                   "    1 | root:x:0:0:root:/root:/bin/bash\n",
                               site(work));
   };
@@ -80,9 +81,11 @@ TEST(CompilerLog, EveryMessageOfTheStudentsFileAndNoOtherFile) {
       "/src-cloth/cloth.cpp:12:3: error: 'addSpring' was not declared\n"
       "   12 |   addSpring(1, 2);\n"
       "      |   ^~~~~~~~~\n"
-      "In file included from " + work + "/src-cloth/cloth.cpp:1:\n" + work +
+      "In file included from " +
+      work + "/src-cloth/cloth.cpp:1:\n" + work +
       "/src-cloth/../../../etc/secret.h:3:1: error: 'SECRET_TEXT' does not name a type\n"
-      "    3 | SECRET_TEXT\n" + work +
+      "    3 | SECRET_TEXT\n" +
+      work +
       "/src-cloth/cloth.cpp:20:7: error: expected ';' before '}' token\n"
       "   20 |   x = 1\n";
   const std::string whole = compilerLog(log, site(work));
@@ -138,8 +141,8 @@ TEST(CompilerLog, ARelativeIncludeOfAHostFileIsNotQuotedInAGrade) {
   test::TempDir temp;
   const fs::path host = temp.path() / "host.txt";
   test::writeText(host, "HOST_SECRET_LINE\n");
-  fs::permissions(temp.path(), fs::perms::owner_all | fs::perms::others_exec |
-                                   fs::perms::group_exec);
+  fs::permissions(temp.path(),
+                  fs::perms::owner_all | fs::perms::others_exec | fs::perms::group_exec);
   fs::permissions(host, fs::perms::owner_read | fs::perms::group_read | fs::perms::others_read);
   const fs::path reference = fs::path(CLOTHREF_SOURCE_DIR) / "tools/grader/reference/2022";
   const fs::path submission = temp.path() / "sub";

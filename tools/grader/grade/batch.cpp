@@ -37,7 +37,7 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr const char* kRowFile = "row.json";
-constexpr const char* kCacheDir = ".cache";  // no submission name starts with a dot
+constexpr const char* kCacheDir = ".cache";    // no submission name starts with a dot
 constexpr std::size_t kMaxRowBytes = 1 << 20;  // a marker is a few hundred bytes
 // The writers already give valid UTF-8 (text.h); should a byte slip through, it becomes U+FFFD
 // rather than an exception that loses the submission's row.
@@ -90,7 +90,9 @@ struct Fd {
   }
 };
 
-std::string errnoText(const fs::path& path) { return safeName(path.string()) + ": " + std::strerror(errno); }
+std::string errnoText(const fs::path& path) {
+  return safeName(path.string()) + ": " + std::strerror(errno);
+}
 
 // BATCHDIR's folder of a submission, created when missing. It must be a folder, not a link: a link
 // planted there would have the batch write (as root) wherever it points.
@@ -115,8 +117,8 @@ void writeNoFollow(int dir_fd, const fs::path& folder, const std::string& name,
   static std::atomic<unsigned long> counter{0};
   const std::string temporary =
       name + ".tmp" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
-  Fd out(::openat(dir_fd, temporary.c_str(),
-                  O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644));
+  Fd out(::openat(dir_fd, temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC,
+                  0644));
   if (out.fd < 0) throw InputError(errnoText(folder / name));
   for (std::size_t done = 0; done < text.size();) {
     const ssize_t n = ::write(out.fd, text.data() + done, text.size() - done);
@@ -137,7 +139,8 @@ void writeNoFollow(int dir_fd, const fs::path& folder, const std::string& name,
 
 // The bytes of `name` in the folder `dir_fd`, read without following a link; nullopt when there is
 // none, it is a link or not a regular file, or it is larger than `max_bytes`.
-std::optional<std::string> readNoFollow(int dir_fd, const std::string& name, std::size_t max_bytes) {
+std::optional<std::string> readNoFollow(int dir_fd, const std::string& name,
+                                        std::size_t max_bytes) {
   Fd in(::openat(dir_fd, name.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC));
   struct stat st {};
   if (in.fd < 0 || ::fstat(in.fd, &st) != 0 || !S_ISREG(st.st_mode) ||
@@ -187,8 +190,7 @@ struct Outputs {
   std::string report_html;  // empty when not graded
 };
 
-Outputs notGradable(const BatchEntry& entry, Verdict verdict,
-                    const std::string& problem) {
+Outputs notGradable(const BatchEntry& entry, Verdict verdict, const std::string& problem) {
   Outputs out;
   out.row.name = entry.name;
   out.row.dir = safeName(entry.dir.string());
@@ -207,8 +209,8 @@ Outputs notGradable(const BatchEntry& entry, Verdict verdict,
   results["visibility"] = "visible";
   results["tests"] = nlohmann::ordered_json::array();
   out.results_json = results.dump(2, ' ', false, kReplace) + "\n";
-  out.report_md = "# Grading report: " + codeSpan(out.row.dir) + "\n\n**" + verdictId(verdict) +
-                  "**. " + text;
+  out.report_md =
+      "# Grading report: " + codeSpan(out.row.dir) + "\n\n**" + verdictId(verdict) + "**. " + text;
   return out;
 }
 
@@ -217,7 +219,8 @@ Outputs gradeOne(const BatchEntry& entry, const BatchOptions& options, const Gra
     if (!options.one_submission) {
       const std::vector<std::string> several = submissionsBelow(entry.dir);
       if (!several.empty())
-        return notGradable(entry, Verdict::NotGradable, severalSubmissionsProblem(entry.dir, several));
+        return notGradable(entry, Verdict::NotGradable,
+                           severalSubmissionsProblem(entry.dir, several));
     }
     nlohmann::ordered_json whole_run_view;  // the pictures of report.html (html_report.h)
     GradeReport report = gradeWithWholeRun(entry.dir, grade, whole_run_view);
@@ -390,8 +393,9 @@ std::string batchCsv(const std::vector<BatchRow>& rows, bool header) {
     seconds.setf(std::ios::fixed);
     seconds.precision(1);
     seconds << row.seconds;
-    out += "," + number(row.score) + "," + number(row.max_score) + "," + csvField(verdictId(row.verdict)) +
-           "," + csvField(row.isolation) + "," + seconds.str() + "\n";
+    out += "," + number(row.score) + "," + number(row.max_score) + "," +
+           csvField(verdictId(row.verdict)) + "," + csvField(row.isolation) + "," + seconds.str() +
+           "\n";
   }
   return out;
 }
@@ -410,7 +414,8 @@ BatchSummary runBatch(const std::vector<fs::path>& dirs, const BatchOptions& opt
   std::error_code error;
   fs::create_directories(options.out_dir, error);
   if (error || !fs::is_directory(options.out_dir, error))
-    throw InputError(safeName(options.out_dir.string()) + ": cannot create the batch folder (--out)" +
+    throw InputError(safeName(options.out_dir.string()) +
+                     ": cannot create the batch folder (--out)" +
                      (error ? ": " + error.message() : std::string()));
   // BATCHDIR itself the user named (a link to it is theirs); inside it nothing is followed.
   const Fd batch(::open(options.out_dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
@@ -444,8 +449,8 @@ BatchSummary runBatch(const std::vector<fs::path>& dirs, const BatchOptions& opt
     }
     // Not graded, half graded, or asked to regrade: without its marker the folder counts as
     // not graded until the new row is written, whatever happens in between.
-    const Fd folder(::openat(batch.fd, entry.name.c_str(),
-                             O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC));
+    const Fd folder(
+        ::openat(batch.fd, entry.name.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC));
     if (folder.fd >= 0) ::unlinkat(folder.fd, kRowFile, 0);
     pending.push_back(&entry);
   }
@@ -487,7 +492,8 @@ BatchSummary runBatch(const std::vector<fs::path>& dirs, const BatchOptions& opt
         const Fd folder = openFolder(batch.fd, options.out_dir, entry.name);
         writeNoFollow(folder.fd, path, "results.json", out.results_json);
         writeNoFollow(folder.fd, path, "report.md", out.report_md);
-        if (!out.report_html.empty()) writeNoFollow(folder.fd, path, "report.html", out.report_html);
+        if (!out.report_html.empty())
+          writeNoFollow(folder.fd, path, "report.html", out.report_html);
         writeNoFollow(folder.fd, path, kRowFile,
                       rowJson(out.row).dump(2, ' ', false, kReplace) + "\n");  // the marker, last
       } catch (...) {

@@ -35,9 +35,9 @@ struct BatchEntry {
 // Names for `dirs`, sorted by name: the last path component, made safe for a folder name
 // (characters other than letters, digits, '.', '_', '-' become '_'; a leading '.' gets a '_'
 // before it, and so does a name of the batch's own outputs: index.html, grades.csv and their
-// shard forms index-k-of-n.html, grades-k-of-n.csv); when two submissions would get the same name, both take their parent folder's name
-// too ("2022-reference"), and so on. The same directory given twice counts once. Throws
-// InputError when names cannot be made unique.
+// shard forms index-k-of-n.html, grades-k-of-n.csv); when two submissions would get the same name,
+// both take their parent folder's name too ("2022-reference"), and so on. The same directory given
+// twice counts once. Throws InputError when names cannot be made unique.
 std::vector<BatchEntry> batchEntries(const std::vector<std::filesystem::path>& dirs);
 
 // The entries of `shard`: of N sorted entries, indices [(k-1)N/n, kN/n). Shards are disjoint,
@@ -74,15 +74,15 @@ struct BatchOptions {
   std::filesystem::path out_dir;  // BATCHDIR
   std::filesystem::path csv;      // default BATCHDIR/grades.csv (BATCHDIR/grades-k-of-n.csv)
   bool csv_header = true;
-  int jobs = 1;           // submissions graded at once
-  int cores = 0;          // cores to share between them; 0 = std::thread::hardware_concurrency()
-  Shard shard;            // which part of the sorted submissions this run grades
-  bool regrade = false;   // grade again even when row.json exists
-  bool quiet = false;     // no progress on stderr
+  int jobs = 1;          // submissions graded at once
+  int cores = 0;         // cores to share between them; 0 = std::thread::hardware_concurrency()
+  Shard shard;           // which part of the sorted submissions this run grades
+  bool regrade = false;  // grade again even when row.json exists
+  bool quiet = false;    // no progress on stderr
   // Grade a folder that holds several whole submissions as one (else it is not gradable: the
   // folder names them; run/submission.h, submissionsBelow).
   bool one_submission = false;
-  GradeOptions grade;     // per submission (probe_jobs and toolchain.jobs are set from cores/jobs)
+  GradeOptions grade;  // per submission (probe_jobs and toolchain.jobs are set from cores/jobs)
 };
 
 struct BatchSummary {

@@ -3,230 +3,23 @@
 // touching exactly, unequal masses) compared with clothref's contact code, plus momentum.
 // Three spheres are added once; unused ones and the rest of the cloth are parked far away, so
 // each case touches only the bodies it names and the loop order cannot matter.
+#include <algorithm>
 #include <functional>
 #include <iterator>
 #include <set>
 
 #include "clothref/core/cloth.h"
 #include "clothref/core/spheres.h"
+#include "grader/grade/probes/cause_evidence.h"
+#include "grader/grade/probes/collide_cases.h"
+#include "grader/grade/probes/contact_fit.h"
+#include "grader/grade/probes/formula_variants.h"
 #include "grader/grade/probes/util.h"
 
 namespace clothref::grader {
 namespace {
 
-constexpr int kN = 25;
-const float kRadii[] = {0.5f, 0.5f, 1.0f};
-
-enum class ContactMistake {
-  None,
-  NoApproachCheck,
-  RestitutionFull,
-  CorrectionSphereOnly,
-  CorrectionOtherOnly,
-  NoCorrection,
-  FixedMassless,
-  FirstSphereOnly,
-  NormalSign,
-  TouchingSkipped,
-  RestitutionZero,
-  RestitutionOne,
-  PairTwice,
-  ImpulseNotDivided
-};
-
-struct State {
-  Cloth<float> cloth;
-  Spheres<float> spheres;
-};
-
-// One contact in the course's form with one mistake switched on. a = sphere i, b = body j.
-void contact(Particles<float>& a, int i, Particles<float>& b, int j, float reach, float e,
-             ContactMistake m) {
-  Vec4<float> n = a.position.col(i) - b.position.col(j);
-  if (m == ContactMistake::NormalSign) n = -n;
-  const float penetration = reach - n.norm();
-  if (penetration < 0 || (m == ContactMistake::TouchingSkipped && penetration <= 0)) return;
-  n.normalize();
-  if (m == ContactMistake::RestitutionZero) e = 0;
-  if (m == ContactMistake::RestitutionOne) e = 1;
-  const Vec4<float> relative = a.velocity.col(i) - b.velocity.col(j);
-  const float approach = relative.dot(n);
-  if (approach < 0 || m == ContactMistake::NoApproachCheck) {
-    if (m == ContactMistake::FixedMassless) {
-      // The textbook mass formula with mass 0 meaning massless.
-      const float ma = a.mass[i], mb = b.mass[j];
-      const Vec4<float> ua = n * a.velocity.col(i).dot(n), ub = n * b.velocity.col(j).dot(n);
-      const Vec4<float> va = (ma * ua + mb * ub + mb * e * (ub - ua)) / (ma + mb);
-      const Vec4<float> vb = (ma * ua + mb * ub + ma * e * (ua - ub)) / (ma + mb);
-      a.velocity.col(i) += va - ua;
-      b.velocity.col(j) += vb - ub;
-    } else {
-      const Vec4<float> u =
-          m == ContactMistake::RestitutionFull ? relative : Vec4<float>(n * approach);
-      const Vec4<float> impulse =
-          m == ContactMistake::ImpulseNotDivided
-              ? Vec4<float>(-(1 + e) * u)
-              : Vec4<float>((-(1 + e) * u) / (b.inverse_mass[j] + a.inverse_mass[i]));
-      a.velocity.col(i) += impulse * a.inverse_mass[i];
-      b.velocity.col(j) -= impulse * b.inverse_mass[j];
-    }
-  }
-  if (m == ContactMistake::NoCorrection) return;
-  const Vec4<float> c = (penetration * n) * 0.15f;
-  if (m != ContactMistake::CorrectionOtherOnly) a.position.col(i) += c;
-  if (m != ContactMistake::CorrectionSphereOnly) b.position.col(j) -= c;
-}
-
-void collideVariant(State& s, bool sphere_sphere, float e, ContactMistake m) {
-  auto& sp = s.spheres.particles;
-  const int count = m == ContactMistake::FirstSphereOnly ? 1 : s.spheres.size();
-  if (!sphere_sphere) {
-    for (int i = 0; i < count; ++i)
-      for (int j = 0; j < s.cloth.particles.size(); ++j)
-        contact(sp, i, s.cloth.particles, j, s.spheres.radius[i], e, m);
-    return;
-  }
-  for (int i = 0; i < count; ++i)
-    for (int j = m == ContactMistake::PairTwice ? 0 : i + 1; j < s.spheres.size(); ++j)
-      if (j != i) contact(sp, i, sp, j, s.spheres.radius[i] + s.spheres.radius[j], e, m);
-}
-
-State baseState(int edition) {
-  State s;
-  s.cloth.particles = initializeVertex<float>(kN, 2.0f, edition == 2024 ? 1.0f : 0.0f, 1.0f);
-  for (int i = 0; i < kN; ++i)
-    for (int j = 0; j < kN; ++j)  // parked 50 m below, 3 m apart: nothing touches them
-      s.cloth.particles.position.col(i * kN + j) =
-          Vec4<float>(-36.0f + 3.0f * float(j), -50.0f, -36.0f + 3.0f * float(i), 1.0f);
-  for (int corner : {0, kN - 1, kN * (kN - 1), kN * kN - 1})
-    setMass(s.cloth.particles, corner, 0.0f);
-  for (int k = 0; k < 3; ++k)
-    addSphere(s.spheres, Vec4<float>(100.0f * float(k + 1), 100, 0, 1), kRadii[k], 1000.0f);
-  return s;
-}
-
-// Rows of the check tables (checkTable()): one case each, then momentum over them all.
-enum ClothCheck {
-  kClothApproaching,
-  kClothSeparating,
-  kSeveralSpheres,
-  kSphereAtIndex2,
-  kFixedParticle,
-  kClothDeep,
-  kClothTouching,
-  kClothMomentum
-};
-enum SphereCheck {
-  kSpheresApproaching,
-  kSpheresSeparating,
-  kChain,
-  kPairWithoutSphere0,
-  kSpheresDeep,
-  kSpheresTouching,
-  kUnequalMasses,
-  kSpheresMomentum
-};
-
-struct Case {
-  int check;  // a row of the check table
-  State state;
-  std::vector<int> spheres, particles;  // the bodies the case places (for the report)
-  bool free_bodies = true;              // momentum must be conserved
-};
-
-void place(State& s, bool sphere, int index, Vec4<float> x, Vec4<float> v) {
-  auto& p = sphere ? s.spheres.particles : s.cloth.particles;
-  p.position.col(index) = x;
-  p.velocity.col(index) = v;
-}
-Vec4<float> P(float x, float y, float z) { return Vec4<float>(x, y, z, 1); }
-Vec4<float> V(float x, float y, float z) { return Vec4<float>(x, y, z, 0); }
-
-std::vector<Case> clothCases(int edition) {
-  std::vector<Case> cases;
-  const auto make = [&](ClothCheck check, std::vector<int> spheres, std::vector<int> particles,
-                        const std::function<void(State&)>& setup, bool free_bodies = true) {
-    Case c{check, baseState(edition), std::move(spheres), std::move(particles), free_bodies};
-    setup(c.state);
-    cases.push_back(std::move(c));
-  };
-  make(kClothApproaching, {0}, {312}, [](State& s) {
-    place(s, true, 0, P(0.1f, 0.42f, -0.05f), V(0.3f, -2, 0.1f));
-    place(s, false, 312, P(0, 0, 0), V(0.2f, 0.5f, -0.1f));
-  });
-  make(kClothSeparating, {0}, {312}, [](State& s) {
-    place(s, true, 0, P(0.05f, 0.45f, 0), V(0, 1.5f, 0.2f));
-    place(s, false, 312, P(0, 0, 0), V(0, -0.3f, 0));
-  });
-  make(kSeveralSpheres, {0, 1, 2}, {100, 200, 312}, [](State& s) {
-    place(s, false, 100, P(-5, 0, 0), V(0, 0, 0));
-    place(s, false, 200, P(5, 0, 0), V(0, 0.1f, 0));
-    place(s, false, 312, P(0, 0, 5), V(0, 0, 0));
-    place(s, true, 0, P(-4.95f, 0.4f, 0), V(0, -1, 0));
-    place(s, true, 1, P(4.9f, 0.45f, 0.05f), V(0.5f, -1, 0));
-    place(s, true, 2, P(0, 0.9f, 5.2f), V(0, -0.5f, 0.3f));
-  });
-  make(kSphereAtIndex2, {2}, {312}, [](State& s) {
-    place(s, true, 2, P(0.3f, 0.85f, 0), V(0, -1, 0));
-    place(s, false, 312, P(0, 0, 0), V(0, 0, 0));
-  });
-  make(
-      kFixedParticle, {0}, {0},
-      [](State& s) {
-        place(s, false, 0, P(0, 0, 0), V(0, 0, 0));
-        place(s, true, 0, P(0, 0.45f, 0.05f), V(0.2f, -1, 0));
-      },
-      false);
-  make(kClothDeep, {0}, {312}, [](State& s) {
-    place(s, true, 0, P(0.05f, 0.1f, 0.02f), V(0, -1, 0.5f));
-    place(s, false, 312, P(0, 0, 0), V(0, 0.2f, 0));
-  });
-  make(kClothTouching, {0}, {312}, [](State& s) {
-    place(s, true, 0, P(0, 0.5f, 0), V(0, -1, 0));
-    place(s, false, 312, P(0, 0, 0), V(0, 0, 0));
-  });
-  return cases;
-}
-
-std::vector<Case> sphereCases(int edition) {
-  std::vector<Case> cases;
-  const auto make = [&](SphereCheck check, std::vector<int> spheres,
-                        const std::function<void(State&)>& setup) {
-    Case c{check, baseState(edition), std::move(spheres), {}, true};
-    setup(c.state);
-    cases.push_back(std::move(c));
-  };
-  make(kSpheresApproaching, {0, 1}, [](State& s) {
-    place(s, true, 0, P(0, 0, 0), V(1, 0.2f, 0));
-    place(s, true, 1, P(0.9f, 0.1f, 0), V(-0.5f, 0, 0.3f));
-  });
-  make(kSpheresSeparating, {0, 1}, [](State& s) {
-    place(s, true, 0, P(0, 0, 0), V(-1, 0, 0));
-    place(s, true, 1, P(0.95f, 0, 0), V(0.5f, 0, 0));
-  });
-  make(kChain, {0, 1, 2}, [](State& s) {
-    place(s, true, 0, P(0, 0, 0), V(1, 0, 0));
-    place(s, true, 1, P(0.95f, 0, 0), V(0, 0, 0));
-    place(s, true, 2, P(2.4f, 0.05f, 0), V(-1, 0, 0));
-  });
-  make(kPairWithoutSphere0, {1, 2}, [](State& s) {
-    place(s, true, 1, P(0, 0, 0), V(0.5f, 0, 0));
-    place(s, true, 2, P(1.4f, 0.2f, 0), V(-0.5f, 0, 0.1f));
-  });
-  make(kSpheresDeep, {0, 1}, [](State& s) {
-    place(s, true, 0, P(0, 0, 0), V(0.3f, 0, 0));
-    place(s, true, 1, P(0.3f, 0.05f, 0.02f), V(-0.3f, 0, 0));
-  });
-  make(kSpheresTouching, {0, 1}, [](State& s) {
-    place(s, true, 0, P(0, 0, 0), V(1, 0, 0));
-    place(s, true, 1, P(1, 0, 0), V(0, 0, 0));
-  });
-  make(kUnequalMasses, {0, 2}, [](State& s) {
-    place(s, true, 0, P(0, 0, 0), V(2, 0, 0));
-    place(s, true, 2, P(1.45f, 0.1f, 0), V(0, 0, 0));
-  });
-  return cases;
-}
+using namespace contacts;
 
 struct Outcome {
   Mat4X<float> cloth_x, cloth_v, sphere_x, sphere_v;
@@ -263,25 +56,69 @@ Vec4<double> momentum(const State& s, const Outcome& o) {
   return total;
 }
 
-// The check tables (collideChecks()): the names in the enums' order, each check worth 1.
-constexpr const char* kClothCheckNames[] = {
-    "approaching pair", "separating pair",  "several spheres",  "sphere at index 2",
-    "fixed particle",   "deep penetration", "touching exactly", "momentum conserved"};
-constexpr const char* kSphereCheckNames[] = {
-    "approaching pair", "separating pair",  "three spheres in a chain", "pair without sphere 0",
-    "deep penetration", "touching exactly", "unequal masses",           "momentum conserved"};
-static_assert(std::size(kClothCheckNames) == kClothMomentum + 1);
-static_assert(std::size(kSphereCheckNames) == kSpheresMomentum + 1);
+// Whether the call left the case's total momentum unchanged (to 1e-5 of the momenta involved).
+bool conserves(const Case& c, const Outcome& after) {
+  double scale = 0;
+  for (int q : c.spheres)
+    scale += c.state.spheres.particles.mass[q] *
+             c.state.spheres.particles.velocity.col(q).cast<double>().norm();
+  for (int q : c.particles)
+    scale += c.state.cloth.particles.mass[q] *
+             c.state.cloth.particles.velocity.col(q).cast<double>().norm();
+  const Vec4<double> change = momentum(c.state, after) - momentum(c.state, outcomeOf(c.state));
+  return change.norm() <= 1e-5 * (1 + scale);
+}
 
-std::vector<PlannedTest> checkTable(bool sphere_sphere) {
-  const std::string& stub = stubName(sphere_sphere ? Stub::CollideSpheres : Stub::CollideCloth);
-  std::vector<PlannedTest> checks;
-  for (const char* name :
-       sphere_sphere
-           ? std::vector<const char*>(std::begin(kSphereCheckNames), std::end(kSphereCheckNames))
-           : std::vector<const char*>(std::begin(kClothCheckNames), std::end(kClothCheckNames)))
-    checks.push_back({stub, name, 1});
-  return checks;
+// The pairs of a case that touch before the call, each read back in the course's terms
+// (contact_fit.h) from the student's result; a body in two contacts is left out (its change mixes
+// both).
+int readPairs(const Case& c, bool sphere_sphere, const Outcome& actual,
+              std::vector<ContactReading>& readings) {
+  const auto& sp = c.state.spheres.particles;
+  const auto& cp = c.state.cloth.particles;
+  struct Pair {
+    int a, b;  // sphere index, and the other body's (a sphere or a particle)
+  };
+  std::vector<Pair> pairs;
+  const auto reach = [&](int a, int b) {
+    return sphere_sphere ? c.state.spheres.radius[a] + c.state.spheres.radius[b]
+                         : c.state.spheres.radius[a];
+  };
+  const Particles<float>& others = sphere_sphere ? sp : cp;  // body b's kind
+  for (int a : c.spheres)
+    for (int b : sphere_sphere ? c.spheres : c.particles) {
+      if (sphere_sphere && b <= a) continue;
+      if ((sp.position.col(a) - others.position.col(b)).norm() <= reach(a, b))
+        pairs.push_back({a, b});
+    }
+  const auto contacts = [&](int body, bool sphere) {
+    int count = 0;
+    for (const Pair& p : pairs)
+      count += (sphere && p.a == body) || (sphere == sphere_sphere && p.b == body);
+    return count;
+  };
+  const auto xyz = [](const Mat4X<float>& m, int i) {
+    return std::array<double, 3>{m(0, i), m(1, i), m(2, i)};
+  };
+  for (const Pair& p : pairs) {
+    if (contacts(p.a, true) != 1 || contacts(p.b, sphere_sphere) != 1) continue;
+    const Mat4X<float>& bx = sphere_sphere ? actual.sphere_x : actual.cloth_x;
+    const Mat4X<float>& bv = sphere_sphere ? actual.sphere_v : actual.cloth_v;
+    ContactCase pair;
+    pair.xa = xyz(sp.position, p.a);
+    pair.va = xyz(sp.velocity, p.a);
+    pair.xb = xyz(others.position, p.b);
+    pair.vb = xyz(others.velocity, p.b);
+    pair.xa_after = xyz(actual.sphere_x, p.a);
+    pair.va_after = xyz(actual.sphere_v, p.a);
+    pair.xb_after = xyz(bx, p.b);
+    pair.vb_after = xyz(bv, p.b);
+    pair.inverse_mass_a = sp.inverse_mass[p.a];
+    pair.inverse_mass_b = others.inverse_mass[p.b];
+    pair.contact_distance = reach(p.a, p.b);
+    readings.push_back(readContact(pair));
+  }
+  return static_cast<int>(pairs.size());
 }
 
 std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_sphere) {
@@ -324,15 +161,17 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
     signatures.push_back({ContactMistake::PairTwice, "pair-processed-twice"});
   } else {
     signatures.push_back({ContactMistake::FixedMassless, "fixed-particle-massless"});
+    signatures.push_back({ContactMistake::SphereZeroForAll, "first-sphere-only"});
   }
   std::vector<TestResult> tests;
   std::string momentum_report;
   bool momentum_ok = true;
   bool momentum_non_finite = false;  // a failed case's momentum is NaN or infinite
-  // A mistake is consistent when its simulation gives the student's numbers in every case, the
-  // passed ones included; a case may not tell two mistakes apart, the whole probe usually does.
-  std::vector<bool> consistent(signatures.size(), bool(answer));
-  std::vector<std::size_t> failed;  // indices into tests, causes still to be written
+  std::vector<std::string> ids;
+  for (const auto& signature : signatures) ids.push_back(signature.second);
+  CauseEvidence evidence = makeEvidence(cases.size(), ids);
+  std::vector<ContactReading> readings;             // the touching pairs of every case
+  std::vector<bool> touching(cases.size(), false);  // a failed case has a pair in contact
   // NaN or infinity out of the student's call, per case, and whether the case had a body at rest
   // (velocity exactly 0): NaN only where a body rests is a division by its speed.
   std::vector<bool> non_finite(cases.size(), false), at_rest(cases.size(), false);
@@ -346,7 +185,8 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const Case& c = cases[k];
     if (!answer) {
-      tests.push_back(util::failedTest(checks[c.check], failure.text, {util::guess(failure.causeId())}));
+      tests.push_back(
+          util::failedTest(checks[c.check], failure.text, {util::guess(failure.causeId())}));
       continue;
     }
     const int n = static_cast<int>(k);
@@ -355,31 +195,29 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
                          util::matrix(answer->f(key::perCase(key::kSpherePos, n)), 3),
                          util::matrix(answer->f(key::perCase(key::kSphereVel, n)), 3)};
     State reference = c.state;
-    if (sphere_sphere)
-      collide(reference.spheres, e, 0.15f);
-    else
-      collide(reference.spheres, reference.cloth, e, 0.15f);
+    collideCourse(reference, sphere_sphere, e);
     const Outcome expected = outcomeOf(reference);
-    if (c.free_bodies) {
+    if (c.free_bodies && !conserves(c, actual)) {
       const Vec4<double> before = momentum(c.state, outcomeOf(c.state));
       const Vec4<double> after = momentum(c.state, actual);
-      double scale = 0;
-      for (int q : c.spheres)
-        scale += c.state.spheres.particles.mass[q] *
-                 c.state.spheres.particles.velocity.col(q).cast<double>().norm();
-      for (int q : c.particles)
-        scale += c.state.cloth.particles.mass[q] *
-                 c.state.cloth.particles.velocity.col(q).cast<double>().norm();
-      if (!((after - before).norm() <= 1e-5 * (1 + scale))) {
-        momentum_ok = false;
-        momentum_non_finite = momentum_non_finite || !after.allFinite();
-        momentum_report += "- " + checks[c.check].check + ": total momentum before " +
-                           util::vec3(before.cast<float>()) + ", after your call " +
-                           util::vec3(after.cast<float>()) + "\n";
-      }
+      momentum_ok = false;
+      momentum_non_finite = momentum_non_finite || !after.allFinite();
+      momentum_report += "- " + checks[c.check].check + ": total momentum before " +
+                         util::vec3(before.cast<float>()) + ", after your call " +
+                         util::vec3(after.cast<float>()) + "\n";
     }
     TestResult t = util::test(checks[c.check]);
+    for (std::size_t m = 0; m < signatures.size(); ++m) {
+      State variant = c.state;
+      collideWithMistake(variant.spheres, variant.cloth, sphere_sphere, e, kCorrection,
+                         signatures[m].first);
+      const Outcome v = outcomeOf(variant);
+      evidence.differs[k][m] = distance(v, expected) > rel;
+      evidence.matches[k][m] = distance(actual, v) <= 10 * rel;
+    }
     if (distance(actual, expected) <= rel) {
+      evidence.passed[k] = true;
+      readPairs(c, sphere_sphere, actual, readings);
       t.fraction = 1;
       t.output = "Velocities and positions of every body match.";
       tests.push_back(t);
@@ -413,64 +251,60 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
     for (int q : c.particles)
       body("cloth particle", "particle", q, cloth.position, cloth.velocity, cloth.mass[q], 0,
            expected.cloth_x, expected.cloth_v, actual.cloth_x, actual.cloth_v);
-    for (std::size_t m = 0; m < signatures.size(); ++m) {
-      const auto& [mistake, id] = signatures[m];
-      State variant = c.state;
-      collideVariant(variant, sphere_sphere, e, mistake);
-      const Outcome v = outcomeOf(variant);
-      if (distance(v, expected) <= rel) {  // this case cannot tell them apart
-        consistent[m] = false;             // ... but the student's numbers are not the course's
-        continue;
-      }
-      const bool matches = distance(actual, v) <= 10 * rel;
-      if (!matches) consistent[m] = false;
-      if (matches) t.addCause(id);
-    }
+    // Measured directly: NaN out of the call, or the fixed particle's velocity changed.
     non_finite[k] =
         !util::finite(util::flat(actual.sphere_v)) || !util::finite(util::flat(actual.cloth_v)) ||
         !util::finite(util::flat(actual.sphere_x)) || !util::finite(util::flat(actual.cloth_x));
-    if (t.causes.empty()) {
-      if (non_finite[k])
-        t.addCause("non-finite");
-      else if (!sphere_sphere && c.check == kFixedParticle &&
-               actual.cloth_v.col(0) != c.state.cloth.particles.velocity.col(0))
-        t.addCause("fixed-particle-massless");
-    }
-    failed.push_back(tests.size());
+    if (non_finite[k])
+      evidence.measured[k].push_back("non-finite");
+    else if (!sphere_sphere && c.check == kFixedParticle &&
+             actual.cloth_v.col(0) != c.state.cloth.particles.velocity.col(0))
+      evidence.measured[k].push_back("fixed-particle-massless");
+    touching[k] = readPairs(c, sphere_sphere, actual, readings) > 0;
     tests.push_back(t);
   }
-  // Passed cases: a mistake whose simulation differs from the course there is refuted.
-  if (answer)
-    for (std::size_t k = 0; k < cases.size(); ++k) {
-      if (!tests[k].passed()) continue;
-      for (std::size_t m = 0; m < signatures.size(); ++m) {
-        if (!consistent[m]) continue;
-        State variant = cases[k].state, reference = cases[k].state;
-        collideVariant(variant, sphere_sphere, e, signatures[m].first);
-        collideVariant(reference, sphere_sphere, e, ContactMistake::None);
-        if (distance(outcomeOf(variant), outcomeOf(reference)) > 10 * rel) consistent[m] = false;
-      }
-    }
-  std::set<std::string> explains_all;
-  for (std::size_t m = 0; m < signatures.size(); ++m)
-    if (consistent[m]) explains_all.insert(signatures[m].second);
   // Every case with a body at rest went non-finite and no other case did: measured, not guessed.
   bool divides_by_speed = std::find(non_finite.begin(), non_finite.end(), true) != non_finite.end();
   for (std::size_t k = 0; k < cases.size(); ++k)
     if (non_finite[k] != at_rest[k]) divides_by_speed = false;
-  for (std::size_t k : failed) {
-    TestResult& t = tests[k];
-    // One mistake that explains every case wins over those a single case cannot rule out.
-    if (!explains_all.empty()) {
-      std::vector<Cause> kept;
-      for (const Cause& cause : t.causes)
-        if (explains_all.count(cause.id) || cause.id == "non-finite") kept.push_back(cause);
-      if (!kept.empty()) t.causes = kept;
+  // What the numbers say in the course's terms (contact_fit.h): the one quantity that differs,
+  // shown on the cases with a touching pair.
+  const std::vector<ContactFinding> findings =
+      answer ? explainContacts(readings, e, kCorrection) : std::vector<ContactFinding>{};
+  for (const ContactFinding& f : findings)
+    if (!f.cause.empty()) evidence.findings.push_back({f.cause, f.text});
+  const auto finding = [&](const std::string& id) -> const ContactFinding* {
+    for (const ContactFinding& f : findings)
+      if (f.cause == id) return &f;
+    return nullptr;
+  };
+  const std::set<std::string> likely = answer ? likelyCauses(evidence) : std::set<std::string>{};
+  if (answer) nameCauses(evidence, likely, touching, tests);
+  if (divides_by_speed)
+    for (TestResult& t : tests)
+      if (!t.passed() && t.names("non-finite"))
+        t.causes.insert(t.causes.begin(), util::likely("division-by-speed"));
+  // The likely causes that break momentum: a simulated mistake that does in some case, or an
+  // impulse split read from the pairs.
+  std::vector<std::string> breaks_momentum;
+  for (std::size_t m = 0; m < signatures.size(); ++m) {
+    const std::string id = signatures[m].second;
+    if (!likely.count(id) || std::count(breaks_momentum.begin(), breaks_momentum.end(), id))
+      continue;
+    for (const Case& c : cases) {
+      State variant = c.state;
+      collideWithMistake(variant.spheres, variant.cloth, sphere_sphere, e, kCorrection,
+                         signatures[m].first);
+      if (c.free_bodies && !conserves(c, outcomeOf(variant))) {
+        breaks_momentum.push_back(id);
+        break;
+      }
     }
-    if (divides_by_speed && t.names("non-finite"))
-      t.causes.insert(t.causes.begin(), util::likely("division-by-speed"));
-    if (t.causes.empty()) t.addCause("unknown", false);
   }
+  if (const ContactFinding* f = finding("wrong-mass-split");
+      f && likely.count(f->cause) &&
+      !std::count(breaks_momentum.begin(), breaks_momentum.end(), f->cause))
+    breaks_momentum.push_back(f->cause);
   if (answer) {
     TestResult t = util::test(checks.back());
     t.fraction = momentum_ok ? 1 : 0;
@@ -485,12 +319,18 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
         t.causes = {util::likely("division-by-speed"), util::likely("non-finite")};
       else if (momentum_non_finite)
         t.causes = {util::likely("non-finite")};
+      else if (!breaks_momentum.empty())
+        for (const std::string& id : breaks_momentum) {
+          Cause& cause = t.addCause(id);
+          if (const ContactFinding* f = finding(id)) cause.detail = "Measured: " + f->text + ".";
+        }
       else
         t.causes = {util::guess("wrong-mass-split")};
     }
     tests.push_back(t);
   } else {
-    tests.push_back(util::failedTest(checks.back(), failure.text, {util::guess(failure.causeId())}));
+    tests.push_back(
+        util::failedTest(checks.back(), failure.text, {util::guess(failure.causeId())}));
   }
   return tests;
 }

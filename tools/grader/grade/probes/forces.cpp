@@ -5,6 +5,9 @@
 #include <random>
 
 #include "clothref/core/cloth.h"
+#include "grader/grade/probes/cause_evidence.h"
+#include "grader/grade/probes/formula_variants.h"
+#include "grader/grade/probes/spring_fit.h"
 #include "grader/grade/probes/util.h"
 
 namespace clothref::grader {
@@ -12,49 +15,6 @@ namespace {
 
 const std::string& kStub = stubName(Stub::ComputeSpringForce);
 constexpr int kN = 25;
-
-// Course-form force with one known mistake switched on (for the numeric signatures).
-enum class ForceMistake {
-  None,
-  Assign,
-  SpringSign,
-  DamperSign,
-  NoDamper,
-  DamperUnnormalised,
-  OneEnd,
-  MassNotInverse,
-  DivideByMass
-};
-
-Mat4X<float> forces(const Cloth<float>& cloth, const Mat4X<float>& acc0, ForceMistake mistake) {
-  const auto& p = cloth.particles;
-  Mat4X<float> a = acc0;
-  const float ks = cloth.spring_coef, kd = cloth.damper_coef;
-  for (const auto& s : cloth.springs) {
-    const int i = int(s.start), j = int(s.end);
-    Vec4<float> raw = p.position.col(i) - p.position.col(j);
-    const float length = raw.norm();
-    Vec4<float> d = raw / length;
-    const Vec4<float> dv = p.velocity.col(i) - p.velocity.col(j);
-    float damper = kd * dv.dot(mistake == ForceMistake::DamperUnnormalised ? raw : d);
-    float spring = ks * (length - s.rest_length);
-    if (mistake == ForceMistake::SpringSign) spring = -spring;
-    if (mistake == ForceMistake::DamperSign) damper = -damper;
-    if (mistake == ForceMistake::NoDamper) damper = 0;
-    const Vec4<float> f = d * (damper + spring);
-    float wi = p.inverse_mass[i], wj = p.inverse_mass[j];
-    if (mistake == ForceMistake::MassNotInverse) wi = p.mass[i], wj = p.mass[j];
-    if (mistake == ForceMistake::DivideByMass) wi = 1.0f / p.mass[i], wj = 1.0f / p.mass[j];
-    if (mistake == ForceMistake::Assign) {
-      a.col(i) = -f * wi;
-      a.col(j) = f * wj;
-    } else {
-      a.col(i) -= f * wi;
-      if (mistake != ForceMistake::OneEnd) a.col(j) += f * wj;
-    }
-  }
-  return a;
-}
 
 // Per particle: |a_init| + sum of |F| invM over its springs (double), the scale of the tolerance.
 std::vector<double> scales(const Cloth<float>& cloth, const Mat4X<float>& acc0) {
@@ -93,6 +53,20 @@ Mismatch compare(const Mat4X<float>& actual, const Mat4X<float>& expected,
   return m;
 }
 
+// Whether two answers agree at every particle within `rel` of its force scale (non-finite
+// values must be non-finite in both).
+bool sameAnswer(const Mat4X<float>& a, const Mat4X<float>& b, const std::vector<double>& scale,
+                double rel) {
+  for (int q = 0; q < a.cols(); ++q) {
+    if (!a.col(q).allFinite() || !b.col(q).allFinite()) {
+      if (a.col(q).allFinite() != b.col(q).allFinite()) return false;
+    } else if ((a.col(q) - b.col(q)).cast<double>().norm() > rel * scale[q] + 1e-6) {
+      return false;
+    }
+  }
+  return true;
+}
+
 // Rows of forcesChecks(), the probe's check table: one case each.
 enum ForceCheck { kRandom, kMoving, kAccumulates, kFixedAndHeavy };
 
@@ -101,6 +75,25 @@ struct Case {
   Cloth<float> cloth;
   Mat4X<float> acc0;
 };
+
+// A case and the student's answer as spring_fit reads them: the change to the accelerations.
+SpringCase springCase(const Case& c, const Mat4X<float>& actual) {
+  const auto& p = c.cloth.particles;
+  SpringCase out;
+  const auto xyz = [](const Mat4X<float>& m, int i) {
+    return std::array<double, 3>{m(0, i), m(1, i), m(2, i)};
+  };
+  for (int i = 0; i < p.size(); ++i) {
+    out.x.push_back(xyz(p.position, i));
+    out.v.push_back(xyz(p.velocity, i));
+    out.mass.push_back(p.mass[i]);
+    const Mat4X<float> change = actual.col(i) - c.acc0.col(i);
+    out.change.push_back(xyz(change, 0));
+  }
+  for (const auto& s : c.cloth.springs)
+    out.springs.push_back({int(s.start), int(s.end), double(s.rest_length)});
+  return out;
+}
 
 }  // namespace
 
@@ -187,19 +180,47 @@ std::vector<TestResult> probeForces(const ProbeContext& context) {
   const auto answer = util::runGroup(context, context.probe, group::kForces, request, failure);
   const std::vector<PlannedTest> checks = forcesChecks();
   std::vector<TestResult> tests;
+  if (!answer) {
+    for (const Case& c : cases)
+      tests.push_back(
+          util::failedTest(checks[c.check], failure.text, {util::guess(failure.causeId())}));
+    return tests;
+  }
+  const std::pair<ForceMistake, const char*> signatures[] = {
+      {ForceMistake::Assign, "assign-not-accumulate"},
+      {ForceMistake::SpringSign, "spring-force-sign"},
+      {ForceMistake::DamperSign, "damper-sign"},
+      {ForceMistake::NoDamper, "missing-damper"},
+      {ForceMistake::DamperUnnormalised, "damper-not-normalised"},
+      {ForceMistake::OneEnd, "force-one-end-only"},
+      {ForceMistake::MassNotInverse, "mass-not-inverse"},
+      {ForceMistake::DivideByMass, "fixed-particle-moves"},
+      {ForceMistake::OtherEndOnly, "force-one-end-only"},
+      {ForceMistake::AssignTotal, "assign-not-accumulate"},
+      {ForceMistake::AssignTotalGravity, "assign-not-accumulate"}};
+  std::vector<std::string> ids;
+  for (const auto& signature : signatures) ids.push_back(signature.second);
+  CauseEvidence evidence = makeEvidence(cases.size(), ids);
+  std::vector<SpringReading> readings;  // each case read as the course's force, constants free
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const Case& c = cases[k];
-    if (!answer) {
-      tests.push_back(util::failedTest(checks[c.check], failure.text, {util::guess(failure.causeId())}));
-      continue;
-    }
     TestResult t = util::test(checks[c.check]);
     const Mat4X<float> actual =
         util::matrix(answer->f(key::perCase(key::kClothAcc, static_cast<int>(k))), kN * kN);
-    const Mat4X<float> expected = forces(c.cloth, c.acc0, ForceMistake::None);
+    Cloth<float> reference = c.cloth;  // the library's stub gives the expected answer
+    reference.particles.acceleration = c.acc0;
+    computeSpringForce(reference);
+    const Mat4X<float>& expected = reference.particles.acceleration;
     const auto scale = scales(c.cloth, c.acc0);
+    readings.push_back(readSprings(springCase(c, actual), rel));
+    for (std::size_t m = 0; m < ids.size(); ++m) {
+      const Mat4X<float> variant = springAccelerations(c.cloth, c.acc0, signatures[m].first);
+      evidence.differs[k][m] = !sameAnswer(variant, expected, scale, rel);
+      evidence.matches[k][m] = sameAnswer(variant, actual, scale, 10 * rel);
+    }
     const Mismatch m = compare(actual, expected, scale, rel);
     if (m.count == 0) {
+      evidence.passed[k] = true;
       t.fraction = 1;
       t.output = "All " + std::to_string(kN * kN) + " accelerations match (within " +
                  util::num(rel) + " of the force scale at each particle).";
@@ -218,41 +239,17 @@ std::vector<TestResult> probeForces(const ProbeContext& context) {
         util::num(p.mass[i]) + "\n" + "- acceleration before the call " +
         util::vec3(c.acc0.col(i)) + "\n" + "- expected after " + util::vec3(expected.col(i)) +
         "\n" + "- actual after " + util::vec3(actual.col(i)) + "\n";
-    const std::pair<ForceMistake, const char*> signatures[] = {
-        {ForceMistake::Assign, "assign-not-accumulate"},
-        {ForceMistake::SpringSign, "spring-force-sign"},
-        {ForceMistake::DamperSign, "damper-sign"},
-        {ForceMistake::NoDamper, "missing-damper"},
-        {ForceMistake::DamperUnnormalised, "damper-not-normalised"},
-        {ForceMistake::OneEnd, "force-one-end-only"},
-        {ForceMistake::MassNotInverse, "mass-not-inverse"},
-        {ForceMistake::DivideByMass, "fixed-particle-moves"}};
-    for (const auto& [mistake, id] : signatures) {
-      const Mat4X<float> variant = forces(c.cloth, c.acc0, mistake);
-      if ((variant - expected).cwiseAbs().maxCoeff() == 0.0f) continue;  // indistinguishable here
-      bool same = true;
-      for (int q = 0; q < kN * kN && same; ++q) {
-        const auto& vc = variant.col(q);
-        const auto& ac = actual.col(q);
-        if (!vc.allFinite() || !ac.allFinite())
-          same = vc.allFinite() == ac.allFinite();
-        else
-          same = (vc - ac).cast<double>().norm() <= 10 * (rel * scale[q] + 1e-6);
-      }
-      if (same) t.addCause(id);
-    }
-    if (t.causes.empty()) {
-      bool fixed_moved = false;
-      for (int q = 0; q < kN * kN; ++q)
-        if (p.mass[q] == 0 && actual.col(q) != c.acc0.col(q)) fixed_moved = true;
-      if (fixed_moved)
+    for (int q = 0; q < kN * kN; ++q)  // measured: shown whatever else explains the numbers
+      if (p.mass[q] == 0 && actual.col(q) != c.acc0.col(q)) {
         t.addCause("fixed-particle-moves");
-      else if (!util::finite(util::flat(actual)))
-        t.addCause("non-finite");
-    }
-    if (t.causes.empty()) t.addCause("unknown", false);
+        break;
+      }
+    if (!util::finite(util::flat(actual))) evidence.measured[k].push_back("non-finite");
     tests.push_back(t);
   }
+  for (const SpringFinding& f : explainSprings(readings, base.spring_coef, base.damper_coef))
+    evidence.findings.push_back({f.cause, f.text});
+  nameCauses(evidence, likelyCauses(evidence), std::vector<bool>(cases.size(), true), tests);
   return tests;
 }
 

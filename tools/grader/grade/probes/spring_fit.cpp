@@ -37,15 +37,20 @@ Columns columns(const SpringCase& c, SpringForm form) {
     const V3& ve = c.v[std::size_t(s.end)];
     const V3 dv = {vs[0] - ve[0], vs[1] - ve[1], vs[2] - ve[2]};
     const double stretch = length - s.rest;
-    const double along = form == SpringForm::DamperUnnormalised ? dot(dv, d) : dot(dv, unit);
+    const bool raw =
+        form == SpringForm::DamperUnnormalised || form == SpringForm::DamperUnnormalisedTwice;
+    const double along = raw ? dot(dv, d) : dot(dv, unit);
+    const V3& damper_direction = form == SpringForm::DamperUnnormalisedTwice ? d : unit;
     for (int k = 0; k < 3; ++k) {
       const std::size_t rs = 3 * std::size_t(s.start) + std::size_t(k);
       const std::size_t re = 3 * std::size_t(s.end) + std::size_t(k);
-      out.spring[rs] -= unit[k] * stretch * weight(s.start);
-      out.damper[rs] -= unit[k] * along * weight(s.start);
+      if (form != SpringForm::EndOnly) {
+        out.spring[rs] -= unit[k] * stretch * weight(s.start);
+        out.damper[rs] -= damper_direction[k] * along * weight(s.start);
+      }
       if (form == SpringForm::OneEndOnly) continue;
       out.spring[re] += unit[k] * stretch * weight(s.end);
-      out.damper[re] += unit[k] * along * weight(s.end);
+      out.damper[re] += damper_direction[k] * along * weight(s.end);
     }
   }
   return out;
@@ -71,8 +76,9 @@ SpringReading readSprings(const SpringCase& c, double relative) {
   for (double value : y) yy += value * value;
   SpringReading best;
   best.residual = 1e300;
-  for (const SpringForm form : {SpringForm::Course, SpringForm::DamperUnnormalised,
-                                SpringForm::OneEndOnly, SpringForm::MassNotInverse}) {
+  for (const SpringForm form :
+       {SpringForm::Course, SpringForm::DamperUnnormalised, SpringForm::DamperUnnormalisedTwice,
+        SpringForm::OneEndOnly, SpringForm::EndOnly, SpringForm::MassNotInverse}) {
     const Columns col = columns(c, form);
     // Least squares on two columns (normal equations in double: two unknowns, well scaled).
     double ss = 0, sd = 0, dd = 0, sy = 0, dy = 0;
@@ -123,8 +129,14 @@ std::vector<SpringFinding> explainSprings(const std::vector<SpringReading>& read
       add("damper-not-normalised",
           "the damper's relative velocity is projected on the spring vector x_s - x_e, not on its "
           "unit direction");
+    if (r.form == SpringForm::DamperUnnormalisedTwice)
+      add("damper-not-normalised",
+          "the damper is k_d ((v_s - v_e) . d) d with the spring vector d = x_s - x_e unnormalised "
+          "in both places, L^2 times the course's k_d ((v_s - v_e) . n) n");
     if (r.form == SpringForm::OneEndOnly)
       add("force-one-end-only", "only the start particle of each spring gets the force");
+    if (r.form == SpringForm::EndOnly)
+      add("force-one-end-only", "only the end particle of each spring gets the force");
     if (r.form == SpringForm::MassNotInverse)
       add("mass-not-inverse", "the force is multiplied by the mass, not the inverse mass");
   }
@@ -141,6 +153,15 @@ std::vector<SpringFinding> explainSprings(const std::vector<SpringReading>& read
   };
   const std::optional<double> ks = common([](const SpringReading& r) { return r.spring_coef; });
   const std::optional<double> kd = common([](const SpringReading& r) { return r.damper_coef; });
+  // Both terms flipped is one mistake: the whole force applied the wrong way round (the ends or
+  // += and -= swapped).
+  if (ks && kd && same(*ks, -spring_coef) && same(*kd, -damper_coef)) {
+    add("spring-force-sign",
+        "the whole force has the wrong sign, the Hooke and the damper terms both (k_s fits as " +
+            number(*ks) + " N/m, k_d as " + number(*kd) +
+            " N s/m): a stretched spring pushes its ends apart");
+    return findings;
+  }
   if (ks && !same(*ks, spring_coef)) {
     if (same(*ks, -spring_coef))
       add("spring-force-sign",

@@ -27,7 +27,14 @@ struct SpringCase {
 };
 
 // The forms a reading tries, in order: the course's, then each single change of form.
-enum class SpringForm { Course, DamperUnnormalised, OneEndOnly, MassNotInverse };
+enum class SpringForm {
+  Course,
+  DamperUnnormalised,       // k_d ((v_s - v_e) . d) n, d = x_s - x_e: L times the course's
+  DamperUnnormalisedTwice,  // k_d ((v_s - v_e) . d) d: L^2 times the course's
+  OneEndOnly,               // only the start particle gets -F / m_s
+  EndOnly,                  // only the end particle gets +F / m_e
+  MassNotInverse
+};
 
 struct SpringReading {
   bool fits = false;  // some form explains the change to rounding

@@ -78,8 +78,10 @@ void stateFindings(const StageFit& fit, int q, const MethodState& course, int me
         continue;
       const int expected = terms[0].index;
       if (t.block == (position ? 'v' : 'a') && t.index != expected) {
-        if (position && t.index == q) own_velocity = true;
-        else wrong_stage = true;
+        if (position && t.index == q)
+          own_velocity = true;
+        else
+          wrong_stage = true;
       }
     }
   }
@@ -135,14 +137,15 @@ StageExplanation explainStages(const StageFit& fit, int method, const SourceHint
   const bool dt_changed = fit.record.h_after != h;
   if (dt_changed)
     addCause(e, "deltatime-mutated", true,
-             "deltaTime is " + number(fit.record.h_after) + " s after integrate(), not h = " +
-                 number(h) + " s");
+             "deltaTime is " + number(fit.record.h_after) +
+                 " s after integrate(), not h = " + number(h) + " s");
   if (e.course || !e.accepted.empty()) return e;
 
   // A step other than h: the first departing state equals the course's with h·s.
   const int m = fit.recorded, result = m + 1;
   const auto methodState = [&](int q) -> const MethodState& {
-    return q <= int(course.evaluations.size()) ? course.evaluations[std::size_t(q - 1)] : course.result;
+    return q <= int(course.evaluations.size()) ? course.evaluations[std::size_t(q - 1)]
+                                               : course.result;
   };
   Departure later = e.departure;
   if (e.equals.empty() && e.departure.what != "calls" && e.departure.state >= 1 &&
@@ -160,8 +163,7 @@ StageExplanation explainStages(const StageFit& fit, int method, const SourceHint
       later = departure(fit, course, s);
       const bool throughout = e.departure.state == 1 && later.state == 0;
       if (!dt_changed && throughout)
-        addCause(e, "deltatime-mutated", false,
-                 "every stage uses a step of " + number(s) + "·h");
+        addCause(e, "deltatime-mutated", false, "every stage uses a step of " + number(s) + "·h");
     }
   }
 
@@ -216,7 +218,9 @@ StageExplanation explainStages(const StageFit& fit, int method, const SourceHint
                                             (at_scale(true) && at_scale(false)));
     if (fit.states[std::size_t(q - 1)].same_as == 0 && method != 0 && !is_explicit) {
       const bool half = method == 2 && hints.integer_half;
-      if (half) addCause(e, "integer-division-half", true, "evaluation at the unchanged start state and 1 / 2 in the source");
+      if (half)
+        addCause(e, "integer-division-half", true,
+                 "evaluation at the unchanged start state and 1 / 2 in the source");
       addCause(e, "no-reevaluation", !half, "simulateOneStep() runs at the unchanged start state");
     }
   }
@@ -252,8 +256,7 @@ StageExplanation explainStages(const StageFit& fit, int method, const SourceHint
   bool step_known = e.scale == 1;
   for (int d = 1; d <= kMaxDenominator && !step_known; ++d) {
     const double n = std::round(e.scale * d);
-    if (n != 0 && sameStep(e.scale, n / d))
-      step = Rational(std::int64_t(n), d), step_known = true;
+    if (n != 0 && sameStep(e.scale, n / d)) step = Rational(std::int64_t(n), d), step_known = true;
   }
   if (method == 3 && m >= 3 && !mixed && !result_on_previous && r.x.fits && r.v.fits &&
       !is_explicit && step_known && stages_explained) {
@@ -300,7 +303,8 @@ StageExplanation explainStages(const StageFit& fit, int method, const SourceHint
                  "the position adds " + text(t.coef) + "·h²·a0");
   }
   if (e.calls < e.course_calls && e.causes.empty())
-    addCause(e, "no-reevaluation", true, "simulateOneStep() is called fewer times than the method needs");
+    addCause(e, "no-reevaluation", true,
+             "simulateOneStep() is called fewer times than the method needs");
 
   // The bodies: all at one stage, and all integrated.
   bool split = false;

@@ -14,8 +14,12 @@ Rational::Rational(std::int64_t n, std::int64_t d) : num(n), den(d) {
   const std::int64_t g = std::gcd(num < 0 ? -num : num, den);
   if (g > 1) num /= g, den /= g;
 }
-Rational operator+(Rational a, Rational b) { return {a.num * b.den + b.num * a.den, a.den * b.den}; }
-Rational operator-(Rational a, Rational b) { return {a.num * b.den - b.num * a.den, a.den * b.den}; }
+Rational operator+(Rational a, Rational b) {
+  return {a.num * b.den + b.num * a.den, a.den * b.den};
+}
+Rational operator-(Rational a, Rational b) {
+  return {a.num * b.den - b.num * a.den, a.den * b.den};
+}
 Rational operator*(Rational a, Rational b) { return {a.num * b.num, a.den * b.den}; }
 Rational operator/(Rational a, Rational b) { return {a.num * b.den, a.den * b.num}; }
 bool operator==(Rational a, Rational b) { return a.num == b.num && a.den == b.den; }
@@ -74,7 +78,8 @@ bool stateForm(const StageFit& fit, int body, int index, bool position, Form& ou
   if (index < 1 || index > int(fit.states.size())) return false;
   const StageState& s = fit.states[std::size_t(index - 1)];
   const Fitted* f = position ? &s.x : &s.v;
-  if (body == kSpheres && s.spheres == SpheresAre::AtStart) return stateForm(fit, body, 0, position, out);
+  if (body == kSpheres && s.spheres == SpheresAre::AtStart)
+    return stateForm(fit, body, 0, position, out);
   if (body == kSpheres && s.spheres == SpheresAre::NoFit) return false;
   if (body == kSpheres && s.spheres == SpheresAre::Own) f = position ? &s.sphere_x : &s.sphere_v;
   if (!f->fits) return false;

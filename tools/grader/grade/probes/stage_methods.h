@@ -36,8 +36,8 @@ const MethodTable& courseTable(int method);
 
 // A method's state in the course's terms, with its indices mapped to the student's states
 // (`map[k]` = the student's state of the method's state k) and its coefficients times `scale`.
-CourseForm methodForm(const MethodState& state, bool position, const std::vector<int>& map,
-                      int own, Rational scale = Rational(1));
+CourseForm methodForm(const MethodState& state, bool position, const std::vector<int>& map, int own,
+                      Rational scale = Rational(1));
 
 // Whether the student's state `q` (1.. evaluations, recorded + 1 the result) equals the method's
 // state in position and velocity (exactly, on the cloth).

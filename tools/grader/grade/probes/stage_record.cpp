@@ -36,7 +36,8 @@ bool stageRecordFrom(const probe::ProbeMessage& answer, int k, double h, StageRe
                               {key::kStartSpherePos, key::kStartSphereVel, key::kStartSphereAcc}};
   const char* evals[2][3] = {{key::kEvalClothPos, key::kEvalClothVel, key::kEvalClothAcc},
                              {key::kEvalSpherePos, key::kEvalSphereVel, key::kEvalSphereAcc}};
-  const char* results[2][2] = {{key::kClothPos, key::kClothVel}, {key::kSpherePos, key::kSphereVel}};
+  const char* results[2][2] = {{key::kClothPos, key::kClothVel},
+                               {key::kSpherePos, key::kSphereVel}};
   std::size_t records = std::size_t(-1);
   for (int b = 0; b < 2; ++b) {
     BodyState& start = record.start[std::size_t(b)];

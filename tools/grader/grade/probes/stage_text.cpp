@@ -19,7 +19,10 @@ std::string name(char block, int index, int recorded) {
 // |coef| h^power as a factor: "h/2", "3h/8", "2h", "h²/2", "1/2" (power 0), "" (1).
 std::string factor(Rational c, int power) {
   const std::int64_t n = c.num < 0 ? -c.num : c.num;
-  std::string h = power == 0 ? "" : power == 1 ? "h" : power == 2 ? "h²" : "h^" + std::to_string(power);
+  std::string h = power == 0   ? ""
+                  : power == 1 ? "h"
+                  : power == 2 ? "h²"
+                               : "h^" + std::to_string(power);
   std::string out = n == 1 && !h.empty() ? h : std::to_string(n) + h;
   if (n == 1 && h.empty() && c.den == 1) out = "";
   if (c.den != 1) out += "/" + std::to_string(c.den);
@@ -56,8 +59,8 @@ std::string text(const CourseForm& form, int recorded) {
     if (grouped[i]) continue;
     std::vector<std::size_t> group;
     for (std::size_t j = i; j < form.terms.size(); ++j)
-      if (form.terms[j].block == form.terms[i].block && form.terms[j].power == form.terms[i].power &&
-          form.terms[j].power > 0)
+      if (form.terms[j].block == form.terms[i].block &&
+          form.terms[j].power == form.terms[i].power && form.terms[j].power > 0)
         group.push_back(j);
     if (group.size() >= 3) {
       std::int64_t den = 1, g = 0;
@@ -73,7 +76,8 @@ std::string text(const CourseForm& form, int recorded) {
                                 name(form.terms[j].block, form.terms[j].index, recorded)});
         grouped[j] = true;
       }
-      parts.push_back({common, factor(common, form.terms[i].power) + "·(" + joined(inner, false) + ")"});
+      parts.push_back(
+          {common, factor(common, form.terms[i].power) + "·(" + joined(inner, false) + ")"});
       continue;
     }
     const CourseTerm& t = form.terms[i];
@@ -131,7 +135,8 @@ std::string stageText(const StageFit& fit, const StageExplanation& e) {
     std::string where = stateName(e.departure.state, m);
     where[0] = char(std::toupper(static_cast<unsigned char>(where[0])));
     if (e.departure.what == "calls")
-      out += where + ": yours " + e.departure.yours + "; the course's " + e.departure.course + ".\n";
+      out +=
+          where + ": yours " + e.departure.yours + "; the course's " + e.departure.course + ".\n";
     else if (e.departure.what == "spheres")
       out += where + ": " + e.departure.yours + "; the course has " + e.departure.course + ".\n";
     else

@@ -191,8 +191,8 @@ Fitted fitQuantity(const StageFit& fit, int body, bool position, const std::vect
   const Eigen::VectorXd q = Eigen::Map<const Eigen::VectorXd>(recorded.data(), n);
   Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(m);
   qr.setThreshold(1e-10);
-  const Eigen::VectorXd solution = n > 0 ? Eigen::VectorXd(qr.solve(q))
-                                         : Eigen::VectorXd::Zero(Eigen::Index(columns.size()));
+  const Eigen::VectorXd solution =
+      n > 0 ? Eigen::VectorXd(qr.solve(q)) : Eigen::VectorXd::Zero(Eigen::Index(columns.size()));
   std::map<int, double> beta;
   Form least;  // the unrounded fit, as a residual only
   double worst = 0;
@@ -297,7 +297,8 @@ StageFit fitStages(const StageRecord& record) {
   for (int k = 1; k <= fit.recorded; ++k) {
     int same = k;
     for (int j = 0; j < k && same == k; ++j)
-      if (sameState(stateOf(r, k, kCloth), stateOf(r, j, kCloth))) same = fit.canonical[std::size_t(j)];
+      if (sameState(stateOf(r, k, kCloth), stateOf(r, j, kCloth)))
+        same = fit.canonical[std::size_t(j)];
     fit.canonical.push_back(same);
   }
   std::vector<Form> velocities = {Form{Term{kGenV0, 0, Rational(1)}}};  // fitted v_k, k < q
@@ -331,8 +332,10 @@ StageFit fitStages(const StageRecord& record) {
         s.spheres = s.sphere_x.fits && s.sphere_v.fits ? SpheresAre::Own : SpheresAre::NoFit;
       }
     }
-    if (s.v.fits) velocities.push_back(s.v.form);
-    else velocities.push_back(Form{});  // keeps the index; introduces nothing
+    if (s.v.fits)
+      velocities.push_back(s.v.form);
+    else
+      velocities.push_back(Form{});  // keeps the index; introduces nothing
     fit.states.push_back(s);
   }
   // The course's terms, once every velocity is known (a position may use its own).

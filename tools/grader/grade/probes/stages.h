@@ -40,7 +40,7 @@ inline constexpr float kStageStep = 0.0113f;
 struct StageRecord {
   double h = 0;        // deltaTime during the step (s), the float the student read
   double h_after = 0;  // deltaTime after integrate() (s)
-  int calls = 0;  // simulateOneStep() calls integrate() made (only the first 16 are recorded)
+  int calls = 0;       // simulateOneStep() calls integrate() made (only the first 16 are recorded)
   std::array<BodyState, 2> start;                     // x0, v0, and a0 from the simulate() before
   std::vector<std::array<BodyState, 2>> evaluations;  // call k (1-based = index + 1): state and a
   std::array<BodyState, 2> result;                    // x, v after integrate() (a unused)
@@ -106,9 +106,9 @@ struct CourseForm {
 
 // One fitted quantity (a position or a velocity of one body at one state).
 struct Fitted {
-  bool fits = false;   // an exact combination of the building blocks, to rounding
-  Form form;           // the combination (empty when it does not fit)
-  CourseForm course;   // in the course's terms (the simpler of base x0/v0 and the previous state)
+  bool fits = false;    // an exact combination of the building blocks, to rounding
+  Form form;            // the combination (empty when it does not fit)
+  CourseForm course;    // in the course's terms (the simpler of base x0/v0 and the previous state)
   double residual = 0;  // worst |recorded - combination| / tolerance (fits: <= 1)
   double least_squares = 0;  // the same for the unrounded least-squares coefficients
 };
@@ -130,9 +130,9 @@ struct StageState {
 
 struct StageFit {
   StageRecord record;
-  int recorded = 0;               // evaluations recorded (<= calls)
+  int recorded = 0;                // evaluations recorded (<= calls)
   std::vector<StageState> states;  // evaluation 1 .. recorded, then the result (last)
-  std::vector<int> canonical;     // a_k's generator: canonical[k] (k = 0 .. recorded)
+  std::vector<int> canonical;      // a_k's generator: canonical[k] (k = 0 .. recorded)
   const StageState& result() const { return states.back(); }
 };
 
@@ -167,35 +167,35 @@ CourseForm toCourseOf(const StageFit& fit, const Form& form, char base, int base
 // ---- The explanation
 
 struct StageCause {
-  std::string id;      // catalogue id (tools/grader/diagnoses.json)
+  std::string id;       // catalogue id (tools/grader/diagnoses.json)
   bool likely = false;  // the fit confirms it; otherwise a possible cause
-  std::string why;     // in the course's terms
+  std::string why;      // in the course's terms
 };
 
 // Where the stub first leaves the course's method.
 struct Departure {
-  int state = 0;      // 1.. evaluation, calls + 1 the result; 0: none
-  std::string what;   // "position", "velocity", "spheres", "calls"
+  int state = 0;     // 1.. evaluation, calls + 1 the result; 0: none
+  std::string what;  // "position", "velocity", "spheres", "calls"
   std::string yours, course;
 };
 
 struct StageExplanation {
-  int method = 0;         // 0 explicit, 1 implicit, 2 midpoint, 3 RK4 (the stub)
+  int method = 0;  // 0 explicit, 1 implicit, 2 midpoint, 3 RK4 (the stub)
   int calls = 0, course_calls = 0;
-  bool fits = false;      // every cloth state is an exact combination
-  bool course = false;    // the course's method, stage by stage
-  std::string accepted;   // the accepted variant's rubric switch it equals, or ""
-  std::string equals;     // the known method the whole stub equals (table id), or ""
+  bool fits = false;     // every cloth state is an exact combination
+  bool course = false;   // the course's method, stage by stage
+  std::string accepted;  // the accepted variant's rubric switch it equals, or ""
+  std::string equals;    // the known method the whole stub equals (table id), or ""
   std::string equals_name;
-  double scale = 1;       // a consistent factor on h (deltaTime changed), 1 = none
+  double scale = 1;  // a consistent factor on h (deltaTime changed), 1 = none
   Departure departure;
   std::vector<StageCause> causes;
 };
 
 // What the stub's source says, for refining measured findings only.
 struct SourceHints {
-  bool alias_backup = false;  // `auto b = particles;`, a Particles* vector or Eigen::Ref copy
-  bool integer_half = false;  // `1 / 2` with integer literals
+  bool alias_backup = false;   // `auto b = particles;`, a Particles* vector or Eigen::Ref copy
+  bool integer_half = false;   // `1 / 2` with integer literals
   bool integer_sixth = false;  // `1 / 6`
 };
 SourceHints sourceHints(const std::string& stub_source);
@@ -205,7 +205,7 @@ StageExplanation explainStages(const StageFit& fit, int method, const SourceHint
 // ---- Text
 
 std::string text(const CourseForm& form, int calls);  // "x0 + h/2·v1"
-std::string stateName(int state, int calls);           // "evaluation 2", "the result"
+std::string stateName(int state, int calls);          // "evaluation 2", "the result"
 std::string stageText(const StageFit& fit, const StageExplanation& explanation);
 // The fit and the explanation as JSON (states in the course's terms, departure, causes, text).
 std::string stageJson(const StageFit& fit, const StageExplanation& explanation);

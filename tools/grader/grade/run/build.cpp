@@ -490,7 +490,8 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseTo
         used.compile_seconds = runs[k].seconds;
         if (!runs[k].ok) {
           used.status = Verdict::CompileError;
-          const CompileSite where = site(work_dir / ("src-" + stem(used.name)) / used.name, used.name);
+          const CompileSite where =
+              site(work_dir / ("src-" + stem(used.name)) / used.name, used.name);
           used.problem = firstCompilerError(runs[k].output, where);
           used.log = compilerLog(runs[k].output, where);
         }
@@ -515,8 +516,7 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseTo
   runs = compileAll(ours, commands, work_dir);
   for (std::size_t k = 0; k < runs.size(); ++k)
     if (!runs[k].ok) {
-      build.problem = "our reference " + names[k] + " for " + ed +
-                      " does not compile: " +
+      build.problem = "our reference " + names[k] + " for " + ed + " does not compile: " +
                       firstCompilerError(runs[k].output,
                                          site(toolchain.reference_dir / ed / names[k], names[k]));
       return build;

@@ -70,8 +70,8 @@ bool isBelow(const fs::path& path, const fs::path& dir) {
 
 struct Site {
   const CompileSite& given;
-  fs::path student;                                      // canonical
-  fs::path work;                                         // canonical
+  fs::path student;                                       // canonical
+  fs::path work;                                          // canonical
   std::vector<std::pair<fs::path, std::string>> headers;  // canonical
   explicit Site(const CompileSite& site) : given(site) {
     std::error_code error;

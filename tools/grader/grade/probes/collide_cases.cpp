@@ -1,0 +1,148 @@
+#include "grader/grade/probes/collide_cases.h"
+
+#include <functional>
+#include <iterator>
+
+namespace clothref::grader::contacts {
+
+void collideCourse(State& s, bool sphere_sphere, float restitution) {
+  if (sphere_sphere)
+    collide(s.spheres, restitution, kCorrection);
+  else
+    collide(s.spheres, s.cloth, restitution, kCorrection);
+}
+
+namespace {
+
+State baseState(int edition) {
+  State s;
+  s.cloth.particles = initializeVertex<float>(kN, 2.0f, edition == 2024 ? 1.0f : 0.0f, 1.0f);
+  for (int i = 0; i < kN; ++i)
+    for (int j = 0; j < kN; ++j)  // parked 50 m below, 3 m apart: nothing touches them
+      s.cloth.particles.position.col(i * kN + j) =
+          Vec4<float>(-36.0f + 3.0f * float(j), -50.0f, -36.0f + 3.0f * float(i), 1.0f);
+  for (int corner : {0, kN - 1, kN * (kN - 1), kN * kN - 1})
+    setMass(s.cloth.particles, corner, 0.0f);
+  for (int k = 0; k < 3; ++k)
+    addSphere(s.spheres, Vec4<float>(100.0f * float(k + 1), 100, 0, 1), kRadii[k], 1000.0f);
+  return s;
+}
+
+void place(State& s, bool sphere, int index, Vec4<float> x, Vec4<float> v) {
+  auto& p = sphere ? s.spheres.particles : s.cloth.particles;
+  p.position.col(index) = x;
+  p.velocity.col(index) = v;
+}
+Vec4<float> P(float x, float y, float z) { return Vec4<float>(x, y, z, 1); }
+Vec4<float> V(float x, float y, float z) { return Vec4<float>(x, y, z, 0); }
+
+// The check tables (collideChecks()): the names in the enums' order, each check worth 1.
+constexpr const char* kClothCheckNames[] = {
+    "approaching pair", "separating pair",  "several spheres",  "sphere at index 2",
+    "fixed particle",   "deep penetration", "touching exactly", "momentum conserved"};
+constexpr const char* kSphereCheckNames[] = {
+    "approaching pair", "separating pair",  "three spheres in a chain", "pair without sphere 0",
+    "deep penetration", "touching exactly", "unequal masses",           "momentum conserved"};
+static_assert(std::size(kClothCheckNames) == kClothMomentum + 1);
+static_assert(std::size(kSphereCheckNames) == kSpheresMomentum + 1);
+
+}  // namespace
+
+std::vector<Case> clothCases(int edition) {
+  std::vector<Case> cases;
+  const auto make = [&](ClothCheck check, std::vector<int> spheres, std::vector<int> particles,
+                        const std::function<void(State&)>& setup, bool free_bodies = true) {
+    Case c{check, baseState(edition), std::move(spheres), std::move(particles), free_bodies};
+    setup(c.state);
+    cases.push_back(std::move(c));
+  };
+  make(kClothApproaching, {0}, {312}, [](State& s) {
+    place(s, true, 0, P(0.1f, 0.42f, -0.05f), V(0.3f, -2, 0.1f));
+    place(s, false, 312, P(0, 0, 0), V(0.2f, 0.5f, -0.1f));
+  });
+  make(kClothSeparating, {0}, {312}, [](State& s) {
+    place(s, true, 0, P(0.05f, 0.45f, 0), V(0, 1.5f, 0.2f));
+    place(s, false, 312, P(0, 0, 0), V(0, -0.3f, 0));
+  });
+  make(kSeveralSpheres, {0, 1, 2}, {100, 200, 312}, [](State& s) {
+    place(s, false, 100, P(-5, 0, 0), V(0, 0, 0));
+    place(s, false, 200, P(5, 0, 0), V(0, 0.1f, 0));
+    place(s, false, 312, P(0, 0, 5), V(0, 0, 0));
+    place(s, true, 0, P(-4.95f, 0.4f, 0), V(0, -1, 0));
+    place(s, true, 1, P(4.9f, 0.45f, 0.05f), V(0.5f, -1, 0));
+    place(s, true, 2, P(0, 0.9f, 5.2f), V(0, -0.5f, 0.3f));
+  });
+  make(kSphereAtIndex2, {2}, {312}, [](State& s) {
+    place(s, true, 2, P(0.3f, 0.85f, 0), V(0, -1, 0));
+    place(s, false, 312, P(0, 0, 0), V(0, 0, 0));
+  });
+  make(
+      kFixedParticle, {0}, {0},
+      [](State& s) {
+        place(s, false, 0, P(0, 0, 0), V(0, 0, 0));
+        place(s, true, 0, P(0, 0.45f, 0.05f), V(0.2f, -1, 0));
+      },
+      false);
+  make(kClothDeep, {0}, {312}, [](State& s) {
+    place(s, true, 0, P(0.05f, 0.1f, 0.02f), V(0, -1, 0.5f));
+    place(s, false, 312, P(0, 0, 0), V(0, 0.2f, 0));
+  });
+  make(kClothTouching, {0}, {312}, [](State& s) {
+    place(s, true, 0, P(0, 0.5f, 0), V(0, -1, 0));
+    place(s, false, 312, P(0, 0, 0), V(0, 0, 0));
+  });
+  return cases;
+}
+
+std::vector<Case> sphereCases(int edition) {
+  std::vector<Case> cases;
+  const auto make = [&](SphereCheck check, std::vector<int> spheres,
+                        const std::function<void(State&)>& setup) {
+    Case c{check, baseState(edition), std::move(spheres), {}, true};
+    setup(c.state);
+    cases.push_back(std::move(c));
+  };
+  make(kSpheresApproaching, {0, 1}, [](State& s) {
+    place(s, true, 0, P(0, 0, 0), V(1, 0.2f, 0));
+    place(s, true, 1, P(0.9f, 0.1f, 0), V(-0.5f, 0, 0.3f));
+  });
+  make(kSpheresSeparating, {0, 1}, [](State& s) {
+    place(s, true, 0, P(0, 0, 0), V(-1, 0, 0));
+    place(s, true, 1, P(0.95f, 0, 0), V(0.5f, 0, 0));
+  });
+  make(kChain, {0, 1, 2}, [](State& s) {
+    place(s, true, 0, P(0, 0, 0), V(1, 0, 0));
+    place(s, true, 1, P(0.95f, 0, 0), V(0, 0, 0));
+    place(s, true, 2, P(2.4f, 0.05f, 0), V(-1, 0, 0));
+  });
+  make(kPairWithoutSphere0, {1, 2}, [](State& s) {
+    place(s, true, 1, P(0, 0, 0), V(0.5f, 0, 0));
+    place(s, true, 2, P(1.4f, 0.2f, 0), V(-0.5f, 0, 0.1f));
+  });
+  make(kSpheresDeep, {0, 1}, [](State& s) {
+    place(s, true, 0, P(0, 0, 0), V(0.3f, 0, 0));
+    place(s, true, 1, P(0.3f, 0.05f, 0.02f), V(-0.3f, 0, 0));
+  });
+  make(kSpheresTouching, {0, 1}, [](State& s) {
+    place(s, true, 0, P(0, 0, 0), V(1, 0, 0));
+    place(s, true, 1, P(1, 0, 0), V(0, 0, 0));
+  });
+  make(kUnequalMasses, {0, 2}, [](State& s) {
+    place(s, true, 0, P(0, 0, 0), V(2, 0, 0));
+    place(s, true, 2, P(1.45f, 0.1f, 0), V(0, 0, 0));
+  });
+  return cases;
+}
+
+std::vector<PlannedTest> checkTable(bool sphere_sphere) {
+  const std::string& stub = stubName(sphere_sphere ? Stub::CollideSpheres : Stub::CollideCloth);
+  std::vector<PlannedTest> checks;
+  for (const char* name :
+       sphere_sphere
+           ? std::vector<const char*>(std::begin(kSphereCheckNames), std::end(kSphereCheckNames))
+           : std::vector<const char*>(std::begin(kClothCheckNames), std::end(kClothCheckNames)))
+    checks.push_back({stub, name, 1});
+  return checks;
+}
+
+}  // namespace clothref::grader::contacts
