@@ -1,6 +1,8 @@
-# Checks the library's include rules (docs/layout.md): run as `cmake -DROOT=lib/clothref -P
-# cmake/CheckIncludes.cmake`, and by the build before any library area compiles, so a wrong include
-# fails the build with the file, the line and the rule it breaks.
+# Checks the include rules (docs/layout.md): the library's areas, run as `cmake
+# -DROOT=lib/clothref -P cmake/CheckIncludes.cmake`, and the grader's rooms, run as `cmake
+# -DGRADER=tools/grader -P cmake/CheckIncludes.cmake` (either or both). The build runs it before
+# any library area or grader file compiles, so a wrong include fails the build with the file, the
+# line and the rule it breaks.
 #
 # For each area (a folder of lib/clothref): the other areas it may include ("clothref/<area>/...")
 # and the non-standard headers it may include (<prefix...>). Standard C++ headers (<vector>) are
@@ -36,11 +38,126 @@ set(RULES_analysis_EXTERNAL "Eigen/;nlohmann/;fmt/")
 set(RULES_clothref.h_AREAS "core;record;scene;trace")
 set(RULES_clothref.h_EXTERNAL "")
 
-if(NOT ROOT)
-  message(FATAL_ERROR "CheckIncludes.cmake: pass -DROOT=<path to lib/clothref>")
+# The grader's rooms (tools/grader; docs/layout.md, "The grader's rooms"): the folder of each, as
+# a regular expression over the file's path in tools/grader, and what its files may include, as
+# regular expressions over the include as written, its opening delimiter included: "grader/grade/
+# run/ is a room, "grader/grade/results.h one file, "clothref/io/ a library area, <Eigen/ a
+# package, "[^/]+$ a course header by its bare name (the course's include path finds it).
+# Standard C++ headers (<vector>) are always allowed; a path with ".." never is.
+set(GRADER_ROOMS bridge course reference driver run probes report grade prebuild)
+# the one crossing of the two sides: std only
+set(GRADER_bridge_FILES "^bridge/")
+set(GRADER_bridge_MAY "")
+# the course's stand-in headers and framework, and our course-form reference files
+set(GRADER_course_FILES "^course/")
+set(GRADER_course_MAY "\"[^/]+$" "<Eigen/" "<glad/" "<stdint\\.h>")
+set(GRADER_reference_FILES "^reference/")
+set(GRADER_reference_MAY "\"[^/]+$" "<Eigen/")
+# the child's main: the course's headers, the bridge, and clothref's std-only formulas and method
+# table (never another clothref header: the course's names and clothref's never meet)
+set(GRADER_driver_FILES "^driver/")
+set(GRADER_driver_MAY "\"[^/]+$" "\"grader/bridge/" "\"clothref/formula/"
+    "\"clothref/core/method\\.h\"" "<Eigen/" "<unistd\\.h>")
+# running untrusted code: never the probes, the reports or the grade's top level beyond its
+# plain-data results and text helpers
+set(GRADER_run_FILES "^grade/run/")
+set(GRADER_run_MAY "\"grader/bridge/" "\"grader/grade/run/" "\"grader/grade/(results|text)\\.h\""
+    "\"clothref/io/" "<unistd\\.h>" "<fcntl\\.h>" "<signal\\.h>" "<sched\\.h>" "<poll\\.h>"
+    "<grp\\.h>" "<dirent\\.h>" "<sys/" "<linux/")
+# the probes and fitting engines: run, and of the top level the results, rubric, text helpers,
+# the catalogue and its generated cause-id constants (cause_ids.h, in the build tree);
+# never the reports
+set(GRADER_probes_FILES "^grade/probes/")
+set(GRADER_probes_MAY "\"grader/bridge/" "\"grader/grade/run/" "\"grader/grade/probes/"
+    "\"grader/grade/(results|rubric|text|catalogue|cause_ids)\\.h\""
+    "\"clothref/(base|core|io|scene|solver|trace|diff|record|verify|formula)/" "<Eigen/"
+    "<nlohmann/")
+# the writers: the top level (results, and grade.h / batch.h), the pages; never run or probes
+set(GRADER_report_FILES "^grade/report/")
+set(GRADER_report_MAY "\"grader/grade/report/" "\"grader/grade/[^/]+$" "\"clothref/io/" "\"pages/"
+    "<nlohmann/" "<fmt/" "<stdlib\\.h>")
+# the top level (grade, batch, rubric, text, results): of the probes only their table, probes.h
+set(GRADER_grade_FILES "^grade/[^/]+$")
+set(GRADER_grade_MAY "\"grader/grade/[^/]+$" "\"grader/grade/run/"
+    "\"grader/grade/probes/probes\\.h\"" "\"grader/grade/report/" "\"clothref/io/" "<nlohmann/"
+    "<iconv\\.h>" "<unistd\\.h>" "<fcntl\\.h>" "<sys/")
+set(GRADER_prebuild_FILES "^prebuild/")
+set(GRADER_prebuild_MAY "\"grader/grade/run/")
+
+if(NOT ROOT AND NOT GRADER)
+  message(FATAL_ERROR "CheckIncludes.cmake: pass -DROOT=<path to lib/clothref> and/or "
+                      "-DGRADER=<path to tools/grader>")
 endif()
-file(GLOB_RECURSE files RELATIVE ${ROOT} ${ROOT}/*.h ${ROOT}/*.cpp ${ROOT}/*.h.in)
+# Relative to the working directory: GLOB_RECURSE ... RELATIVE finds nothing under a relative
+# path, so a check of no file would pass.
+foreach(tree ROOT GRADER)
+  if(${tree})
+    get_filename_component(${tree} "${${tree}}" ABSOLUTE)
+    if(NOT IS_DIRECTORY "${${tree}}")
+      message(FATAL_ERROR "CheckIncludes.cmake: ${tree}=${${tree}} is not a folder")
+    endif()
+  endif()
+endforeach()
 set(violations 0)
+
+# The include of `line` as written ("clothref/io/error.h" or <vector>, delimiters kept), or "".
+function(include_of line out)
+  set(${out} "" PARENT_SCOPE)
+  if(line MATCHES "^[ \t]*#[ \t]*include[ \t]*(\"[^\"]+\"|<[^>]+>)")
+    set(${out} "${CMAKE_MATCH_1}" PARENT_SCOPE)
+  endif()
+endfunction()
+
+if(GRADER)
+  file(GLOB_RECURSE grader_files RELATIVE ${GRADER} ${GRADER}/*.h ${GRADER}/*.cpp)
+  foreach(file ${grader_files})
+    set(room "")
+    foreach(candidate IN LISTS GRADER_ROOMS)
+      if(NOT room AND file MATCHES "${GRADER_${candidate}_FILES}")
+        set(room ${candidate})
+      endif()
+    endforeach()
+    if(NOT room)
+      message(SEND_ERROR "tools/grader/${file}: no room has include rules for it: add one to "
+                         "cmake/CheckIncludes.cmake and docs/layout.md")
+      math(EXPR violations "${violations} + 1")
+      continue()
+    endif()
+    # UTF-8: a non-ASCII character would otherwise split its line in two (wrong line numbers)
+    file(STRINGS ${GRADER}/${file} lines ENCODING UTF-8)
+    set(number 0)
+    foreach(line IN LISTS lines)
+      math(EXPR number "${number} + 1")
+      include_of("${line}" written)
+      if(NOT written)
+        continue()
+      endif()
+      set(allowed FALSE)
+      if(written MATCHES "^<[^./]+>$")
+        set(allowed TRUE)  # the C++ standard library
+      endif()
+      foreach(rule IN LISTS GRADER_${room}_MAY)
+        if(written MATCHES "^${rule}")
+          set(allowed TRUE)
+        endif()
+      endforeach()
+      if(written MATCHES "\\.\\./")
+        set(allowed FALSE)  # through the include path, never relative to this file
+      endif()
+      if(NOT allowed)
+        string(REPLACE "\\." "." rule "${GRADER_${room}_MAY}")
+        string(REPLACE ";" " " rule "${rule}")
+        message(SEND_ERROR "tools/grader/${file}:${number}: #include ${written} breaks the include "
+                           "rules (room '${room}' may include: the standard library ${rule}; "
+                           "docs/layout.md)")
+        math(EXPR violations "${violations} + 1")
+      endif()
+    endforeach()
+  endforeach()
+endif()
+
+if(ROOT)
+file(GLOB_RECURSE files RELATIVE ${ROOT} ${ROOT}/*.h ${ROOT}/*.cpp ${ROOT}/*.h.in)
 foreach(file ${files})
   string(REGEX MATCH "^[^/]+" area "${file}")
   if(NOT DEFINED RULES_${area}_AREAS)
@@ -49,7 +166,7 @@ foreach(file ${files})
     math(EXPR violations "${violations} + 1")
     continue()
   endif()
-  file(STRINGS ${ROOT}/${file} lines)
+  file(STRINGS ${ROOT}/${file} lines ENCODING UTF-8)
   set(number 0)
   foreach(line IN LISTS lines)
     math(EXPR number "${number} + 1")
@@ -96,6 +213,7 @@ foreach(file ${files})
     endif()
   endforeach()
 endforeach()
+endif()
 if(violations GREATER 0)
   message(FATAL_ERROR "${violations} include rule violation(s)")
 endif()

@@ -11,6 +11,7 @@
 #include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <map>
 #include <mutex>
@@ -128,6 +129,16 @@ INSTANTIATE_TEST_SUITE_P(Submissions, Corpus, ::testing::ValuesIn(corpusCases())
                            return name;
                          });
 
+// A probe group that grades `stub` by running `run`.
+grader::ProbeGroup groupOf(
+    const std::string& stub,
+    std::function<std::vector<grader::TestResult>(const grader::ProbeContext&)> run) {
+  grader::ProbeGroup group;
+  group.stub = stub;
+  group.run = std::move(run);
+  return group;
+}
+
 // A group that runs long (a loop until its time limit) holds one worker, never the groups behind
 // it: here the first group waits for the last to run, which a pool that waits for its oldest job
 // before starting the next never lets happen (the wait would end on its 20 s bound, unreleased).
@@ -136,22 +147,22 @@ TEST(ProbeGroups, ALongGroupDoesNotHoldBackTheGroupsBehindIt) {
   std::condition_variable changed;
   bool last_ran = false;
   std::vector<grader::ProbeGroup> groups;
-  groups.push_back({"first", {}, [&](const grader::ProbeContext&) {
-                      std::unique_lock<std::mutex> lock(mutex);
-                      const bool released = changed.wait_for(lock, std::chrono::seconds(20),
-                                                             [&] { return last_ran; });
-                      return std::vector<grader::TestResult>{
-                          grader::makeTest("first", released ? "released" : "held", 1)};
-                    }});
+  groups.push_back(groupOf("first", [&](const grader::ProbeContext&) {
+    std::unique_lock<std::mutex> lock(mutex);
+    const bool released =
+        changed.wait_for(lock, std::chrono::seconds(20), [&] { return last_ran; });
+    return std::vector<grader::TestResult>{
+        grader::makeTest("first", released ? "released" : "held", 1)};
+  }));
   for (const char* name : {"second", "third", "skipped", "last"})
-    groups.push_back({name, {}, [&, name](const grader::ProbeContext&) {
-                        if (std::string(name) == "last") {
-                          std::lock_guard<std::mutex> lock(mutex);
-                          last_ran = true;
-                          changed.notify_all();
-                        }
-                        return std::vector<grader::TestResult>{grader::makeTest(name, "ran", 1)};
-                      }});
+    groups.push_back(groupOf(name, [&, name](const grader::ProbeContext&) {
+      if (std::string(name) == "last") {
+        std::lock_guard<std::mutex> lock(mutex);
+        last_ran = true;
+        changed.notify_all();
+      }
+      return std::vector<grader::TestResult>{grader::makeTest(name, "ran", 1)};
+    }));
   const auto results =
       grader::runProbeGroups(groups, grader::ProbeContext{}, {{"skipped", "no file"}}, 2);
   ASSERT_EQ(results.size(), groups.size());
@@ -169,15 +180,15 @@ TEST(ProbeGroups, AnExceptionReachesTheCallerAfterEveryGroupEnded) {
   std::atomic<int> ran{0};
   std::vector<grader::ProbeGroup> groups;
   groups.push_back(
-      {"throws", {}, [&](const grader::ProbeContext&) -> std::vector<grader::TestResult> {
-         ++ran;
-         throw std::runtime_error("no fork");
-       }});
+      groupOf("throws", [&](const grader::ProbeContext&) -> std::vector<grader::TestResult> {
+        ++ran;
+        throw std::runtime_error("no fork");
+      }));
   for (int k = 0; k < 3; ++k)
-    groups.push_back({"fine", {}, [&](const grader::ProbeContext&) {
-                        ++ran;
-                        return std::vector<grader::TestResult>{};
-                      }});
+    groups.push_back(groupOf("fine", [&](const grader::ProbeContext&) {
+      ++ran;
+      return std::vector<grader::TestResult>{};
+    }));
   EXPECT_THROW(grader::runProbeGroups(groups, grader::ProbeContext{}, {}, 2), std::runtime_error);
   EXPECT_EQ(ran.load(), 4);
 }

@@ -1,11 +1,13 @@
-// The probe protocol's names are one table (bridge/probe_keys.h): every key distinct, the per-case
-// form, and no key written as a string literal in the files that exchange messages.
+// The probe protocol's names are one list each (bridge/probe_keys.h, group::kAll and key::kAll):
+// every name distinct, the per-case form, and no key written as a string literal in the files that
+// exchange messages.
 #include "grader/bridge/probe_keys.h"
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -17,23 +19,32 @@ namespace {
 namespace key = probe::key;
 namespace group = probe::group;
 
+// Every name is distinct within its list (a group is sent under key::kGroup, so groups and keys
+// never meet), and its identifier is its own: the lists declare what they list.
 TEST(ProbeKeys, EveryKeyAndGroupIsDistinct) {
-  const std::vector<std::string> keys = {
-      key::kGroup,      key::kCases,      key::kMethod,        key::kClothPos,
-      key::kClothVel,   key::kClothAcc,   key::kClothMass,     key::kSpherePos,
-      key::kSphereVel,  key::kSphereMass, key::kSphereRadius,  key::kSpringStart,
-      key::kSpringEnd,  key::kSpringType, key::kSpringRest,    key::kParticlesPerEdge,
-      key::kSpringCoef, key::kDamperCoef, key::kParams,        key::kFlags,
-      key::kDt,         key::kSteps,      key::kStride,        key::kDtAfter,
-      key::kCalls,      key::kTrajectory, key::kSphereCapacity, key::kRecordStages,
-      key::kStartClothPos, key::kStartClothVel, key::kStartClothAcc, key::kStartSpherePos,
-      key::kStartSphereVel, key::kStartSphereAcc, key::kEvalClothPos, key::kEvalClothVel,
-      key::kEvalClothAcc, key::kEvalSpherePos, key::kEvalSphereVel, key::kEvalSphereAcc};
-  EXPECT_EQ(std::set<std::string>(keys.begin(), keys.end()).size(), keys.size());
-  const std::vector<std::string> groups = {group::kSprings,      group::kForces,
-                                           group::kCollideCloth, group::kCollideSpheres,
-                                           group::kIntegrate,    group::kWholeRun};
-  EXPECT_EQ(std::set<std::string>(groups.begin(), groups.end()).size(), groups.size());
+  for (const auto& list : {std::vector<probe::Name>(std::begin(group::kAll), std::end(group::kAll)),
+                           std::vector<probe::Name>(std::begin(key::kAll), std::end(key::kAll))}) {
+    std::set<std::string> texts, identifiers;
+    for (const probe::Name& name : list) {
+      EXPECT_TRUE(texts.insert(name.text).second) << name.identifier << " repeats " << name.text;
+      EXPECT_TRUE(identifiers.insert(name.identifier).second) << name.identifier;
+      EXPECT_FALSE(std::string(name.text).empty()) << name.identifier;
+    }
+  }
+  EXPECT_STREQ(group::kAll[0].identifier, "kSprings");
+  EXPECT_STREQ(group::kAll[0].text, group::kSprings);
+}
+
+// A key "<k>.<digits>" would be read as case <digits> of key <k>: no key may look like that, and
+// no key's per-case form may be another key.
+TEST(ProbeKeys, NoKeyIsAnotherKeysPerCaseForm) {
+  const std::regex case_suffix(R"(\.[0-9]+$)");
+  std::set<std::string> texts;
+  for (const probe::Name& name : key::kAll) texts.insert(name.text);
+  for (const probe::Name& name : key::kAll) {
+    EXPECT_FALSE(std::regex_search(std::string(name.text), case_suffix)) << name.identifier;
+    for (int k : {0, 1, 10}) EXPECT_FALSE(texts.count(key::perCase(name.text, k))) << name.text;
+  }
 }
 
 TEST(ProbeKeys, PerCaseAppendsTheCaseIndex) {

@@ -3,29 +3,31 @@
 // stdin, calls the student's stubs of that group, and writes one ProbeMessage with the outputs to
 // fd 3. It never computes a score or a reference result: those live in the grader process.
 //
-// Groups (request text key::kGroup; names and keys: bridge/probe_keys.h):
-//   springs          Cloth() and its springs (N = particlesPerEdge of this build)
-//   forces           Cloth::computeSpringForce on given states and OUR spring set
-//   collide-cloth    Spheres::collide(Cloth*) on crafted states
-//   collide-spheres  Spheres::collide() on crafted states (2022 only)
-//   integrate        one integrator on small systems whose derivatives come from the course-form
-//                    force code below (never the student's forces)
-//   whole-run        the student's full simulation of the course scene (information only)
+// The groups it serves are the rows of kGroups below, one per name of bridge/probe_keys.h (the
+// build fails on a name without a row); a request for another group, or for a method that is not
+// one of the course's integrators, is refused: nothing on fd 3, the reason on stderr, exit 70.
 #include <unistd.h>
 
 #include <Eigen/Core>
+#include <array>
 #include <cerrno>
 #include <cstdio>
 #include <iostream>
 #include <iterator>
 #include <memory>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
-#include "../bridge/probe_keys.h"
-#include "../bridge/probe_protocol.h"
-// std only: the one header of clothref the course side may include (docs/layout.md)
-#include "../../../lib/clothref/formula/course_formulas.h"
+// std only, the headers of clothref the course side may include (docs/layout.md): the course's
+// formulas and the method table
+#include "clothref/core/method.h"
+#include "clothref/formula/course_formulas.h"
+#include "grader/bridge/probe_keys.h"
+#include "grader/bridge/probe_protocol.h"
+
+// the course's headers (the stand-in of this edition)
 #include "cloth.h"
 #include "configs.h"
 #include "integrator.h"
@@ -38,6 +40,11 @@ using probe::ProbeMessage;
 namespace key = probe::key;
 namespace group = probe::group;
 using key::perCase;
+
+// A request the driver cannot serve (an unknown group or method): main refuses it.
+struct BadRequest {
+  std::string why;
+};
 
 // Copies a 4 x n column-major float array in or out of a Particles matrix.
 void load(Eigen::Ref<Eigen::Matrix4Xf> target, const std::vector<float>& values) {
@@ -108,7 +115,7 @@ void probeForces(const ProbeMessage& in, ProbeMessage& out) {
 
 // Both collision groups: three spheres added once (the singleton persists), then every case
 // restores the whole state before the call, as the course's main restores its backups.
-void probeCollide(const ProbeMessage& in, ProbeMessage& out, bool sphereSphere) {
+void collide(const ProbeMessage& in, ProbeMessage& out, bool sphereSphere) {
   Cloth cloth;
   Spheres& spheres = Spheres::initSpheres();
   const auto& radii = in.f(key::kSphereRadius);
@@ -149,6 +156,8 @@ void probeCollide(const ProbeMessage& in, ProbeMessage& out, bool sphereSphere) 
     out.floats[perCase(key::kSphereVel, k)] = save(s.velocity());
   }
 }
+void probeCollideCloth(const ProbeMessage& in, ProbeMessage& out) { collide(in, out, false); }
+void probeCollideSpheres(const ProbeMessage& in, ProbeMessage& out) { collide(in, out, true); }
 
 // ---- Course-form reference derivatives for the integrator probes (our code, not the student's).
 struct MiniWorld {
@@ -211,21 +220,39 @@ void simulate(MiniWorld& w) {
                 w.radius[static_cast<size_t>(i)] + w.radius[static_cast<size_t>(j)], w.e_sphere);
 }
 
-const Integrator& integratorFor(std::int64_t method) {
+// The rows of clothref's method table (core/method.h), copied at compile time: the driver holds
+// no clothref symbol that a student's file could declare and reach.
+constexpr auto kMethodRows = [] {
+  std::array<std::pair<clothref::Method, std::string_view>, clothref::kMethods.size()> rows{};
+  for (std::size_t row = 0; row < rows.size(); ++row)
+    rows[row] = {clothref::kMethods[row].method, clothref::kMethods[row].name};
+  return rows;
+}();
+
+// The course's integrator of the request's key::kMethod, a row of the method table; a row the
+// course has no class for, or a number outside the table, is refused.
+const Integrator& integratorFor(std::int64_t row) {
   static const ExplicitEuler explicitEuler;
   static const ImplicitEuler implicitEuler;
   static const MidpointEuler midpointEuler;
   static const RungeKuttaFourth rungeKutta;
+  if (row < 0 || row >= std::ssize(kMethodRows))
+    throw BadRequest{"no method " + std::to_string(row) + " in the method table"};
+  const auto& [method, name] = kMethodRows[static_cast<std::size_t>(row)];
   switch (method) {
-    case 1:
-      return implicitEuler;
-    case 2:
-      return midpointEuler;
-    case 3:
-      return rungeKutta;
-    default:
+    case clothref::Method::Explicit:
       return explicitEuler;
+    case clothref::Method::Implicit:
+      return implicitEuler;
+    case clothref::Method::Midpoint:
+      return midpointEuler;
+    case clothref::Method::Rk4:
+      return rungeKutta;
+    case clothref::Method::Symplectic:
+    case clothref::Method::BackwardEuler:
+      break;  // textbook methods: the course has no class for them
   }
+  throw BadRequest{"method " + std::string(name) + " is not one of the course's integrators"};
 }
 
 void probeIntegrate(const ProbeMessage& in, ProbeMessage& out) {
@@ -323,6 +350,7 @@ void probeIntegrate(const ProbeMessage& in, ProbeMessage& out) {
 
 // The course's main loop on its default scene, with every stub the student's.
 void probeWholeRun(const ProbeMessage& in, ProbeMessage& out) {
+  const Integrator& integrator = integratorFor(in.scalarInt(key::kMethod));
   Cloth cloth;
   Spheres& spheres = Spheres::initSpheres();
 #ifdef CLOTHREF_GRADER_EDITION_2024
@@ -333,7 +361,6 @@ void probeWholeRun(const ProbeMessage& in, ProbeMessage& out) {
   spheres.addSphere(Eigen::Vector4f(-0.75f, 1, 0.75f, 1), 0.5f);
   spheres.addSphere(Eigen::Vector4f(0.75f, 1, 0.75f, 1), 0.5f);
 #endif
-  const Integrator& integrator = integratorFor(in.scalarInt(key::kMethod));
   deltaTime = in.scalar(key::kDt, 1e-4f);
   const std::int64_t steps = in.scalarInt(key::kSteps, 100);
   const std::int64_t stride = std::max<std::int64_t>(1, in.scalarInt(key::kStride, 10));
@@ -389,6 +416,47 @@ void probeWholeRun(const ProbeMessage& in, ProbeMessage& out) {
   out.ints[key::kSphereCapacity] = {spheres.particles().getCapacity()};
 }
 
+// The groups served, by the protocol's group name: the one dispatch of the driver.
+struct Group {
+  const char* name;
+  void (*run)(const ProbeMessage& in, ProbeMessage& out);
+};
+constexpr Group kGroups[] = {
+    // Cloth() and its springs (N = particlesPerEdge of this build)
+    {group::kSprings, probeSprings},
+    // Cloth::computeSpringForce on given states and OUR spring set
+    {group::kForces, probeForces},
+    // Spheres::collide(Cloth*) on crafted states
+    {group::kCollideCloth, probeCollideCloth},
+    // Spheres::collide() on crafted states (2022 only)
+    {group::kCollideSpheres, probeCollideSpheres},
+    // one integrator on small systems whose derivatives come from the course-form force code
+    // above (never the student's forces)
+    {group::kIntegrate, probeIntegrate},
+    // the student's full simulation of the course scene (information only)
+    {group::kWholeRun, probeWholeRun},
+};
+
+// Every group of the protocol's list has exactly one row.
+constexpr bool servesEveryGroupOnce() {
+  for (const probe::Name& name : group::kAll) {
+    int rows = 0;
+    for (const Group& row : kGroups) rows += std::string_view(row.name) == name.text ? 1 : 0;
+    if (rows != 1) return false;
+  }
+  return std::size(kGroups) == std::size(group::kAll);
+}
+static_assert(servesEveryGroupOnce(), "kGroups must have one row per name of probe::group");
+
+// Runs the row named `name`; false when no row is. Unrolled over the rows, so that each call is
+// a direct call the compiler may inline, as a hand-written chain's would be (a crash report
+// quotes the same driver frames as before the table).
+template <std::size_t... row>
+bool serve(const std::string& name, const ProbeMessage& in, ProbeMessage& out,
+           std::index_sequence<row...>) {
+  return ((name == kGroups[row].name && (kGroups[row].run(in, out), true)) || ...);
+}
+
 bool writeAll(int fd, const std::string& data) {
   size_t done = 0;
   while (done < data.size()) {
@@ -412,20 +480,11 @@ int main() {
   ProbeMessage out;
   out.nonce = in->nonce;
   const std::string name = in->text(key::kGroup);
-  if (name == group::kSprings)
-    probeSprings(*in, out);
-  else if (name == group::kForces)
-    probeForces(*in, out);
-  else if (name == group::kCollideCloth)
-    probeCollide(*in, out, false);
-  else if (name == group::kCollideSpheres)
-    probeCollide(*in, out, true);
-  else if (name == group::kIntegrate)
-    probeIntegrate(*in, out);
-  else if (name == group::kWholeRun)
-    probeWholeRun(*in, out);
-  else {
-    std::fprintf(stderr, "probe driver: unknown group '%s'\n", name.c_str());
+  try {
+    if (!serve(name, *in, out, std::make_index_sequence<std::size(kGroups)>()))
+      throw BadRequest{"unknown group '" + name + "'"};
+  } catch (const BadRequest& bad) {
+    std::fprintf(stderr, "probe driver: %s\n", bad.why.c_str());
     return 70;
   }
   out.texts[key::kGroup] = name;

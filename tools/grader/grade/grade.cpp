@@ -150,6 +150,7 @@ ProbeContext probeContext(const GradeReport& report, const Rubric& rubric,
                           const GradeScratch& scratch, const GradeOptions& options) {
   ProbeContext context;
   context.edition = report.edition;
+  context.course = courseEdition(report.edition);
   context.rubric = rubric;
   context.catalogue = &catalogue;
   context.probe = scratch.publish(build.probe);

@@ -1,6 +1,7 @@
 #include "grader/grade/probes/formula_variants.h"
 
 #include "clothref/formula/course_formulas.h"
+#include "grader/grade/probes/edition.h"
 
 namespace clothref::grader {
 
@@ -14,9 +15,10 @@ Mat4X<float> springAccelerations(const Cloth<float>& cloth, const Mat4X<float>& 
   const auto& p = cloth.particles;
   Mat4X<float> a = acc0;
   if (mistake == ForceMistake::AssignTotal || mistake == ForceMistake::AssignTotalGravity) {
-    // The course's gravity as students write it, in m/s^2.
-    const Vec4<float> gravity(0.0f, mistake == ForceMistake::AssignTotalGravity ? -9.8f : 0.0f,
-                              0.0f, 0.0f);
+    // The course's gravity (m/s^2), the same in both editions' scenes (edition_test checks).
+    static const float course_gravity = static_cast<float>(courseEdition(2022).gravity[1]);
+    const Vec4<float> gravity(
+        0.0f, mistake == ForceMistake::AssignTotalGravity ? course_gravity : 0.0f, 0.0f, 0.0f);
     for (int i = 0; i < p.size(); ++i) a.col(i) = p.mass[i] != 0 ? gravity : Vec4<float>::Zero();
   }
   // The loop of the library's computeSpringForce (core/cloth.cpp), its accumulation switchable.

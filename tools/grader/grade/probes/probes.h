@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "grader/grade/catalogue.h"
+#include "grader/grade/probes/edition.h"
 #include "grader/grade/results.h"
 #include "grader/grade/rubric.h"
 #include "grader/grade/run/child_process.h"
@@ -20,6 +21,7 @@ namespace clothref::grader {
 
 struct ProbeContext {
   int edition = 2022;
+  Edition course = courseEdition(2022);  // the same edition as a record: its course scene's values
   Rubric rubric;
   const Catalogue* catalogue = nullptr;
   std::filesystem::path probe;        // the linked probe executable (N = 25)
@@ -43,16 +45,22 @@ struct PlannedTest {
 };
 std::vector<PlannedTest> plannedTests(int edition);
 
-// The probe groups of an edition, in the order they run: the one table of probes. Each group is
-// one child process. Adding a probe: a row here (probes.cpp), its probe_<name>.cpp, its group in
-// driver/probe_driver.cpp and its names in bridge/probe_keys.h (docs/grading.md, "Adding a
-// probe").
+// The one table of probes: one row per probe group, each group one child process (or two, for a
+// retry or a second size) run as one job. Adding a probe: docs/grading.md, "Adding a probe".
 struct ProbeGroup {
+  std::string group;                // the protocol's group name (probe::group, bridge/probe_keys.h)
   std::string stub;                 // the course stub it grades; "" = information only
   std::vector<PlannedTest> checks;  // its tests, for a stub whose file could not be used
   std::function<std::vector<TestResult>(const ProbeContext&)> run;
+  // The folders under the work dir its children run in, one each; the sanitizer reads their
+  // stderr.
+  std::vector<std::string> folders;
 };
-std::vector<ProbeGroup> probeGroups(int edition, bool whole_run);
+// Every row, whatever the edition, in run order.
+std::vector<ProbeGroup> probeTable();
+// The rows an edition runs, in order: those whose stub the edition grades (points in
+// stubTable()), and the information-only ones when `information` (the whole run).
+std::vector<ProbeGroup> probeGroups(int edition, bool information);
 
 // Runs the groups on `jobs` workers, in order, each worker taking the next group when it is free;
 // groups whose stub is in `unavailable` are skipped (their results stay empty). Results by group,
@@ -61,11 +69,12 @@ std::vector<std::vector<TestResult>> runProbeGroups(
     const std::vector<ProbeGroup>& groups, const ProbeContext& context,
     const std::map<std::string, std::string>& unavailable, int jobs);
 
-// The folders under the work dir that the probes run their children in (one child each), with
-// the stub each grades ("" = information only), in run order: the group names, the springs'
-// second size and each integrator with its course-size retry. The sanitizer reads their stderr.
-std::string integratorFolder(int method, bool course_size);
+// The folders the rows name, with the stub each grades ("" = information only), in run order
+// (probeTable()).
 std::vector<std::pair<std::string, std::string>> probeFolders();
+// The folder of an integrator's probe (method: the row of clothref's method table, as the
+// protocol's key::kMethod), and of its retry on the course's cloth.
+std::string integratorFolder(int method, bool course_size);
 inline constexpr const char* kSpringsSmallFolder = "springs-small";
 
 }  // namespace clothref::grader

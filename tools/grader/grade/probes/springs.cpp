@@ -27,9 +27,12 @@ struct SpringSet {
   int count = 0;
 };
 
-SpringSet referenceSprings(int n, int edition) {
+// Ours on an n x n cloth of the course's size, height and particle mass.
+SpringSet referenceSprings(int n, const Edition& course) {
   Cloth<float> cloth;
-  cloth.particles = initializeVertex<float>(n, 2.0f, edition == 2024 ? 1.0f : 0.0f, 1.0f);
+  cloth.particles = initializeVertex<float>(n, static_cast<float>(course.cloth_half_extent),
+                                            static_cast<float>(course.cloth_height),
+                                            static_cast<float>(course.particle_mass));
   initializeSpring(cloth, n);
   SpringSet set;
   for (const auto& s : cloth.springs) {
@@ -211,18 +214,20 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
   auto answer = util::runGroup(context, context.probe, group::kSprings, request, failure);
   const std::vector<PlannedTest> checks = springsChecks();
   std::optional<SpringSet> student;
-  const SpringSet reference = referenceSprings(25, context.edition);
-  if (answer) student = studentSprings(*answer, 25, failure.text);
+  const int course_n = context.course.particles_per_edge;  // the probe's build and the course's
+  const SpringSet reference = referenceSprings(course_n, context.course);
+  if (answer) student = studentSprings(*answer, course_n, failure.text);
   bool big_ok = false;
   if (!student) {
     const std::string id = answer ? cause::kWrongSpringEndpoints : failure.causeId();
     for (int k : {kConnections, kRestLengths, kTypeLabels})
       tests.push_back(util::failedTest(checks[k], failure.text, {util::guess(id)}));
   } else {
-    const Comparison c = compare(*student, reference, 25, rest_rel);
-    const std::string state =
-        "The course cloth: 25 x 25 particles, built by your `Cloth()` "
-        "(your `initializeVertex` and `initializeSpring`).\n\n";
+    const Comparison c = compare(*student, reference, course_n, rest_rel);
+    const std::string state = "The course cloth: " + std::to_string(course_n) + " x " +
+                              std::to_string(course_n) +
+                              " particles, built by your `Cloth()` (your `initializeVertex` and "
+                              "`initializeSpring`).\n\n";
     TestResult connections = util::test(checks[kConnections]);
     const int errors = c.missing + c.extra + c.duplicates;
     connections.fraction =
@@ -313,7 +318,7 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
         small.addCause(cause::kHardCodedN25, measured);
       }
     } else {
-      const Comparison c = compare(*small_set, referenceSprings(n, context.edition), n, rest_rel);
+      const Comparison c = compare(*small_set, referenceSprings(n, context.course), n, rest_rel);
       const bool ok = c.missing + c.extra + c.duplicates + c.wrong_rest + c.wrong_type == 0;
       small.fraction = ok ? 1.0 : 0.0;
       if (ok) {

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "clothref/core/method.h"
 #include "clothref/core/types.h"
 #include "grader/bridge/probe_keys.h"
 #include "grader/grade/cause_ids.h"
@@ -34,6 +35,14 @@ inline Mat4X<float> matrix(const std::vector<float>& values, int columns) {
 }
 inline std::vector<float> flat(const VecX<float>& v) {
   return std::vector<float>(v.data(), v.data() + v.size());
+}
+
+// The row of `method` in clothref's method table (core/method.h): how the protocol names an
+// integrator (key::kMethod).
+inline std::int64_t methodRow(Method method) {
+  for (std::size_t row = 0; row < kMethods.size(); ++row)
+    if (kMethods[row].method == method) return static_cast<std::int64_t>(row);
+  return -1;  // not in the table: the driver refuses it
 }
 
 inline std::string num(double value) {

@@ -65,12 +65,11 @@ std::string describe(const DiffReport& report, double dt) {
   out += " In all, " + std::to_string(report.values_beyond) + " of " +
          std::to_string(report.values_compared) + " values compared are beyond the tolerance (" +
          std::string("1e-5") + ", absolute or relative)";
-  if (report.worst && report.first_beyond && !(report.worst->step == report.first_beyond->step &&
-                                               report.worst->particle ==
-                                                   report.first_beyond->particle &&
-                                               report.worst->field == report.first_beyond->field))
-    out += "; the largest difference is " + values(*report.worst) + " at " +
-           at(report.worst->step);
+  if (report.worst && report.first_beyond &&
+      !(report.worst->step == report.first_beyond->step &&
+        report.worst->particle == report.first_beyond->particle &&
+        report.worst->field == report.first_beyond->field))
+    out += "; the largest difference is " + values(*report.worst) + " at " + at(report.worst->step);
   out += ".\n";
   for (const HeaderDiff& header : report.header_diffs)
     if (header.significant) {
@@ -83,7 +82,7 @@ std::string describe(const DiffReport& report, double dt) {
 }  // namespace
 
 std::vector<TestResult> probeWholeRun(const ProbeContext& context) {
-  const std::string scene_name = context.edition == 2024 ? "course2024" : "course2022";
+  const std::string& scene_name = context.course.scene;
   TestResult t = makeTest("Cloth + Spheres + ExplicitEuler (whole run)",
                           "course scene " + scene_name + " for 200 steps (information only)", 0);
   t.informational = true;
@@ -106,11 +105,12 @@ std::vector<TestResult> probeWholeRun(const ProbeContext& context) {
       "(simulateOneStep(), then ExplicitEuler::integrate) on the course scene " +
       scene_name + " for " + std::to_string(kSteps) + " steps of " + util::num(settings.dt) +
       " s (" + util::num(double(kSteps) * dt) + " s), and so did the reference; every " +
-      std::to_string(kStride) + "th state is compared. This never changes your score: an "
+      std::to_string(kStride) +
+      "th state is compared. This never changes your score: an "
       "accepted variant (e.g. symplectic explicit Euler) also differs here.\n\n";
   probe::ProbeMessage request;
   request.texts[key::kGroup] = group::kWholeRun;
-  request.ints[key::kMethod] = {0};
+  request.ints[key::kMethod] = {util::methodRow(settings.method)};
   request.floats[key::kDt] = {float(settings.dt)};
   request.ints[key::kSteps] = {settings.steps};
   request.ints[key::kStride] = {settings.stride};

@@ -1,0 +1,116 @@
+// The grader's include rules (docs/layout.md, "The grader's rooms"; cmake/CheckIncludes.cmake):
+// the tree keeps them, and the checker names each include that breaks one, with its file and line.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cctype>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "test_util.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+const fs::path kRoot = CLOTHREF_SOURCE_DIR;
+
+// The checker on the grader tree at `grader` (relative: to `from`): its exit code and output,
+// each run of white space (CMake wraps its messages) one space.
+std::pair<int, std::string> check(const fs::path& grader, const fs::path& from = kRoot) {
+  const std::string command = "cd '" + from.string() + "' && " + std::string(CLOTHREF_CMAKE) +
+                              " -DGRADER='" + grader.string() + "' -P '" +
+                              (kRoot / "cmake/CheckIncludes.cmake").string() + "' 2>&1";
+  FILE* pipe = ::popen(command.c_str(), "r");
+  if (!pipe) return {-1, ""};
+  std::string output;
+  std::array<char, 4096> buffer;
+  for (std::size_t n; (n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0;)
+    output.append(buffer.data(), n);
+  const int status = ::pclose(pipe);
+  std::string flat;
+  for (const char c : output)
+    if (!std::isspace(static_cast<unsigned char>(c)))
+      flat += c;
+    else if (!flat.empty() && flat.back() != ' ')
+      flat += ' ';
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, flat};
+}
+
+TEST(GraderIncludeRules, TheTreeKeepsThem) {
+  const auto [code, output] = check(kRoot / "tools/grader");
+  EXPECT_EQ(code, 0) << output;
+}
+
+// Each include below breaks one rule (the file, what it includes): the checker fails and names
+// every one of them, at the line it was added.
+TEST(GraderIncludeRules, EachBrokenRuleIsNamedWithItsFileAndLine) {
+  clothref::test::TempDir temp;
+  const fs::path copy = temp.path() / "grader";
+  fs::copy(kRoot / "tools/grader", copy, fs::copy_options::recursive);
+  const std::vector<std::pair<std::string, std::string>> broken = {
+      {"grade/run/tools.h", "\"grader/grade/probes/probes.h\""},         // run includes probes
+      {"grade/run/spawn.h", "\"grader/grade/report/outputs.h\""},        // run includes report
+      {"grade/run/build.h", "\"grader/grade/grade.h\""},                 // run includes the grade
+      {"grade/probes/util.h", "\"grader/grade/report/outputs.h\""},      // probes include report
+      {"grade/probes/stages.h", "\"grader/grade/batch.h\""},             // probes include the batch
+      {"grade/report/outputs.h", "\"grader/grade/run/build.h\""},        // report includes run
+      {"grade/report/html_report.h", "\"grader/grade/probes/util.h\""},  // ... or probes
+      {"grade/grade.h", "\"grader/grade/probes/util.h\""},        // the top level: probes.h only
+      {"bridge/probe_protocol.h", "\"grader/grade/results.h\""},  // the bridge is std only
+      {"driver/probe_driver.cpp", "\"../bridge/probe_keys.h\""},  // never relative
+      {"driver/probe_driver.cpp", "\"clothref/core/cloth.h\""},   // clothref beyond std-only
+      {"grade/run/folders.h", "\"cloth.h\""},                     // a course header, grader side
+  };
+  std::vector<std::string> expected;
+  for (const auto& [file, include] : broken) {
+    const fs::path path = copy / file;
+    int lines = 0;
+    {
+      std::ifstream in(path);
+      ASSERT_TRUE(in) << file;
+      for (std::string line; std::getline(in, line);) ++lines;
+    }
+    std::ofstream(path, std::ios::app) << "#include " << include << "\n";
+    expected.push_back("tools/grader/" + file + ":" + std::to_string(lines + 1) + ": #include " +
+                       include + " breaks the include rules");
+  }
+  const auto [code, output] = check(copy);
+  EXPECT_NE(code, 0) << output;
+  for (const std::string& line : expected)
+    EXPECT_NE(output.find(line), std::string::npos) << line << "\n" << output;
+  EXPECT_NE(output.find(std::to_string(broken.size()) + " include rule violation(s)"),
+            std::string::npos)
+      << output;
+}
+
+// A relative path (as docs/layout.md writes the command) checks the same files: it once found
+// none, and a check of no file passed.
+TEST(GraderIncludeRules, ARelativePathChecksTheTree) {
+  clothref::test::TempDir temp;
+  fs::copy(kRoot / "tools/grader", temp.path() / "grader", fs::copy_options::recursive);
+  std::ofstream(temp.path() / "grader/grade/run/tools.h", std::ios::app)
+      << "#include \"grader/grade/probes/probes.h\"\n";
+  const auto [code, output] = check("grader", temp.path());
+  EXPECT_NE(code, 0) << output;
+  EXPECT_NE(output.find("tools/grader/grade/run/tools.h:"), std::string::npos) << output;
+  EXPECT_NE(check("no-such-folder", temp.path()).first, 0);
+}
+
+// A file in a folder without rules fails: a new room needs its rules.
+TEST(GraderIncludeRules, AFolderWithoutRulesFails) {
+  clothref::test::TempDir temp;
+  const fs::path copy = temp.path() / "grader";
+  fs::copy(kRoot / "tools/grader", copy, fs::copy_options::recursive);
+  fs::create_directories(copy / "attic");
+  std::ofstream(copy / "attic/old.cpp") << "#include <vector>\n";
+  const auto [code, output] = check(copy);
+  EXPECT_NE(code, 0) << output;
+  EXPECT_NE(output.find("tools/grader/attic/old.cpp: no room has include rules"), std::string::npos)
+      << output;
+}
+
+}  // namespace
