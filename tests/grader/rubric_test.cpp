@@ -6,9 +6,13 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <random>
+#include <set>
+#include <sstream>
 
 #include "clothref/io/error.h"
 #include "grader/grade/probes/probes.h"
+#include "grader/grade/report/outputs.h"
 #include "test_util.h"
 
 namespace clothref::grader {
@@ -194,6 +198,302 @@ TEST(Rubric, OddPointsSplitIntoThousandthsThatAddUp) {
   for (const TestResult& t : report.tests) thousandths += std::lround(t.max_score * 1000);
   EXPECT_EQ(thousandths, 3300);
   EXPECT_EQ(std::round(report.stub_max.at("Cloth::initializeSpring") * 1000) / 1000, 3.3);
+}
+
+// ---- Points follow mistakes (per-mistake scoring)
+
+const std::string kSpheres = "Spheres::collide()";
+
+// The 2022 edition's planned checks of `stub`: the first `passing` pass, the others fail naming
+// `causes` (id, likely).
+GradeReport stubWithFailures(const std::string& stub, std::size_t passing,
+                             const std::vector<std::pair<std::string, bool>>& causes) {
+  GradeReport report;
+  for (const PlannedTest& planned : plannedTests(2022)) {
+    if (planned.stub != stub) continue;
+    TestResult test = makeTest(planned.stub, planned.check, planned.weight);
+    test.fraction = report.tests.size() < passing ? 1 : 0;
+    if (!test.passed())
+      for (const auto& [id, likely] : causes) test.addCause(id, likely);
+    report.tests.push_back(test);
+  }
+  return report;
+}
+
+Rubric perCheck(Rubric rubric) {
+  rubric.scoring = Scoring::PerCheck;
+  return rubric;
+}
+
+double testSum(const GradeReport& report, const std::string& stub) {
+  double sum = 0;
+  for (const TestResult& t : report.tests)
+    if (t.stub == stub) sum += t.score;
+  return sum;
+}
+
+std::string notes(const GradeReport& report) {
+  std::string all;
+  for (const TestResult& t : report.tests) all += t.rubric_note;
+  return all;
+}
+
+// The issue's example: one wrong correction factor fails 7 of the 8 collision checks; the stub
+// loses the cause's deduction once instead of 7/8 of its points, and its first failed check says
+// so with the per-check score beside it.
+TEST(PerMistake, OneLikelyCauseWithADeductionCostsItOnce) {
+  const Rubric rubric = defaultRubric(2022);
+  GradeReport report = stubWithFailures(kSpheres, 1, {{"correction-factor", true}});
+  ASSERT_GT(report.tests.size(), 2u);
+  GradeReport old = report;
+  applyRubric(perCheck(rubric), old);
+  applyRubric(rubric, report);
+  const double max = rubric.stub_points.at(kSpheres);
+  const double deduction = rubric.deductions.at("correction-factor");
+  EXPECT_GT(deduction, 0);
+  EXPECT_EQ(report.stub_score.at(kSpheres), max * (1 - deduction));
+  EXPECT_LT(old.stub_score.at(kSpheres), report.stub_score.at(kSpheres));
+  EXPECT_EQ(testSum(report, kSpheres), report.stub_score.at(kSpheres));
+  EXPECT_EQ(report.score, report.stub_score.at(kSpheres));
+  EXPECT_TRUE(report.tests[0].rubric_note.empty());
+  EXPECT_EQ(
+      report.tests[1].rubric_note,
+      "One mistake (`correction-factor`) explains every failed check of this stub: it loses " +
+          points(deduction * 100) +
+          " % of its points once (rubric: per-mistake; per-check scoring would give " +
+          points(old.stub_score.at(kSpheres)) + " / " + points(max) + ").");
+  for (std::size_t k = 2; k < report.tests.size(); ++k)
+    EXPECT_TRUE(report.tests[k].rubric_note.empty()) << k;
+  // scored again (a re-grade, a second writer): the same scores, the line once
+  applyRubric(rubric, report);
+  EXPECT_EQ(report.stub_score.at(kSpheres), max * (1 - deduction));
+  EXPECT_EQ(notes(report), report.tests[1].rubric_note);
+}
+
+// Two different likely causes, a guess alone, a cause without a deduction (a crash), a check
+// with no cause: the stub is scored per check and nothing is said.
+TEST(PerMistake, AnythingButOneLikelyCauseWithADeductionIsScoredPerCheck) {
+  const Rubric rubric = defaultRubric(2022);
+  const std::vector<std::vector<std::pair<std::string, bool>>> cases = {
+      {{"correction-factor", true}, {"restitution-ignored", true}},
+      {{"correction-factor", false}},
+      {{"crashed", true}},
+      {{"unknown", false}},
+      {}};
+  for (const auto& causes : cases) {
+    GradeReport report = stubWithFailures(kSpheres, 1, causes);
+    GradeReport old = report;
+    applyRubric(rubric, report);
+    applyRubric(perCheck(rubric), old);
+    EXPECT_EQ(report.stub_score.at(kSpheres), old.stub_score.at(kSpheres)) << causes.size();
+    EXPECT_EQ(notes(report), "");
+  }
+  // Failed checks naming different single causes: per check too.
+  GradeReport report = stubWithFailures(kSpheres, 1, {{"correction-factor", true}});
+  report.tests.back().causes = {Cause{"restitution-ignored", true, {}, {}, {}}};
+  GradeReport old = report;
+  applyRubric(rubric, report);
+  applyRubric(perCheck(rubric), old);
+  EXPECT_EQ(report.stub_score.at(kSpheres), old.stub_score.at(kSpheres));
+  EXPECT_EQ(notes(report), "");
+  // A guess beside the one likely cause does not count: the stub qualifies.
+  report = stubWithFailures(kSpheres, 1, {{"correction-factor", true}, {"unknown", false}});
+  applyRubric(rubric, report);
+  EXPECT_NE(notes(report), "");
+  // A stub without a failed check is untouched.
+  report = stubWithFailures(kSpheres, 100, {{"correction-factor", true}});
+  applyRubric(rubric, report);
+  EXPECT_EQ(report.stub_score.at(kSpheres), rubric.stub_points.at(kSpheres));
+  EXPECT_EQ(notes(report), "");
+}
+
+// "scoring": "per-check" in a rubric file gives today's scores exactly: each test earns its
+// points times its fraction, in whole units, and nothing is said.
+TEST(PerMistake, PerCheckRubricFileGivesTodaysScores) {
+  test::TempDir temp;
+  std::ofstream(temp.file("rubric.json")) << R"({"scoring": "per-check"})";
+  const Rubric rubric = loadRubric(temp.file("rubric.json"), defaultRubric(2022));
+  EXPECT_EQ(rubric.scoring, Scoring::PerCheck);
+  GradeReport report = stubWithFailures(kSpheres, 1, {{"correction-factor", true}});
+  report.tests[2].fraction = 0.5;
+  applyRubric(rubric, report);
+  double sum = 0;
+  for (const TestResult& t : report.tests) {
+    EXPECT_EQ(t.score, std::round(t.max_score * t.fraction * 8) / 8) << t.check;
+    sum += t.score;
+  }
+  EXPECT_EQ(report.stub_score.at(kSpheres), sum);
+  EXPECT_LT(sum, rubric.stub_points.at(kSpheres) * (1 - rubric.deductions.at("correction-factor")));
+  EXPECT_EQ(notes(report), "");
+}
+
+// The rule only ever raises: over random stubs (random fractions, causes, deductions and
+// points), no stub and no test earns less than per check, the tests add up to the stub and the
+// stubs to the total, and a stub that qualifies earns max(per check, points x (1 - deduction)).
+TEST(PerMistake, NeverLowersAScoreAndTheScoresAddUp) {
+  std::mt19937 rng(33);
+  const std::vector<std::string> ids = {"correction-factor", "restitution-ignored", "crashed"};
+  int raised = 0;
+  for (int round = 0; round < 400; ++round) {
+    Rubric rubric = defaultRubric(2022);
+    rubric.deductions["correction-factor"] = std::uniform_real_distribution<>(0, 1)(rng);
+    if (round % 3 == 0) rubric.stub_points[kSpheres] = 3.3;  // thousandths
+    GradeReport report;
+    for (const PlannedTest& planned : plannedTests(2022)) {
+      report.tests.push_back(makeTest(planned.stub, planned.check, planned.weight));
+      TestResult& t = report.tests.back();
+      const int kind = std::uniform_int_distribution<>(0, 5)(rng);
+      t.fraction = kind < 3 ? 1.0 : kind == 3 ? std::uniform_real_distribution<>(0, 1)(rng) : 0;
+      if (t.passed()) continue;
+      t.addCause(ids[std::uniform_int_distribution<>(0, round % 4 == 0 ? 2 : 0)(rng)],
+                 rng() % 8 != 0);
+    }
+    GradeReport old = report;
+    applyRubric(rubric, report);
+    applyRubric(perCheck(rubric), old);
+    ASSERT_EQ(report.tests.size(), old.tests.size());
+    for (std::size_t k = 0; k < report.tests.size(); ++k) {
+      EXPECT_GE(report.tests[k].score, old.tests[k].score) << round << " " << k;
+      EXPECT_LE(report.tests[k].score, report.tests[k].max_score) << round << " " << k;
+    }
+    double total = 0;
+    for (const auto& [stub, score] : report.stub_score) {
+      EXPECT_GE(score, old.stub_score.at(stub)) << round << " " << stub;
+      long units = 0;  // thousandths: exact for both point units
+      for (const TestResult& t : report.tests)
+        if (t.stub == stub) units += std::lround(t.score * 1000);
+      EXPECT_EQ(units, std::lround(score * 1000)) << round << " " << stub;
+      total += score;
+      // The rule as the docs state it, worked out here: each failed check has one cause.
+      std::string mistake;
+      bool one = true, failed = false;
+      for (const TestResult& t : report.tests) {
+        if (t.stub != stub || t.passed()) continue;
+        failed = true;
+        const Cause& cause = t.causes.front();
+        one = one && cause.likely && (mistake.empty() || mistake == cause.id);
+        mistake = cause.id;
+      }
+      const bool qualifies = failed && one && rubric.deductions.count(mistake);
+      const double target =
+          qualifies ? report.stub_max.at(stub) * (1 - rubric.deductions.at(mistake)) : 0;
+      const bool said = [&] {
+        for (const TestResult& t : report.tests)
+          if (t.stub == stub && !t.rubric_note.empty()) return true;
+        return false;
+      }();
+      if (qualifies && target - old.stub_score.at(stub) > 0.0625) {
+        ++raised;
+        EXPECT_TRUE(said) << round << " " << stub;
+        EXPECT_LE(std::abs(score - target), 0.0625) << round << " " << stub;
+      } else if (!qualifies) {
+        EXPECT_FALSE(said) << round << " " << stub;
+        EXPECT_EQ(score, old.stub_score.at(stub)) << round << " " << stub;
+      }
+      if (said) {
+        EXPECT_GT(score, old.stub_score.at(stub)) << round << " " << stub;
+      } else {
+        EXPECT_EQ(score, old.stub_score.at(stub)) << round << " " << stub;
+      }
+    }
+    EXPECT_DOUBLE_EQ(report.score, total) << round;
+  }
+  EXPECT_GT(raised, 20);  // the random stubs do exercise the rule
+}
+
+// The line is part of the test's text, so every output shows it: results.json, JUnit, Markdown.
+TEST(PerMistake, EveryOutputShowsTheLine) {
+  GradeReport report = stubWithFailures(kSpheres, 1, {{"correction-factor", true}});
+  applyRubric(defaultRubric(2022), report);
+  const std::string line = report.tests[1].rubric_note;
+  ASSERT_FALSE(line.empty());
+  const auto results = resultsJson(report);
+  EXPECT_EQ(results["tests"][1]["output"].get<std::string>().rfind(line, 0), 0u);
+  EXPECT_EQ(results["tests"][1]["score"].get<double>(), roundedPoints(report.tests[1].score));
+  EXPECT_EQ(results["score"].get<double>(), roundedPoints(report.score));
+  const std::string markdown = markdownReport(report);
+  EXPECT_NE(markdown.find(line), std::string::npos);
+  EXPECT_EQ(markdown.find(line), markdown.rfind(line));  // once
+  EXPECT_NE(junitXml(report).find("One mistake (`correction-factor`)"), std::string::npos);
+}
+
+TEST(PerMistake, RubricSetsScoringAndDeductions) {
+  const Rubric rubric = rubricFromJson(nlohmann::json::parse(R"({"scoring": "per-mistake",
+        "deductions": {"correction-factor": 0.5, "missing-damper": 0, "rk4-wrong-weights": null,
+                       "crashed": null}})"),
+                                       "r.json", perCheck(defaultRubric(2022)));
+  EXPECT_EQ(rubric.scoring, Scoring::PerMistake);
+  EXPECT_EQ(rubric.deductions.at("correction-factor"), 0.5);
+  EXPECT_EQ(rubric.deductions.at("missing-damper"), 0.0);
+  EXPECT_EQ(rubric.deductions.count("rk4-wrong-weights"), 0u);  // null: scored per check
+  EXPECT_EQ(rubric.deductions.at("restitution-ignored"),
+            defaultRubric(2022).deductions.at("restitution-ignored"));
+}
+
+// A scoring word, cause id or deduction the rubric does not know is refused, one line naming
+// the field.
+TEST(PerMistake, BadScoringOrDeductionsNameTheField) {
+  const auto errorOf = [](const std::string& text) -> std::string {
+    try {
+      rubricFromJson(nlohmann::json::parse(text), "r.json", defaultRubric(2022));
+    } catch (const InputError& error) {
+      return error.what();
+    }
+    return "accepted: " + text;
+  };
+  const std::map<std::string, std::string> bad = {
+      {R"({"scoring": "per-stub"})", "r.json: /scoring: expected \"per-mistake\" or"},
+      {R"({"scoring": 1})", "r.json: /scoring: expected"},
+      {R"({"deductions": {"wrong-constant": 0.2}})",
+       "r.json: /deductions/wrong-constant: unknown cause"},
+      {R"({"deductions": {"correction-factor": 1.5}})",
+       "r.json: /deductions/correction-factor: expected a share"},
+      {R"({"deductions": {"correction-factor": -0.1}})",
+       "r.json: /deductions/correction-factor: expected a share"},
+      {R"({"deductions": {"correction-factor": "25 %"}})",
+       "r.json: /deductions/correction-factor: expected a share"},
+      {R"({"deductions": {"crashed": 0.5}})",
+       "r.json: /deductions/crashed: never scored per mistake"},
+      {R"({"deductions": []})", "r.json: /deductions: expected an object"}};
+  for (const auto& [text, start] : bad) {
+    const std::string error = errorOf(text);
+    EXPECT_EQ(error.rfind(start, 0), 0u) << error;
+    EXPECT_EQ(error.find('\n'), std::string::npos) << error;
+  }
+}
+
+// Every catalogue id has a default (a deduction, or "never"), every default is in 0..1 and costs
+// less than the whole stub, and the causes the issue names never trigger the rule.
+TEST(PerMistake, EveryCatalogueCauseHasADefault) {
+  const Catalogue catalogue =
+      loadCatalogue(std::string(CLOTHREF_SOURCE_DIR) + "/tools/grader/diagnoses.json");
+  std::set<std::string> table;
+  for (const CauseDeduction& cause : causeDeductions()) {
+    EXPECT_TRUE(table.insert(cause.id).second) << cause.id << " twice";
+    EXPECT_TRUE(cause.deduction < 0 || (cause.deduction > 0 && cause.deduction < 1)) << cause.id;
+  }
+  for (const auto& [id, entry] : catalogue.entries) EXPECT_TRUE(table.count(id)) << id;
+  const Rubric rubric = defaultRubric(2024);
+  for (const char* never : {"compile-error", "crashed", "timed-out", "undefined-behaviour",
+                            "unknown", "unstable", "wrong-order", "grader-error"})
+    EXPECT_EQ(rubric.deductions.count(never), 0u) << never;
+  for (const auto& [id, entry] : catalogue.entries)
+    if (entry.recognised_by == "guess") {
+      EXPECT_EQ(rubric.deductions.count(id), 0u) << id;
+    }
+}
+
+// docs/grading.md's table of deductions states every default of the table.
+TEST(PerMistake, TheDocsStateEveryDefault) {
+  std::ifstream in(std::string(CLOTHREF_SOURCE_DIR) + "/docs/grading.md");
+  std::stringstream docs;
+  docs << in.rdbuf();
+  for (const CauseDeduction& cause : causeDeductions()) {
+    const std::string row = "| `" + std::string(cause.id) + "` | " + cause.kind + " | " +
+                            (cause.deduction < 0 ? "—" : points(cause.deduction * 100) + " %") +
+                            " |";
+    EXPECT_NE(docs.str().find(row), std::string::npos) << row;
+  }
 }
 
 }  // namespace

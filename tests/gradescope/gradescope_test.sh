@@ -159,6 +159,8 @@ EOF
   then
     say "FAILED: $name (run_autograder exit $code)"
     tail -n 20 "$work/$name.log"
+    # what the grader itself said (run_autograder keeps it beside the results)
+    head -c 3000 "$root/autograder/results/grader-stderr.txt" 2>/dev/null
     status=1
   fi
 done

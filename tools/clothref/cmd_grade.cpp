@@ -64,12 +64,14 @@ void checkOutputPath(const std::string& option, const std::string& path) {
   std::filesystem::path folder = std::filesystem::path(path).parent_path();
   if (folder.empty()) folder = ".";
   if (::stat(folder.c_str(), &st) != 0)
-    throw InputError(shown + ": " + grader::safeName(folder.string()) + ": " + std::strerror(errno));
+    throw InputError(shown + ": " + grader::safeName(folder.string()) + ": " +
+                     std::strerror(errno));
   if (!S_ISDIR(st.st_mode))
     throw InputError(shown + ": " + grader::safeName(folder.string()) + ": " +
                      std::strerror(ENOTDIR));
   if (::access(folder.c_str(), W_OK | X_OK) != 0)
-    throw InputError(shown + ": " + grader::safeName(folder.string()) + ": " + std::strerror(errno));
+    throw InputError(shown + ": " + grader::safeName(folder.string()) + ": " +
+                     std::strerror(errno));
 }
 
 // The batch's last lines: what it did, the submissions whose verdict is not `graded` (at most 20
@@ -119,7 +121,8 @@ Command addGradeCommand(CLI::App& root) {
   app->add_option("--html", options->html,
                   "write the HTML report here (checks, the whole run beside the reference)");
   app->add_option("--rubric", options->rubric,
-                  "JSON rubric: weights, tolerances, accepted variants")
+                  "JSON rubric: weights, tolerances, accepted variants, per-mistake or per-check "
+                  "scoring")
       ->check(CLI::ExistingFile);
   app->add_option("--timeout", options->timeout,
                   "wall-clock limit per probe process, seconds (at most 86400)")

@@ -199,6 +199,9 @@ struct TestResult {
   // writers add it from `causes`. Text a submission controls enters it only through codeBlock()
   // or codeSpan() (text.h).
   std::string output;
+  // Markdown the rubric shows before `output` (per-mistake scoring: "One mistake (`id`) explains
+  // every failed check of this stub: ..."); set by applyRubric on a stub's first failed check.
+  std::string rubric_note;
   std::vector<Cause> causes;  // in the order the probe found them; the likely ones come first
   Sketch sketch;              // the state tried, when a collision or springs check failed
   // The whole run's two traces (JSON Lines, docs/trace-format.md), kept in memory for the HTML

@@ -2,13 +2,96 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <utility>
 
 #include "clothref/io/error.h"
 #include "clothref/io/json_input.h"
 #include "clothref/io/limits.h"
+#include "grader/grade/text.h"
 
 namespace clothref::grader {
+
+namespace {
+
+// The kinds of mistake and what each costs once (docs/grading.md, "Points follow mistakes"): a
+// slip costs little, a missing piece of physics more, a wrong method half the stub.
+constexpr const char* kConstant = "a wrong constant";
+constexpr const char* kEdge = "a missed special case";
+constexpr const char* kSign = "a wrong sign";
+constexpr const char* kTerm = "a missing term";
+constexpr const char* kMethod = "a wrong method";
+constexpr const char* kNever = "never";  // a crash, a timeout, a symptom or a guess
+constexpr double kNone = -1;
+
+}  // namespace
+
+const std::vector<CauseDeduction>& causeDeductions() {
+  static const std::vector<CauseDeduction> table = {
+      {"compile-error", kNever, kNone},
+      {"link-error", kNever, kNone},
+      {"missing-file", kNever, kNone},
+      {"crashed", kNever, kNone},
+      {"grader-error", kNever, kNone},
+      {"undefined-behaviour", kNever, kNone},
+      {"timed-out", kNever, kNone},
+      {"non-finite", kNever, kNone},
+      {"dangling-auto-expression", kNever, kNone},
+      {"shear-rest-length", kConstant, 0.25},
+      {"bend-rest-length", kConstant, 0.25},
+      {"approximate-sqrt2", kConstant, 0.2},
+      {"swapped-spring-types", kConstant, 0.25},
+      {"missing-springs", kTerm, 0.4},
+      {"duplicate-springs", kMethod, 0.5},
+      {"wrong-spring-endpoints", kMethod, 0.5},
+      {"hard-coded-n25", kEdge, 0.25},
+      {"assign-not-accumulate", kMethod, 0.5},
+      {"spring-force-sign", kSign, 0.4},
+      {"damper-sign", kSign, 0.4},
+      {"damper-not-normalised", kTerm, 0.3},
+      {"missing-damper", kTerm, 0.4},
+      {"force-one-end-only", kMethod, 0.5},
+      {"fixed-particle-moves", kEdge, 0.25},
+      {"mass-not-inverse", kMethod, 0.5},
+      {"spring-coefficient", kConstant, 0.25},
+      {"damper-coefficient", kConstant, 0.25},
+      {"division-by-speed", kMethod, 0.4},
+      {"no-approach-check", kTerm, 0.4},
+      {"restitution-ignored", kConstant, 0.25},
+      {"restitution-full-velocity", kMethod, 0.5},
+      {"correction-one-body", kTerm, 0.3},
+      {"no-position-correction", kTerm, 0.4},
+      {"correction-factor", kConstant, 0.25},
+      {"fixed-particle-massless", kEdge, 0.25},
+      {"first-sphere-only", kTerm, 0.4},
+      {"collision-normal-sign", kSign, 0.4},
+      {"touching-skipped", kEdge, 0.2},
+      {"pair-processed-twice", kMethod, 0.5},
+      {"wrong-mass-split", kMethod, 0.5},
+      {"backup-alias", kMethod, 0.5},
+      {"integer-division-rk4", kConstant, 0.25},
+      {"integer-division-half", kConstant, 0.25},
+      {"only-first-body", kTerm, 0.4},
+      {"deltatime-mutated", kEdge, 0.3},
+      {"position-uses-acceleration", kMethod, 0.3},
+      {"velocity-not-integrated", kTerm, 0.4},
+      {"position-not-integrated", kTerm, 0.4},
+      {"no-reevaluation", kMethod, 0.5},
+      {"per-body-loop", kMethod, 0.5},
+      {"midpoint-full-step", kMethod, 0.5},
+      {"heun-method", kMethod, 0.5},
+      {"half-step-corrector", kMethod, 0.5},
+      {"velocity-damped", kMethod, 0.3},
+      {"rk4-mixed-increments", kMethod, 0.5},
+      {"rk4-wrong-weights", kMethod, 0.5},
+      {"rk4-stage-not-from-backup", kMethod, 0.5},
+      {"rk4-stage-from-wrong-increment", kMethod, 0.5},
+      {"rk4-stages-discarded", kMethod, 0.5},
+      {"wrong-order", kNever, kNone},
+      {"unstable", kNever, kNone},
+      {"unknown", kNever, kNone}};
+  return table;
+}
 
 Rubric defaultRubric(int edition) {
   Rubric rubric;
@@ -18,6 +101,8 @@ Rubric defaultRubric(int edition) {
   }
   for (const std::string& variant : acceptedVariantNames())
     rubric.accepted_variants[variant] = true;
+  for (const CauseDeduction& cause : causeDeductions())
+    if (cause.deduction >= 0) rubric.deductions[cause.id] = cause.deduction;
   return rubric;
 }
 
@@ -112,6 +197,37 @@ Rubric rubricFromJson(const nlohmann::json& document, const std::string& source,
                           excerpt(shown.dump()));
         rubric.visibility[name] = shown.get<std::string>();
       }
+    } else if (key == "scoring") {
+      if (value == scoringName(Scoring::PerMistake))
+        rubric.scoring = Scoring::PerMistake;
+      else if (value == scoringName(Scoring::PerCheck))
+        rubric.scoring = Scoring::PerCheck;
+      else
+        rubricError(source, pointer,
+                    "expected \"per-mistake\" or \"per-check\", got " + excerpt(value.dump()));
+    } else if (key == "deductions") {
+      requireObject(value, source, pointer);
+      for (const auto& [id, share] : value.items()) {
+        const auto& table = causeDeductions();
+        const auto cause = std::find_if(table.begin(), table.end(),
+                                        [&](const CauseDeduction& c) { return id == c.id; });
+        if (cause == table.end())
+          rubricError(source, child(pointer, id), "unknown cause (not in diagnoses.json)");
+        if (share.is_null()) {  // this cause is scored per check
+          rubric.deductions.erase(id);
+          continue;
+        }
+        if (cause->deduction < 0)
+          rubricError(source, child(pointer, id),
+                      "never scored per mistake (a crash, a timeout, a symptom or a guess): "
+                      "only null is accepted, got " +
+                          excerpt(share.dump()));
+        if (!share.is_number() || !(share.get<double>() >= 0 && share.get<double>() <= 1))
+          rubricError(source, child(pointer, id),
+                      "expected a share of the stub's points from 0 to 1 (or null), got " +
+                          excerpt(share.dump()));
+        rubric.deductions[id] = share.get<double>();
+      }
     } else {
       rubricError(source, pointer, "unknown field");
     }
@@ -150,6 +266,68 @@ std::vector<long> apportion(long units, const std::vector<double>& weights) {
   return parts;
 }
 
+// The one likely cause every failed check of a stub names, when the stub has a failed check, no
+// failed check names another likely cause or none, and the rubric has a deduction for it; else
+// "". Guesses are not counted.
+std::string oneMistake(const Rubric& rubric, const std::vector<const TestResult*>& tests) {
+  std::string mistake;
+  for (const TestResult* test : tests) {
+    if (test->passed()) continue;
+    std::string named;
+    for (const Cause& cause : test->causes) {
+      if (!cause.likely || cause.id == named) continue;
+      if (!named.empty()) return "";  // two likely causes
+      named = cause.id;
+    }
+    if (named.empty() || (!mistake.empty() && named != mistake)) return "";
+    mistake = named;
+  }
+  return rubric.deductions.count(mistake) ? mistake : "";
+}
+
+// Points as the outputs show them: rounded to 0.001, no trailing zeros (report/outputs.h points).
+std::string shown(double value) {
+  std::ostringstream out;
+  out << std::round(value * 1000) / 1000;
+  return out.str();
+}
+
+// Per-mistake scoring of one stub: `got` (units each test earned per check) raised so the stub
+// earns round(total x (1 - deduction)) units when that is more; the units given back go to the
+// failed checks in proportion to the units each lost, so no check earns less than per check.
+// Returns the units the stub earns.
+long perMistake(const Rubric& rubric, GradeReport& report, const std::vector<std::size_t>& tests,
+                const std::vector<long>& parts, std::vector<long>& got, double unit) {
+  long total = 0, earned = 0;
+  std::vector<const TestResult*> of_stub;
+  for (std::size_t j = 0; j < parts.size(); ++j) {
+    total += parts[j];
+    earned += got[j];
+    of_stub.push_back(&report.tests[tests[j]]);
+  }
+  if (rubric.scoring != Scoring::PerMistake || total == 0) return earned;
+  const std::string mistake = oneMistake(rubric, of_stub);
+  if (mistake.empty()) return earned;
+  const double deduction = rubric.deductions.at(mistake);
+  const long target = std::lround(double(total) * (1 - deduction));
+  if (target <= earned) return earned;  // per check costs no more: nothing to say
+  std::vector<double> lost;
+  for (std::size_t j = 0; j < parts.size(); ++j) lost.push_back(double(parts[j] - got[j]));
+  const std::vector<long> back = apportion(target - earned, lost);
+  for (std::size_t j = 0; j < parts.size(); ++j) got[j] += back[j];
+  for (std::size_t j = 0; j < parts.size(); ++j) {
+    TestResult& test = report.tests[tests[j]];
+    if (test.passed()) continue;
+    test.rubric_note = "One mistake (" + codeSpan(mistake) +
+                       ") explains every failed check of this stub: it loses " +
+                       shown(deduction * 100) +
+                       " % of its points once (rubric: per-mistake; per-check scoring would give " +
+                       shown(double(earned) * unit) + " / " + shown(double(total) * unit) + ").";
+    break;
+  }
+  return target;
+}
+
 }  // namespace
 
 void applyRubric(const Rubric& rubric, GradeReport& report) {
@@ -157,6 +335,7 @@ void applyRubric(const Rubric& rubric, GradeReport& report) {
   for (std::size_t k = 0; k < report.tests.size(); ++k) {
     TestResult& test = report.tests[k];
     test.max_score = test.score = 0;
+    test.rubric_note.clear();
     if (test.informational) continue;
     auto it = rubric.test_weights.find(test.name());
     if (it != rubric.test_weights.end()) test.weight = it->second;
@@ -176,16 +355,19 @@ void applyRubric(const Rubric& rubric, GradeReport& report) {
     std::vector<double> weights;
     for (std::size_t k : tests->second) weights.push_back(report.tests[k].weight);
     const std::vector<long> parts = apportion(std::lround(stub_points / unit), weights);
-    long earned = 0;
+    std::vector<long> got;
+    for (std::size_t j = 0; j < parts.size(); ++j) {
+      const double fraction = std::clamp(report.tests[tests->second[j]].fraction, 0.0, 1.0);
+      got.push_back(std::lround(double(parts[j]) * fraction));
+    }
+    const long earned = perMistake(rubric, report, tests->second, parts, got, unit);
+    long total = 0;
     for (std::size_t j = 0; j < parts.size(); ++j) {
       TestResult& test = report.tests[tests->second[j]];
-      const long got = std::lround(double(parts[j]) * std::clamp(test.fraction, 0.0, 1.0));
       test.max_score = double(parts[j]) * unit;
-      test.score = double(got) * unit;
-      earned += got;
+      test.score = double(got[j]) * unit;
+      total += parts[j];
     }
-    long total = 0;
-    for (long part : parts) total += part;
     report.stub_max[stub] = double(total) * unit;
     report.stub_score[stub] = double(earned) * unit;
   }

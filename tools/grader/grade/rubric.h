@@ -8,8 +8,10 @@
 //    "accepted_variants": {"explicit-as-symplectic": true, "implicit-corrector-v-new": true,
 //                          "symplectic-predictor": true},
 //    "visibility": {"RungeKuttaFourth::integrate": "after_due_date",    Gradescope's visibility
-//                   "Cloth::computeSpringForce: moving state (damper)": "hidden"}}  of a stub's
+//                   "Cloth::computeSpringForce: moving state (damper)": "hidden"},  of a stub's
 //                                                                     tests, or of one test
+//    "scoring": "per-mistake",                 or "per-check" (docs/grading.md, "Points follow
+//    "deductions": {"correction-factor": 0.25}}  mistakes"): a cause's cost, of its stub's points
 #pragma once
 #include <map>
 #include <string>
@@ -46,6 +48,28 @@ inline const std::vector<std::string>& visibilityNames() {
   return names;
 }
 
+// How a stub's failed checks cost points. PerCheck: each check loses its own points. PerMistake
+// (the default): a stub whose failed checks one recognised mistake explains loses that mistake's
+// deduction once, never more than per check would take.
+enum class Scoring { PerMistake, PerCheck };
+
+inline const char* scoringName(Scoring scoring) {
+  return scoring == Scoring::PerCheck ? "per-check" : "per-mistake";
+}
+
+// A catalogue cause as per-mistake scoring sees it: the share of its stub's points it costs once,
+// by the kind of mistake it is; `deduction` < 0 for a cause that never explains a stub's failures
+// on its own (a crash, a timeout, a guess, a symptom such as a wrong convergence order).
+struct CauseDeduction {
+  const char* id;
+  const char* kind;  // "a wrong constant", ... (docs/grading.md's table says it)
+  double deduction;  // 0..1 of the stub's points, or < 0: never
+};
+
+// The one table of default deductions: an entry for every catalogue id
+// (tools/grader/diagnoses.json), grouped by stub as the catalogue is.
+const std::vector<CauseDeduction>& causeDeductions();
+
 struct Rubric {
   std::map<std::string, double> stub_points;   // course stub name -> points
   std::map<std::string, double> test_weights;  // full test name -> relative weight
@@ -53,6 +77,10 @@ struct Rubric {
   std::map<std::string, bool> accepted_variants;
   // stub name or full test name -> one of visibilityNames(); a test's own entry wins
   std::map<std::string, std::string> visibility;
+  Scoring scoring = Scoring::PerMistake;
+  // cause id -> share of its stub's points the mistake costs once (per-mistake scoring); a cause
+  // without an entry is scored per check
+  std::map<std::string, double> deductions;
   bool accepts(const std::string& variant) const {
     auto it = accepted_variants.find(variant);
     return it != accepted_variants.end() && it->second;
@@ -70,20 +98,23 @@ struct Rubric {
 
 // The course's weights for `edition` (2022: springs 15, forces 20, collisions 10 + 10,
 // Explicit 5, Implicit + Midpoint 5, RK4 15; 2024: springs 10, forces 25, collision 20, same
-// integrators), every accepted variant on.
+// integrators), every accepted variant on, per-mistake scoring with causeDeductions().
 Rubric defaultRubric(int edition);
 
 // `base` with the overrides of the JSON file at `path`, read by the library's one JSON reader
 // (io/json_input.h). Throws InputError "<path>: <JSON pointer>: <problem>" for a malformed file
 // (with line and column for a syntax error), a value of the wrong type or an unknown stub,
-// tolerance, variant or field.
+// tolerance, variant, scoring, cause or field, and for a deduction outside 0..1.
 Rubric loadRubric(const std::string& path, Rubric base);
 
 // The same from a parsed document; `source` names it in messages.
 Rubric rubricFromJson(const nlohmann::json& document, const std::string& source, Rubric base);
 
 // Splits each stub's points over its scored tests by weight and fills score / max_score; fills
-// the report's totals.
+// the report's totals. Per-mistake scoring: a stub whose failed checks all name one likely cause
+// with a deduction totals max(per-check score, its points x (1 - deduction)); the points given
+// back go to its failed checks in proportion to what each lost, and the first failed check's
+// rubric_note says so.
 void applyRubric(const Rubric& rubric, GradeReport& report);
 
 }  // namespace clothref::grader

@@ -152,6 +152,7 @@ GradeReport cleaned(const GradeReport& given) {
     name(test.check);
     name(test.visibility);
     text(test.output);
+    text(test.rubric_note);
     for (Cause& cause : test.causes) {
       name(cause.id);
       text(cause.detail);
@@ -192,6 +193,8 @@ std::vector<TestText> testTexts(const GradeReport& report) {
       auto [it, first] = shown.outputs.emplace(t.output, t.name());
       if (!first) text.output = "Same as for " + curlyQuoted(it->second) + " above.\n";
     }
+    if (!t.rubric_note.empty())
+      text.output = t.rubric_note + (text.output.empty() ? "\n" : "\n\n" + text.output);
     for (const Cause& cause : t.causes)
       (cause.likely ? text.likely : text.guesses)
           .push_back(causeMarkdown(cause, t, shown_failed ? &shown : nullptr));
