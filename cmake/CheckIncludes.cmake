@@ -64,11 +64,12 @@ set(GRADER_run_FILES "^grade/run/")
 set(GRADER_run_MAY "\"grader/bridge/" "\"grader/grade/run/" "\"grader/grade/(results|text)\\.h\""
     "\"clothref/io/" "<unistd\\.h>" "<fcntl\\.h>" "<signal\\.h>" "<sched\\.h>" "<poll\\.h>"
     "<grp\\.h>" "<dirent\\.h>" "<sys/" "<linux/")
-# the probes and fitting engines: run, and of the top level the results, rubric and text helpers;
+# the probes and fitting engines: run, and of the top level the results, rubric, text helpers,
+# the catalogue and its generated cause-id constants (cause_ids.h, in the build tree);
 # never the reports
 set(GRADER_probes_FILES "^grade/probes/")
 set(GRADER_probes_MAY "\"grader/bridge/" "\"grader/grade/run/" "\"grader/grade/probes/"
-    "\"grader/grade/(results|rubric|text)\\.h\""
+    "\"grader/grade/(results|rubric|text|catalogue|cause_ids)\\.h\""
     "\"clothref/(base|core|io|scene|solver|trace|diff|record|verify|formula|analysis)/" "<Eigen/"
     "<nlohmann/")
 # the writers: the top level (results, and grade.h / batch.h), the pages; never run or probes

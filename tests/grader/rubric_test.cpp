@@ -290,7 +290,7 @@ TEST(PerMistake, AnythingButOneLikelyCauseWithADeductionIsScoredPerCheck) {
   }
   // Failed checks naming different single causes: per check too.
   GradeReport report = stubWithFailures(kSpheres, 1, {{"correction-factor", true}});
-  report.tests.back().causes = {Cause{"restitution-ignored", true, {}, {}, {}}};
+  report.tests.back().causes = {Cause{"restitution-ignored", true, {}, {}, {}, {}, {}}};
   GradeReport old = report;
   applyRubric(rubric, report);
   applyRubric(perCheck(rubric), old);

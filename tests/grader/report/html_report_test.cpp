@@ -27,6 +27,12 @@ TEST(HtmlReport, StudentReportEscapesAndKeepsEveryCheck) {
   EXPECT_NE(page.find("connections at N = 25"), std::string::npos);
   EXPECT_NE(page.find("approaching pair"), std::string::npos);
   EXPECT_NE(page.find("<span class=\"gr-cause\">collision-normal-sign</span>"), std::string::npos);
+  // the cause's why and example, escaped, the example as a code block
+  EXPECT_NE(page.find("<p><strong>Why</strong>: &lt;why&gt; it points inwards</p>"),
+            std::string::npos);
+  EXPECT_NE(
+      page.find("<pre><code>n = -n;  // mistake &lt;b&gt;\nn = xs - xc;  // fix\n</code></pre>"),
+      std::string::npos);
   EXPECT_NE(page.find("<li>expected x (1, 2, 3) - actual x (1, 2, 4)</li>"), std::string::npos);
   // no whole run: no viewer and no script at all
   EXPECT_EQ(page.find("<script"), std::string::npos);

@@ -12,6 +12,7 @@
 #include <tuple>
 
 #include "grader/grade/batch.h"
+#include "grader/grade/cause_ids.h"
 #include "grader/grade/report/html_report.h"
 #include "grader/grade/text.h"
 #include "test_util.h"
@@ -48,7 +49,7 @@ GradeReport sampleReport() {
   TestResult failed = makeTest("Spheres::collide(Cloth*)", "approaching pair", 1);
   failed.max_score = 2;
   failed.output = "expected <1> & got \"2\"\x01";
-  failed.causes = {Cause{"no-approach-check", true, {}, {}, "The impulse is applied."}};
+  failed.causes = {Cause{cause::kNoApproachCheck, true, {}, {}, "The impulse is applied.", {}, {}}};
   report.tests = {passed, failed};
   report.score = 3;
   report.max_score = 5;
@@ -91,6 +92,57 @@ TEST(JunitXml, EscapesFeedback) {
   EXPECT_EQ(xml.find('\x01'), std::string::npos);
   EXPECT_NE(xml.find("classname=\"RungeKuttaFourth::integrate\" name=\"convergence order\""),
             std::string::npos);
+}
+
+// A likely cause shows the catalogue's why and example (a code block) on the first failed test of
+// its visibility that names it, and refers to that test afterwards; a guess shows its text only.
+// Every writer shows the same blocks (testTexts).
+TEST(CauseMarkdown, ALikelyCauseExplainsItselfOnceAGuessStaysShort) {
+  GradeReport report = sampleReport();
+  const Cause likely{cause::kBackupAlias,
+                     true,
+                     {},
+                     {},
+                     "Your backup is a view.",
+                     "The backup follows the live state.",
+                     "auto b = particles;  // mistake\nstd::vector<Particles> b;  // fix"};
+  Cause guess = likely;
+  guess.id = cause::kUnknown;
+  guess.likely = false;
+  TestResult first = makeTest("ImplicitEuler::integrate", "one step", 1);
+  first.causes = {likely, guess};
+  TestResult again = makeTest("ImplicitEuler::integrate", "two steps", 1);
+  again.causes = {likely};
+  TestResult hidden = again;
+  hidden.check = "hidden step";
+  hidden.visibility = "hidden";
+  report.tests = {first, again, hidden};
+  const std::vector<TestText> texts = testTexts(cleaned(report));
+  ASSERT_EQ(texts.size(), 3u);
+  ASSERT_EQ(texts[0].likely.size(), 1u);
+  ASSERT_EQ(texts[0].guesses.size(), 1u);
+  EXPECT_EQ(texts[0].likely[0],
+            "**Likely cause** (`backup-alias`): Your backup is a view.\n\n"
+            "**Why**: The backup follows the live state.\n\n"
+            "The mistake and its fix, in short:\n\n"
+            "```\nauto b = particles;  // mistake\nstd::vector<Particles> b;  // fix\n```\n");
+  EXPECT_EQ(texts[0].guesses[0],
+            "**Possible cause (a guess)** (`unknown`): Your backup is a view.\n");
+  EXPECT_EQ(
+      texts[1].likely[0],
+      "**Likely cause** (`backup-alias`): Your backup is a view.\n\n"
+      "Why, and the mistake with its fix: under \u201cImplicitEuler::integrate: one step\u201d "
+      "above.\n");
+  EXPECT_EQ(texts[2].likely[0], texts[0].likely[0]);  // never refers to a test it cannot see
+  // the same blocks in report.md, results.json and JUnit
+  const std::string md = markdownReport(report);
+  const auto json = resultsJson(report);
+  const std::string xml = junitXml(report);
+  for (std::size_t k = 0; k < texts.size(); ++k) {
+    EXPECT_NE(md.find(texts[k].markdown()), std::string::npos) << k;
+    EXPECT_EQ(json["tests"][k]["output"], texts[k].markdown()) << k;
+  }
+  EXPECT_NE(xml.find("std::vector&lt;Particles&gt; b;  // fix"), std::string::npos) << xml;
 }
 
 TEST(MarkdownReport, FailedChecksComeWithTheirFeedback) {

@@ -26,7 +26,13 @@ inline GradeReport sampleReport() {
       "State tried:\n\n- sphere 0: x (0.1, 0.42, -0.05)\n  - expected x (1, 2, 3) - actual "
       "x (1, 2, 4)\n\n```\n</pre><script>alert(2)</script>\n```\n\n**Likely cause** "
       "(`collision-normal-sign`): <the normal>";
-  fail.causes = {Cause{"collision-normal-sign", true, {}, {}, "<the normal>"}};
+  fail.causes = {Cause{"collision-normal-sign",
+                       true,
+                       {},
+                       {},
+                       "<the normal>",
+                       "<why> it points inwards",
+                       "n = -n;  // mistake <b>\nn = xs - xc;  // fix"}};
   report.tests = {pass, fail};
   report.stub_score = {{"Cloth::initializeSpring", 6}, {"Spheres::collide(Cloth*)", 0}};
   report.stub_max = {{"Cloth::initializeSpring", 6}, {"Spheres::collide(Cloth*)", 1.25}};

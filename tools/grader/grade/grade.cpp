@@ -15,6 +15,7 @@
 
 #include "clothref/io/error.h"
 #include "clothref/io/files.h"
+#include "grader/grade/cause_ids.h"
 #include "grader/grade/probes/probes.h"
 #include "grader/grade/run/folders.h"
 #include "grader/grade/text.h"
@@ -60,7 +61,7 @@ Verdict submissionVerdict(const GradeReport& report, const std::vector<Verdict>&
   for (const UsedFile& used : report.files)
     if (!used.compiled) happened.push_back(used.status);
   for (const TestResult& t : report.tests)
-    if (t.names("non-finite")) happened.push_back(Verdict::NonFinite);
+    if (t.names(cause::kNonFinite)) happened.push_back(Verdict::NonFinite);
   return worstVerdict(happened);
 }
 
@@ -168,7 +169,8 @@ ProbeContext probeContext(const GradeReport& report, const Rubric& rubric,
 }
 
 // Stubs whose file is not the student's (missing, or it does not compile or link): stub -> the
-// test every planned test of that stub gets instead of running (its output and cause).
+// test every planned test of that stub gets instead of running (its output and cause: the
+// catalogue's missing-file, compile-error or link-error).
 std::map<std::string, TestResult> unavailableStubs(const std::vector<UsedFile>& files) {
   std::map<std::string, TestResult> unavailable;
   for (const UsedFile& used : files) {
@@ -176,6 +178,7 @@ std::map<std::string, TestResult> unavailableStubs(const std::vector<UsedFile>& 
     TestResult t;
     if (used.status == Verdict::MissingFile) {
       t.output = used.name + " was not found in the submission; its stubs get no points.";
+      t.addCause(cause::kMissingFile);
     } else {
       t.output = used.name +
                  (used.status == Verdict::LinkError
@@ -186,7 +189,7 @@ std::map<std::string, TestResult> unavailableStubs(const std::vector<UsedFile>& 
                  (used.log.empty() ? std::string()
                                    : "\nThe whole log of " + used.name +
                                          " (its own messages):\n\n" + codeBlock(used.log));
-      t.causes = {Cause{"compile-error", true, {}, {}, {}}};
+      t.addCause(used.status == Verdict::LinkError ? cause::kLinkError : cause::kCompileError);
     }
     for (const auto& stub : stubsOfFile(used.name)) unavailable[stub] = t;
   }
@@ -225,14 +228,13 @@ void addDanglingAutoCauses(const std::vector<UsedFile>& files, const fs::path& s
     const auto stubs = stubsOfFile(used.name);
     for (TestResult& t : tests) {
       if (t.passed() || std::find(stubs.begin(), stubs.end(), t.stub) == stubs.end()) continue;
-      if (!t.names("crashed") && !t.names("undefined-behaviour")) continue;
+      if (!t.names(cause::kCrashed) && !t.names(cause::kUndefinedBehaviour)) continue;
       const StubLines body = stubLines(source, t.stub);
       std::vector<SourceQuote> inside;
       for (const SourceQuote& line : lines)
         if (body.contains(line.line) && inside.size() < 3) inside.push_back(line);
       if (inside.empty()) continue;
-      Cause& cause = t.addCause("dangling-auto-expression");
-      cause.quotes = inside;
+      t.addCause(cause::kDanglingAutoExpression).quotes = inside;
     }
   }
 }

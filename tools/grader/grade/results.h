@@ -169,16 +169,19 @@ struct SourceQuote {
 
 // A cause named for a failed check: an id of the catalogue (tools/grader/diagnoses.json), whether
 // the numbers confirm it (likely) or it is a guess, and what the probe measured beside it. Data,
-// never text: every writer renders it the same way (report/outputs.h, causeMarkdown), from the
+// never text: every writer renders it the same way (report/outputs.cpp, causeMarkdown), from the
 // catalogue's text for the id, so the tags, the badges, the overview and the text always agree.
 struct Cause {
   std::string id;
   bool likely = true;  // false: shown as "Possible cause (a guess)"
   std::string detail;  // Markdown measured by the probe for this check, shown after the text
   std::vector<SourceQuote> quotes;
-  // The catalogue's text for `id` (fillCauseTexts, probes.h; a guess-only entry also clears
+  // The catalogue's text for `id` (fillCauseTexts, catalogue.h; a guess-only entry also clears
   // `likely`). Empty: the writers name the id alone.
   std::string text;
+  // The catalogue's why (a paragraph: why the mistake gives these numbers) and example (the
+  // mistaken line and its fix, two lines of C++), shown under a likely cause only.
+  std::string why, example;
   bool operator==(const Cause&) const = default;
 };
 
@@ -227,7 +230,7 @@ struct TestResult {
         cause.likely = cause.likely || likely;
         return cause;
       }
-    causes.push_back(Cause{id, likely, {}, {}, {}});
+    causes.push_back(Cause{id, likely, {}, {}, {}, {}, {}});
     return causes.back();
   }
 };

@@ -29,6 +29,8 @@ constexpr double kNone = -1;
 const std::vector<CauseDeduction>& causeDeductions() {
   static const std::vector<CauseDeduction> table = {
       {"compile-error", kNever, kNone},
+      {"link-error", kNever, kNone},
+      {"missing-file", kNever, kNone},
       {"crashed", kNever, kNone},
       {"grader-error", kNever, kNone},
       {"undefined-behaviour", kNever, kNone},
@@ -77,6 +79,9 @@ const std::vector<CauseDeduction>& causeDeductions() {
       {"no-reevaluation", kMethod, 0.5},
       {"per-body-loop", kMethod, 0.5},
       {"midpoint-full-step", kMethod, 0.5},
+      {"heun-method", kMethod, 0.5},
+      {"half-step-corrector", kMethod, 0.5},
+      {"velocity-damped", kMethod, 0.3},
       {"rk4-mixed-increments", kMethod, 0.5},
       {"rk4-wrong-weights", kMethod, 0.5},
       {"rk4-stage-not-from-backup", kMethod, 0.5},

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <map>
 
+#include "grader/grade/cause_ids.h"
+
 namespace clothref::grader {
 
 CauseEvidence makeEvidence(std::size_t cases, std::vector<std::string> ids) {
@@ -49,7 +51,7 @@ void nameCauses(const CauseEvidence& evidence, const std::set<std::string>& like
         t.addCause(id);
       else if (std::none_of(guesses.begin(), guesses.end(),
                             [&](const Cause& g) { return g.id == id; }))
-        guesses.push_back(Cause{id, false, {}, {}, {}});
+        guesses.push_back(Cause{id, false, {}, {}, {}, {}, {}});
     }
     for (const CauseEvidence::Finding& f : evidence.findings) {
       if (!likely.count(f.cause) || !finding_applies[k]) continue;
@@ -62,7 +64,7 @@ void nameCauses(const CauseEvidence& evidence, const std::set<std::string>& like
       for (const std::string& id : evidence.measured[k]) t.addCause(id);
     if (!t.causes.empty()) continue;
     // Nothing explains every case: unknown, with what matched this case as the nearest guesses.
-    t.addCause("unknown", false);
+    t.addCause(cause::kUnknown, false);
     t.causes.insert(t.causes.end(), guesses.begin(), guesses.end());
   }
 }

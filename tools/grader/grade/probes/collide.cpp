@@ -10,6 +10,7 @@
 
 #include "clothref/core/cloth.h"
 #include "clothref/core/spheres.h"
+#include "grader/grade/cause_ids.h"
 #include "grader/grade/probes/cause_evidence.h"
 #include "grader/grade/probes/collide_cases.h"
 #include "grader/grade/probes/contact_fit.h"
@@ -150,23 +151,23 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
   util::ProbeFailure failure;
   const auto answer = util::runGroup(context, context.probe, group_name, request, failure);
   std::vector<std::pair<ContactMistake, const char*>> signatures = {
-      {ContactMistake::NoApproachCheck, "no-approach-check"},
-      {ContactMistake::RestitutionFull, "restitution-full-velocity"},
-      {ContactMistake::CorrectionSphereOnly, "correction-one-body"},
-      {ContactMistake::CorrectionOtherOnly, "correction-one-body"},
-      {ContactMistake::NoCorrection, "no-position-correction"},
-      {ContactMistake::FirstSphereOnly, "first-sphere-only"},
-      {ContactMistake::NormalSign, "collision-normal-sign"},
-      {ContactMistake::TouchingSkipped, "touching-skipped"},
-      {ContactMistake::ImpulseNotDivided, "wrong-mass-split"}};
+      {ContactMistake::NoApproachCheck, cause::kNoApproachCheck},
+      {ContactMistake::RestitutionFull, cause::kRestitutionFullVelocity},
+      {ContactMistake::CorrectionSphereOnly, cause::kCorrectionOneBody},
+      {ContactMistake::CorrectionOtherOnly, cause::kCorrectionOneBody},
+      {ContactMistake::NoCorrection, cause::kNoPositionCorrection},
+      {ContactMistake::FirstSphereOnly, cause::kFirstSphereOnly},
+      {ContactMistake::NormalSign, cause::kCollisionNormalSign},
+      {ContactMistake::TouchingSkipped, cause::kTouchingSkipped},
+      {ContactMistake::ImpulseNotDivided, cause::kWrongMassSplit}};
   // coefRestitution overwritten (e = 0 or 1); a case where it cannot matter is skipped below.
-  signatures.push_back({ContactMistake::RestitutionZero, "restitution-ignored"});
-  signatures.push_back({ContactMistake::RestitutionOne, "restitution-ignored"});
+  signatures.push_back({ContactMistake::RestitutionZero, cause::kRestitutionIgnored});
+  signatures.push_back({ContactMistake::RestitutionOne, cause::kRestitutionIgnored});
   if (sphere_sphere) {
-    signatures.push_back({ContactMistake::PairTwice, "pair-processed-twice"});
+    signatures.push_back({ContactMistake::PairTwice, cause::kPairProcessedTwice});
   } else {
-    signatures.push_back({ContactMistake::FixedMassless, "fixed-particle-massless"});
-    signatures.push_back({ContactMistake::SphereZeroForAll, "first-sphere-only"});
+    signatures.push_back({ContactMistake::FixedMassless, cause::kFixedParticleMassless});
+    signatures.push_back({ContactMistake::SphereZeroForAll, cause::kFirstSphereOnly});
   }
   std::vector<TestResult> tests;
   std::string momentum_report;
@@ -263,10 +264,10 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
         !util::finite(util::flat(actual.sphere_v)) || !util::finite(util::flat(actual.cloth_v)) ||
         !util::finite(util::flat(actual.sphere_x)) || !util::finite(util::flat(actual.cloth_x));
     if (non_finite[k])
-      evidence.measured[k].push_back("non-finite");
+      evidence.measured[k].push_back(cause::kNonFinite);
     else if (!sphere_sphere && c.check == kFixedParticle &&
              actual.cloth_v.col(0) != c.state.cloth.particles.velocity.col(0))
-      evidence.measured[k].push_back("fixed-particle-massless");
+      evidence.measured[k].push_back(cause::kFixedParticleMassless);
     touching[k] = readPairs(c, sphere_sphere, actual, readings) > 0;
     tests.push_back(t);
   }
@@ -289,8 +290,8 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
   if (answer) nameCauses(evidence, likely, touching, tests);
   if (divides_by_speed)
     for (TestResult& t : tests)
-      if (!t.passed() && t.names("non-finite"))
-        t.causes.insert(t.causes.begin(), util::likely("division-by-speed"));
+      if (!t.passed() && t.names(cause::kNonFinite))
+        t.causes.insert(t.causes.begin(), util::likely(cause::kDivisionBySpeed));
   // The likely causes that break momentum: a simulated mistake that does in some case, or an
   // impulse split read from the pairs.
   std::vector<std::string> breaks_momentum;
@@ -308,7 +309,7 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
       }
     }
   }
-  if (const ContactFinding* f = finding("wrong-mass-split");
+  if (const ContactFinding* f = finding(cause::kWrongMassSplit);
       f && likely.count(f->cause) &&
       !std::count(breaks_momentum.begin(), breaks_momentum.end(), f->cause))
     breaks_momentum.push_back(f->cause);
@@ -323,16 +324,16 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
           momentum_report;
       // NaN momentum says nothing of the mass split: the cases' own cause explains it.
       if (momentum_non_finite && divides_by_speed)
-        t.causes = {util::likely("division-by-speed"), util::likely("non-finite")};
+        t.causes = {util::likely(cause::kDivisionBySpeed), util::likely(cause::kNonFinite)};
       else if (momentum_non_finite)
-        t.causes = {util::likely("non-finite")};
+        t.causes = {util::likely(cause::kNonFinite)};
       else if (!breaks_momentum.empty())
         for (const std::string& id : breaks_momentum) {
           Cause& cause = t.addCause(id);
           if (const ContactFinding* f = finding(id)) cause.detail = "Measured: " + f->text + ".";
         }
       else
-        t.causes = {util::guess("wrong-mass-split")};
+        t.causes = {util::guess(cause::kWrongMassSplit)};
     }
     tests.push_back(t);
   } else {

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "grader/grade/cause_ids.h"
+
 namespace clothref::grader {
 namespace {
 
@@ -113,10 +115,10 @@ std::vector<ContactFinding> explainContacts(const std::vector<ContactReading>& r
   const bool velocities_right = !impulse_when_separating && impulses_match &&
                                 tangential <= kAgree && e && same(*e, restitution);
   if (impulse_when_separating)
-    findings.push_back({"approach test", "no-approach-check", 0, 0,
+    findings.push_back({"approach test", cause::kNoApproachCheck, 0, 0,
                         "an impulse is applied to pairs that already move apart"});
   if (tangential > kAgree)
-    findings.push_back({"normal velocity", "restitution-full-velocity", tangential, 0,
+    findings.push_back({"normal velocity", cause::kRestitutionFullVelocity, tangential, 0,
                         "the impulse changes the velocity across the contact normal too (by " +
                             number(100 * tangential) +
                             " % of the relative speed); the course changes only its normal part"});
@@ -127,11 +129,11 @@ std::vector<ContactFinding> explainContacts(const std::vector<ContactReading>& r
                  : std::nullopt;
     });
     findings.push_back(
-        {"impulse split", "wrong-mass-split", ratio.value_or(0), 1,
+        {"impulse split", cause::kWrongMassSplit, ratio.value_or(0), 1,
          "the two bodies do not receive equal and opposite impulses" +
              (ratio ? " (the sphere's is " + number(*ratio) + " x the other's)" : std::string())});
   } else if (!impulse_when_separating && e && !same(*e, restitution)) {
-    findings.push_back({"restitution", "restitution-ignored", *e, restitution,
+    findings.push_back({"restitution", cause::kRestitutionIgnored, *e, restitution,
                         "your bounce behaves as a coefficient of restitution of " + number(*e) +
                             "; the course's is " + number(restitution)});
   } else if (!impulse_when_separating && !e) {
@@ -153,13 +155,13 @@ std::vector<ContactFinding> explainContacts(const std::vector<ContactReading>& r
     };
     const auto mass = [](double inverse) { return inverse > 0 ? 1 / inverse : 0.0; };
     if (matches([](const ContactReading&) { return 1.0; }))
-      findings.push_back({"impulse split", "wrong-mass-split", 1, 0,
+      findings.push_back({"impulse split", cause::kWrongMassSplit, 1, 0,
                           "the impulse -(1 + e) v_rel.n is not divided by 1/m_a + 1/m_b, so the "
                           "bounce depends on the masses"});
     else if (matches([&](const ContactReading& r) {
                return mass(r.inverse_mass_a) + mass(r.inverse_mass_b);
              }))
-      findings.push_back({"impulse split", "wrong-mass-split", 0, 0,
+      findings.push_back({"impulse split", cause::kWrongMassSplit, 0, 0,
                           "the impulse is divided by m_a + m_b, not by 1/m_a + 1/m_b"});
   }
 
@@ -176,23 +178,23 @@ std::vector<ContactFinding> explainContacts(const std::vector<ContactReading>& r
   const std::string only_positions =
       velocities_right ? "velocities equal the course's; only positions differ: " : "";
   if (same(*ca, -correction) && same(*cb, -correction)) {
-    findings.push_back({"normal direction", "collision-normal-sign", -1, 1,
+    findings.push_back({"normal direction", cause::kCollisionNormalSign, -1, 1,
                         only_positions + "the correction pulls the bodies together (your normal "
                                          "points the other way)"});
   } else if (same(*ca, 0) && same(*cb, 0)) {
-    findings.push_back({"position correction", "no-position-correction", 0, correction,
+    findings.push_back({"position correction", cause::kNoPositionCorrection, 0, correction,
                         only_positions + "penetrating bodies are not pushed apart"});
   } else if (same(*ca, 0) != same(*cb, 0) && (same(*ca, correction) || same(*cb, correction))) {
     findings.push_back(
-        {"position correction", "correction-one-body", same(*ca, 0) ? *cb : *ca, correction,
+        {"position correction", cause::kCorrectionOneBody, same(*ca, 0) ? *cb : *ca, correction,
          only_positions + "only " + std::string(same(*ca, 0) ? "the other body" : "the sphere") +
              " is pushed out (" + number(correction) + " x overlap); the course moves both"});
   } else if (same(*ca, *cb)) {
-    findings.push_back({"position correction", "correction-factor", *ca, correction,
+    findings.push_back({"position correction", cause::kCorrectionFactor, *ca, correction,
                         only_positions + "your position correction behaves as " + number(*ca) +
                             " x overlap; the course uses " + number(correction)});
   } else {
-    findings.push_back({"position correction", "correction-factor", *ca, correction,
+    findings.push_back({"position correction", cause::kCorrectionFactor, *ca, correction,
                         only_positions + "your position correction behaves as " + number(*ca) +
                             " x overlap for the sphere and " + number(*cb) +
                             " x for the other body; the course uses " + number(correction) +

@@ -5,6 +5,7 @@
 #include <random>
 
 #include "clothref/core/cloth.h"
+#include "grader/grade/cause_ids.h"
 #include "grader/grade/probes/cause_evidence.h"
 #include "grader/grade/probes/formula_variants.h"
 #include "grader/grade/probes/spring_fit.h"
@@ -187,17 +188,17 @@ std::vector<TestResult> probeForces(const ProbeContext& context) {
     return tests;
   }
   const std::pair<ForceMistake, const char*> signatures[] = {
-      {ForceMistake::Assign, "assign-not-accumulate"},
-      {ForceMistake::SpringSign, "spring-force-sign"},
-      {ForceMistake::DamperSign, "damper-sign"},
-      {ForceMistake::NoDamper, "missing-damper"},
-      {ForceMistake::DamperUnnormalised, "damper-not-normalised"},
-      {ForceMistake::OneEnd, "force-one-end-only"},
-      {ForceMistake::MassNotInverse, "mass-not-inverse"},
-      {ForceMistake::DivideByMass, "fixed-particle-moves"},
-      {ForceMistake::OtherEndOnly, "force-one-end-only"},
-      {ForceMistake::AssignTotal, "assign-not-accumulate"},
-      {ForceMistake::AssignTotalGravity, "assign-not-accumulate"}};
+      {ForceMistake::Assign, cause::kAssignNotAccumulate},
+      {ForceMistake::SpringSign, cause::kSpringForceSign},
+      {ForceMistake::DamperSign, cause::kDamperSign},
+      {ForceMistake::NoDamper, cause::kMissingDamper},
+      {ForceMistake::DamperUnnormalised, cause::kDamperNotNormalised},
+      {ForceMistake::OneEnd, cause::kForceOneEndOnly},
+      {ForceMistake::MassNotInverse, cause::kMassNotInverse},
+      {ForceMistake::DivideByMass, cause::kFixedParticleMoves},
+      {ForceMistake::OtherEndOnly, cause::kForceOneEndOnly},
+      {ForceMistake::AssignTotal, cause::kAssignNotAccumulate},
+      {ForceMistake::AssignTotalGravity, cause::kAssignNotAccumulate}};
   std::vector<std::string> ids;
   for (const auto& signature : signatures) ids.push_back(signature.second);
   CauseEvidence evidence = makeEvidence(cases.size(), ids);
@@ -242,10 +243,10 @@ std::vector<TestResult> probeForces(const ProbeContext& context) {
                              util::Tolerance{rel * scale[i] + 1e-6, 0}, "m/s\u00B2");
     for (int q = 0; q < kN * kN; ++q)  // measured: shown whatever else explains the numbers
       if (p.mass[q] == 0 && actual.col(q) != c.acc0.col(q)) {
-        t.addCause("fixed-particle-moves");
+        t.addCause(cause::kFixedParticleMoves);
         break;
       }
-    if (!util::finite(util::flat(actual))) evidence.measured[k].push_back("non-finite");
+    if (!util::finite(util::flat(actual))) evidence.measured[k].push_back(cause::kNonFinite);
     tests.push_back(t);
   }
   for (const SpringFinding& f : explainSprings(readings, base.spring_coef, base.damper_coef))

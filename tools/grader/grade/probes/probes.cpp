@@ -1,40 +1,9 @@
 #include "grader/grade/probes/probes.h"
 
-#include <fstream>
-#include <nlohmann/json.hpp>
-
 #include "clothref/core/method.h"
-#include "clothref/io/error.h"
-#include "clothref/io/json_input.h"
 #include "grader/bridge/probe_keys.h"
 
 namespace clothref::grader {
-
-void fillCauseTexts(const Catalogue& catalogue, std::vector<TestResult>& tests) {
-  for (TestResult& test : tests)
-    for (Cause& cause : test.causes) {
-      auto it = catalogue.entries.find(cause.id);
-      if (it == catalogue.entries.end()) continue;  // named by its id alone
-      cause.text = it->second.text;
-      if (it->second.recognised_by == "guess") cause.likely = false;
-    }
-}
-
-Catalogue loadCatalogue(const std::filesystem::path& path) {
-  Catalogue catalogue;
-  try {
-    const auto document = readJsonFile(path.string(), "diagnosis catalogue");
-    for (const auto& entry : document.at("diagnoses")) {
-      Diagnosis d{entry.at("id").get<std::string>(), entry.at("stub").get<std::string>(),
-                  entry.at("recognised_by").get<std::string>(),
-                  entry.at("text").get<std::string>()};
-      catalogue.entries[d.id] = d;
-    }
-  } catch (const nlohmann::json::exception& error) {
-    throw InputError(path.string() + ": malformed diagnosis catalogue (" + error.what() + ")");
-  }
-  return catalogue;
-}
 
 // The probes (one <name>.cpp each), declared here beside the table that runs them, and their
 // check tables, in report order: the one place a check's name and weight are written (each in

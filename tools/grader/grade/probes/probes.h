@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "grader/grade/catalogue.h"
 #include "grader/grade/probes/edition.h"
 #include "grader/grade/results.h"
 #include "grader/grade/rubric.h"
@@ -17,21 +18,6 @@
 #include "grader/grade/run/sanitize.h"
 
 namespace clothref::grader {
-
-// The catalogue of known mistakes (tools/grader/diagnoses.json).
-struct Diagnosis {
-  std::string id, stub, recognised_by, text;
-};
-struct Catalogue {
-  std::map<std::string, Diagnosis> entries;
-};
-// Throws InputError when the file is missing or malformed.
-Catalogue loadCatalogue(const std::filesystem::path& path);
-
-// Each cause of `tests` gets the catalogue's text for its id (Cause::text), and is a guess when the
-// catalogue recognises it only by guessing (`unknown`). The probes name causes as data; the
-// writers render them (report/outputs.h), so no text of a cause is written anywhere else.
-void fillCauseTexts(const Catalogue& catalogue, std::vector<TestResult>& tests);
 
 struct ProbeContext {
   int edition = 2022;

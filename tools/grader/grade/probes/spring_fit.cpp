@@ -5,6 +5,8 @@
 #include <optional>
 #include <sstream>
 
+#include "grader/grade/cause_ids.h"
+
 namespace clothref::grader {
 namespace {
 
@@ -126,19 +128,19 @@ std::vector<SpringFinding> explainSprings(const std::vector<SpringReading>& read
   for (const SpringReading& r : readings) {
     if (!r.fits) return {};  // a form no reading explains: no finding is confirmed
     if (r.form == SpringForm::DamperUnnormalised)
-      add("damper-not-normalised",
+      add(cause::kDamperNotNormalised,
           "the damper's relative velocity is projected on the spring vector x_s - x_e, not on its "
           "unit direction");
     if (r.form == SpringForm::DamperUnnormalisedTwice)
-      add("damper-not-normalised",
+      add(cause::kDamperNotNormalised,
           "the damper is k_d ((v_s - v_e) . d) d with the spring vector d = x_s - x_e unnormalised "
           "in both places, L^2 times the course's k_d ((v_s - v_e) . n) n");
     if (r.form == SpringForm::OneEndOnly)
-      add("force-one-end-only", "only the start particle of each spring gets the force");
+      add(cause::kForceOneEndOnly, "only the start particle of each spring gets the force");
     if (r.form == SpringForm::EndOnly)
-      add("force-one-end-only", "only the end particle of each spring gets the force");
+      add(cause::kForceOneEndOnly, "only the end particle of each spring gets the force");
     if (r.form == SpringForm::MassNotInverse)
-      add("mass-not-inverse", "the force is multiplied by the mass, not the inverse mass");
+      add(cause::kMassNotInverse, "the force is multiplied by the mass, not the inverse mass");
   }
   // The constants, over the readings that can read them, must agree to be named.
   const auto common = [&](auto get) -> std::optional<double> {
@@ -156,7 +158,7 @@ std::vector<SpringFinding> explainSprings(const std::vector<SpringReading>& read
   // Both terms flipped is one mistake: the whole force applied the wrong way round (the ends or
   // += and -= swapped).
   if (ks && kd && same(*ks, -spring_coef) && same(*kd, -damper_coef)) {
-    add("spring-force-sign",
+    add(cause::kSpringForceSign,
         "the whole force has the wrong sign, the Hooke and the damper terms both (k_s fits as " +
             number(*ks) + " N/m, k_d as " + number(*kd) +
             " N s/m): a stretched spring pushes its ends apart");
@@ -164,20 +166,21 @@ std::vector<SpringFinding> explainSprings(const std::vector<SpringReading>& read
   }
   if (ks && !same(*ks, spring_coef)) {
     if (same(*ks, -spring_coef))
-      add("spring-force-sign",
+      add(cause::kSpringForceSign,
           "a stretched spring pushes its ends apart: the Hooke term's sign is flipped");
     else
-      add("spring-coefficient", "your spring force behaves as k_s = " + number(*ks) +
-                                    " N/m; the course's springCoef is " + number(spring_coef));
+      add(cause::kSpringCoefficient, "your spring force behaves as k_s = " + number(*ks) +
+                                         " N/m; the course's springCoef is " + number(spring_coef));
   }
   if (kd && !same(*kd, damper_coef)) {
     if (std::abs(*kd) <= 1e-3 * damper_coef)
-      add("missing-damper", "the force has no damper term (k_d fits as 0)");
+      add(cause::kMissingDamper, "the force has no damper term (k_d fits as 0)");
     else if (same(*kd, -damper_coef))
-      add("damper-sign", "the damper adds energy: its sign is flipped");
+      add(cause::kDamperSign, "the damper adds energy: its sign is flipped");
     else
-      add("damper-coefficient", "your damper behaves as k_d = " + number(*kd) +
-                                    " N s/m; the course's damperCoef is " + number(damper_coef));
+      add(cause::kDamperCoefficient, "your damper behaves as k_d = " + number(*kd) +
+                                         " N s/m; the course's damperCoef is " +
+                                         number(damper_coef));
   }
   return findings;
 }

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "clothref/core/cloth.h"
+#include "grader/grade/cause_ids.h"
 #include "grader/grade/probes/util.h"
 #include "grader/grade/run/build.h"
 #include "grader/grade/text.h"
@@ -154,9 +155,9 @@ Comparison compare(const SpringSet& student, const SpringSet& reference, int n, 
     if (c.connection_examples.size() < 4)
       c.connection_examples.push_back("unexpected: " + pairText(pair, n));
   }
-  if (c.missing) c.diagnoses.push_back("missing-springs");
-  if (c.duplicates) c.diagnoses.push_back("duplicate-springs");
-  if (c.extra) c.diagnoses.push_back("wrong-spring-endpoints");
+  if (c.missing) c.diagnoses.push_back(cause::kMissingSprings);
+  if (c.duplicates) c.diagnoses.push_back(cause::kDuplicateSprings);
+  if (c.extra) c.diagnoses.push_back(cause::kWrongSpringEndpoints);
   // Rest length signatures: shear at the structural length, bend wrong, close-but-not-exact.
   const auto median = [](std::vector<double> v) {
     std::sort(v.begin(), v.end());
@@ -164,15 +165,15 @@ Comparison compare(const SpringSet& student, const SpringSet& reference, int n, 
   };
   const double shear = median(c.rest_ratio_by_type[1]);
   const double bend = median(c.rest_ratio_by_type[2]);
-  if (std::abs(shear - 1 / std::sqrt(2.0)) < 1e-3) c.diagnoses.push_back("shear-rest-length");
-  if (std::abs(bend - 1) > 1e-3) c.diagnoses.push_back("bend-rest-length");
+  if (std::abs(shear - 1 / std::sqrt(2.0)) < 1e-3) c.diagnoses.push_back(cause::kShearRestLength);
+  if (std::abs(bend - 1) > 1e-3) c.diagnoses.push_back(cause::kBendRestLength);
   for (const auto& [type, ratios] : c.rest_ratio_by_type) {
     const double r = median(ratios);
     if (std::abs(r - 1) > rest_rel && std::abs(r - 1) < 1e-2 &&
         !(type == 1 && std::abs(shear - 1 / std::sqrt(2.0)) < 1e-3))
-      c.diagnoses.push_back("approximate-sqrt2");
+      c.diagnoses.push_back(cause::kApproximateSqrt2);
   }
-  if (c.wrong_type) c.diagnoses.push_back("swapped-spring-types");
+  if (c.wrong_type) c.diagnoses.push_back(cause::kSwappedSpringTypes);
   std::sort(c.diagnoses.begin(), c.diagnoses.end());
   c.diagnoses.erase(std::unique(c.diagnoses.begin(), c.diagnoses.end()), c.diagnoses.end());
   return c;
@@ -218,7 +219,7 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
   if (answer) student = studentSprings(*answer, course_n, failure.text);
   bool big_ok = false;
   if (!student) {
-    const std::string id = answer ? "wrong-spring-endpoints" : failure.causeId();
+    const std::string id = answer ? cause::kWrongSpringEndpoints : failure.causeId();
     for (int k : {kConnections, kRestLengths, kTypeLabels})
       tests.push_back(util::failedTest(checks[k], failure.text, {util::guess(id)}));
   } else {
@@ -241,7 +242,7 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
                            familyLines(c.extra_by_family, {}, "unexpected") + "\nExamples:\n";
       for (const auto& e : c.connection_examples) connections.output += "- " + e + "\n";
       addCauses(connections, c.diagnoses,
-                {"missing-springs", "duplicate-springs", "wrong-spring-endpoints"});
+                {cause::kMissingSprings, cause::kDuplicateSprings, cause::kWrongSpringEndpoints});
       connections.sketch = c.connections_sketch;
     } else {
       connections.output = "All " + std::to_string(reference.count) +
@@ -257,7 +258,8 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
                     " (relative, the tolerance). Reference rest lengths: structural " +
                     "|p0 - p1|, shear |p0 - p(N+1)|, bend |p0 - p2| of the initial positions.\n\n";
       for (const auto& e : c.rest_examples) rest.output += e;
-      addCauses(rest, c.diagnoses, {"shear-rest-length", "bend-rest-length", "approximate-sqrt2"});
+      addCauses(rest, c.diagnoses,
+                {cause::kShearRestLength, cause::kBendRestLength, cause::kApproximateSqrt2});
       if (c.wrong_rest) rest.sketch = c.rest_sketch;
     } else {
       rest.output = "Every spring's rest length matches the initial distance of its ends.";
@@ -275,7 +277,7 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
             (swap.second >= 0 && swap.second < 3 ? kTypeNames[swap.second] : "?") + "\n";
       for (const auto& e : c.type_examples) labels.output += "- e.g. " + e + "\n";
       if (c.wrong_type) {
-        labels.addCause("swapped-spring-types");
+        labels.addCause(cause::kSwappedSpringTypes);
         labels.sketch = c.type_sketch;
       }
     } else {
@@ -313,7 +315,7 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
         // Right at 25 and springs to particles a 10 x 10 cloth does not have: measured. A crash
         // at 10 is only suggestive.
         const bool measured = small_answer.has_value();
-        small.addCause("hard-coded-n25", measured);
+        small.addCause(cause::kHardCodedN25, measured);
       }
     } else {
       const Comparison c = compare(*small_set, referenceSprings(n, context.course), n, rest_rel);
@@ -333,7 +335,7 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
           small.sketch.differing.insert(small.sketch.differing.end(), more->differing.begin(),
                                         more->differing.end());
         if (big_ok) {
-          small.addCause("hard-coded-n25");
+          small.addCause(cause::kHardCodedN25);
         } else {
           for (const auto& id : c.diagnoses) small.addCause(id);
         }

@@ -13,6 +13,7 @@
 #include "clothref/core/method.h"
 #include "clothref/core/types.h"
 #include "grader/bridge/probe_keys.h"
+#include "grader/grade/cause_ids.h"
 #include "grader/grade/probes/compare_text.h"
 #include "grader/grade/probes/probes.h"
 #include "grader/grade/text.h"
@@ -54,10 +55,10 @@ struct ProbeFailure {
   // The catalogue id of the cause: grader-error (ours), timed-out (wall or CPU limit),
   // undefined-behaviour (the two runs differed), or crashed for every other way it ended.
   std::string causeId() const {
-    if (verdict == Verdict::GraderError) return "grader-error";
-    if (verdict == Verdict::TimedOut) return "timed-out";
-    if (verdict == Verdict::ResultsVary) return "undefined-behaviour";
-    return "crashed";
+    if (verdict == Verdict::GraderError) return cause::kGraderError;
+    if (verdict == Verdict::TimedOut) return cause::kTimedOut;
+    if (verdict == Verdict::ResultsVary) return cause::kUndefinedBehaviour;
+    return cause::kCrashed;
   }
 };
 
@@ -103,8 +104,8 @@ inline TestResult test(const PlannedTest& check) {
 }
 
 // A cause the numbers confirm, and one they only suggest (results.h, Cause).
-inline Cause likely(const std::string& id) { return Cause{id, true, {}, {}, {}}; }
-inline Cause guess(const std::string& id) { return Cause{id, false, {}, {}, {}}; }
+inline Cause likely(const std::string& id) { return Cause{id, true, {}, {}, {}, {}, {}}; }
+inline Cause guess(const std::string& id) { return Cause{id, false, {}, {}, {}, {}, {}}; }
 
 // A test of the group that could not run: zero points, the verdict as output.
 inline TestResult failedTest(const PlannedTest& check, const std::string& why,

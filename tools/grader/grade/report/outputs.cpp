@@ -51,6 +51,51 @@ std::string quoteBlock(const std::vector<SourceQuote>& quotes) {
   return codeBlock(lines);
 }
 
+// What earlier failed tests of a report showed, so that a repeat refers to it instead.
+struct Shown {
+  std::map<std::string, std::string> outputs;  // a long output -> the test that showed it
+  std::map<std::string, std::string> quotes;   // stub, id and quotes -> the check that showed them
+  // id and visibility -> the test that explained the cause: a visible test never refers to one
+  // the student cannot see yet
+  std::map<std::string, std::string> explained;
+};
+
+// Whether `key` is new to `seen` (null: nothing is recorded), and else the test that showed it.
+std::pair<bool, std::string> firstTime(std::map<std::string, std::string>* seen,
+                                       const std::string& key, const std::string& test) {
+  if (!seen) return {true, test};
+  const auto [it, first] = seen->emplace(key, test);
+  return {first, it->second};
+}
+
+// The one cause renderer: the head line (likely or a guess, the id, the catalogue's text); under
+// a likely cause the catalogue's why and example (a guess stays short: its text only), on the
+// first failed test that names it; then what the probe measured and the quoted source lines (on
+// the first test of the stub that names them). `shown` null: a test no later one refers to.
+std::string causeMarkdown(const Cause& cause, const TestResult& t, Shown* shown) {
+  std::string block = causeHead(cause) + "\n";
+  if (cause.likely && (!cause.why.empty() || !cause.example.empty())) {
+    const auto [first, where] =
+        firstTime(shown ? &shown->explained : nullptr, cause.id + "\n" + t.visibility, t.name());
+    if (!first)
+      block += "\nWhy, and the mistake with its fix: under " + curlyQuoted(where) + " above.\n";
+    if (first && !cause.why.empty()) block += "\n**Why**: " + cause.why + "\n";
+    if (first && !cause.example.empty())
+      block += "\nThe mistake and its fix, in short:\n\n" + codeBlock(cause.example);
+  }
+  if (!cause.detail.empty())
+    block += "\n" + cause.detail + (cause.detail.back() == '\n' ? "" : "\n");
+  if (!cause.quotes.empty()) {
+    const auto [first, where] =
+        firstTime(shown ? &shown->quotes : nullptr,
+                  t.stub + "\n" + cause.id + "\n" + quoteBlock(cause.quotes), t.check);
+    block += first ? "\nIn " + codeSpan(cause.quotes.front().file) + ", inside " +
+                         codeSpan(t.stub) + ":\n\n" + quoteBlock(cause.quotes)
+                   : "\nThe lines are quoted under " + curlyQuoted(where) + " above.\n";
+  }
+  return block;
+}
+
 // A Markdown block per note, those with a verbatim block after the one-line ones.
 std::string notesMarkdown(const std::vector<Note>& notes) {
   std::string out;
@@ -122,6 +167,8 @@ GradeReport cleaned(const GradeReport& given) {
       name(cause.id);
       text(cause.detail);
       text(cause.text);
+      text(cause.why);
+      text(cause.example);
       for (SourceQuote& quote : cause.quotes) {
         name(quote.file);
         name(quote.text);
@@ -146,32 +193,21 @@ std::string TestText::markdown() const {
 
 std::vector<TestText> testTexts(const GradeReport& report) {
   std::vector<TestText> texts;
-  std::map<std::string, std::string> output_shown;  // a long output -> the test that showed it
-  // (stub, quotes) -> the check that quoted them
-  std::map<std::pair<std::string, std::string>, std::string> quotes_shown;
+  Shown shown;
   for (const TestResult& t : report.tests) {
     TestText text;
     text.output = t.output;
+    // the Markdown report shows information-only tests last: nothing refers to them
     const bool shown_failed = !t.passed() && !t.informational;
     if (shown_failed && t.output.find('\n') != std::string::npos) {
-      auto [it, first] = output_shown.emplace(t.output, t.name());
+      auto [it, first] = shown.outputs.emplace(t.output, t.name());
       if (!first) text.output = "Same as for " + curlyQuoted(it->second) + " above.\n";
     }
     if (!t.rubric_note.empty())
       text.output = t.rubric_note + (text.output.empty() ? "\n" : "\n\n" + text.output);
-    for (const Cause& cause : t.causes) {
-      std::string block = causeHead(cause) + "\n";
-      if (!cause.detail.empty())
-        block += "\n" + cause.detail + (cause.detail.back() == '\n' ? "" : "\n");
-      if (!cause.quotes.empty()) {
-        const auto key = std::make_pair(t.stub, cause.id + "\n" + quoteBlock(cause.quotes));
-        auto [it, first] = quotes_shown.emplace(key, t.check);
-        block += first ? "\nIn " + codeSpan(cause.quotes.front().file) + ", inside " +
-                             codeSpan(t.stub) + ":\n\n" + quoteBlock(cause.quotes)
-                       : "\nThe lines are quoted under " + curlyQuoted(it->second) + " above.\n";
-      }
-      (cause.likely ? text.likely : text.guesses).push_back(block);
-    }
+    for (const Cause& cause : t.causes)
+      (cause.likely ? text.likely : text.guesses)
+          .push_back(causeMarkdown(cause, t, shown_failed ? &shown : nullptr));
     texts.push_back(text);
   }
   return texts;

@@ -6,9 +6,10 @@
 // element of it.
 //
 // One truth: every output renders the same data the same way. A test's Markdown is its output,
-// then its causes (report.h's Cause: the likely ones, then the guesses, each its own block, with
-// the catalogue's text), repeats folded; the tags, badges and the class overview list the same
-// causes; points are shown rounded to 0.001 everywhere (points()).
+// then its causes (results.h's Cause: the likely ones, then the guesses, each its own block, with
+// the catalogue's text; a likely one also with the catalogue's why and example), repeats folded;
+// the tags, badges and the class overview list the same causes; points are shown rounded to 0.001
+// everywhere (points()).
 #pragma once
 #include <nlohmann/json.hpp>
 #include <string>
@@ -43,8 +44,9 @@ GradeReport cleaned(const GradeReport& report);
 
 // What a writer shows of one test of a cleaned report: its output (Markdown), then its causes as
 // Markdown blocks, the likely ones and the guesses apart. Repeats are folded: an output of several
-// lines equal to an earlier test's is shown once and referred to afterwards, and a cause's source
-// quotes are shown on the first test of the stub that names it.
+// lines equal to an earlier test's is shown once and referred to afterwards, a likely cause's why
+// and example on the first failed test of the same visibility that names it, and a cause's
+// source quotes on the first test of the stub that names it.
 struct TestText {
   std::string output;
   std::vector<std::string> likely, guesses;  // one Markdown block per cause
