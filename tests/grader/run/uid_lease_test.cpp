@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "grader/grade/run/sandbox.h"
+#include "test_util.h"
 
 namespace clothref::grader {
 namespace {
@@ -123,6 +124,35 @@ TEST(UidLease, ProcessesLeftUnderTheUidsAreKilled) {
   int status = 0;
   ASSERT_EQ(waitpid(left, &status, 0), left);
   EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL);
+}
+
+// A grader in a chroot (the Gradescope image built in a root, the fresh-machine check) shares
+// /proc and the uids with the host but not /run, where the leases live: before this, a host
+// grader leasing slot 0 killed the chroot grader's compiles under the same uids (seen: the
+// Gradescope test's submissions all 'did not build', no compiler output, while the suite ran).
+TEST(UidLease, ProcessesUnderAnotherRootAreNotOursToKill) {
+  if (geteuid() != 0) GTEST_SKIP() << "needs root to chroot and run as another uid";
+  const UidLease lease = leaseUids();
+  const clothref::test::TempDir root;
+  const pid_t other = fork();
+  ASSERT_GE(other, 0);
+  if (other == 0) {
+    if (chroot(root.path().c_str()) != 0 || chdir("/") != 0) _exit(2);
+    if (setgid(static_cast<gid_t>(lease.tool_uid)) != 0 ||
+        setuid(static_cast<uid_t>(lease.tool_uid)) != 0)
+      _exit(2);
+    pause();
+    _exit(0);
+  }
+  usleep(100000);
+  EXPECT_TRUE(usedUnderAnotherRoot({lease.uid, lease.tool_uid}));
+  EXPECT_EQ(killProcessesOf({lease.uid, lease.tool_uid}, 3), 0);
+  EXPECT_EQ(kill(other, 0), 0) << "the other root's process was killed";
+  kill(other, SIGKILL);
+  int status = 0;
+  ASSERT_EQ(waitpid(other, &status, 0), other);
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL);
+  EXPECT_FALSE(usedUnderAnotherRoot({lease.uid, lease.tool_uid}));
 }
 
 }  // namespace

@@ -143,8 +143,19 @@ std::vector<ToolRun> runTools(const std::vector<std::vector<std::string>>& comma
           ours(finished.index, "bubblewrap failed: " + output.substr(0, output.find('\n')));
           continue;
         }
+        // A compiler or linker that fails says why; one that fails in silence was stopped from
+        // outside (seen: killed by another root's grader under the same uid), not by the code.
+        const bool exited_ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
+        if (!late && !exited_ok && output.find_first_not_of(" \t\r\n") == std::string::npos) {
+          ours(finished.index, WIFSIGNALED(status)
+                                   ? "the tool was stopped by signal " +
+                                         std::to_string(WTERMSIG(status)) + " without a message"
+                                   : "the tool failed without a message (exit " +
+                                         std::to_string(WEXITSTATUS(status)) + ")");
+          continue;
+        }
         ToolRun& result = results[finished.index];
-        result.ok = !late && WIFEXITED(status) && WEXITSTATUS(status) == 0;
+        result.ok = !late && exited_ok;
         result.seconds = secondsSince(finished.start);
         result.output = output;
         if (late)

@@ -15,6 +15,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace clothref::grader {
 namespace fs = std::filesystem;
@@ -54,22 +55,47 @@ std::vector<int> processUids(const fs::path& status_path) {
   return {};
 }
 
+// Whether process `pid` sees the same root folder as we do. A grader in a chroot (a Gradescope
+// image built in a root, the fresh-machine check) shares /proc and the uids with the host but
+// not /run, where the leases are: its processes are another grader's, never leftovers of ours.
+bool sharesOurRoot(const fs::path& proc_entry) {
+  struct stat theirs {
+  }, ours{};
+  if (stat((proc_entry / "root").c_str(), &theirs) != 0 || stat("/", &ours) != 0) return false;
+  return theirs.st_dev == ours.st_dev && theirs.st_ino == ours.st_ino;
+}
+
+// The processes running under one of `uids`: pid and whether it shares our root.
+std::vector<std::pair<long, bool>> processesOf(const std::vector<int>& uids) {
+  std::vector<std::pair<long, bool>> found;
+  std::error_code error;
+  for (const auto& entry : fs::directory_iterator("/proc", error)) {
+    const std::string name = entry.path().filename().string();
+    if (name.empty() || name.find_first_not_of("0123456789") != std::string::npos) continue;
+    const std::vector<int> ids = processUids(entry.path() / "status");
+    const bool theirs = std::any_of(ids.begin(), ids.end(), [&](int id) {
+      return std::find(uids.begin(), uids.end(), id) != uids.end();
+    });
+    const long pid = std::stol(name);
+    if (!theirs || pid <= 1 || pid == getpid()) continue;
+    found.emplace_back(pid, sharesOurRoot(entry.path()));
+  }
+  return found;
+}
+
 }  // namespace
+
+bool usedUnderAnotherRoot(const std::vector<int>& uids) {
+  const auto found = processesOf(uids);
+  return std::any_of(found.begin(), found.end(), [](const auto& p) { return !p.second; });
+}
 
 int killProcessesOf(const std::vector<int>& uids, int rounds) {
   std::set<long> killed;
   for (int round = 0; round < rounds; ++round) {
     bool found = false;
-    std::error_code error;
-    for (const auto& entry : fs::directory_iterator("/proc", error)) {
-      const std::string name = entry.path().filename().string();
-      if (name.empty() || name.find_first_not_of("0123456789") != std::string::npos) continue;
-      const std::vector<int> ids = processUids(entry.path() / "status");
-      const bool theirs = std::any_of(ids.begin(), ids.end(), [&](int id) {
-        return std::find(uids.begin(), uids.end(), id) != uids.end();
-      });
-      const long pid = std::stol(name);
-      if (!theirs || pid <= 1 || pid == getpid()) continue;
+    for (const auto& [pid, ours] : processesOf(uids)) {
+      if (!ours) continue;  // another root's grader: not ours to kill
       found = true;
       if (kill(static_cast<pid_t>(pid), SIGKILL) == 0) killed.insert(pid);
     }
@@ -93,10 +119,15 @@ UidLease leaseUids(const fs::path& lock_dir) {
       close(fd);
       continue;
     }
-    close(dir_fd);
     UidLease lease;
     lease.uid = kProbeUid - 2 * slot;
     lease.tool_uid = kToolUid - 2 * slot;
+    // Free here, but a grader under another root (whose leases we cannot see) runs these uids.
+    if (usedUnderAnotherRoot({lease.uid, lease.tool_uid})) {
+      close(fd);
+      continue;
+    }
+    close(dir_fd);
     // A grader killed while it graded may have left processes under these uids: they are ours.
     killProcessesOf({lease.uid, lease.tool_uid});
     // Released (the lock closed) when the last holder lets go. A non-null pointer, so that a

@@ -19,9 +19,10 @@ inline constexpr int kToolUid = 65532;
 // process: a slot is an exclusive flock on `<lock_dir>/slot-<k>.lock` (default
 // /run/clothref-grader, a folder only root may enter), so any number of grader processes on one
 // machine (Slurm tasks, TAs, CI jobs) never run two students under one uid at a time. The lock
-// dies with the process that holds it. Before a slot is used, every process still running under
-// its uids (left by a grader that was killed) is killed. The lowest free slot is taken;
-// kUidSlots at once at the most on a host (more throws).
+// dies with the process that holds it. A slot whose uids run processes under another root is
+// taken by a grader there (a chroot shares /proc and the uids, not /run) and is skipped; a
+// process still running under the uids in our root (left by a grader that was killed) is killed.
+// The lowest free slot is taken; kUidSlots at once at the most on a host (more throws).
 struct UidLease {
   int uid = kProbeUid, tool_uid = kToolUid;
   std::shared_ptr<const void> hold;
@@ -29,8 +30,11 @@ struct UidLease {
 inline constexpr int kUidSlots = 256;
 UidLease leaseUids(const std::filesystem::path& lock_dir = "/run/clothref-grader");
 
-// Kills (SIGKILL) every process whose real or effective uid is one of `uids`, until none is left
-// (at most `rounds` passes over /proc). Returns how many were killed.
+// Kills (SIGKILL) every process under our root whose real or effective uid is one of `uids`,
+// until none is left (at most `rounds` passes over /proc). Returns how many were killed.
 int killProcessesOf(const std::vector<int>& uids, int rounds = 50);
+
+// Whether a process under another root folder (a chroot's grader) runs as one of `uids`.
+bool usedUnderAnotherRoot(const std::vector<int>& uids);
 
 }  // namespace clothref::grader
