@@ -300,6 +300,14 @@ TEST(PerMistake, AnythingButOneLikelyCauseWithADeductionIsScoredPerCheck) {
   report = stubWithFailures(kSpheres, 1, {{"correction-factor", true}, {"unknown", false}});
   applyRubric(rubric, report);
   EXPECT_NE(notes(report), "");
+  // NaN beside the mistake that makes it is its symptom, not a second mistake: the stub
+  // qualifies (pan-big5's division by a zero speed); NaN alone has no deduction.
+  report = stubWithFailures(kSpheres, 1, {{"division-by-speed", true}, {"non-finite", true}});
+  applyRubric(rubric, report);
+  EXPECT_NE(notes(report).find("(`division-by-speed`)"), std::string::npos) << notes(report);
+  report = stubWithFailures(kSpheres, 1, {{"non-finite", true}});
+  applyRubric(rubric, report);
+  EXPECT_EQ(notes(report), "");
   // A stub without a failed check is untouched.
   report = stubWithFailures(kSpheres, 100, {{"correction-factor", true}});
   applyRubric(rubric, report);

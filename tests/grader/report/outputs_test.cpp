@@ -15,29 +15,14 @@
 #include "grader/grade/cause_ids.h"
 #include "grader/grade/report/html_report.h"
 #include "grader/grade/text.h"
+#include "pages/html.h"
 #include "test_util.h"
 
 namespace clothref::grader {
 namespace {
 
-std::string pagesEscape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    if (c == '&')
-      out += "&amp;";
-    else if (c == '<')
-      out += "&lt;";
-    else if (c == '>')
-      out += "&gt;";
-    else if (c == '"')
-      out += "&quot;";
-    else if (c == '\'')
-      out += "&#39;";
-    else
-      out += c;
-  }
-  return out;
-}
+// The pages' own escaping: how a stub or check name reads in report.html.
+std::string pagesEscape(const std::string& text) { return pages::escapeHtml(text); }
 
 GradeReport sampleReport() {
   GradeReport report;

@@ -8,6 +8,7 @@
 #include "clothref/io/error.h"
 #include "clothref/io/json_input.h"
 #include "clothref/io/limits.h"
+#include "grader/grade/cause_ids.h"
 #include "grader/grade/text.h"
 
 namespace clothref::grader {
@@ -268,17 +269,20 @@ std::vector<long> apportion(long units, const std::vector<double>& weights) {
 
 // The one likely cause every failed check of a stub names, when the stub has a failed check, no
 // failed check names another likely cause or none, and the rubric has a deduction for it; else
-// "". Guesses are not counted.
+// "". Guesses are not counted, nor `non-finite` beside another likely cause: it is that cause's
+// symptom (a division by a zero speed makes NaN), not a second mistake.
 std::string oneMistake(const Rubric& rubric, const std::vector<const TestResult*>& tests) {
   std::string mistake;
   for (const TestResult* test : tests) {
     if (test->passed()) continue;
-    std::string named;
-    for (const Cause& cause : test->causes) {
-      if (!cause.likely || cause.id == named) continue;
-      if (!named.empty()) return "";  // two likely causes
-      named = cause.id;
-    }
+    std::vector<std::string> likely;
+    for (const Cause& cause : test->causes)
+      if (cause.likely && std::find(likely.begin(), likely.end(), cause.id) == likely.end())
+        likely.push_back(cause.id);
+    if (likely.size() > 1)
+      likely.erase(std::remove(likely.begin(), likely.end(), cause::kNonFinite), likely.end());
+    if (likely.size() > 1) return "";  // two likely causes
+    const std::string named = likely.empty() ? "" : likely.front();
     if (named.empty() || (!mistake.empty() && named != mistake)) return "";
     mistake = named;
   }
