@@ -8,6 +8,7 @@
 #include "clothref/core/integrator.h"
 #include "grader/grade/probes/integrate_mistakes.h"
 #include "grader/grade/probes/stages.h"
+#include "grader/grade/run/source_text.h"
 #include "grader/grade/run/submission.h"
 
 namespace clothref::grader::integrators {
