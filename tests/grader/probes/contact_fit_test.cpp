@@ -117,6 +117,16 @@ TEST(ContactFit, ARestitutionIsNamedWithItsValue) {
       << findings[0].text;
 }
 
+// A restitution of 0 read through float roundings is said as 0, not as -2e-9 (seen on the
+// hand-written set: "a coefficient of restitution of -2.275e-09; the course's is 0.8").
+TEST(ContactFit, ARestitutionOfZeroIsSaidAsZero) {
+  const auto findings = explainContacts(readAll(course(0.0f, 0.15f)), 0.8, 0.15);
+  ASSERT_EQ(findings.size(), 1u);
+  EXPECT_EQ(findings[0].cause, "restitution-ignored");
+  EXPECT_NE(findings[0].text.find("restitution of 0; the course's is 0.8"), std::string::npos)
+      << findings[0].text;
+}
+
 TEST(ContactFit, OneBodyNoCorrectionAndTheNormalsSign) {
   const auto one = explainContacts(readAll([](Pair& p) {
                                      const auto xb = p.xb;

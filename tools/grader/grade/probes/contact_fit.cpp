@@ -25,10 +25,12 @@ bool same(double a, double b) {
   return std::abs(a - b) <= kAgree * std::max({1.0, std::abs(a), std::abs(b)});
 }
 
+// A value read back, to the agreement it was read with: -2e-9 is 0 (a restitution of 0 read
+// through float roundings), not a number a student should chase.
 std::string number(double value) {
   std::ostringstream out;
   out.precision(4);
-  out << value;
+  out << (std::abs(value) <= kAgree ? 0.0 : value);
   return out.str();
 }
 
