@@ -40,13 +40,7 @@ TEST(HtmlReport, StudentReportEscapesAndKeepsEveryCheck) {
 
 // A failed check with a sketch gets its picture, once; a page without the whole run has no script.
 TEST(HtmlReport, AFailedCheckWithASketchGetsItsPicture) {
-  Sketch sketch;
-  sketch.bodies.push_back({"sphere 0",
-                           {0.1f, 0.42f, -0.05f},
-                           0.5f,
-                           {0.3f, -2, 0.1f},
-                           {0.3f, -1.98f, 0.1f},
-                           {0.3f, -2, 0.1f}});
+  const Sketch sketch = test_samples::sampleSketch(false);
   GradeReport report = sampleReport();
   ASSERT_FALSE(report.tests.empty());
   const std::string without = studentReportHtml(report, nullptr);

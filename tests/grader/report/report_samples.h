@@ -41,6 +41,26 @@ inline GradeReport sampleReport() {
   return report;
 }
 
+// A collision check's state as a sketch: sphere 0 approaching, and (`with_particle`) particle 312
+// below it, each with its velocity before, the course's after and the student's after.
+inline Sketch sampleSketch(bool with_particle) {
+  Sketch sketch;
+  sketch.bodies.push_back({"sphere 0",
+                           {0.1f, 0.42f, -0.05f},
+                           0.5f,
+                           {0.3f, -2, 0.1f},
+                           {0.3f, -1.98f, 0.1f},
+                           {0.3f, -2, 0.1f}});
+  if (with_particle)
+    sketch.bodies.push_back({"particle 312",
+                             {0, 0, 0},
+                             0,
+                             {0.2f, 0.5f, -0.1f},
+                             {-0.35f, -1.8f, 0.17f},
+                             {0.2f, 0.5f, -0.1f}});
+  return sketch;
+}
+
 inline std::size_t countOf(const std::string& text, const std::string& what) {
   std::size_t n = 0;
   for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;

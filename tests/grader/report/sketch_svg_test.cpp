@@ -14,24 +14,13 @@ namespace clothref::grader {
 namespace {
 
 using test_samples::countOf;
+using test_samples::sampleSketch;
 
 // A failed collision check's state, in two panels (the whole scene, and the contact up close): in
 // each one circle per sphere, a dot per particle, three arrows per body, nothing but static SVG;
 // a check without a sketch gets no picture.
 TEST(SketchSvg, AFailedCollisionCheckGetsASmallPictureOfTheStateTried) {
-  Sketch sketch;
-  sketch.bodies.push_back({"sphere 0",
-                           {0.1f, 0.42f, -0.05f},
-                           0.5f,
-                           {0.3f, -2, 0.1f},
-                           {0.3f, -1.98f, 0.1f},
-                           {0.3f, -2, 0.1f}});
-  sketch.bodies.push_back({"particle 312",
-                           {0, 0, 0},
-                           0,
-                           {0.2f, 0.5f, -0.1f},
-                           {-0.35f, -1.8f, 0.17f},
-                           {0.2f, 0.5f, -0.1f}});
+  Sketch sketch = sampleSketch(true);
   const std::string svg = stateSketchSvg(sketch, "s");
   ASSERT_EQ(svg.rfind("<svg ", 0), 0u) << svg;
   EXPECT_EQ(countOf(svg, "<circle "), 4u);
