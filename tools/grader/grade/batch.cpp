@@ -17,6 +17,7 @@
 #include "clothref/io/json_input.h"
 #include "clothref/io/output_file.h"
 #include "clothref/io/progress.h"
+#include "grader/grade/batch_files.h"
 #include "grader/grade/report/html_report.h"
 #include "grader/grade/report/outputs.h"
 #include "grader/grade/run/submission.h"
@@ -64,98 +65,6 @@ std::string safeComponent(const std::string& text) {
     if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '_' && c != '-') c = '_';
   if (out.empty() || out.front() == '.' || isBatchOutputName(out)) out = "_" + out;
   return out;
-}
-
-std::string number(double value) { return points(value); }
-
-std::string csvField(const std::string& given) {
-  const std::string text = safeName(given);  // valid UTF-8, one line, no terminal escapes
-  if (text.find_first_of(",\"") == std::string::npos) return text;
-  std::string out = "\"";
-  for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
-}
-
-// A descriptor that closes itself.
-struct Fd {
-  int fd = -1;
-  explicit Fd(int value = -1) : fd(value) {}
-  Fd(Fd&& other) noexcept : fd(std::exchange(other.fd, -1)) {}
-  Fd& operator=(Fd&& other) noexcept {
-    std::swap(fd, other.fd);
-    return *this;
-  }
-  ~Fd() {
-    if (fd >= 0) ::close(fd);
-  }
-};
-
-std::string errnoText(const fs::path& path) {
-  return safeName(path.string()) + ": " + std::strerror(errno);
-}
-
-// BATCHDIR's folder of a submission, created when missing. It must be a folder, not a link: a link
-// planted there would have the batch write (as root) wherever it points.
-Fd openFolder(int batch_fd, const fs::path& batch_dir, const std::string& name) {
-  if (::mkdirat(batch_fd, name.c_str(), 0755) != 0 && errno != EEXIST)
-    throw InputError(errnoText(batch_dir / name));
-  Fd folder(::openat(batch_fd, name.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC));
-  if (folder.fd < 0)
-    throw InputError(safeName((batch_dir / name).string()) + ": " +
-                     (errno == ELOOP || errno == ENOTDIR
-                          ? std::string("not a folder of the batch (a link or a file there is "
-                                        "never written through; remove it)")
-                          : std::strerror(errno)));
-  return folder;
-}
-
-// Writes `name` in the folder `dir_fd` atomically: a new temporary file beside it (O_EXCL |
-// O_NOFOLLOW: never an existing file nor a link), then renamed over the name, which replaces a
-// link there instead of writing through it.
-void writeNoFollow(int dir_fd, const fs::path& folder, const std::string& name,
-                   const std::string& text) {
-  static std::atomic<unsigned long> counter{0};
-  const std::string temporary =
-      name + ".tmp" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
-  Fd out(::openat(dir_fd, temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC,
-                  0644));
-  if (out.fd < 0) throw InputError(errnoText(folder / name));
-  for (std::size_t done = 0; done < text.size();) {
-    const ssize_t n = ::write(out.fd, text.data() + done, text.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      const std::string why = errnoText(folder / name);
-      ::unlinkat(dir_fd, temporary.c_str(), 0);
-      throw InputError(why + " (nothing written)");
-    }
-    done += std::size_t(n);
-  }
-  if (::renameat(dir_fd, temporary.c_str(), dir_fd, name.c_str()) != 0) {
-    const std::string why = errnoText(folder / name);
-    ::unlinkat(dir_fd, temporary.c_str(), 0);
-    throw InputError(why);
-  }
-}
-
-// The bytes of `name` in the folder `dir_fd`, read without following a link; nullopt when there is
-// none, it is a link or not a regular file, or it is larger than `max_bytes`.
-std::optional<std::string> readNoFollow(int dir_fd, const std::string& name,
-                                        std::size_t max_bytes) {
-  Fd in(::openat(dir_fd, name.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC));
-  struct stat st {};
-  if (in.fd < 0 || ::fstat(in.fd, &st) != 0 || !S_ISREG(st.st_mode) ||
-      std::size_t(st.st_size) > max_bytes)
-    return std::nullopt;
-  std::string text(std::size_t(st.st_size), '\0');
-  std::size_t done = 0;
-  while (done < text.size()) {
-    const ssize_t n = ::read(in.fd, text.data() + done, text.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) break;
-    done += std::size_t(n);
-  }
-  text.resize(done);
-  return text;
 }
 
 // The row marker of a folder of the batch (read without following links), or nullopt.
@@ -322,82 +231,6 @@ std::vector<BatchEntry> shardEntries(const std::vector<BatchEntry>& entries, con
   const std::size_t begin = (k - 1) * n / count, end = k * n / count;
   return {entries.begin() + static_cast<std::ptrdiff_t>(begin),
           entries.begin() + static_cast<std::ptrdiff_t>(end)};
-}
-
-BatchRow rowOf(const BatchEntry& entry, const GradeReport& report) {
-  BatchRow row;
-  row.name = entry.name;
-  row.dir = safeName(entry.dir.string());
-  row.edition = report.edition;
-  row.stub_score = report.stub_score;
-  row.stub_max = report.stub_max;
-  row.score = report.score;
-  row.max_score = report.max_score;
-  row.verdict = report.verdict;
-  row.isolation = safeName(report.isolation);
-  row.seconds = report.seconds.count("total") ? report.seconds.at("total") : 0;
-  return row;
-}
-
-nlohmann::ordered_json rowJson(const BatchRow& row) {
-  nlohmann::ordered_json json;
-  json["submission"] = row.name;
-  json["dir"] = row.dir;
-  json["edition"] = row.edition;
-  json["stub_scores"] = row.stub_score;
-  json["stub_max"] = row.stub_max;
-  json["total"] = row.score;
-  json["max"] = row.max_score;
-  json["verdict"] = verdictId(row.verdict);
-  json["isolation"] = row.isolation;
-  json["problem"] = row.problem;
-  json["seconds"] = row.seconds;
-  return json;
-}
-
-BatchRow rowFromJson(const nlohmann::json& json, const std::string& where) {
-  try {
-    BatchRow row;
-    row.name = json.at("submission").get<std::string>();
-    row.dir = json.at("dir").get<std::string>();
-    row.edition = json.at("edition").get<int>();
-    row.stub_score = json.at("stub_scores").get<std::map<std::string, double>>();
-    row.stub_max = json.at("stub_max").get<std::map<std::string, double>>();
-    row.score = json.at("total").get<double>();
-    row.max_score = json.at("max").get<double>();
-    if (!verdictFromId(json.at("verdict").get<std::string>(), row.verdict))
-      throw InputError(where + ": not a batch row (unknown verdict)");
-    row.isolation = json.at("isolation").get<std::string>();
-    row.problem = json.at("problem").get<std::string>();
-    row.seconds = json.at("seconds").get<double>();
-    return row;
-  } catch (const nlohmann::json::exception& error) {
-    throw InputError(where + ": not a batch row (" + error.what() + ")");
-  }
-}
-
-std::string batchCsv(const std::vector<BatchRow>& rows, bool header) {
-  std::string out;
-  if (header) {
-    out += "submission,edition";
-    for (const std::string& stub : stubNames()) out += "," + csvField(stub);
-    out += ",total,max,verdict,isolation,seconds\n";
-  }
-  for (const BatchRow& row : rows) {
-    out += csvField(row.name) + "," + (row.edition ? std::to_string(row.edition) : "");
-    for (const std::string& stub : stubNames()) {
-      auto it = row.stub_score.find(stub);
-      out += "," + (it == row.stub_score.end() ? std::string() : number(it->second));
-    }
-    std::ostringstream seconds;
-    seconds.setf(std::ios::fixed);
-    seconds.precision(1);
-    seconds << row.seconds;
-    out += "," + number(row.score) + "," + number(row.max_score) + "," +
-           csvField(verdictId(row.verdict)) + "," + csvField(row.isolation) + "," + seconds.str() +
-           "\n";
-  }
-  return out;
 }
 
 int perSubmissionJobs(int jobs, int cores) { return std::max(1, cores / std::max(1, jobs)); }
