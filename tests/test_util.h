@@ -110,6 +110,13 @@ class TempDir {
   TempDir& operator=(const TempDir&) = delete;
 
   const std::filesystem::path& path() const { return path_; }
+  // Closes the directory to other users (0700), as a grading machine keeps its submissions and
+  // outputs: without bubblewrap and without a private mount namespace (a chroot, Gradescope) a
+  // batch refuses folders student code could read.
+  void closeToOthers() const {
+    std::filesystem::permissions(path_, std::filesystem::perms::owner_all,
+                                 std::filesystem::perm_options::replace);
+  }
   // The path of `name` inside the directory.
   std::string file(const std::string& name) const { return (path_ / name).string(); }
 

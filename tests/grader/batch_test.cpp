@@ -342,6 +342,7 @@ TEST(Cli, AFolderOfSeveralSubmissionsIsRefusedUnlessAskedFor) {
 class Batch : public ::testing::Test {
  protected:
   void SetUp() override {
+    temp_.closeToOthers();
     dirs_ = {materialise("2022/reference", temp_.path() / "in" / "reference"),
              materialise("2022/force-assign", temp_.path() / "in" / "force-assign"),
              temp_.path() / "in" / "nothing-here"};
@@ -543,6 +544,7 @@ TEST_F(Batch, RerunAfterKillNineSkipsFinishedSubmissions) {
 // its file says, and none of them stops the batch.
 TEST(AdversarialBatch, ReferenceAtFullMarksEveryCaseWithItsVerdict) {
   TempDir temp;
+  temp.closeToOthers();
   const fs::path suite = fs::path(CLOTHREF_SOURCE_DIR) / "tests" / "grader" / "adversarial";
   const fs::path results_dir = temp.path() / "student-results";  // what write-results attacks
   fs::create_directories(results_dir);

@@ -191,6 +191,7 @@ TEST(Confinement, TwoGradersSideBySideInTheFallbackRunAsDistinctUidsAndReachNoth
 TEST(Confinement, TwoSubmissionsOfABatchReachNothingOfEachOther) {
   if (geteuid() != 0) GTEST_SKIP() << "the fallback's uids need a grader running as root";
   TempDir temp;
+  temp.closeToOthers();
   const fs::path subs = temp.path() / "subs", out = temp.path() / "batch";
   const fs::path a = subs / "alice-subm", b = subs / "bobby-subm";
   spySubmission(a, "alice", "bobby-subm", (b / "src" / "cloth.cpp").string(),

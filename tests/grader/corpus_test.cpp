@@ -180,6 +180,7 @@ constexpr int kHandWrittenCausesWrong = 0;
 // name a likely cause the label does not allow.
 TEST(RealCorpus, GeneratedCorpusVerdictsAllRightCausesNamedNoneWrong) {
   TempDir temp;
+  temp.closeToOthers();
   const Figures f = gradeAndScore(kSource / "tests/grader/corpus", temp.path() / "batch");
   print("generated (tests/grader/corpus)", f);
   ASSERT_GE(f.submissions, 12);
@@ -196,6 +197,7 @@ TEST(RealCorpus, GeneratedCorpusVerdictsAllRightCausesNamedNoneWrong) {
 // that loses ground fails here; one that gains should raise them.
 TEST(RealCorpus, HandWrittenSubmissionsAtLeastAsGoodAsMeasured) {
   TempDir temp;
+  temp.closeToOthers();
   const Figures f = gradeAndScore(kSource / "tests/grader/handwritten", temp.path() / "batch");
   print("hand-written (tests/grader/handwritten)", f);
   ASSERT_GE(f.submissions, 24);

@@ -253,6 +253,7 @@ TEST(Cli, AnOutputThatCannotBeWrittenLeavesNoneAndClaimsNothing) {
 // the Big5 line decoded.
 TEST(Cli, AnyBytesInTheSubmissionGiveValidOutputsInASingleGradeAndInABatch) {
   test::TempDir temp;
+  temp.closeToOthers();
   const std::filesystem::path reference =
       std::filesystem::path(CLOTHREF_SOURCE_DIR) / "tools/grader/reference/2022";
   const std::filesystem::path dir = temp.path() / "sub\xFF\x1B[31mred";
@@ -420,6 +421,7 @@ std::string unescapeXml(std::string text) {
 // causes for every check, in the same order, and the same points, rounded to 0.001 alike.
 TEST(OneTruth, EveryOutputNamesTheSameCausesAndTheSamePoints) {
   test::TempDir temp;
+  temp.closeToOthers();
   const std::filesystem::path corpus =
       std::filesystem::path(CLOTHREF_SOURCE_DIR) / "tests/grader/corpus";
   const std::vector<std::filesystem::path> dirs = {

@@ -189,6 +189,7 @@ TEST(FindSubmissionFiles, ControlCharactersInNamesAreEscaped) {
 // output, the three files refused and missing (0 points, not the reference's 80).
 TEST(GradeThroughTheCli, LinkedFilesAreRefusedInASingleGradeAndInABatch) {
   test::TempDir temp;
+  temp.closeToOthers();
   write(temp.path() / "host" / "secret.cpp", "SECRET-HOST-BYTES-4711\n");
   const fs::path submission = temp.path() / "linked";
   fs::create_directories(submission / "src");
