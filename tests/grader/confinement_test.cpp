@@ -191,7 +191,6 @@ TEST(Confinement, TwoGradersSideBySideInTheFallbackRunAsDistinctUidsAndReachNoth
 TEST(Confinement, TwoSubmissionsOfABatchReachNothingOfEachOther) {
   if (geteuid() != 0) GTEST_SKIP() << "the fallback's uids need a grader running as root";
   TempDir temp;
-  temp.closeToOthers();
   const fs::path subs = temp.path() / "subs", out = temp.path() / "batch";
   const fs::path a = subs / "alice-subm", b = subs / "bobby-subm";
   spySubmission(a, "alice", "bobby-subm", (b / "src" / "cloth.cpp").string(),
@@ -206,6 +205,11 @@ TEST(Confinement, TwoSubmissionsOfABatchReachNothingOfEachOther) {
                                         temp.path() / "run");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const std::string csv = readText(out / "grades.csv");
+  // The folders are readable on purpose: the batch must cover them. Where no private mount
+  // namespace can be made (a chroot) it refuses them instead, which is the rule, not this test's.
+  const std::string problem = readText(out / "alice-subm" / "row.json");
+  if (problem.find("allows no private mount namespace") != std::string::npos)
+    GTEST_SKIP() << "no private mount namespace here: the batch refuses readable folders";
   EXPECT_NE(csv.find("alice-subm,2022,15,20,10,10,5,2.5,2.5,15,80,80,graded"), std::string::npos)
       << csv;
   EXPECT_NE(csv.find("bobby-subm,2022,15,20,10,10,5,2.5,2.5,15,80,80,graded"), std::string::npos)
