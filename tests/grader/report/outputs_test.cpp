@@ -385,27 +385,28 @@ TEST(Quotes, ACauseQuotesOnlyTheLinesOfTheStubItGradesOncePerStub) {
 
 // ---- One truth in every output
 
-// The cause ids a Markdown text names ("**Likely cause** (`id`)", "**Possible cause (a guess)**
-// (`id`)"), in order.
-std::vector<std::string> markdownCauses(const std::string& text) {
+// The first group of every match of `pattern` in `text`, in order.
+std::vector<std::string> matches(const std::string& text, const std::regex& pattern) {
   std::vector<std::string> ids;
-  static const std::regex cause(
-      R"(\*\*(?:Likely cause|Possible cause \(a guess\))\*\* \(`([^`]+)`\))");
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), cause);
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), pattern);
        it != std::sregex_iterator(); ++it)
     ids.push_back((*it)[1].str());
   return ids;
 }
 
+// The cause ids a Markdown text names ("**Likely cause** (`id`)", "**Possible cause (a guess)**
+// (`id`)"), in order.
+std::vector<std::string> markdownCauses(const std::string& text) {
+  static const std::regex cause(
+      R"(\*\*(?:Likely cause|Possible cause \(a guess\))\*\* \(`([^`]+)`\))");
+  return matches(text, cause);
+}
+
 // The same from a test output results.json gives as HTML (a check with a picture).
 std::vector<std::string> htmlCauses(const std::string& text) {
-  std::vector<std::string> ids;
   static const std::regex cause(
       R"(<strong>(?:Likely cause|Possible cause \(a guess\))</strong> \(<code>([^<]+)</code>\))");
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), cause);
-       it != std::sregex_iterator(); ++it)
-    ids.push_back((*it)[1].str());
-  return ids;
+  return matches(text, cause);
 }
 
 std::string unescapeXml(std::string text) {
