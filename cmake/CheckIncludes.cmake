@@ -44,7 +44,7 @@ set(RULES_clothref.h_EXTERNAL "")
 # run/ is a room, "grader/grade/results.h one file, "clothref/io/ a library area, <Eigen/ a
 # package, "[^/]+$ a course header by its bare name (the course's include path finds it).
 # Standard C++ headers (<vector>) are always allowed; a path with ".." never is.
-set(GRADER_ROOMS bridge course reference driver run probes report grade prebuild)
+set(GRADER_ROOMS bridge course reference driver submission run probes report grade prebuild)
 # the one crossing of the two sides: std only
 set(GRADER_bridge_FILES "^bridge/")
 set(GRADER_bridge_MAY "")
@@ -58,17 +58,24 @@ set(GRADER_reference_MAY "\"[^/]+$" "<Eigen/")
 set(GRADER_driver_FILES "^driver/")
 set(GRADER_driver_MAY "\"[^/]+$" "\"grader/bridge/" "\"clothref/formula/"
     "\"clothref/core/method\\.h\"" "<Eigen/" "<unistd\\.h>")
+# reading a submission (its files, their source text and patterns, the edition they were written
+# for and that edition's course values): of the top level only the plain-data results and text
+set(GRADER_submission_FILES "^grade/submission/")
+set(GRADER_submission_MAY "\"grader/grade/submission/" "\"grader/grade/(results|text)\\.h\""
+    "\"clothref/(io|scene)/" "<unistd\\.h>" "<fcntl\\.h>" "<dirent\\.h>" "<sys/" "<linux/")
 # running untrusted code: never the probes, the reports or the grade's top level beyond its
 # plain-data results and text helpers
 set(GRADER_run_FILES "^grade/run/")
-set(GRADER_run_MAY "\"grader/bridge/" "\"grader/grade/run/" "\"grader/grade/(results|text)\\.h\""
+set(GRADER_run_MAY "\"grader/bridge/" "\"grader/grade/run/" "\"grader/grade/submission/"
+    "\"grader/grade/(results|text)\\.h\""
     "\"clothref/io/" "<unistd\\.h>" "<fcntl\\.h>" "<signal\\.h>" "<sched\\.h>" "<poll\\.h>"
     "<grp\\.h>" "<dirent\\.h>" "<sys/" "<linux/")
 # the probes and fitting engines: run, and of the top level the results, rubric, text helpers,
 # the catalogue and its generated cause-id constants (cause_ids.h, in the build tree);
 # never the reports
 set(GRADER_probes_FILES "^grade/probes/")
-set(GRADER_probes_MAY "\"grader/bridge/" "\"grader/grade/run/" "\"grader/grade/probes/"
+set(GRADER_probes_MAY "\"grader/bridge/" "\"grader/grade/run/" "\"grader/grade/submission/"
+    "\"grader/grade/probes/"
     "\"grader/grade/(results|rubric|text|catalogue|cause_ids)\\.h\""
     "\"clothref/(base|core|io|scene|solver|trace|diff|record|verify|formula|analysis)/" "<Eigen/"
     "<nlohmann/")
@@ -78,7 +85,7 @@ set(GRADER_report_MAY "\"grader/grade/report/" "\"grader/grade/[^/]+$" "\"clothr
     "<nlohmann/" "<fmt/" "<stdlib\\.h>")
 # the top level (grade, batch, rubric, text, results): of the probes only their table, probes.h
 set(GRADER_grade_FILES "^grade/[^/]+$")
-set(GRADER_grade_MAY "\"grader/grade/[^/]+$" "\"grader/grade/run/"
+set(GRADER_grade_MAY "\"grader/grade/[^/]+$" "\"grader/grade/run/" "\"grader/grade/submission/"
     "\"grader/grade/probes/probes\\.h\"" "\"grader/grade/report/" "\"clothref/io/" "<nlohmann/"
     "<iconv\\.h>" "<unistd\\.h>" "<fcntl\\.h>" "<sys/")
 set(GRADER_prebuild_FILES "^prebuild/")

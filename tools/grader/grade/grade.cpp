@@ -18,7 +18,7 @@
 #include "grader/grade/cause_ids.h"
 #include "grader/grade/probes/probes.h"
 #include "grader/grade/run/folders.h"
-#include "grader/grade/run/source_text.h"
+#include "grader/grade/submission/source_text.h"
 #include "grader/grade/text.h"
 
 namespace clothref::grader {

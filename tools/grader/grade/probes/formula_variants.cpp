@@ -1,7 +1,7 @@
 #include "grader/grade/probes/formula_variants.h"
 
 #include "clothref/formula/course_formulas.h"
-#include "grader/grade/probes/edition.h"
+#include "grader/grade/submission/edition.h"
 
 namespace clothref::grader {
 

@@ -8,8 +8,8 @@
 #include "clothref/core/integrator.h"
 #include "grader/grade/probes/integrate_mistakes.h"
 #include "grader/grade/probes/stages.h"
-#include "grader/grade/run/source_text.h"
-#include "grader/grade/run/submission.h"
+#include "grader/grade/submission/source_text.h"
+#include "grader/grade/submission/submission.h"
 
 namespace clothref::grader::integrators {
 namespace {

@@ -10,7 +10,7 @@
 namespace clothref::grader::integrators {
 
 // The body of the run's stub in the student's integrator.cpp, comments and literals blanked
-// (run/source_text.h, stubCode), or "".
+// (submission/source_text.h, stubCode), or "".
 std::string stubSource(const ProbeContext& context, const std::string& stub);
 
 // The catalogue ids the first step's numbers show (likely). Adds notes to `output`; a per-body

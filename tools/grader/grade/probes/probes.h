@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "grader/grade/catalogue.h"
-#include "grader/grade/probes/edition.h"
+#include "grader/grade/submission/edition.h"
 #include "grader/grade/results.h"
 #include "grader/grade/rubric.h"
 #include "grader/grade/run/child_process.h"

@@ -16,7 +16,7 @@
 #include "grader/grade/run/build.h"
 #include "grader/grade/run/child_process.h"
 #include "grader/grade/run/folders.h"
-#include "grader/grade/run/submission.h"
+#include "grader/grade/submission/submission.h"
 
 namespace clothref::grader {
 

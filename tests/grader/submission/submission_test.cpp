@@ -1,6 +1,6 @@
 // Finding the three files in submissions of any shape, and detecting the edition.
-#include "grader/grade/run/submission.h"
-#include "grader/grade/run/source_text.h"
+#include "grader/grade/submission/submission.h"
+#include "grader/grade/submission/source_text.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "grader/grade/probes/edition.h"
+#include "grader/grade/submission/edition.h"
 
 #include "clothref/io/error.h"
 #include "clothref/scene/scene.h"

@@ -1,4 +1,4 @@
-#include "grader/grade/run/submission.h"
+#include "grader/grade/submission/submission.h"
 
 #include <dirent.h>
 #include <fcntl.h>
@@ -14,7 +14,7 @@
 #include <sstream>
 
 #include "clothref/io/error.h"
-#include "grader/grade/run/source_text.h"
+#include "grader/grade/submission/source_text.h"
 #include "grader/grade/text.h"
 
 namespace clothref::grader {

@@ -1,6 +1,6 @@
-// The edition as a record (grade/probes/edition.h): read from clothref's course scene of the year,
+// The edition as a record (grade/submission/edition.h): read from clothref's course scene of the year,
 // so the two editions differ where the course's programs do (docs/course.md).
-#include "grader/grade/probes/edition.h"
+#include "grader/grade/submission/edition.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "grader/grade/run/source_text.h"
+#include "grader/grade/submission/source_text.h"
 
 #include <algorithm>
 #include <cstddef>
