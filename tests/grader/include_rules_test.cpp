@@ -56,7 +56,7 @@ TEST(GraderIncludeRules, EachBrokenRuleIsNamedWithItsFileAndLine) {
       {"grade/run/spawn.h", "\"grader/grade/report/outputs.h\""},        // run includes report
       {"grade/run/build.h", "\"grader/grade/grade.h\""},                 // run includes the grade
       {"grade/probes/util.h", "\"grader/grade/report/outputs.h\""},      // probes include report
-      {"grade/probes/stages.h", "\"grader/grade/batch.h\""},             // probes include the batch
+      {"grade/explain/stages/stages.h", "\"grader/grade/batch.h\""},             // explain includes the batch
       {"grade/report/outputs.h", "\"grader/grade/run/build.h\""},        // report includes run
       {"grade/report/html_report.h", "\"grader/grade/probes/util.h\""},  // ... or probes
       {"grade/grade.h", "\"grader/grade/probes/util.h\""},        // the top level: probes.h only

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "grader/grade/probes/stages.h"
+#include "grader/grade/explain/stages/stages.h"
 
 namespace clothref::grader::integrators {
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "grader/grade/probes/integrate_run.h"
-#include "grader/grade/probes/stages.h"
+#include "grader/grade/explain/stages/stages.h"
 
 namespace clothref::grader::integrators {
 

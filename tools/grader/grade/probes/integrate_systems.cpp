@@ -10,7 +10,7 @@
 #include "clothref/scene/scene.h"
 #include "clothref/verify/analytic.h"
 #include "grader/bridge/probe_protocol.h"
-#include "grader/grade/probes/stages.h"
+#include "grader/grade/explain/stages/stages.h"
 #include "grader/grade/probes/util.h"
 
 namespace clothref::grader::integrators {

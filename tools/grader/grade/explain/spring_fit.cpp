@@ -1,4 +1,4 @@
-#include "grader/grade/probes/spring_fit.h"
+#include "grader/grade/explain/spring_fit.h"
 
 #include <algorithm>
 #include <cmath>

@@ -6,11 +6,12 @@
 // (written as data, one table per method), and named in the course's terms and catalogue ids.
 //
 // Pure functions on plain data (no child process, no clothref types):
-//   stage_record.cpp   the record from the probe's answer (and the request's case)
-//   stages.cpp         fitStages: the exact forms (least squares, then small rationals)
-//   stage_forms.cpp    rationals, forms, and forms in the course's terms
-//   stage_methods.cpp  the course's methods as tables, and explainStages: departure, causes
-//   stage_text.cpp     stageText: the explanation as text
+//   record.cpp   the record from the probe's answer (and the request's case)
+//   fit.cpp      fitStages: the exact forms (least squares, then small rationals)
+//   forms.cpp    rationals, forms, and forms in the course's terms
+//   methods.cpp  the course's methods as tables, and the comparisons with them
+//   causes.cpp   explainStages: the departure and the causes
+//   text.cpp     stageText: the explanation as text
 #pragma once
 #include <array>
 #include <cstdint>

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "grader/grade/probes/stages.h"
+#include "grader/grade/explain/stages/stages.h"
 
 namespace clothref::grader::stages {
 

@@ -1,4 +1,4 @@
-#include "grader/grade/probes/cause_evidence.h"
+#include "grader/grade/explain/cause_evidence.h"
 
 #include <algorithm>
 #include <map>

@@ -1,4 +1,4 @@
-#include "grader/grade/probes/contact_fit.h"
+#include "grader/grade/explain/contact_fit.h"
 
 #include <algorithm>
 #include <cmath>

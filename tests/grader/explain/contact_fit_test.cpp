@@ -1,8 +1,8 @@
-// Reading a contact back in the course's terms (grader/grade/probes/contact_fit.h): contacts made
+// Reading a contact back in the course's terms (grader/grade/explain/contact_fit.h): contacts made
 // here with the course's formula (clothref::formula::resolveContact, in float like a student's
 // code) and with one quantity changed; every course contact reads as the course's, and each
 // change is named with the value that fits.
-#include "grader/grade/probes/contact_fit.h"
+#include "grader/grade/explain/contact_fit.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // The one number format and the one expected-against-yours comparison every probe writes
-// (tools/grader/grade/probes/compare_text.h).
-#include "grader/grade/probes/compare_text.h"
+// (tools/grader/grade/explain/compare_text.h).
+#include "grader/grade/explain/compare_text.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
-// The course's methods as data and the comparisons of a stage fit with them (stage_methods.h).
-#include "grader/grade/probes/stage_methods.h"
+// The course's methods as data and the comparisons of a stage fit with them (stages/methods.h).
+#include "grader/grade/explain/stages/methods.h"
 
 #include <cmath>
 

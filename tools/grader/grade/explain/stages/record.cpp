@@ -4,7 +4,7 @@
 
 #include "grader/bridge/probe_keys.h"
 #include "grader/bridge/probe_protocol.h"
-#include "grader/grade/probes/stages.h"
+#include "grader/grade/explain/stages/stages.h"
 
 namespace clothref::grader::stages {
 

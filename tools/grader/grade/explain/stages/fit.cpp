@@ -18,7 +18,7 @@
 #include <limits>
 #include <map>
 
-#include "grader/grade/probes/stages.h"
+#include "grader/grade/explain/stages/stages.h"
 
 namespace clothref::grader::stages {
 namespace {
@@ -69,7 +69,7 @@ struct Carrier {
   Form form;  // h·(this velocity) is added as scaled(form, e, 1)
 };
 
-// A split of one coefficient into its two levels (stages.cpp header): the natural level alone
+// A split of one coefficient into its two levels (fit.cpp header): the natural level alone
 // first, then one level alone, then the simplest rationals, then the closest.
 struct Choice {
   Rational big;

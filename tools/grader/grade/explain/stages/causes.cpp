@@ -1,5 +1,5 @@
 // explainStages (stages.h): a stage fit against the course's method of the stub, its accepted
-// variants and the known methods (stage_methods.h), turned into the first departure and catalogue
+// variants and the known methods (stages/methods.h), turned into the first departure and catalogue
 // ids. A cause is likely only when the fit shows it; a source pattern only refines a finding the
 // fit made (integer division, an aliasing backup), never makes one.
 #include <algorithm>
@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <regex>
 
-#include "grader/grade/probes/stage_methods.h"
+#include "grader/grade/explain/stages/methods.h"
 
 namespace clothref::grader::stages {
 namespace {

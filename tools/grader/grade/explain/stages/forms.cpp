@@ -4,7 +4,7 @@
 #include <cstdlib>
 #include <numeric>
 
-#include "grader/grade/probes/stages.h"
+#include "grader/grade/explain/stages/stages.h"
 
 namespace clothref::grader::stages {
 

@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <numeric>
 
-#include "grader/grade/probes/stage_methods.h"
+#include "grader/grade/explain/stages/methods.h"
 
 namespace clothref::grader::stages {
 namespace {
