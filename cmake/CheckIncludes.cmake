@@ -44,8 +44,8 @@ set(RULES_clothref.h_EXTERNAL "")
 # run/ is a room, "grader/grade/results.h one file, "clothref/io/ a library area, <Eigen/ a
 # package, "[^/]+$ a course header by its bare name (the course's include path finds it).
 # Standard C++ headers (<vector>) are always allowed; a path with ".." never is.
-set(GRADER_ROOMS bridge course reference driver submission run explain probes report grade
-    prebuild)
+set(GRADER_ROOMS bridge course reference driver submission run mistakes explain probes report
+    grade prebuild)
 # the one crossing of the two sides: std only
 set(GRADER_bridge_FILES "^bridge/")
 set(GRADER_bridge_MAY "")
@@ -71,17 +71,22 @@ set(GRADER_run_MAY "\"grader/bridge/" "\"grader/grade/run/" "\"grader/grade/subm
     "\"grader/grade/(results|text)\\.h\""
     "\"clothref/io/" "<unistd\\.h>" "<fcntl\\.h>" "<signal\\.h>" "<sched\\.h>" "<poll\\.h>"
     "<grp\\.h>" "<dirent\\.h>" "<sys/" "<linux/")
+# the mistake models: the library's course code with a student's mistake switched on, chosen by
+# data; the edition's values (submission/edition.h), the rubric's accepted variants
+set(GRADER_mistakes_FILES "^grade/mistakes/")
+set(GRADER_mistakes_MAY "\"grader/grade/mistakes/" "\"grader/grade/submission/"
+    "\"grader/grade/(results|rubric|cause_ids)\\.h\"" "\"clothref/(base|core|formula)/" "<Eigen/")
 # the explanations of a student's numbers: the fits (the constants and stage forms that reproduce
 # them), how evidence names causes, and the texts of a comparison; plain data, no child process
 set(GRADER_explain_FILES "^grade/explain/")
 set(GRADER_explain_MAY "\"grader/grade/explain/" "\"grader/bridge/"
     "\"grader/grade/(results|text|cause_ids)\\.h\"" "<Eigen/" "<nlohmann/")
-# the probes: run, submission, the explanations, and of the top level the results, rubric, text helpers,
+# the probes: run, submission, the mistake models, the explanations, and of the top level the results, rubric, text helpers,
 # the catalogue and its generated cause-id constants (cause_ids.h, in the build tree);
 # never the reports
 set(GRADER_probes_FILES "^grade/probes/")
 set(GRADER_probes_MAY "\"grader/bridge/" "\"grader/grade/run/" "\"grader/grade/submission/"
-    "\"grader/grade/explain/" "\"grader/grade/probes/"
+    "\"grader/grade/mistakes/" "\"grader/grade/explain/" "\"grader/grade/probes/"
     "\"grader/grade/(results|rubric|text|catalogue|cause_ids)\\.h\""
     "\"clothref/(base|core|io|scene|solver|trace|diff|record|verify|formula|analysis)/" "<Eigen/"
     "<nlohmann/")

@@ -14,7 +14,7 @@
 #include "grader/grade/explain/cause_evidence.h"
 #include "grader/grade/probes/collide_cases.h"
 #include "grader/grade/explain/contact_fit.h"
-#include "grader/grade/probes/formula_variants.h"
+#include "grader/grade/mistakes/formula_variants.h"
 #include "grader/grade/probes/util.h"
 
 namespace clothref::grader {

@@ -15,7 +15,7 @@
 
 #include "clothref/verify/verify.h"
 #include "grader/grade/probes/integrate_diagnosis.h"
-#include "grader/grade/probes/integrate_mistakes.h"
+#include "grader/grade/mistakes/integrate_mistakes.h"
 #include "grader/grade/probes/integrate_stages.h"
 #include "grader/grade/probes/integrate_text.h"
 

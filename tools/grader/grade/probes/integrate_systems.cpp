@@ -41,30 +41,9 @@ DampedOscillator springOscillator() {
 
 }  // namespace
 
-void simulate(System& s) {
-  computeExternalForce(s.cloth.particles, s.gravity, s.viscous);
-  if (s.sphere_gravity)
-    computeExternalForce(s.spheres.particles, s.gravity, s.viscous);
-  else
-    s.spheres.particles.acceleration.setZero();
-  computeSpringForce(s.cloth);
-  if (s.contact) collide(s.spheres, s.cloth, 0.0f, 0.15f);
-}
-
 Method integratorMethod(int index) {
   return index >= 0 && std::size_t(index) < kMethods.size() ? kMethods[std::size_t(index)].method
                                                             : Method::Explicit;
-}
-
-Step clothrefStep(Method method, int bodies_integrated) {
-  return [method, bodies_integrated](System& s) {
-    std::array<Particles<float>*, 2> storage{&s.cloth.particles, &s.spheres.particles};
-    IntegratorScratch<float> scratch;
-    auto sim = [&] { simulate(s); };
-    simulate(s);
-    integrate(method, Bodies<float>(storage.data(), std::size_t(bodies_integrated)), s.dt,
-              FunctionRef<void()>(sim), scratch);
-  };
 }
 
 System randomSystem(std::uint64_t seed) {

@@ -1,15 +1,12 @@
-// The integrator probe's test systems (docs/grading.md, "Integrators"): small cloths and spheres
-// with the course's step parts, clothref's own step of a course method (the library's method
-// table and integrators), the encoding of a system into the probe's request and of the answer
-// back, and the distances and errors the checks compare.
+// The integrator probe's test systems (docs/grading.md, "Integrators"; the system itself and
+// clothref's step of it are mistakes/system.h): the states tried, the encoding of a system into
+// the probe's request and of the answer back, and the distances and errors the checks compare.
 #pragma once
 #include <cstdint>
-#include <functional>
 #include <vector>
 
-#include "clothref/core/cloth.h"
 #include "clothref/core/method.h"
-#include "clothref/core/spheres.h"
+#include "grader/grade/mistakes/system.h"
 
 namespace probe {
 struct ProbeMessage;
@@ -17,36 +14,10 @@ struct ProbeMessage;
 
 namespace clothref::grader::integrators {
 
-// A small system: a cloth (any particles and springs) and spheres, the course's step parts.
-struct System {
-  Cloth<float> cloth;
-  Spheres<float> spheres;
-  float viscous = 0;
-  Vec4<float> gravity = Vec4<float>::Zero();
-  bool sphere_gravity = false;
-  // Sphere-cloth contact inside simulateOneStep, as the course's: it couples the bodies, so a
-  // method that advances them one at a time gives another result.
-  bool contact = false;
-  float dt = 0;
-  bool course_size = false;  // the course's 25 x 25 cloth and spheres (retry after a crash)
-};
-
-// The course's simulateOneStep on `s` (its parts switched by the system's flags): the library's
-// course-form functions in the course's order. A copy of clothref::simulateOneStep's order, which
-// has no switch for contact; IntegrateSystems.SimulateIsTheLibrarysSimulateOneStep proves it
-// bit-equal.
-void simulate(System& s);
-
 // The library's method of course integrator `index`: the row of clothref's method table (how the
 // probe protocol names it, key::kMethod), 0 explicit .. 3 RK4 as the course's currentIntegrator
 // (IntegrateSystems.IntegratorsAreTheLibrarysCourseRows checks each row's class is the stub's).
 Method integratorMethod(int index);
-
-using Step = std::function<void(System&)>;
-
-// The course's main loop step with clothref's integrator: simulate, then integrate() of the
-// library on the first `bodies_integrated` bodies.
-Step clothrefStep(Method method, int bodies_integrated = 2);
 
 // Random small perturbations of a 4 x 4 cloth at rest and two spheres, sphere 0 pressing on a
 // free cloth particle (contact on); dt = 0.01 s.

@@ -1,7 +1,8 @@
-// The integrator probe's mistake simulators (grader/grade/probes/integrate_mistakes.h): with no
+// The integrator probe's mistake simulators (grader/grade/mistakes/integrate_mistakes.h): with no
 // mistake switched on, each copy of a course integrator is the library's, bit for bit; each
 // mistake changes the step (so a student's numbers equal to it name it).
-#include "grader/grade/probes/integrate_mistakes.h"
+#include "grader/grade/mistakes/integrate_mistakes.h"
+#include "grader/grade/probes/integrate_systems.h"
 
 #include <gtest/gtest.h>
 

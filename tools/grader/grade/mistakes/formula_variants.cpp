@@ -1,4 +1,4 @@
-#include "grader/grade/probes/formula_variants.h"
+#include "grader/grade/mistakes/formula_variants.h"
 
 #include "clothref/formula/course_formulas.h"
 #include "grader/grade/submission/edition.h"

@@ -6,7 +6,7 @@
 #include <utility>
 #include <vector>
 
-#include "grader/grade/probes/integrate_systems.h"
+#include "grader/grade/mistakes/system.h"
 #include "grader/grade/rubric.h"
 
 namespace clothref::grader::integrators {

@@ -1,5 +1,5 @@
 // The integrator probe's mistake simulators (integrate_mistakes.h).
-#include "grader/grade/probes/integrate_mistakes.h"
+#include "grader/grade/mistakes/integrate_mistakes.h"
 
 #include <array>
 
