@@ -2,7 +2,7 @@
 // mistake switched on, each copy of a course integrator is the library's, bit for bit; each
 // mistake changes the step (so a student's numbers equal to it name it).
 #include "grader/grade/mistakes/integrate_mistakes.h"
-#include "grader/grade/probes/integrate_systems.h"
+#include "grader/grade/probes/integrate/systems.h"
 
 #include <gtest/gtest.h>
 

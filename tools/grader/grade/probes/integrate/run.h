@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "grader/bridge/probe_protocol.h"
-#include "grader/grade/probes/integrate_systems.h"
+#include "grader/grade/probes/integrate/systems.h"
 #include "grader/grade/probes/util.h"
 
 namespace clothref::grader::integrators {

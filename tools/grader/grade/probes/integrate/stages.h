@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "grader/grade/probes/integrate_run.h"
+#include "grader/grade/probes/integrate/run.h"
 #include "grader/grade/explain/stages/stages.h"
 
 namespace clothref::grader::integrators {

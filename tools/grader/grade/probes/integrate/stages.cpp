@@ -1,10 +1,10 @@
-// The stage explanation of one integrator run (integrate_stages.h).
-#include "grader/grade/probes/integrate_stages.h"
+// The stage explanation of one integrator run (stages.h).
+#include "grader/grade/probes/integrate/stages.h"
 
 #include <cstdio>
 #include <fstream>
 
-#include "grader/grade/probes/integrate_diagnosis.h"
+#include "grader/grade/probes/integrate/diagnosis.h"
 
 namespace clothref::grader::integrators {
 

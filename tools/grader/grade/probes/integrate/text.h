@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "grader/grade/probes/integrate_run.h"
+#include "grader/grade/probes/integrate/run.h"
 
 namespace clothref::grader::integrators {
 

@@ -1,7 +1,7 @@
-// The integrator probe's systems (grader/grade/probes/integrate_systems.h): its simulateOneStep,
+// The integrator probe's systems (grader/grade/probes/integrate/systems.h): its simulateOneStep,
 // a copy of the course's order with switches, is the library's simulateOneStep bit for bit; the
 // integrators are the library's method-table rows; the stability limit is the theory's.
-#include "grader/grade/probes/integrate_systems.h"
+#include "grader/grade/probes/integrate/systems.h"
 
 #include <gtest/gtest.h>
 

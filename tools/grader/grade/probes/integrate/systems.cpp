@@ -1,5 +1,5 @@
-// The integrator probe's test systems and clothref's step of them (integrate_systems.h).
-#include "grader/grade/probes/integrate_systems.h"
+// The integrator probe's test systems and clothref's step of them (systems.h).
+#include "grader/grade/probes/integrate/systems.h"
 
 #include <array>
 #include <random>

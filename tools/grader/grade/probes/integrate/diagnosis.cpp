@@ -1,5 +1,5 @@
-// Likely causes of a wrong first step (integrate_diagnosis.h).
-#include "grader/grade/probes/integrate_diagnosis.h"
+// Likely causes of a wrong first step (diagnosis.h).
+#include "grader/grade/probes/integrate/diagnosis.h"
 
 #include <Eigen/QR>
 #include <algorithm>

@@ -3,21 +3,21 @@
 // method (or an accepted variant), every body integrated, deltaTime unchanged, backups are
 // copies, the observed convergence order on a single damped spring, and no blow-up at half the
 // method's stability limit. Known mistakes are recognised by simulating them and comparing.
-//   integrate_systems.cpp    the test systems, clothref's step, the request's encoding
-//   integrate_run.cpp        one run of the probe: request, answer, the course's result
-//   integrate_mistakes.cpp   the mistake simulators and the accepted variants
-//   integrate_diagnosis.cpp  likely causes of a wrong first step
-//   integrate_stages.cpp     the stage explanation of the run, its Markdown and causes
-//   integrate_text.cpp       the Markdown
+//   systems.cpp    the test systems, the request's encoding (the system itself: mistakes/system.h)
+//   run.cpp        one run of the probe: request, answer, the course's result
+//   mistakes/integrate_mistakes.cpp   the mistake simulators and the accepted variants
+//   diagnosis.cpp  likely causes of a wrong first step
+//   stages.cpp     the stage explanation of the run, its Markdown and causes
+//   text.cpp       the Markdown
 #include <algorithm>
 #include <cmath>
 #include <mutex>
 
 #include "clothref/verify/verify.h"
-#include "grader/grade/probes/integrate_diagnosis.h"
+#include "grader/grade/probes/integrate/diagnosis.h"
 #include "grader/grade/mistakes/integrate_mistakes.h"
-#include "grader/grade/probes/integrate_stages.h"
-#include "grader/grade/probes/integrate_text.h"
+#include "grader/grade/probes/integrate/stages.h"
+#include "grader/grade/probes/integrate/text.h"
 
 namespace clothref::grader {
 namespace {

@@ -1,5 +1,5 @@
-// One run of the integrator probe (integrate_run.h).
-#include "grader/grade/probes/integrate_run.h"
+// One run of the integrator probe (run.h).
+#include "grader/grade/probes/integrate/run.h"
 
 #include <cmath>
 

@@ -1,5 +1,5 @@
-// The integrator probe's Markdown (integrate_text.h).
-#include "grader/grade/probes/integrate_text.h"
+// The integrator probe's Markdown (text.h).
+#include "grader/grade/probes/integrate/text.h"
 
 namespace clothref::grader::integrators {
 
