@@ -79,7 +79,7 @@ set(GRADER_mistakes_MAY "\"grader/grade/mistakes/" "\"grader/grade/submission/"
 # the explanations of a student's numbers: the fits (the constants and stage forms that reproduce
 # them), how evidence names causes, and the texts of a comparison; plain data, no child process
 set(GRADER_explain_FILES "^grade/explain/")
-set(GRADER_explain_MAY "\"grader/grade/explain/" "\"grader/bridge/"
+set(GRADER_explain_MAY "\"grader/grade/explain/" "\"grader/grade/submission/" "\"grader/bridge/"
     "\"grader/grade/(results|text|cause_ids)\\.h\"" "<Eigen/" "<nlohmann/")
 # the probes: run, submission, the mistake models, the explanations, and of the top level the results, rubric, text helpers,
 # the catalogue and its generated cause-id constants (cause_ids.h, in the build tree);

@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <regex>
 
 #include "grader/grade/explain/stages/methods.h"
+#include "grader/grade/submission/source_patterns.h"
 
 namespace clothref::grader::stages {
 namespace {
@@ -121,21 +121,6 @@ double velocityFactor(const StageFit& fit, const MethodState& course_result) {
 }
 
 }  // namespace
-
-SourceHints sourceHints(const std::string& source) {
-  SourceHints hints;
-  const auto has = [&](const char* pattern) {
-    return std::regex_search(source, std::regex(pattern));
-  };
-  hints.alias_backup =
-      has(R"(auto\s*&?\s*\w+\s*=\s*particles\s*;)") ||
-      has(R"(std::vector\s*<\s*Particles\s*\*\s*>\s*\w+\s*(=\s*particles|\(\s*particles\s*\)|\{\s*particles\s*\}))") ||
-      has(R"(Eigen::Ref\s*<)") ||
-      has(R"(auto\s*&?\s*\w+\s*=\s*\w+\s*(->|\.)\s*(position|velocity)\s*\(\s*\)\s*;)");
-  hints.integer_half = has(R"((^|[^.\w])1\s*/\s*2(?![.\w]))");
-  hints.integer_sixth = has(R"((^|[^.\w])1\s*/\s*6(?![.\w]))");
-  return hints;
-}
 
 StageExplanation explainStages(const StageFit& fit, int method, const SourceHints& hints) {
   StageExplanation e;

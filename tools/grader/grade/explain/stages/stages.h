@@ -18,6 +18,8 @@
 #include <string>
 #include <vector>
 
+#include "grader/grade/submission/source_patterns.h"
+
 namespace probe {
 struct ProbeMessage;
 }
@@ -193,14 +195,6 @@ struct StageExplanation {
   Departure departure;
   std::vector<StageCause> causes;
 };
-
-// What the stub's source says, for refining measured findings only.
-struct SourceHints {
-  bool alias_backup = false;   // `auto b = particles;`, a Particles* vector or Eigen::Ref copy
-  bool integer_half = false;   // `1 / 2` with integer literals
-  bool integer_sixth = false;  // `1 / 6`
-};
-SourceHints sourceHints(const std::string& stub_source);
 
 StageExplanation explainStages(const StageFit& fit, int method, const SourceHints& hints);
 

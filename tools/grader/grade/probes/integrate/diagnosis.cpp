@@ -107,7 +107,7 @@ std::string rk4WeightCause(const IntegratorRun& run, const std::string& source,
                 " k1 + " + util::num(fit.w[1]) + " k2 + " + util::num(fit.w[2]) + " k3 + " +
                 util::num(fit.w[3]) + " k4 (the course: 1/6, 1/3, 1/3, 1/6).\n";
   // A weight of zero where the course has 1/6 is integer division only when the source has it.
-  if (missing_term && stages::sourceHints(source).integer_sixth) return "integer-division-rk4";
+  if (missing_term && sourceHints(source).integer_sixth) return "integer-division-rk4";
   if ((x.fits && !near(x.w, course)) || (v.fits && !near(v.w, course))) return "rk4-wrong-weights";
   return "";
 }
@@ -134,7 +134,7 @@ std::vector<std::string> diagnoseOneStep(const ProbeContext& context, const Inte
     if (distance(run.actual, stepped(run.random, step)) <= 10 * run.rel) add(id);
   // Nothing added by the final update is integer division only when the source divides 1 by 6.
   const std::string source = stubSource(context, run.stub);
-  const stages::SourceHints hints = stages::sourceHints(source);
+  const SourceHints hints = sourceHints(source);
   if (std::find(ids.begin(), ids.end(), "integer-division-rk4") != ids.end() && !source.empty() &&
       !hints.integer_sixth) {
     drop("integer-division-rk4");

@@ -42,7 +42,7 @@ RunStages explainRun(const ProbeContext& context, const IntegratorRun& run, bool
   out.recorded = true;
   out.fit = stages::fitStages(record);
   out.explanation =
-      stages::explainStages(out.fit, run.index, stages::sourceHints(stubSource(context, run.stub)));
+      stages::explainStages(out.fit, run.index, sourceHints(stubSource(context, run.stub)));
   if (context.limits.keep_files)
     std::ofstream(context.work_dir / integratorFolder(run.index, course_size) / "stages.json")
         << stages::stageJson(out.fit, out.explanation);
