@@ -76,7 +76,7 @@ TEST(GradescopeHtml, SummaryIsStaticHtml) {
 // In the summary, a check's likely causes and its guesses are on lines of their own.
 TEST(GradescopeHtml, SummaryKeepsLikelyCausesAndGuessesApart) {
   GradeReport report = sampleReport();
-  report.tests[1].causes.push_back(Cause{"unknown", false, {}, {}, {}, {}, {}});
+  report.tests[1].causes.push_back(Cause{"unknown", false, {}, {}, {}, {}, {}, {}});
   const std::string output = withHtmlSummary(resultsJson(report), report)["output"];
   EXPECT_NE(output.find("<br>likely cause: <em>collision-normal-sign</em><br>possible cause (a "
                         "guess): <em>unknown</em></li>"),

@@ -34,7 +34,7 @@ GradeReport sampleReport() {
   TestResult failed = makeTest("Spheres::collide(Cloth*)", "approaching pair", 1);
   failed.max_score = 2;
   failed.output = "expected <1> & got \"2\"\x01";
-  failed.causes = {Cause{cause::kNoApproachCheck, true, {}, {}, "The impulse is applied.", {}, {}}};
+  failed.causes = {Cause{cause::kNoApproachCheck, true, {}, {}, "The impulse is applied.", {}, {}, {}}};
   report.tests = {passed, failed};
   report.score = 3;
   report.max_score = 5;
@@ -555,9 +555,9 @@ TEST(AllWriters, LikelyCausesAndGuessesAreBlocksOfTheirOwnInEveryOutput) {
   GradeReport report = sampleReport();
   TestResult& t = report.tests[1];
   t.output = "Expected 1, yours 2.";
-  t.causes = {Cause{"no-approach-check", true, "Measured: 3 of 4.", {}, "The impulse.", {}, {}},
-              Cause{"wrong-mass-split", true, {}, {}, "The split.", {}, {}},
-              Cause{"unknown", false, {}, {}, "No known mistake.", {}, {}}};
+  t.causes = {Cause{"no-approach-check", true, "Measured: 3 of 4.", {}, "The impulse.", {}, {}, {}},
+              Cause{"wrong-mass-split", true, {}, {}, "The split.", {}, {}, {}},
+              Cause{"unknown", false, {}, {}, "No known mistake.", {}, {}, {}}};
   t.sketch.bodies.push_back({"sphere 0", {0, 0.5f, 0}, 0.5f, {0, -1, 0}, {0, 0, 0}, {0, -1, 0}});
   const std::string md_blocks =
       "Expected 1, yours 2.\n\n**Likely cause** (`no-approach-check`): The impulse.\n\nMeasured: "

@@ -22,6 +22,9 @@ constexpr const char* kEdge = "a missed special case";
 constexpr const char* kSign = "a wrong sign";
 constexpr const char* kTerm = "a missing term";
 constexpr const char* kMethod = "a wrong method";
+// Undefined behaviour the grader proved by repairing its lines (an `auto` over temporaries): the
+// physics may be right, the code cannot be trusted.
+constexpr const char* kUndefined = "undefined behaviour (repaired)";
 constexpr const char* kNever = "never";  // a crash, a timeout, a symptom or a guess
 constexpr double kNone = -1;
 
@@ -37,7 +40,7 @@ const std::vector<CauseDeduction>& causeDeductions() {
       {"undefined-behaviour", kNever, kNone},
       {"timed-out", kNever, kNone},
       {"non-finite", kNever, kNone},
-      {"dangling-auto-expression", kNever, kNone},
+      {"dangling-auto-expression", kUndefined, 0.3},
       {"shear-rest-length", kConstant, 0.25},
       {"bend-rest-length", kConstant, 0.25},
       {"approximate-sqrt2", kConstant, 0.2},
@@ -50,6 +53,7 @@ const std::vector<CauseDeduction>& causeDeductions() {
       {"spring-force-sign", kSign, 0.4},
       {"damper-sign", kSign, 0.4},
       {"damper-not-normalised", kTerm, 0.3},
+      {"direction-not-normalised", kTerm, 0.3},
       {"missing-damper", kTerm, 0.4},
       {"force-one-end-only", kMethod, 0.5},
       {"fixed-particle-moves", kEdge, 0.25},
@@ -63,6 +67,7 @@ const std::vector<CauseDeduction>& causeDeductions() {
       {"correction-one-body", kTerm, 0.3},
       {"no-position-correction", kTerm, 0.4},
       {"correction-factor", kConstant, 0.25},
+      {"contact-distance", kConstant, 0.25},
       {"fixed-particle-massless", kEdge, 0.25},
       {"first-sphere-only", kTerm, 0.4},
       {"collision-normal-sign", kSign, 0.4},
@@ -82,7 +87,9 @@ const std::vector<CauseDeduction>& causeDeductions() {
       {"midpoint-full-step", kMethod, 0.5},
       {"heun-method", kMethod, 0.5},
       {"half-step-corrector", kMethod, 0.5},
+      {"corrector-start-velocity", kMethod, 0.5},
       {"velocity-damped", kMethod, 0.3},
+      {"integrator-pins-particles", kEdge, 0.3},
       {"rk4-mixed-increments", kMethod, 0.5},
       {"rk4-wrong-weights", kMethod, 0.5},
       {"rk4-stage-not-from-backup", kMethod, 0.5},
@@ -267,26 +274,27 @@ std::vector<long> apportion(long units, const std::vector<double>& weights) {
   return parts;
 }
 
-// The one likely cause every failed check of a stub names, when the stub has a failed check, no
-// failed check names another likely cause or none, and the rubric has a deduction for it; else
-// "". Guesses are not counted, nor `non-finite` beside another likely cause: it is that cause's
-// symptom (a division by a zero speed makes NaN), not a second mistake.
-std::string oneMistake(const Rubric& rubric, const std::vector<const TestResult*>& tests) {
-  std::string mistake;
+// The proven mistakes that explain a stub's failures (docs/grading-reference.md, "Points follow
+// proven mistakes"): every failed check names at least one cause that is proven on this
+// submission (Cause::proven: likely, with its replay or repair) and has a deduction in the
+// rubric; the mistakes are those causes, each once, in the order the checks name them. Empty when
+// the stub has no failed check, or a failed check names no such cause (a guess, a crash, NaN,
+// `unknown`, a likely cause without its proof): per-check scoring then.
+std::vector<std::string> provenMistakes(const Rubric& rubric,
+                                        const std::vector<const TestResult*>& tests) {
+  std::vector<std::string> mistakes;
   for (const TestResult* test : tests) {
     if (test->passed()) continue;
-    std::vector<std::string> likely;
-    for (const Cause& cause : test->causes)
-      if (cause.likely && std::find(likely.begin(), likely.end(), cause.id) == likely.end())
-        likely.push_back(cause.id);
-    if (likely.size() > 1)
-      likely.erase(std::remove(likely.begin(), likely.end(), cause::kNonFinite), likely.end());
-    if (likely.size() > 1) return "";  // two likely causes
-    const std::string named = likely.empty() ? "" : likely.front();
-    if (named.empty() || (!mistake.empty() && named != mistake)) return "";
-    mistake = named;
+    bool covered = false;
+    for (const Cause& cause : test->causes) {
+      if (!cause.proven() || !rubric.deductions.count(cause.id)) continue;
+      covered = true;
+      if (std::find(mistakes.begin(), mistakes.end(), cause.id) == mistakes.end())
+        mistakes.push_back(cause.id);
+    }
+    if (!covered) return {};
   }
-  return rubric.deductions.count(mistake) ? mistake : "";
+  return mistakes;
 }
 
 // Points as the outputs show them: rounded to 0.001, no trailing zeros (report/outputs.h points).
@@ -297,9 +305,9 @@ std::string shown(double value) {
 }
 
 // Per-mistake scoring of one stub: `got` (units each test earned per check) raised so the stub
-// earns round(total x (1 - deduction)) units when that is more; the units given back go to the
-// failed checks in proportion to the units each lost, so no check earns less than per check.
-// Returns the units the stub earns.
+// earns round(total x (1 - the proven mistakes' deductions, at most 1)) units when that is more;
+// the units given back go to the failed checks in proportion to the units each lost, so no check
+// earns less than per check. Returns the units the stub earns.
 long perMistake(const Rubric& rubric, GradeReport& report, const std::vector<std::size_t>& tests,
                 const std::vector<long>& parts, std::vector<long>& got, double unit) {
   long total = 0, earned = 0;
@@ -310,23 +318,37 @@ long perMistake(const Rubric& rubric, GradeReport& report, const std::vector<std
     of_stub.push_back(&report.tests[tests[j]]);
   }
   if (rubric.scoring != Scoring::PerMistake || total == 0) return earned;
-  const std::string mistake = oneMistake(rubric, of_stub);
-  if (mistake.empty()) return earned;
-  const double deduction = rubric.deductions.at(mistake);
+  const std::vector<std::string> mistakes = provenMistakes(rubric, of_stub);
+  if (mistakes.empty()) return earned;
+  double deduction = 0;
+  std::string ids, shares;
+  for (const std::string& id : mistakes) {
+    deduction += rubric.deductions.at(id);
+    ids += (ids.empty() ? "" : ", ") + codeSpan(id);
+    shares += (shares.empty() ? "" : " + ") + shown(rubric.deductions.at(id) * 100);
+  }
+  deduction = std::min(deduction, 1.0);
   const long target = std::lround(double(total) * (1 - deduction));
   if (target <= earned) return earned;  // per check costs no more: nothing to say
   std::vector<double> lost;
   for (std::size_t j = 0; j < parts.size(); ++j) lost.push_back(double(parts[j] - got[j]));
   const std::vector<long> back = apportion(target - earned, lost);
   for (std::size_t j = 0; j < parts.size(); ++j) got[j] += back[j];
+  const std::string per_check = " (rubric: per-mistake; per-check scoring would give " +
+                                shown(double(earned) * unit) + " / " +
+                                shown(double(total) * unit) + ").";
   for (std::size_t j = 0; j < parts.size(); ++j) {
     TestResult& test = report.tests[tests[j]];
     if (test.passed()) continue;
-    test.rubric_note = "One mistake (" + codeSpan(mistake) +
-                       ") explains every failed check of this stub: it loses " +
-                       shown(deduction * 100) +
-                       " % of its points once (rubric: per-mistake; per-check scoring would give " +
-                       shown(double(earned) * unit) + " / " + shown(double(total) * unit) + ").";
+    test.rubric_note =
+        mistakes.size() == 1
+            ? "One mistake (" + ids +
+                  ") explains every failed check of this stub: it loses " + shares +
+                  " % of its points once" + per_check
+            : std::to_string(mistakes.size()) + " proven mistakes (" + ids +
+                  ") explain every failed check of this stub: together they lose " + shares +
+                  (mistakes.size() > 1 ? " = " + shown(deduction * 100) : "") +
+                  " % of its points once" + per_check;
     break;
   }
   return target;

@@ -14,6 +14,7 @@
 #include "grader/grade/explain/cause_evidence.h"
 #include "grader/grade/probes/collide_cases.h"
 #include "grader/grade/explain/contact_fit.h"
+#include "grader/grade/explain/replay.h"
 #include "grader/grade/mistakes/formula_variants.h"
 #include "grader/grade/probes/util.h"
 
@@ -127,6 +128,107 @@ int readPairs(const Case& c, bool sphere_sphere, const Outcome& actual,
   return static_cast<int>(pairs.size());
 }
 
+// The model's values against the student's within the check's tolerance (|model - yours| <= rel
+// (1 + |yours|)); a value that is not finite matches only one that is not finite either.
+bool close(const Mat4X<float>& model, const Mat4X<float>& student, double rel) {
+  if (model.size() != student.size()) return false;
+  for (int k = 0; k < model.size(); ++k) {
+    const double m = model.data()[k], a = student.data()[k];
+    if (!std::isfinite(m) || !std::isfinite(a)) {
+      if (std::isfinite(m) != std::isfinite(a)) return false;
+      continue;
+    }
+    if (std::abs(m - a) > rel * (1 + std::abs(a))) return false;
+  }
+  return true;
+}
+
+// A model of the student's collide and the causes it stands for.
+struct Candidate {
+  std::vector<std::string> ids;
+  ContactModel model;
+};
+
+// `model` replayed on every case (explain/replay.h): its positions and velocities against the
+// student's on each case's check, then whether it conserves momentum exactly where the student's
+// call does (the momentum check).
+Replay replayContacts(const ContactModel& model, const std::vector<Case>& cases,
+                      const std::vector<Outcome>& actuals, const std::vector<PlannedTest>& checks,
+                      bool sphere_sphere, double rel) {
+  Replay replay;
+  replay.model = contactModelText(model);
+  bool momentum_same = true;
+  for (std::size_t k = 0; k < cases.size() && k < actuals.size(); ++k) {
+    const Case& c = cases[k];
+    State s = c.state;
+    collideModel(s.spheres, s.cloth, sphere_sphere, model);
+    const Outcome m = outcomeOf(s);
+    const Outcome& a = actuals[k];
+    replay.checks.push_back(
+        {checks[c.check].check,
+         {{"positions", close(m.cloth_x, a.cloth_x, rel) && close(m.sphere_x, a.sphere_x, rel)},
+          {"velocities", close(m.cloth_v, a.cloth_v, rel) && close(m.sphere_v, a.sphere_v, rel)}}});
+    if (c.free_bodies) momentum_same = momentum_same && conserves(c, m) == conserves(c, a);
+  }
+  replay.checks.push_back({checks.back().check, {{"total momentum", momentum_same}}});
+  return replay;
+}
+
+// Names the causes the replays prove (explain/replay.h): the first model (those of the causes
+// named likely first) that gives the student's numbers on every check, else the first pair of
+// models that does together; another proving model is an alternative reading, a guess saying so.
+// A cause named that no model proves becomes a guess whose line says where its best model parts.
+void proveContacts(std::vector<Candidate> candidates, const std::vector<Case>& cases,
+                   const std::vector<Outcome>& actuals, const std::vector<PlannedTest>& checks,
+                   bool sphere_sphere, double rel, const ContactModel& course,
+                   std::vector<TestResult>& tests) {
+  const bool failed = std::any_of(tests.begin(), tests.end(),
+                                  [](const TestResult& t) { return !t.passed(); });
+  if (!failed) return;
+  const auto named = [&](const std::string& id, bool likely_only) {
+    for (const TestResult& t : tests)
+      for (const Cause& c : t.causes)
+        if (c.id == id && (c.likely || !likely_only)) return true;
+    return false;
+  };
+  std::stable_partition(candidates.begin(), candidates.end(),
+                        [&](const Candidate& c) { return named(c.ids.front(), true); });
+  std::vector<Replay> replays;
+  std::string winner;
+  for (const Candidate& c : candidates) {
+    replays.push_back(replayContacts(c.model, cases, actuals, checks, sphere_sphere, rel));
+    if (!replays.back().proven()) continue;
+    if (winner.empty()) {
+      applyReplay(replays.back(), c.ids, tests);
+      winner = c.ids.front();
+    } else if (c.ids.front() != winner) {
+      alternative(replays.back(), c.ids, winner, tests);
+    }
+  }
+  // Two mistakes at once: each pair of models with different causes, the first that proves.
+  for (std::size_t i = 0; i < candidates.size() && winner.empty(); ++i)
+    for (std::size_t j = i + 1; j < candidates.size() && winner.empty(); ++j) {
+      if (candidates[i].ids == candidates[j].ids) continue;
+      const ContactModel both = combined(candidates[i].model, candidates[j].model, course);
+      const Replay pair = replayContacts(both, cases, actuals, checks, sphere_sphere, rel);
+      if (!pair.proven()) continue;
+      std::vector<std::string> ids = candidates[i].ids;
+      ids.insert(ids.end(), candidates[j].ids.begin(), candidates[j].ids.end());
+      applyReplay(pair, ids, tests);
+      winner = ids.front();
+    }
+  // The causes named that no model proved: their best model's line.
+  for (std::size_t m = 0; m < candidates.size(); ++m) {
+    const std::string& id = candidates[m].ids.front();
+    if (!named(id, false)) continue;
+    std::size_t best = m;
+    for (std::size_t q = 0; q < candidates.size(); ++q)
+      if (candidates[q].ids.front() == id && replays[q].reproduced() > replays[best].reproduced())
+        best = q;
+    if (best == m && !replays[m].proven()) applyReplay(replays[m], candidates[m].ids, tests);
+  }
+}
+
 std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_sphere) {
   const std::vector<PlannedTest> checks = checkTable(sphere_sphere);
   const float e = sphere_sphere ? 0.8f : 0.0f;
@@ -181,6 +283,7 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
   // NaN or infinity out of the student's call, per case, and whether the case had a body at rest
   // (velocity exactly 0): NaN only where a body rests is a division by its speed.
   std::vector<bool> non_finite(cases.size(), false), at_rest(cases.size(), false);
+  std::vector<Outcome> actuals;  // the student's outcome of each case (for the replays)
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const Case& c = cases[k];
     for (int q : c.spheres)
@@ -200,6 +303,7 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
                          util::matrix(answer->f(key::perCase(key::kClothVel, n)), kN * kN),
                          util::matrix(answer->f(key::perCase(key::kSpherePos, n)), 3),
                          util::matrix(answer->f(key::perCase(key::kSphereVel, n)), 3)};
+    actuals.push_back(actual);
     State reference = c.state;
     collideCourse(reference, sphere_sphere, e);
     const Outcome expected = outcomeOf(reference);
@@ -339,7 +443,46 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
   } else {
     tests.push_back(
         util::failedTest(checks.back(), failure.text, {util::guess(failure.causeId())}));
+    return tests;
   }
+  // Likely means proven: every model of a cause replayed on every case (explain/replay.h).
+  const ContactModel course = courseContact(e, kCorrection);
+  std::vector<Candidate> candidates;
+  for (const auto& [mistake, id] : signatures)
+    candidates.push_back({{id}, withMistake(course, mistake)});
+  for (const ContactFinding& f : findings) {
+    ContactModel fitted = course;
+    if (f.cause == cause::kRestitutionIgnored) {
+      fitted.restitution = float(f.value);
+      fitted.changes.push_back("with restitution " + util::num(f.value));
+    } else if (f.cause == cause::kCorrectionFactor) {
+      fitted.correction = float(f.value);
+      fitted.changes.push_back("with a position correction of " + util::num(f.value) +
+                               " x overlap");
+    } else {
+      continue;  // the others are the switches' models above
+    }
+    candidates.push_back({{f.cause}, fitted});
+  }
+  if (const std::optional<double> d = contactDistanceOffset(readings, kCorrection)) {
+    ContactModel reach = course;
+    reach.reach_offset = float(*d);
+    reach.changes.push_back("with a contact distance of " +
+                            std::string(sphere_sphere ? "r_a + r_b" : "the radius") + " + " +
+                            util::num(*d) + " m");
+    candidates.push_back({{cause::kContactDistance}, reach});
+  }
+  ContactModel speed = course;
+  speed.divides_by_speed = true;
+  speed.changes.push_back("with each normal speed formed as |v| (v . n / |v|)");
+  candidates.push_back({{cause::kDivisionBySpeed}, speed});
+  proveContacts(candidates, cases, actuals, checks, sphere_sphere, rel, course, tests);
+  requireProofs(tests, {cause::kNonFinite});
+  for (TestResult& t : tests)
+    if (!t.passed() && std::none_of(t.causes.begin(), t.causes.end(),
+                                    [](const Cause& c) { return c.likely; }) &&
+        !t.names(cause::kUnknown))
+      t.causes.insert(t.causes.begin(), util::guess(cause::kUnknown));
   return tests;
 }
 

@@ -3,11 +3,14 @@
 // matter; duplicates, missing or foreign springs, wrong rest lengths and labels do.
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <map>
 #include <set>
 
 #include "clothref/core/cloth.h"
+#include "clothref/formula/course_formulas.h"
 #include "grader/grade/cause_ids.h"
+#include "grader/grade/explain/replay.h"
 #include "grader/grade/probes/util.h"
 #include "grader/grade/run/build.h"
 #include "grader/grade/text.h"
@@ -196,6 +199,106 @@ void addCauses(TestResult& test, const std::vector<std::string>& ids,
     if (only.count(id)) test.addCause(id);
 }
 
+// The grid family (formula::forEachGridSpring's 0..5) of a pair of an n x n cloth; -1 for none.
+int familyIndex(std::pair<int, int> pair, int n) {
+  const int di = pair.second / n - pair.first / n, dj = pair.second % n - pair.first % n;
+  if (di == 0 && dj == 1) return 0;
+  if (di == 1 && dj == 0) return 1;
+  if (di == 1 && dj == 1) return 2;
+  if (di == 1 && dj == -1) return 3;
+  if (di == 0 && dj == 2) return 4;
+  if (di == 2 && dj == 0) return 5;
+  return -1;
+}
+
+// A model of the student's initializeSpring: the course's springs with whole families left out
+// or pushed more than once, each type's rest length scaled and its label changed, all fitted from
+// the student's springs at N = 25 and replayed at both sizes (explain/replay.h).
+struct SpringModel {
+  std::array<bool, 6> missing{};
+  std::array<int, 6> copies{1, 1, 1, 1, 1, 1};
+  std::array<double, 3> rest_ratio{1, 1, 1};  // the student's rest / the course's, per type
+  std::array<int, 3> label{0, 1, 2};          // the student's label of each course type
+  std::vector<std::string> changes;
+};
+
+SpringModel fitSpringModel(const SpringSet& student, const SpringSet& reference, int n) {
+  SpringModel m;
+  std::array<int, 6> present{}, total{};
+  std::array<std::set<int>, 6> counts;
+  std::array<std::vector<double>, 3> ratios;
+  std::array<std::map<int, int>, 3> labels;
+  for (const auto& [pair, entries] : reference.pairs) {
+    const int f = familyIndex(pair, n);
+    if (f < 0) continue;
+    ++total[std::size_t(f)];
+    auto it = student.pairs.find(pair);
+    if (it == student.pairs.end()) continue;
+    ++present[std::size_t(f)];
+    counts[std::size_t(f)].insert(int(it->second.size()));
+    const int type = entries.front().second;
+    ratios[std::size_t(type)].push_back(double(it->second.front().first) /
+                                        double(entries.front().first));
+    ++labels[std::size_t(type)][it->second.front().second];
+  }
+  static const char* families[] = {"structural along a row", "structural along a column",
+                                   "shear down-right",       "shear down-left",
+                                   "bend along a row",       "bend along a column"};
+  for (std::size_t f = 0; f < 6; ++f) {
+    m.missing[f] = total[f] > 0 && present[f] == 0;
+    if (m.missing[f]) m.changes.push_back(std::string("without the ") + families[f] + " springs");
+    if (counts[f].size() == 1 && *counts[f].begin() > 1) {
+      m.copies[f] = *counts[f].begin();
+      m.changes.push_back(std::string("with the ") + families[f] + " springs pushed " +
+                          std::to_string(m.copies[f]) + " times");
+    }
+  }
+  for (std::size_t t = 0; t < 3; ++t) {
+    if (!ratios[t].empty()) {
+      std::sort(ratios[t].begin(), ratios[t].end());
+      const double r = ratios[t][ratios[t].size() / 2];
+      if (std::abs(r - 1) > 1e-7) {
+        m.rest_ratio[t] = r;
+        m.changes.push_back(std::string("with the ") + kTypeNames[t] + " rest length times " +
+                            util::num(r));
+      }
+    }
+    int best = int(t), votes = 0;
+    for (const auto& [label, count] : labels[t])
+      if (count > votes) best = label, votes = count;
+    if (best != int(t)) {
+      m.label[t] = best;
+      m.changes.push_back(std::string("with the ") + kTypeNames[t] + " springs labelled " +
+                          (best >= 0 && best < 3 ? kTypeNames[best] : "?"));
+    }
+  }
+  return m;
+}
+
+SpringSet modelSprings(const SpringModel& m, int n, const Edition& course) {
+  const SpringSet reference = referenceSprings(n, course);
+  SpringSet set;
+  for (const auto& [pair, entries] : reference.pairs) {
+    const int f = familyIndex(pair, n);
+    if (f >= 0 && m.missing[std::size_t(f)]) continue;
+    const int copies = f >= 0 ? m.copies[std::size_t(f)] : 1;
+    for (const auto& [rest, type] : entries)
+      for (int c = 0; c < copies; ++c) {
+        set.pairs[pair].push_back({float(double(rest) * m.rest_ratio[std::size_t(type)]),
+                                   m.label[std::size_t(type)]});
+        ++set.count;
+      }
+  }
+  return set;
+}
+
+std::string springModelText(const SpringModel& m) {
+  std::string text = "the course's springs";
+  for (std::size_t k = 0; k < m.changes.size(); ++k)
+    text += (k == 0 ? " " : " and ") + m.changes[k];
+  return text;
+}
+
 }  // namespace
 
 std::vector<PlannedTest> springsChecks() {
@@ -294,6 +397,7 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
       "A " + std::to_string(n) + " x " + std::to_string(n) +
       " cloth (your cloth.cpp compiled again with particlesPerEdge = " + std::to_string(n) +
       ").\n\n";
+  std::optional<SpringSet> small_set;  // the student's springs at the second size
   if (context.probe_small.empty()) {
     small.output =
         state + "Not run: " +
@@ -305,7 +409,6 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
     util::ProbeFailure small_failure;
     auto small_answer =
         util::runGroup(context, context.probe_small, kSpringsSmallFolder, request, small_failure);
-    std::optional<SpringSet> small_set;
     if (small_answer) small_set = studentSprings(*small_answer, n, small_failure.text);
     if (!small_set) {
       small.output = state + small_failure.text + "\n";
@@ -343,6 +446,41 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
     }
   }
   tests.push_back(small);
+
+  // Likely means proven: the model fitted at N = 25, replayed at both sizes. A cause it does not
+  // stand for (foreign pairs, hard-coded sizes) is read directly, never proven by it.
+  if (student) {
+    const SpringModel model = fitSpringModel(*student, reference, course_n);
+    const SpringSet at25 = modelSprings(model, course_n, context.course);
+    const Comparison c25 = compare(*student, at25, course_n, rest_rel);
+    Replay replay;
+    replay.model = springModelText(model);
+    replay.checks.push_back({checks[kConnections].check,
+                             {{"springs", c25.missing + c25.extra + c25.duplicates == 0}}});
+    replay.checks.push_back({checks[kRestLengths].check, {{"rest lengths", c25.wrong_rest == 0}}});
+    replay.checks.push_back({checks[kTypeLabels].check, {{"type labels", c25.wrong_type == 0}}});
+    if (small_set) {
+      const Comparison c10 =
+          compare(*small_set, modelSprings(model, n, context.course), n, rest_rel);
+      replay.checks.push_back(
+          {checks[kSecondSize].check,
+           {{"springs", c10.missing + c10.extra + c10.duplicates == 0},
+            {"rest lengths and labels", c10.wrong_rest + c10.wrong_type == 0}}});
+    }
+    std::vector<std::string> ids;
+    if (std::any_of(model.missing.begin(), model.missing.end(), [](bool b) { return b; }))
+      ids.push_back(cause::kMissingSprings);
+    if (std::any_of(model.copies.begin(), model.copies.end(), [](int k) { return k > 1; }))
+      ids.push_back(cause::kDuplicateSprings);
+    for (const TestResult& t : tests)
+      for (const Cause& cause : t.causes)
+        if ((cause.id == cause::kShearRestLength || cause.id == cause::kBendRestLength ||
+             cause.id == cause::kApproximateSqrt2 || cause.id == cause::kSwappedSpringTypes) &&
+            std::find(ids.begin(), ids.end(), cause.id) == ids.end())
+          ids.push_back(cause.id);
+    if (!ids.empty()) applyReplay(replay, ids, tests);
+  }
+  requireProofs(tests, {cause::kHardCodedN25, cause::kWrongSpringEndpoints});
   return tests;
 }
 

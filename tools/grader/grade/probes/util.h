@@ -104,8 +104,8 @@ inline TestResult test(const PlannedTest& check) {
 }
 
 // A cause the numbers confirm, and one they only suggest (results.h, Cause).
-inline Cause likely(const std::string& id) { return Cause{id, true, {}, {}, {}, {}, {}}; }
-inline Cause guess(const std::string& id) { return Cause{id, false, {}, {}, {}, {}, {}}; }
+inline Cause likely(const std::string& id) { return Cause{id, true, {}, {}, {}, {}, {}, {}}; }
+inline Cause guess(const std::string& id) { return Cause{id, false, {}, {}, {}, {}, {}, {}}; }
 
 // A test of the group that could not run: zero points, the verdict as output.
 inline TestResult failedTest(const PlannedTest& check, const std::string& why,

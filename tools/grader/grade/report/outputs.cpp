@@ -70,7 +70,7 @@ std::pair<bool, std::string> firstTime(std::map<std::string, std::string>* seen,
 
 // The one cause renderer: the head line (likely or a guess, the id, the catalogue's text); under
 // a likely cause the catalogue's why and example (a guess stays short: its text only), on the
-// first failed test that names it; then what the probe measured and the quoted source lines (on
+// first failed test that names it; then what the probe measured, the proof, and the quoted source lines (on
 // the first test of the stub that names them). `shown` null: a test no later one refers to.
 std::string causeMarkdown(const Cause& cause, const TestResult& t, Shown* shown) {
   std::string block = causeHead(cause) + "\n";
@@ -85,6 +85,7 @@ std::string causeMarkdown(const Cause& cause, const TestResult& t, Shown* shown)
   }
   if (!cause.detail.empty())
     block += "\n" + cause.detail + (cause.detail.back() == '\n' ? "" : "\n");
+  if (!cause.proof.empty()) block += "\n" + cause.proof + "\n";
   if (!cause.quotes.empty()) {
     const auto [first, where] =
         firstTime(shown ? &shown->quotes : nullptr,
@@ -166,6 +167,7 @@ GradeReport cleaned(const GradeReport& given) {
     for (Cause& cause : test.causes) {
       name(cause.id);
       text(cause.detail);
+      text(cause.proof);
       text(cause.text);
       text(cause.why);
       text(cause.example);
@@ -287,7 +289,7 @@ nlohmann::ordered_json resultsJson(const GradeReport& given) {
       if (t.informational) extra["information_only"] = statusWord(t);
       nlohmann::ordered_json causes = nlohmann::ordered_json::array();
       for (const Cause& cause : t.causes)
-        causes.push_back({{"id", cause.id}, {"likely", cause.likely}});
+        causes.push_back({{"id", cause.id}, {"likely", cause.likely}, {"proven", cause.proven()}});
       if (!t.causes.empty()) extra["causes"] = causes;
       test["extra_data"] = extra;
     }

@@ -392,4 +392,61 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseTo
   return build;
 }
 
+// ---- A repair's probe: one file compiled again, linked with the grade's other objects.
+
+ProbeBuild rebuildWithFile(const fs::path& main_dir, const std::string& name,
+                           const std::string& bytes, int edition, const CourseToolchain& given,
+                           const fs::path& work_dir) {
+  CourseToolchain toolchain = given;
+  toolchain.cache_dir.clear();  // a repaired file is private to this grade: never cached
+  if (!toolchain.prebuilt_dir.empty())
+    toolchain.prebuilt_dir = fs::absolute(toolchain.prebuilt_dir);
+  ProbeBuild build;
+  const std::string stem = name.substr(0, name.size() - 4);
+  fs::path pch = precompiledHeader(toolchain, edition, work_dir);
+  if (toolchain.kit && !pch.empty()) pch = kitHeader(*toolchain.kit, pch);
+  const fs::path folder = work_dir / ("src-" + stem);
+  fs::create_directories(folder);
+  {
+    std::ofstream copy(folder / name, std::ios::binary | std::ios::trunc);
+    copy << bytes;
+    if (!copy.flush()) throw std::runtime_error("cannot write the repaired " + name);
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const fs::path object = work_dir / (stem + ".o");
+  const ToolRun compiled =
+      compileAll(toolchain, {compileCommand(toolchain, edition, folder / name, object, 25, pch)},
+                 work_dir)
+          .front();
+  build.compile_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const CompileSite where{work_dir, folder / name, name,
+                          courseHeaderDirs(toolchain.course_dir, edition, toolchain.eigen_include)};
+  if (!compiled.ok) {
+    build.problem = firstCompilerError(compiled.output, where);
+    return build;
+  }
+  const std::string ed = std::to_string(edition);
+  std::vector<std::string> command = {toolchain.compiler, "-o", (work_dir / "probe").string()};
+  for (const std::string& other : studentFileNames()) {
+    const std::string other_stem = other.substr(0, other.size() - 4);
+    command.push_back(other == name ? object.string()
+                                    : (main_dir / (other_stem + ".o")).string());
+  }
+  command.push_back(
+      (toolchain.driver_lib_dir / ("libclothref_grader_course_" + ed + ".a")).string());
+  const auto link_start = std::chrono::steady_clock::now();
+  const ToolRun linked = checked(
+      runTools({command}, work_dir, 1, toolchain.compile_seconds, &toolchain.isolation).front());
+  build.link_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - link_start).count();
+  if (!linked.ok) {
+    build.problem = firstCompilerError(linked.output, CompileSite{work_dir, {}, name, {}});
+    return build;
+  }
+  build.probe = work_dir / "probe";
+  build.ok = true;
+  return build;
+}
+
 }  // namespace clothref::grader

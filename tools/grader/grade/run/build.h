@@ -74,6 +74,14 @@ struct ProbeBuild {
 ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseToolchain& toolchain,
                        const std::filesystem::path& work_dir);
 
+// A repair's probe (issue 38, grade/probes/repair.cpp): the student file `name` replaced by
+// `bytes` (the quoted lines repaired in a private copy) and compiled alone as step 1 above, then
+// linked with the other objects of the grade's build in `main_dir`: one compile and one link.
+// `ok` false, with the compiler's (or linker's) first error in `problem`, when it does not build.
+ProbeBuild rebuildWithFile(const std::filesystem::path& main_dir, const std::string& name,
+                           const std::string& bytes, int edition, const CourseToolchain& toolchain,
+                           const std::filesystem::path& work_dir);
+
 // Fills `out_dir` (a `prebuilt_dir`) with what grading needs whatever the submission: per edition
 // the precompiled stand-in headers and our three reference objects; removes what it holds for
 // other headers or flags. Run with clothref's build; false (and why) when something fails.
