@@ -91,6 +91,19 @@ TEST(Convergence, DoubleOrdersMatchTheMethods) {
   expectAllPass(convergenceChecks(studies));
 }
 
+// The odeint peer agrees with the library's explicit, RK4 and symplectic Euler, and the bounds are
+// round-off sized: far below what a changed stage would move (docs/verification.md).
+TEST(Peer, LibraryMethodsAgreeWithOdeint) {
+  const std::vector<CheckRow> rows = peerChecks();
+  expectAllPass(rows);
+  // cloth: 3 steppers x 2 precisions; sphere: 2 steppers x double
+  EXPECT_EQ(rows.size(), 3u * 2 + 2);
+  for (const CheckRow& row : rows) {
+    EXPECT_NE(row.check.find("1000 steps"), std::string::npos) << row.check;
+    EXPECT_LT(row.tolerance, row.precision == Precision::Float ? 1e-3 : 1e-11) << row.check;
+  }
+}
+
 TEST(FreeCloth, EveryMethodKeepsMomentum) { expectAllPass(freeClothMomentumChecks()); }
 
 TEST(Energy, EveryMethodBehavesAsItsAmplificationFactorSays) { expectAllPass(energyChecks()); }

@@ -98,6 +98,14 @@ std::vector<CheckRow> courseFactChecks();
 inline constexpr int kCourseFormSteps = 300;
 std::vector<CheckRow> courseFormChecks();
 
+// The library's explicit, RK4 and symplectic Euler against Boost.Odeint's euler, runge_kutta4 and
+// symplectic_euler stepping the same world from the library's evaluation (odeint_peer.h), step by
+// step over kPeerSteps steps: the course cloth without spheres (double and float; the peer in
+// double) and the course cloth on a fixed sphere (euler and rk4, double). Rows: the largest
+// position difference over every step and particle, against a round-off estimate.
+inline constexpr int kPeerSteps = 1000;
+std::vector<CheckRow> peerChecks();
+
 struct VerifyReport {
   std::vector<ConvergenceStudy> studies;
   std::vector<CheckRow> checks;
