@@ -73,6 +73,14 @@ std::vector<CheckRow> sphereSphereChecks();
 // act as immovable in the impulse.
 std::vector<CheckRow> sphereClothChecks();
 
+// Where one evaluation's contacts put the bodies (simulateOneStep on a world of two bodies): a
+// cloth particle pressed into a sphere (the fast kernel and the course-form stub) and an
+// overlapping sphere pair, approaching and separating, restitution 0 and not, and a fixed
+// particle, against the course's equations in double (analytic.h contactOutcome): positions
+// after the correction, velocities after the impulse, and a separating pair's velocities exactly
+// unchanged.
+std::vector<CheckRow> contactChecks();
+
 // A free 9x9 cloth (no fixed particles, gravity or drag, random velocities) keeps its total
 // momentum under every method: the spring forces sum to zero.
 std::vector<CheckRow> freeClothMomentumChecks();
