@@ -26,14 +26,15 @@ usage() {
 
 # Copies BATCH to OUT with what varies from run to run replaced: in JSON (results.json, row.json,
 # the class page's embedded rows) every "seconds" and "execution_time" value, in any text the
-# batch's own path, scratch paths, sanitizer addresses and pids; grades.csv's seconds column.
+# batch's own path and the folder it is in (OUT, where the mutants are laid out), scratch paths,
+# sanitizer addresses and pids; grades.csv's seconds column.
 normalise() {
   python3 - "$1" "$2" <<'PYTHON'
 import json, os, re, shutil, sys
 batch, out = sys.argv[1], sys.argv[2]
 shutil.rmtree(out, ignore_errors=True)
 def text(s):
-    s = s.replace(batch, 'BATCH')
+    s = s.replace(batch, 'BATCH').replace(os.path.dirname(batch), 'OUT')
     s = re.sub(r'/tmp/[A-Za-z0-9._-]*clothref[A-Za-z0-9._/-]*', 'SCRATCH', s)
     s = re.sub(r'0x[0-9a-f]{6,16}', '0xADDR', s)
     s = re.sub(r'==[0-9]+==', '==PID==', s)
