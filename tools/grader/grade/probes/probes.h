@@ -11,11 +11,11 @@
 #include <vector>
 
 #include "grader/grade/catalogue.h"
-#include "grader/grade/submission/edition.h"
 #include "grader/grade/results.h"
 #include "grader/grade/rubric.h"
 #include "grader/grade/run/child_process.h"
 #include "grader/grade/run/sanitize.h"
+#include "grader/grade/submission/edition.h"
 
 namespace clothref::grader {
 

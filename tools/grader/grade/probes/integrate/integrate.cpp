@@ -14,8 +14,8 @@
 #include <mutex>
 
 #include "clothref/verify/verify.h"
-#include "grader/grade/probes/integrate/diagnosis.h"
 #include "grader/grade/mistakes/integrate_mistakes.h"
+#include "grader/grade/probes/integrate/diagnosis.h"
 #include "grader/grade/probes/integrate/stages.h"
 #include "grader/grade/probes/integrate/text.h"
 
