@@ -222,8 +222,8 @@ Command addGradeCommand(CLI::App& root) {
               if (!several.empty())
                 throw InputError(grader::severalSubmissionsProblem(dir, several));
             }
-            report = options->html.empty() ? grader::gradeSubmission(dir, grade)
-                                           : grader::gradeWithWholeRun(dir, grade, whole_run_view);
+            report = grader::gradeSubmission(dir, grade);
+            if (!options->html.empty()) whole_run_view = grader::wholeRunView(report);
           } catch (const InputError& error) {
             std::cerr << "clothref grade: " << grader::safeName(error.what()) << '\n';
             exit_code = kExitBadInput;

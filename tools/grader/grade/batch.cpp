@@ -131,8 +131,9 @@ Outputs gradeOne(const BatchEntry& entry, const BatchOptions& options, const Gra
         return notGradable(entry, Verdict::NotGradable,
                            severalSubmissionsProblem(entry.dir, several));
     }
-    nlohmann::ordered_json whole_run_view;  // the pictures of report.html (html_report.h)
-    GradeReport report = gradeWithWholeRun(entry.dir, grade, whole_run_view);
+    GradeReport report = gradeSubmission(entry.dir, grade);
+    // the pictures of report.html (html_report.h)
+    const nlohmann::ordered_json whole_run_view = wholeRunView(report);
     Outputs out;
     out.row = rowOf(entry, report);
     out.results_json =
