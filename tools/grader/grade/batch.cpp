@@ -373,7 +373,7 @@ BatchSummary runBatch(const std::vector<fs::path>& dirs, const BatchOptions& opt
   }
   // the class overview, from the same markers (html_report.h)
   writeNoFollow(batch.fd, options.out_dir, summary.index.filename().string(),
-                batchIndexHtml(options.out_dir, summary.rows));
+                batchIndexHtml(classRows(options.out_dir, summary.rows)));
   return summary;
 }
 

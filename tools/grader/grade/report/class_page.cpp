@@ -29,42 +29,36 @@ nlohmann::json readResults(const fs::path& path) {
 
 }  // namespace
 
-std::string batchIndexHtml(const fs::path& batch_dir, const std::vector<BatchRow>& rows) {
-  nlohmann::ordered_json data;
-  data["stubs"] = stubNames();
-  std::vector<std::string> checks;           // every check name, in order of first appearance
-  std::map<std::string, std::size_t> index;  // check name -> position in `checks`
-  nlohmann::ordered_json submissions = nlohmann::ordered_json::array();
+std::vector<ClassRow> classRows(const fs::path& batch_dir, const std::vector<BatchRow>& rows) {
+  std::vector<ClassRow> out;
   for (const BatchRow& row : rows) {
-    nlohmann::ordered_json s = rowJson(row);  // the marker's fields, then the page's own
-    s.erase("dir");                           // where it was graded: not for the page
-    s.erase("isolation");
+    ClassRow c;
+    c.name = row.name;
+    c.edition = row.edition;
+    c.stub_score = row.stub_score;
+    c.stub_max = row.stub_max;
+    c.score = row.score;
+    c.max_score = row.max_score;
+    c.verdict = row.verdict;
+    c.problem = row.problem;
+    c.seconds = row.seconds;
     std::error_code error;
-    s["report"] =
+    c.report =
         row.name +
         (fs::exists(batch_dir / row.name / "report.html", error) ? "/report.html" : "/report.md");
-    // per check: passed, failed; the named causes (extra_data's, with whether each is likely;
-    // else a test's tags after its stub)
-    nlohmann::ordered_json passed = nlohmann::ordered_json::object();
-    std::vector<std::pair<std::string, bool>> causes;  // id, likely on some test
     const auto name_cause = [&](const std::string& id, bool likely) {
-      for (auto& [known, was_likely] : causes)
+      for (auto& [known, was_likely] : c.causes)
         if (known == id) {
           was_likely = was_likely || likely;
           return;
         }
-      causes.push_back({id, likely});
+      c.causes.push_back({id, likely});
     };
     const nlohmann::json results = readResults(batch_dir / row.name / "results.json");
     if (results.is_object() && results.contains("tests") && results["tests"].is_array())
       for (const auto& test : results["tests"]) {
         if (!test.is_object() || !test.contains("name") || !test["name"].is_string()) continue;
-        const std::string name = test["name"].get<std::string>();
-        if (!index.count(name)) {
-          index[name] = checks.size();
-          checks.push_back(name);
-        }
-        passed[std::to_string(index[name])] = test.value("status", "") == "passed";
+        c.checks.push_back({test["name"].get<std::string>(), test.value("status", "") == "passed"});
         const nlohmann::json* listed = nullptr;
         if (test.contains("extra_data") && test["extra_data"].is_object() &&
             test["extra_data"].contains("causes") && test["extra_data"]["causes"].is_array())
@@ -78,8 +72,41 @@ std::string batchIndexHtml(const fs::path& batch_dir, const std::vector<BatchRow
             if (test["tags"][k].is_string()) name_cause(test["tags"][k].get<std::string>(), true);
         }
       }
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
+std::string batchIndexHtml(const std::vector<ClassRow>& rows) {
+  nlohmann::ordered_json data;
+  data["stubs"] = stubNames();
+  std::vector<std::string> checks;           // every check name, in order of first appearance
+  std::map<std::string, std::size_t> index;  // check name -> position in `checks`
+  nlohmann::ordered_json submissions = nlohmann::ordered_json::array();
+  for (const ClassRow& row : rows) {
+    nlohmann::ordered_json s;
+    s["submission"] = row.name;
+    s["edition"] = row.edition;
+    s["stub_scores"] = row.stub_score;
+    s["stub_max"] = row.stub_max;
+    s["total"] = row.score;
+    s["max"] = row.max_score;
+    s["verdict"] = verdictId(row.verdict);
+    s["problem"] = row.problem;
+    s["seconds"] = row.seconds;
+    s["report"] = row.report;
+    // per check: passed, failed (by its position in `checks`)
+    nlohmann::ordered_json passed = nlohmann::ordered_json::object();
+    for (const auto& [name, ok] : row.checks) {
+      if (!index.count(name)) {
+        index[name] = checks.size();
+        checks.push_back(name);
+      }
+      passed[std::to_string(index[name])] = ok;
+    }
     nlohmann::ordered_json cause_list = nlohmann::ordered_json::array();
-    for (const auto& [id, likely] : causes) cause_list.push_back({{"id", id}, {"likely", likely}});
+    for (const auto& [id, likely] : row.causes)
+      cause_list.push_back({{"id", id}, {"likely", likely}});
     s["checks"] = passed;
     s["causes"] = cause_list;
     submissions.push_back(s);
