@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <string>
 
+#include "grader/grade/batch.h"
 #include "test_util.h"
 
 namespace clothref::grader {

@@ -4,13 +4,12 @@
 // that ran through. Self-contained: its script and data are inline and it loads nothing; every
 // name a student controls reaches it as JSON data set with textContent, never as markup.
 #pragma once
-#include <filesystem>
 #include <map>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include "grader/grade/batch.h"
+#include "grader/grade/results.h"
 
 namespace clothref::grader {
 
@@ -28,13 +27,6 @@ struct ClassRow {
   std::vector<std::pair<std::string, bool>> checks;  // check name, passed; results.json's order
   std::vector<std::pair<std::string, bool>> causes;  // cause id, likely on some check
 };
-
-// The overview's rows for `rows` (the batch's, sorted by name) of the batch in `batch_dir`: each
-// folder's results.json read for its checks and causes (extra_data's causes with whether each is
-// likely; else a test's tags after its stub). A folder whose results.json is missing or unreadable
-// still gets its row, without checks.
-std::vector<ClassRow> classRows(const std::filesystem::path& batch_dir,
-                                const std::vector<BatchRow>& rows);
 
 // The class overview: a sortable, filterable table (score per stub, total, verdict, time, report
 // link), a histogram of totals, the pass rate per stub and per check, and per named cause the
