@@ -1,7 +1,7 @@
-// Grading many submissions in one run (`clothref grade DIR... --out BATCHDIR`, docs/grading.md,
-// "Batch"): submissions in parallel, progress on stderr, one folder of results per submission and
-// a CSV summary rebuilt from those folders, resume after an interruption, and shards so a large
-// batch splits across machines.
+// Grading many submissions in one run (`clothref grade DIR... --out BATCHDIR`,
+// docs/grading-reference.md, "Batch"): submissions in parallel, progress on stderr, one folder of
+// results per submission and a CSV summary rebuilt from those folders, resume after an
+// interruption, and shards so a large batch splits across machines.
 //
 // BATCHDIR/<name>/ holds results.json, report.md and, written last and atomically, row.json: the
 // submission's CSV row. row.json is the "graded" marker a rerun skips on. BATCHDIR/.cache holds
