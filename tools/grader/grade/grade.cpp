@@ -87,7 +87,7 @@ bool isUnder(const fs::path& path, const fs::path& root) {
 // scratch folder or the course kit inside one (TMPDIR in our tree), a student uid that cannot
 // reach its own folder (TMPDIR inside a closed folder), or, without bubblewrap and without a
 // private mount namespace to cover them, a folder of ours that a student uid can reach by its
-// permissions (docs/grading.md, "Installing the grader where students' code runs").
+// permissions (docs/grading-reference.md, "Installing the grader where students' code runs").
 void checkConfinement(const Isolation& isolation, const GradeScratch& scratch,
                       const CourseKit* kit) {
   if (isolation.uid < 0) return;
