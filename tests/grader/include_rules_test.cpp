@@ -63,8 +63,8 @@ TEST(GraderIncludeRules, EachBrokenRuleIsNamedWithItsFileAndLine) {
       {"grade/explain/stages/stages.h", "\"grader/grade/batch.h\""},  // explain includes the batch
       {"grade/report/outputs.h", "\"grader/grade/run/build.h\""},     // report includes run
       {"grade/report/html_report.h", "\"grader/grade/probes/util.h\""},  // ... or probes
-      {"grade/report/class_page.h", "\"grader/grade/batch.h\""},        // ... or the batch
-      {"grade/report/outputs.cpp", "\"grader/grade/grade.h\""},         // ... or the grading
+      {"grade/report/class_page.h", "\"grader/grade/batch.h\""},         // ... or the batch
+      {"grade/report/outputs.cpp", "\"grader/grade/grade.h\""},          // ... or the grading
       {"grade/grade.h", "\"grader/grade/probes/util.h\""},        // the top level: probes.h only
       {"bridge/probe_protocol.h", "\"grader/grade/results.h\""},  // the bridge is std only
       {"driver/probe_driver.cpp", "\"../bridge/probe_keys.h\""},  // never relative
