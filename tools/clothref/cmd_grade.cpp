@@ -19,7 +19,7 @@
 #include "grader/grade/grade.h"
 #include "grader/grade/report/html_report.h"
 #include "grader/grade/report/outputs.h"
-#include "grader/grade/run/submission.h"
+#include "grader/grade/submission/submission.h"
 #include "grader/grade/text.h"
 
 namespace clothref::cli {

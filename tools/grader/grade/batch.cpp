@@ -20,7 +20,7 @@
 #include "grader/grade/batch_files.h"
 #include "grader/grade/report/html_report.h"
 #include "grader/grade/report/outputs.h"
-#include "grader/grade/run/submission.h"
+#include "grader/grade/submission/submission.h"
 #include "grader/grade/text.h"
 
 #include <fcntl.h>

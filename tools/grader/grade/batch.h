@@ -93,7 +93,7 @@ struct BatchOptions {
   bool regrade = false;  // grade again even when row.json exists
   bool quiet = false;    // no progress on stderr
   // Grade a folder that holds several whole submissions as one (else it is not gradable: the
-  // folder names them; run/submission.h, submissionsBelow).
+  // folder names them; submission/submission.h, submissionsBelow).
   bool one_submission = false;
   GradeOptions grade;  // per submission (probe_jobs and toolchain.jobs are set from cores/jobs)
 };

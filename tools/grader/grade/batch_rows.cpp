@@ -123,9 +123,8 @@ std::vector<ClassRow> classRows(const fs::path& batch_dir, const std::vector<Bat
     c.seconds = row.seconds;
     c.isolation = row.isolation;
     std::error_code error;
-    c.report =
-        row.name +
-        (fs::exists(batch_dir / row.name / "report.html", error) ? "/report.html" : "/report.md");
+    c.report = row.name + (fs::exists(batch_dir / row.name / "report.html", error) ? "/report.html"
+                                                                                   : "/report.md");
     const auto name_cause = [&](const std::string& id, bool likely) {
       for (auto& [known, was_likely] : c.causes)
         if (known == id) {

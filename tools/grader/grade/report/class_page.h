@@ -16,8 +16,8 @@ namespace clothref::grader {
 // One submission of the class overview, as plain data: its batch row (row.json's fields) and,
 // from its results.json, each check's outcome and the causes named.
 struct ClassRow {
-  std::string name;  // the submission's folder in BATCHDIR
-  int edition = 0;   // 0 when not gradable
+  std::string name;                                    // the submission's folder in BATCHDIR
+  int edition = 0;                                     // 0 when not gradable
   std::map<std::string, double> stub_score, stub_max;  // per course stub
   double score = 0, max_score = 0;
   Verdict verdict = Verdict::Graded;

@@ -62,7 +62,7 @@ std::string foundSentence(const std::vector<std::string>& lines) {
 }  // namespace
 
 CheckRow checkRow(const TestResult& test, std::size_t index) {
-  // compareValues's two lines (probes/compare_text.h): "- LABEL: expected E, yours Y", and under
+  // compareValues's two lines (explain/compare_text.h): "- LABEL: expected E, yours Y", and under
   // it, two spaces deeper, "- x differs by ..." when a component differs
   static const std::regex compared(R"(^( *)- (.+?): expected (.+), yours (.+?)$)");
   CheckRow row;

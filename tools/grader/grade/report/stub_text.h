@@ -1,5 +1,5 @@
 // What a student reads of one stub, in a minute (report.md, report.html, the Gradescope summary;
-// docs/grading.md, "Reading a report"): first its points and the rule that gave them, then what is
+// docs/grading-reference.md): first its points and the rule that gave them, then what is
 // wrong (each cause its failed checks name, once: the likely ones, then the guesses, each with the
 // catalogue's text, the likely ones with its why and example, and the quoted lines), then the
 // failed checks as rows (check, expected, yours, by how much), then the passed checks. Made from a
@@ -15,7 +15,7 @@
 namespace clothref::grader {
 
 // A failed check as one row: the first quantity its output compares where yours differs (a line
-// of probes/compare_text.h's compareValues: "- LABEL: expected E, yours Y" and, under it, by how
+// of explain/compare_text.h's compareValues: "- LABEL: expected E, yours Y" and, under it, by how
 // much), split into its parts, Markdown (the differing components bold); the quantity named with
 // the body it belongs to ("sphere 0: v after the call"). A check that compared no quantity (a
 // crash, a count of springs, an order) has `yours` only: the sentence of its output's plain text
