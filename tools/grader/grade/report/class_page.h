@@ -21,10 +21,10 @@ struct ClassRow {
   std::map<std::string, double> stub_score, stub_max;  // per course stub
   double score = 0, max_score = 0;
   Verdict verdict = Verdict::Graded;
-  std::string problem;  // why it is not gradable, else empty
-  double seconds = 0;   // wall time of grading it
+  std::string problem;    // why it is not gradable, else empty
+  double seconds = 0;     // wall time of grading it
   std::string isolation;  // how its student code was isolated (the page says each once)
-  std::string report;   // its report, relative to BATCHDIR ("alice/report.html")
+  std::string report;     // its report, relative to BATCHDIR ("alice/report.html")
   std::vector<std::pair<std::string, bool>> checks;  // check name, passed; results.json's order
   std::vector<std::pair<std::string, bool>> causes;  // cause id, likely on some check
 };

@@ -62,9 +62,10 @@ nlohmann::ordered_json withHtmlSummary(nlohmann::ordered_json results, const Gra
   std::string out = "<p><strong>Score " + points(report.score) + " / " + points(report.max_score) +
                     "</strong> (edition " + std::to_string(report.edition) + ", verdict " +
                     std::string(verdictId(report.verdict)) + ")</p>\n";
-  out += "<table>\n<tr><th>stub</th><th>points</th><th>checks passed</th><th>what is wrong "
-         "(a guess: ?; each test below says why)</th></tr>\n" +
-         rows + "</table>\n";
+  out +=
+      "<table>\n<tr><th>stub</th><th>points</th><th>checks passed</th><th>what is wrong "
+      "(a guess: ?; each test below says why)</th></tr>\n" +
+      rows + "</table>\n";
   if (results.contains("output") && results["output"].is_string())
     out += markdownToHtml(results["output"].get<std::string>());
   results["output"] = out;

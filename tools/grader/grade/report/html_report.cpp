@@ -128,8 +128,9 @@ std::string studentReportHtml(const GradeReport& given,
     std::string chips;
     for (const auto& [id, likely] : stub.ids) chips += badge(id, likely);
     body += "<tr><td><a href=\"#" + e(stub.stub) + "\">" + e(stub.stub) + "</a></td><td>" +
-            points(report.stub_score.at(stub.stub)) + " / " + points(report.stub_max.at(stub.stub)) +
-            "</td><td class=\"" + (stub.failed.empty() ? "gr-pass" : "gr-fail") + "\">" +
+            points(report.stub_score.at(stub.stub)) + " / " +
+            points(report.stub_max.at(stub.stub)) + "</td><td class=\"" +
+            (stub.failed.empty() ? "gr-pass" : "gr-fail") + "\">" +
             std::to_string(stub.passed.size()) + " of " + std::to_string(stub.checks) +
             "</td><td>" + chips + "</td></tr>\n";
   }
@@ -140,14 +141,14 @@ std::string studentReportHtml(const GradeReport& given,
     const char* mark = t.informational ? "\xE2\x84\xB9"
                        : t.passed()    ? "\xE2\x9C\x94"
                                        : "\xE2\x9C\x98";
-    std::string out = std::string("<details class=\"gr-check\"") + (open ? " open" : "") +
-                      "><summary class=\"" + state + "\">" + mark + " " + e(t.check) +
-                      (t.informational
-                           ? std::string(t.check.find("information only") == std::string::npos
-                                             ? " (information only)"
-                                             : "") +
-                                 " \xE2\x80\x94 " + kInformationStatus[t.passed() ? 1 : 0]
-                           : " \xE2\x80\x94 " + points(t.score) + " / " + points(t.max_score));
+    std::string out =
+        std::string("<details class=\"gr-check\"") + (open ? " open" : "") + "><summary class=\"" +
+        state + "\">" + mark + " " + e(t.check) +
+        (t.informational ? std::string(t.check.find("information only") == std::string::npos
+                                           ? " (information only)"
+                                           : "") +
+                               " \xE2\x80\x94 " + kInformationStatus[t.passed() ? 1 : 0]
+                         : " \xE2\x80\x94 " + points(t.score) + " / " + points(t.max_score));
     for (const Cause& cause : t.causes) out += badge(cause.id, cause.likely);
     out += "</summary>\n";
     return out;
@@ -182,10 +183,12 @@ std::string studentReportHtml(const GradeReport& given,
       body += std::string("<details class=\"gr-passed\"><summary class=\"gr-pass\">") +
               "\xE2\x9C\x94 " + std::to_string(stub.passed.size()) + " of " +
               std::to_string(stub.checks) + " checks passed</summary>\n";
-      for (std::size_t k : stub.passed) body += check(k, false) + testHtml(texts[k]) + "</details>\n";
+      for (std::size_t k : stub.passed)
+        body += check(k, false) + testHtml(texts[k]) + "</details>\n";
       body += "</details>\n";
     }
-    for (std::size_t k : stub.information) body += check(k, false) + testHtml(texts[k]) + "</details>\n";
+    for (std::size_t k : stub.information)
+      body += check(k, false) + testHtml(texts[k]) + "</details>\n";
   }
   // information-only checks of no course stub (the whole run)
   std::string section;

@@ -193,8 +193,8 @@ std::vector<TestText> testTexts(const GradeReport& report) {
     for (const Cause& cause : t.causes) {
       CauseShown shown;
       if (failed) {
-        const auto [it, first] = explained.emplace(
-            t.stub + "\n" + t.visibility + "\n" + cause.id, std::pair{t.name(), cause.quotes});
+        const auto [it, first] = explained.emplace(t.stub + "\n" + t.visibility + "\n" + cause.id,
+                                                   std::pair{t.name(), cause.quotes});
         if (!first) {
           shown.explained_under = it->second.first;
           shown.quote = cause.quotes != it->second.second;  // other lines than those shown

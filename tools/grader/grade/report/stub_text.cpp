@@ -14,7 +14,8 @@ namespace {
 // A table cell: one line, and a '|' would end the cell (markdown_html.cpp reads "\|" as one).
 std::string cell(const std::string& text) {
   std::string out;
-  for (char c : text) out += c == '|' ? std::string("\\|") : c == '\n' ? std::string(" ") : std::string(1, c);
+  for (char c : text)
+    out += c == '|' ? std::string("\\|") : c == '\n' ? std::string(" ") : std::string(1, c);
   return out;
 }
 
@@ -110,7 +111,8 @@ CheckRow checkRow(const TestResult& test, std::size_t index) {
     if (!owner.empty() && owner.find('`') == std::string::npos) row.check += ": " + owner;
     std::string yours = m[4].str();
     const std::string same = ": the same within the tolerance";
-    if (yours.size() > same.size() && yours.compare(yours.size() - same.size(), same.size(), same) == 0)
+    if (yours.size() > same.size() &&
+        yours.compare(yours.size() - same.size(), same.size(), same) == 0)
       yours.erase(yours.size() - same.size());
     row.check += ": " + m[2].str();
     row.expected = m[3].str();
@@ -176,15 +178,15 @@ std::vector<StubText> stubTexts(const GradeReport& report) {
     const std::string checks =
         std::to_string(passed) + " of " + std::to_string(text.checks) + " checks passed";
     if (text.failed.empty())
-      text.points = score + ": " + (text.checks == 1 ? std::string("its check passed")
-                                                     : "all " + std::to_string(text.checks) +
-                                                           " checks passed") +
+      text.points = score + ": " +
+                    (text.checks == 1 ? std::string("its check passed")
+                                      : "all " + std::to_string(text.checks) + " checks passed") +
                     ".";
     else if (!rubric_note.empty())
       text.points = score + ": one mistake, per-mistake rubric; " + checks + ". " + rubric_note;
     else
-      text.points = score + ": scored per check (each failed check loses its own points); " +
-                    checks + ".";
+      text.points =
+          score + ": scored per check (each failed check loses its own points); " + checks + ".";
     stubs.push_back(std::move(text));
   }
   return stubs;

@@ -37,10 +37,10 @@ struct StubText {
   // causeMarkdown renders it: head, what was measured, why and example, quoted lines).
   std::vector<std::string> likely, guesses;
   std::vector<std::pair<std::string, bool>> ids;  // the same causes: id, likely (chips, tables)
-  std::vector<CheckRow> failed;          // the scored checks that failed, in order
-  std::vector<std::size_t> passed;       // the scored checks that passed (indices)
-  std::vector<std::size_t> information;  // information-only checks (the whole run)
-  int checks = 0;                        // scored checks
+  std::vector<CheckRow> failed;                   // the scored checks that failed, in order
+  std::vector<std::size_t> passed;                // the scored checks that passed (indices)
+  std::vector<std::size_t> information;           // information-only checks (the whole run)
+  int checks = 0;                                 // scored checks
   // What is wrong (the cause blocks), the table of failed checks, the passed checks on one line.
   std::string causesMarkdown() const;
   std::string tableMarkdown() const;
