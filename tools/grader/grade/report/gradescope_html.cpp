@@ -2,6 +2,7 @@
 #include "grader/grade/report/gradescope_html.h"
 
 #include <algorithm>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -49,23 +50,35 @@ std::string testPicture(const TestResult& test, std::size_t index) {
 
 nlohmann::ordered_json withHtmlSummary(nlohmann::ordered_json results, const GradeReport& given) {
   const GradeReport report = cleaned(given);
-  // One line per stub: its points, its checks passed, what is wrong.
-  std::string rows;
+  // One line per stub that lost points: its points, its checks passed, what is wrong; the stubs
+  // whose every check passed on one line after them.
+  std::string rows, passed_stubs;
+  const std::set<std::string> later = stubsShownLater(report);
   for (const std::string& stub : stubNames()) {
-    if (!report.stub_max.count(stub)) continue;
+    if (!report.stub_max.count(stub) || later.count(stub)) continue;
     const auto [passed, total] = checksPassed(report, stub);
-    rows += "<tr><td>" + pages::escapeHtml(stub) + "</td><td>" +
-            points(report.stub_score.count(stub) ? report.stub_score.at(stub) : 0) + " / " +
-            points(report.stub_max.at(stub)) + "</td><td>" + std::to_string(passed) + " of " +
-            std::to_string(total) + "</td><td>" + causesLine(report, stub) + "</td></tr>\n";
+    const std::string score =
+        points(report.stub_score.count(stub) ? report.stub_score.at(stub) : 0) + " / " +
+        points(report.stub_max.at(stub));
+    if (passed == total)
+      passed_stubs += (passed_stubs.empty() ? "" : ", ") + pages::escapeHtml(stub) + " " + score;
+    else
+      rows += "<tr><td>" + pages::escapeHtml(stub) + "</td><td>" + score + "</td><td>" +
+              std::to_string(passed) + " of " + std::to_string(total) + "</td><td>" +
+              causesLine(report, stub) + "</td></tr>\n";
   }
-  std::string out = "<p><strong>Score " + points(report.score) + " / " + points(report.max_score) +
-                    "</strong> (edition " + std::to_string(report.edition) + ", verdict " +
-                    std::string(verdictId(report.verdict)) + ")</p>\n";
-  out +=
-      "<table>\n<tr><th>stub</th><th>points</th><th>checks passed</th><th>what is wrong "
-      "(a guess: ?; each test below says why)</th></tr>\n" +
-      rows + "</table>\n";
+  // with a stub shown later the Markdown summary below says why there is no score yet
+  std::string out = later.empty() ? "<p><strong>Score " + points(report.score) + " / " +
+                                        points(report.max_score) + "</strong> (edition " +
+                                        std::to_string(report.edition) + ", verdict " +
+                                        std::string(verdictId(report.verdict)) + ")</p>\n"
+                                  : std::string();
+  if (!rows.empty())
+    out +=
+        "<table>\n<tr><th>stub</th><th>points</th><th>checks passed</th><th>what is wrong "
+        "(a guess: ?; each test below says why)</th></tr>\n" +
+        rows + "</table>\n";
+  if (!passed_stubs.empty()) out += "<p>Every check passed: " + passed_stubs + ".</p>\n";
   if (results.contains("output") && results["output"].is_string())
     out += markdownToHtml(results["output"].get<std::string>());
   results["output"] = out;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "grader/grade/cause_ids.h"
@@ -96,6 +97,13 @@ std::pair<int, int> checksPassed(const GradeReport& report, const std::string& s
   return {passed, total};
 }
 
+std::set<std::string> stubsShownLater(const GradeReport& report) {
+  std::set<std::string> later;
+  for (const TestResult& t : report.tests)
+    if (t.visibility != "visible") later.insert(t.stub);
+  return later;
+}
+
 double roundedPoints(double value) {
   const double rounded = std::round(value * 1000) / 1000;
   return rounded == 0 ? 0.0 : rounded;  // never "-0"
@@ -175,7 +183,10 @@ std::string TestText::markdown() const {
 
 std::vector<TestText> testTexts(const GradeReport& report) {
   std::vector<TestText> texts;
-  std::map<std::string, std::string> outputs;  // a long output -> the test that showed it
+  // visibility and a long output -> the test that showed it (a test refers only to one shown with
+  // it)
+  std::map<std::string, std::string> outputs;
+  const std::set<std::string> later = stubsShownLater(report);
   // stub, visibility and cause -> the check that explained it and the lines it quoted: a visible
   // test never refers to one the student cannot see yet
   std::map<std::string, std::pair<std::string, std::vector<SourceQuote>>> explained;
@@ -185,10 +196,17 @@ std::vector<TestText> testTexts(const GradeReport& report) {
     // the Markdown report shows information-only tests last: nothing refers to them
     const bool failed = !t.passed() && !t.informational;
     if (failed && t.output.find('\n') != std::string::npos) {
-      auto [it, first] = outputs.emplace(t.output, t.name());
+      auto [it, first] = outputs.emplace(t.visibility + "\n" + t.output, t.name());
       if (!first) text.output = "Same as for " + curlyQuoted(it->second) + " above.\n";
     }
-    if (!t.rubric_note.empty())
+    // the per-mistake line tells how every check of its stub went: not on a stub whose checks
+    // are shown at different times
+    const bool one_time =
+        !later.count(t.stub) ||
+        std::all_of(report.tests.begin(), report.tests.end(), [&](const TestResult& other) {
+          return other.stub != t.stub || other.visibility == t.visibility;
+        });
+    if (!t.rubric_note.empty() && one_time)
       text.output = t.rubric_note + (text.output.empty() ? "\n" : "\n\n" + text.output);
     for (const Cause& cause : t.causes) {
       CauseShown shown;
@@ -227,6 +245,14 @@ std::string filesMarkdown(const GradeReport& report) {
   return out;
 }
 
+std::string scoreSentence(const GradeReport& report, const std::string& score,
+                          const std::string& verdict) {
+  if (!stubsShownLater(report).empty())
+    return "Some checks are shown later: the score and the verdict come with them.";
+  return score + points(report.score) + " / " + points(report.max_score) + verdict +
+         verdictId(report.verdict) + ".";
+}
+
 std::string summaryLine(const GradeReport& given) {
   const GradeReport report = cleaned(given);
   return "graded " + report.submission + " (" + std::to_string(report.edition) +
@@ -253,8 +279,8 @@ nlohmann::ordered_json resultsJson(const GradeReport& given) {
   out["execution_time"] =
       std::round((report.seconds.count("total") ? report.seconds.at("total") : 0) * 1000) / 1000;
   std::string summary = "Edition " + std::to_string(report.edition) + " (" + report.edition_source +
-                        "). Code score " + points(report.score) + " / " + points(report.max_score) +
-                        ". Verdict: " + verdictId(report.verdict) + ".\n\n" + filesMarkdown(report);
+                        "). " + scoreSentence(report, "Code score ", ". Verdict: ") + "\n\n" +
+                        filesMarkdown(report);
   if (!report.isolation.empty()) summary += "\nStudent code ran with: " + report.isolation + ".\n";
   if (!report.notes.empty()) summary += "\n" + notesMarkdown(report.notes);
   summary += "\n" + std::string(kNumberLegend) + "\n";

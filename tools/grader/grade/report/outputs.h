@@ -13,6 +13,7 @@
 // (points()).
 #pragma once
 #include <nlohmann/json.hpp>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -32,6 +33,18 @@ inline constexpr const char* kNumberLegend =
 
 // Checks of `stub` that count for points, and how many of them passed (the pages' stub tables).
 std::pair<int, int> checksPassed(const GradeReport& report, const std::string& stub);
+
+// The stubs a student sees later than the summary, or never: those with a check whose visibility
+// (the rubric's) is not "visible". Before their release nothing a student sees names their points,
+// checks passed or causes: the summaries leave them out, and the total and the verdict with them
+// (both count them); the per-mistake line (how every check of a stub went) is left out of a stub
+// whose checks are shown at different times.
+std::set<std::string> stubsShownLater(const GradeReport& report);
+
+// What a summary says of the whole: `score` "12 / 27.25" `verdict` "graded." ("Code score ",
+// ". Verdict: "), or, with a stub shown later, that the score and the verdict come later.
+std::string scoreSentence(const GradeReport& report, const std::string& score,
+                          const std::string& verdict);
 
 // Points as every output shows them: rounded to 0.001, without trailing zeros ("51.875", "80").
 std::string points(double value);
