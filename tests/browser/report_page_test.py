@@ -76,7 +76,7 @@ def main():
             points = b.js(section + ".filter((e) => e.classList.contains('gr-points'))"
                           ".map((e) => e.textContent)")
             checks.check(len(points) == 1 and ' checks passed' in points[0] and
-                         ('per-mistake rubric' in points[0] or 'scored per check' in points[0]),
+                         ('rubric: per-mistake' in points[0] or 'scored per check' in points[0]),
                          f'the stub says its points and the rule that gave them: {points}')
             likely = b.js(section + ".filter((e) => e.classList.contains('gr-likely'))"
                           ".map((e) => e.textContent)")
@@ -160,12 +160,17 @@ def check_gradescope_page(b, checks, data, page, screenshot):
     markup = b.js("return document.querySelectorAll('.gs-test table, .gs-test code, "
                   ".gs-test strong').length")
     checks.check(markup > 0, f'Gradescope page: the tests\' Markdown is rendered ({markup} elements)')
-    table = b.js("return document.querySelectorAll('.gs-output table tr').length")
+    # one row per stub that lost points (here one) under the head, the others on one line
+    table = b.js("return [...document.querySelectorAll('.gs-output table tr')]"
+                 ".map((tr) => tr.cells[0].textContent)")
     files = b.js("return document.querySelectorAll('.gs-output table').length")
     listed = b.js("return document.querySelectorAll('.gs-output li code').length")
-    checks.check(table == 9 and files == 1 and listed >= 3,
-                 f'Gradescope page: the HTML output shows the stub table ({files} tables, '
-                 f'{table} rows) and the files, each path in code ({listed})')
+    passed = b.js("return [...document.querySelectorAll('.gs-output p')].map((p) => p.textContent)"
+                  ".filter((t) => t.startsWith('Every check passed: '))")
+    checks.check(table == ['stub', 'Spheres::collide(Cloth*)'] and files == 1 and listed >= 3 and
+                 len(passed) == 1 and passed[0].count(' / ') == 7,
+                 f'Gradescope page: the HTML output has a row per stub that lost points ({table}), '
+                 f'the others on one line ({passed}), and the files, each path in code ({listed})')
     raw = b.js("return document.body.textContent.includes('|---')")
     checks.check(not raw, 'Gradescope page: no Markdown table left unrendered')
     # the pictures: one per HTML test, drawn, and nothing on the page can run

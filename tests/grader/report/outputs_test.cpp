@@ -148,8 +148,8 @@ TEST(MarkdownReport, AStubSaysItsPointsWhatIsWrongAndItsFailedChecksAsATable) {
   report.stub_score = {{"Spheres::collide(Cloth*)", 0}, {"RungeKuttaFourth::integrate", 3}};
   report.stub_max = {{"Spheres::collide(Cloth*)", 2}, {"RungeKuttaFourth::integrate", 3}};
   const std::string md = markdownReport(report);
-  EXPECT_NE(md.find("\n## Spheres::collide(Cloth*)\n\n**0 / 2**: scored per check (each failed "
-                    "check loses its own points); 0 of 1 checks passed.\n"),
+  EXPECT_NE(md.find("\n## Spheres::collide(Cloth*)\n\n**0 / 2**, 0 of 1 checks passed: scored per "
+                    "check (each failed check loses its own points).\n"),
             std::string::npos)
       << md;
   EXPECT_NE(md.find("| failed check | expected | yours | by how much |\n|---|---|---|---|\n"

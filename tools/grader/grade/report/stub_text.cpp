@@ -182,11 +182,11 @@ std::vector<StubText> stubTexts(const GradeReport& report) {
                     (text.checks == 1 ? std::string("its check passed")
                                       : "all " + std::to_string(text.checks) + " checks passed") +
                     ".";
-    else if (!rubric_note.empty())
-      text.points = score + ": one mistake, per-mistake rubric; " + checks + ". " + rubric_note;
+    else if (!rubric_note.empty())  // the per-mistake rule says itself (rubric.cpp)
+      text.points = score + ", " + checks + ". " + rubric_note;
     else
       text.points =
-          score + ": scored per check (each failed check loses its own points); " + checks + ".";
+          score + ", " + checks + ": scored per check (each failed check loses its own points).";
     stubs.push_back(std::move(text));
   }
   return stubs;

@@ -30,8 +30,10 @@ CheckRow checkRow(const TestResult& test, std::size_t index);
 
 struct StubText {
   std::string stub;
-  // Markdown, one paragraph: "**12 / 20**: one mistake, per-mistake rubric; 1 of 8 checks
-  // passed.", then the rubric's own line when it scored the stub per mistake.
+  // Markdown, one paragraph: its points and checks passed, then the rule that gave them: "**12 /
+  // 20**, 1 of 8 checks passed. One mistake (`damper-sign`) explains every failed check of this
+  // stub: it loses 40 % of its points once (rubric: per-mistake; ...)." (the rubric's line) or
+  // "..., 1 of 8 checks passed: scored per check (each failed check loses its own points)."
   std::string points;
   // One Markdown block per cause of the failed checks, each cause once (results.h's Cause as
   // causeMarkdown renders it: head, what was measured, why and example, quoted lines).
