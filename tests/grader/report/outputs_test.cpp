@@ -137,6 +137,41 @@ TEST(CauseMarkdown, ALikelyCauseExplainsItselfOnceAGuessStaysShort) {
 // A stub that lost points, as a student reads it: its points and the rule, what is wrong, the
 // failed checks as a table (check, expected, yours, by how much), the first failed check in full;
 // a stub whose checks all passed is named once.
+// A guess that only says how a probe's run ended (`crashed`, `timed-out`, `undefined-behaviour`)
+// beside a likely cause of the same check is left out of every output: the named cause is what
+// made it end so. Alone, it stays.
+TEST(AllWriters, AGuessTheNamedCauseExplainsIsLeftOut) {
+  GradeReport report = sampleReport();
+  report.tests[1].causes = {
+      Cause{cause::kDanglingAutoExpression, true, {}, {}, "An auto holds an expression.", {}, {}},
+      Cause{cause::kCrashed, false, {}, {}, "It crashed.", {}, {}},
+      Cause{cause::kTimedOut, false, {}, {}, "It ran too long.", {}, {}}};
+  TestResult alone = makeTest("ImplicitEuler::integrate", "one step on a random state", 1);
+  alone.max_score = 1;
+  alone.causes = {Cause{cause::kCrashed, false, {}, {}, "It crashed.", {}, {}}};
+  report.tests.push_back(alone);
+  const GradeReport clean = cleaned(report);
+  ASSERT_EQ(clean.tests.size(), 3u);
+  EXPECT_EQ(clean.tests[1].causeIds(), std::vector<std::string>{cause::kDanglingAutoExpression});
+  EXPECT_EQ(clean.tests[2].causeIds(), std::vector<std::string>{cause::kCrashed});
+  const std::string md = markdownReport(report);
+  const std::string json = resultsJson(report).dump();
+  const std::string xml = junitXml(report);
+  const std::string html = studentReportHtml(report, {});
+  for (const std::string& out : {md, json, xml, html}) {
+    EXPECT_NE(out.find(cause::kDanglingAutoExpression), std::string::npos) << out;
+    EXPECT_EQ(out.find(cause::kTimedOut), std::string::npos) << out;
+    // `crashed` only for the check that names nothing else
+    EXPECT_NE(out.find(cause::kCrashed), std::string::npos) << out;
+  }
+  EXPECT_EQ(countOf(md, "(`crashed`)"), 1u) << md;
+  BatchEntry entry;
+  entry.name = "sub";
+  const BatchRow row = rowOf(entry, report);
+  EXPECT_EQ(row.causes, (std::vector<std::pair<std::string, bool>>{
+                            {cause::kDanglingAutoExpression, true}, {cause::kCrashed, false}}));
+}
+
 TEST(MarkdownReport, AStubSaysItsPointsWhatIsWrongAndItsFailedChecksAsATable) {
   GradeReport report = sampleReport();
   report.tests[1].output =
