@@ -113,6 +113,42 @@ TEST(StubCounts, EveryDocumentStatesTheCountsOfTheCode) {
   EXPECT_GE(documents, 15);
 }
 
+// The TA's quick start (docs/grading.md) is short, states both counts as the README does, and its
+// table of default points is the code's (stubTable()), with their sum.
+TEST(StubCounts, TheQuickStartStatesTheCountsAndPointsOfTheCode) {
+  const fs::path guide = fs::path(CLOTHREF_SOURCE_DIR) / "docs" / "grading.md";
+  std::ifstream in(guide);
+  ASSERT_TRUE(in) << guide;
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  EXPECT_LE(lines.size(), 300u) << "docs/grading.md is a quick start: the rest goes to "
+                                   "docs/grading-reference.md";
+  const std::string text = readFile(guide);
+  const std::string both =
+      std::string(kWords[stubsIn(2022)]) + " course stubs (" + kWords[stubsIn(2024)] + " in 2024)";
+  EXPECT_NE(text.find(both), std::string::npos) << "docs/grading.md does not say '" << both << "'";
+  // "| `Cloth::initializeSpring` | 15 | 10 |": a row per stub, "—" where the edition has none
+  const auto shown = [](double points) {
+    if (points == 0) return std::string("\xE2\x80\x94");
+    std::ostringstream out;
+    out << points;
+    return out.str();
+  };
+  double total_2022 = 0, total_2024 = 0;
+  for (const grader::StubInfo& info : grader::stubTable()) {
+    const std::string row = std::string("| `") + info.name + "` | " + shown(info.points_2022) +
+                            " | " + shown(info.points_2024) + " |";
+    EXPECT_EQ(std::count(lines.begin(), lines.end(), row), 1) << "docs/grading.md lacks " << row;
+    total_2022 += info.points_2022;
+    total_2024 += info.points_2024;
+  }
+  ASSERT_EQ(total_2022, total_2024);
+  std::ostringstream sum;
+  sum << "code part, " << total_2022 << " in both editions";
+  EXPECT_NE(text.find(sum.str()), std::string::npos)
+      << "docs/grading.md does not say '" << sum.str() << "'";
+}
+
 // The checker: a wrong count, the 2024 count without its edition, is caught; the right ones and
 // counts of something else are not.
 TEST(StubCounts, TheCheckerCatchesAWrongCount) {

@@ -86,6 +86,8 @@ void printBatchEnd(const grader::BatchSummary& summary) {
               << grader::verdictId(summary.not_graded[k].second) << '\n';
   if (summary.not_graded.size() > 20)
     std::cerr << "  ... and " << summary.not_graded.size() - 20 << " more (the CSV has them all)\n";
+  for (const std::string& isolation : summary.isolation)
+    std::cerr << "clothref grade: student code ran with: " << grader::safeName(isolation) << '\n';
   std::cerr << "clothref grade: CSV " << grader::safeName(summary.csv.string())
             << "; class overview " << grader::safeName(summary.index.string()) << '\n';
 }

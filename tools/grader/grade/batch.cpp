@@ -359,6 +359,9 @@ BatchSummary runBatch(const std::vector<fs::path>& dirs, const BatchOptions& opt
       ++summary.failed;
       summary.not_graded.push_back({row->name, row->verdict});
     }
+    if (!row->isolation.empty() && std::find(summary.isolation.begin(), summary.isolation.end(),
+                                             row->isolation) == summary.isolation.end())
+      summary.isolation.push_back(row->isolation);
     summary.rows.push_back(std::move(*row));
   }
   // The CSV where --csv says (the user named it: written as any named output), else beside the

@@ -50,6 +50,19 @@ BatchRow rowOf(const BatchEntry& entry, const GradeReport& report) {
   row.verdict = report.verdict;
   row.isolation = safeName(report.isolation);
   row.seconds = report.seconds.count("total") ? report.seconds.at("total") : 0;
+  // the causes of its failed checks as every output names them (cleaned: outputs.h), each once,
+  // likely when a check names it as likely
+  for (const TestResult& t : cleaned(report).tests) {
+    if (t.passed() || t.informational) continue;
+    for (const Cause& cause : t.causes) {
+      auto it = std::find_if(row.causes.begin(), row.causes.end(),
+                             [&](const auto& named) { return named.first == cause.id; });
+      if (it == row.causes.end())
+        row.causes.push_back({cause.id, cause.likely});
+      else
+        it->second = it->second || cause.likely;
+    }
+  }
   return row;
 }
 
@@ -66,6 +79,9 @@ nlohmann::ordered_json rowJson(const BatchRow& row) {
   json["isolation"] = row.isolation;
   json["problem"] = row.problem;
   json["seconds"] = row.seconds;
+  nlohmann::ordered_json causes = nlohmann::ordered_json::array();
+  for (const auto& [id, likely] : row.causes) causes.push_back({{"id", id}, {"likely", likely}});
+  json["causes"] = causes;
   return json;
 }
 
@@ -84,6 +100,8 @@ BatchRow rowFromJson(const nlohmann::json& json, const std::string& where) {
     row.isolation = json.at("isolation").get<std::string>();
     row.problem = json.at("problem").get<std::string>();
     row.seconds = json.at("seconds").get<double>();
+    for (const auto& cause : json.at("causes"))
+      row.causes.push_back({cause.at("id").get<std::string>(), cause.at("likely").get<bool>()});
     return row;
   } catch (const nlohmann::json::exception& error) {
     throw InputError(where + ": not a batch row (" + error.what() + ")");
@@ -103,6 +121,7 @@ std::vector<ClassRow> classRows(const fs::path& batch_dir, const std::vector<Bat
     c.verdict = row.verdict;
     c.problem = row.problem;
     c.seconds = row.seconds;
+    c.isolation = row.isolation;
     std::error_code error;
     c.report = row.name + (fs::exists(batch_dir / row.name / "report.html", error) ? "/report.html"
                                                                                    : "/report.md");
@@ -142,7 +161,7 @@ std::string batchCsv(const std::vector<BatchRow>& rows, bool header) {
   if (header) {
     out += "submission,edition";
     for (const std::string& stub : stubNames()) out += "," + csvField(stub);
-    out += ",total,max,verdict,isolation,seconds\n";
+    out += ",total,max,verdict,causes,guesses,seconds\n";
   }
   for (const BatchRow& row : rows) {
     out += csvField(row.name) + "," + (row.edition ? std::to_string(row.edition) : "");
@@ -150,13 +169,19 @@ std::string batchCsv(const std::vector<BatchRow>& rows, bool header) {
       auto it = row.stub_score.find(stub);
       out += "," + (it == row.stub_score.end() ? std::string() : number(it->second));
     }
+    // the cause ids, likely ones and guesses apart, each list one field ("a b": no id has a space)
+    std::string causes, guesses;
+    for (const auto& [id, likely] : row.causes) {
+      std::string& list = likely ? causes : guesses;
+      list += (list.empty() ? "" : " ") + id;
+    }
     std::ostringstream seconds;
     seconds.setf(std::ios::fixed);
     seconds.precision(1);
     seconds << row.seconds;
     out += "," + number(row.score) + "," + number(row.max_score) + "," +
-           csvField(verdictId(row.verdict)) + "," + csvField(row.isolation) + "," + seconds.str() +
-           "\n";
+           csvField(verdictId(row.verdict)) + "," + csvField(causes) + "," + csvField(guesses) +
+           "," + seconds.str() + "\n";
   }
   return out;
 }

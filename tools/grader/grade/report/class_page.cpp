@@ -1,6 +1,7 @@
 // BATCHDIR/index.html, the class at a glance (class_page.h).
 #include "grader/grade/report/class_page.h"
 
+#include <algorithm>
 #include <map>
 #include <string>
 #include <utility>
@@ -49,6 +50,12 @@ std::string batchIndexHtml(const std::vector<ClassRow>& rows) {
   }
   data["checks"] = checks;
   data["submissions"] = submissions;
+  std::vector<std::string> isolation;  // each description once, in the rows' order
+  for (const ClassRow& row : rows)
+    if (!row.isolation.empty() &&
+        std::find(isolation.begin(), isolation.end(), row.isolation) == isolation.end())
+      isolation.push_back(row.isolation);
+  data["isolation"] = isolation;
   return pages::fillTemplate(pages::pageAsset("class.html"),
                              {{"STYLE", std::string(pages::pageAsset("viewer.css"))},
                               {"SCRIPT", std::string(pages::pageAsset("class.js"))},

@@ -21,16 +21,19 @@ struct ClassRow {
   std::map<std::string, double> stub_score, stub_max;  // per course stub
   double score = 0, max_score = 0;
   Verdict verdict = Verdict::Graded;
-  std::string problem;  // why it is not gradable, else empty
-  double seconds = 0;   // wall time of grading it
-  std::string report;   // its report, relative to BATCHDIR ("alice/report.html")
+  std::string problem;    // why it is not gradable, else empty
+  double seconds = 0;     // wall time of grading it
+  std::string isolation;  // how its student code was isolated (the page says each once)
+  std::string report;     // its report, relative to BATCHDIR ("alice/report.html")
   std::vector<std::pair<std::string, bool>> checks;  // check name, passed; results.json's order
   std::vector<std::pair<std::string, bool>> causes;  // cause id, likely on some check
 };
 
-// The class overview: a sortable, filterable table (score per stub, total, verdict, time, report
-// link), a histogram of totals, the pass rate per stub and per check, and per named cause the
-// submissions it was found in.
+// The class overview: a first line saying how many were graded and how many need attention and
+// why (their verdicts), how student code was isolated (each description once), a sortable,
+// filterable table (score per stub, total, verdict, causes, time, report link) with its legend, a
+// histogram of totals, the pass rate per stub and per check, and per named cause the submissions
+// it was found in.
 std::string batchIndexHtml(const std::vector<ClassRow>& rows);
 
 }  // namespace clothref::grader
