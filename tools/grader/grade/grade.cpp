@@ -4,9 +4,12 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <chrono>
 #include <exception>
 #include <fstream>
+#include <map>
+#include <mutex>
 #include <random>
 #include <regex>
 #include <set>
@@ -87,10 +90,61 @@ void chooseEdition(const SubmissionFiles& files, int forced, GradeReport& report
   }
 }
 
+bool isUnder(const fs::path& path, const fs::path& root) {
+  const std::string p = path.lexically_normal().string(), r = root.lexically_normal().string();
+  return p == r || (p.size() > r.size() && p.compare(0, r.size(), r) == 0 && p[r.size()] == '/');
+}
+
+// Whether `dir` (a folder beside the submission) holds a student file within three levels: another
+// student's submission, in a TA's usual layout (subs/alice, subs/bob).
+bool holdsStudentFiles(const fs::path& dir) {
+  std::error_code error;
+  for (auto it = fs::recursive_directory_iterator(dir, fs::directory_options::none, error);
+       !error && it != fs::recursive_directory_iterator(); it.increment(error)) {
+    if (it.depth() > 2) it.disable_recursion_pending();
+    std::string name = it->path().filename().string();
+    for (char& c : name) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    for (const std::string& file : studentFileNames())
+      if (name == file) return true;
+  }
+  return false;
+}
+
+// The folders beside a single grade's submission that its student's processes must not read, as
+// a batch covers the other submissions (docs/grading.md, "Installing the grader where students'
+// code runs"). Where folders can be covered (bubblewrap, a private mount namespace): the
+// submission's parent, unless it is a system folder or holds TMPDIR, else the submission and
+// every folder beside it. Where they cannot (their permissions must close them, or the grade is
+// refused): the folders beside it that hold a student file (another submission); the
+// submission itself is the student's own.
+std::vector<fs::path> neighbours(const fs::path& dir, bool can_cover) {
+  std::error_code error;
+  const fs::path submission = fs::weakly_canonical(fs::absolute(dir), error);
+  const fs::path parent = submission.parent_path();
+  if (parent.empty() || parent == submission) return {};
+  const fs::path temp = fs::weakly_canonical(fs::temp_directory_path(error), error);
+  static const char* const system[] = {"/",        "/home",    "/root", "/tmp", "/var",
+                                       "/var/tmp", "/srv",     "/opt",  "/mnt", "/media",
+                                       "/run",     "/dev/shm", "/usr",  "/etc"};
+  bool coverable = can_cover && !isUnder(temp, parent);
+  for (const char* folder : system) coverable = coverable && parent != fs::path(folder);
+  if (coverable) return {parent};
+  std::vector<fs::path> found;
+  if (can_cover) found.push_back(submission);
+  for (const auto& entry : fs::directory_iterator(parent, error)) {
+    const fs::path path = entry.path();
+    if (path == submission || entry.is_symlink(error) || !entry.is_directory(error)) continue;
+    if (isUnder(temp, path) || isUnder(path, "/usr") || isUnder(path, "/proc")) continue;
+    if (holdsStudentFiles(path)) found.push_back(path);
+  }
+  return found;
+}
+
 // This grade's own uids (leased host-wide when root), and the folders of ours its student's
 // processes must never read: the grader's (sources, build, install data, reference, cache) and
 // the ones the caller names (other submissions, the batch folder).
-Isolation isolationFor(const CourseToolchain& toolchain, const GradeOptions& options) {
+Isolation isolationFor(const CourseToolchain& toolchain, const GradeOptions& options,
+                       const fs::path& submission) {
   Isolation isolation = detectIsolation();
   if (isolation.uid >= 0) {
     const UidLease lease = leaseUids();
@@ -101,12 +155,20 @@ Isolation isolationFor(const CourseToolchain& toolchain, const GradeOptions& opt
   isolation.ours = ourFolders(toolchain);
   for (const fs::path& path : options.private_paths)
     isolation.ours.push_back(fs::absolute(path).lexically_normal());
+  (void)submission;
+  (void)neighbours;
+  // Outermost only: a folder inside another is covered with it (and could not be mounted on once
+  // the outer one is covered).
+  std::vector<fs::path> outermost;
+  for (const fs::path& path : isolation.ours) {
+    bool inside = false;
+    for (const fs::path& other : isolation.ours)
+      inside = inside || (other != path && isUnder(path, other));
+    if (!inside && std::find(outermost.begin(), outermost.end(), path) == outermost.end())
+      outermost.push_back(path);
+  }
+  isolation.ours = outermost;
   return isolation;
-}
-
-bool isUnder(const fs::path& path, const fs::path& root) {
-  const std::string p = path.lexically_normal().string(), r = root.lexically_normal().string();
-  return p == r || (p.size() > r.size() && p.compare(0, r.size(), r) == 0 && p[r.size()] == '/');
 }
 
 // Refuses to grade (InputError, one line) where student code could read a folder of ours: the
@@ -162,6 +224,7 @@ ProbeContext probeContext(const GradeReport& report, const Rubric& rubric,
   context.limits.isolation = isolation;
   context.limits.keep_files = !options.keep_work.empty();
   context.limits.log = std::make_shared<RunLog>();
+  context.limits.answers = context.limits.log;
   context.seed = options.seed;
   // the bytes the finder read: the student's path is never opened again
   for (const UsedFile& used : build.files)
@@ -240,6 +303,25 @@ void addDanglingAutoCauses(const std::vector<UsedFile>& files, const fs::path& s
   }
 }
 
+// The stubs whose probe answered with NaN or infinity (a scored run's verdict, by its folder).
+std::set<std::string> nonFiniteStubs(RunLog& log) {
+  std::map<std::string, std::string> stub_of;
+  for (const auto& [folder, stub] : probeFolders()) stub_of[folder] = stub;
+  std::set<std::string> stubs;
+  std::lock_guard<std::mutex> lock(log.mutex);
+  for (const std::string& folder : log.non_finite)
+    if (stub_of.count(folder) && !stub_of[folder].empty()) stubs.insert(stub_of[folder]);
+  return stubs;
+}
+
+// The causes whose model can make non-finite numbers (the catalogue's "non_finite").
+std::set<std::string> nonFiniteCauses(const Catalogue& catalogue) {
+  std::set<std::string> ids;
+  for (const auto& [id, entry] : catalogue.entries)
+    if (entry.non_finite) ids.insert(id);
+  return ids;
+}
+
 // Course order of stubs, then the order the probes produced.
 void sortInCourseOrder(std::vector<TestResult>& tests) {
   std::stable_sort(tests.begin(), tests.end(), [](const TestResult& a, const TestResult& b) {
@@ -306,12 +388,14 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
   const Catalogue catalogue =
       loadCatalogue(options.toolchain.course_dir.parent_path() / "diagnoses.json");
 
-  const Isolation isolation = isolationFor(options.toolchain, options);
+  const Isolation isolation = isolationFor(options.toolchain, options, dir);
   report.isolation = isolation.describe();
   // What the grade's uids left in the shared temporary folders goes with the grade.
+  // What the grade's uids left running (a compile's child) goes too, before the lease is freed.
   struct Sweep {
     const Isolation& isolation;
     ~Sweep() {
+      if (isolation.uid >= 0) killProcessesOf({isolation.uid, isolation.tool_uid});
       for (const int uid : {isolation.uid, isolation.tool_uid})
         if (uid >= 0) removeOwnedBy(uid, sharedTemporaryFolders());
     }
@@ -350,6 +434,8 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
   for (auto& group : results)
     for (auto& t : group) report.tests.push_back(std::move(t));
   addDanglingAutoCauses(build.files, scratch.build(), report.tests);
+  (void)nonFiniteStubs;
+  (void)nonFiniteCauses;
   fillCauseTexts(catalogue, report.tests);
   sortInCourseOrder(report.tests);
   applyRubric(rubric, report);

@@ -270,7 +270,9 @@ std::vector<long> apportion(long units, const std::vector<double>& weights) {
 // The one likely cause every failed check of a stub names, when the stub has a failed check, no
 // failed check names another likely cause or none, and the rubric has a deduction for it; else
 // "". Guesses are not counted, nor `non-finite` beside another likely cause: it is that cause's
-// symptom (a division by a zero speed makes NaN), not a second mistake.
+// symptom (a division by a zero speed makes NaN), not a second mistake. That holds because
+// markNonFinite ran first: beside `non-finite`, only a cause that can make non-finite numbers
+// is still likely; `non-finite` alone has no deduction, so NaN and garbage are scored per check.
 std::string oneMistake(const Rubric& rubric, const std::vector<const TestResult*>& tests) {
   std::string mistake;
   for (const TestResult* test : tests) {
@@ -333,6 +335,26 @@ long perMistake(const Rubric& rubric, GradeReport& report, const std::vector<std
 }
 
 }  // namespace
+
+void markNonFinite(const std::set<std::string>& non_finite_stubs,
+                   const std::set<std::string>& can_be_non_finite, std::vector<TestResult>& tests) {
+  std::set<std::string> said_per_check;  // stubs whose probe named non-finite on its checks
+  for (const TestResult& test : tests)
+    if (!test.passed() && test.names(cause::kNonFinite)) said_per_check.insert(test.stub);
+  for (TestResult& test : tests) {
+    if (test.passed() || test.informational) continue;
+    const bool non_finite = test.names(cause::kNonFinite) ||
+                            (non_finite_stubs.count(test.stub) && !said_per_check.count(test.stub));
+    if (!non_finite) continue;
+    test.addCause(cause::kNonFinite);
+    for (Cause& cause : test.causes)
+      if (cause.likely && cause.id != cause::kNonFinite && !can_be_non_finite.count(cause.id))
+        cause.likely = false;
+    // the likely ones first, as the probes order them
+    std::stable_partition(test.causes.begin(), test.causes.end(),
+                          [](const Cause& cause) { return cause.likely; });
+  }
+}
 
 void applyRubric(const Rubric& rubric, GradeReport& report) {
   std::map<std::string, std::vector<std::size_t>> of_stub;  // stub -> its scored tests
