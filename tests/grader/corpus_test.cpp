@@ -168,9 +168,9 @@ void print(const std::string& set, const Figures& f) {
 
 const fs::path kSource = CLOTHREF_SOURCE_DIR;
 
-// The hand-written set's figures when the floors were set (docs/grading.md, "How well the causes
-// are named"): 181 of 181 stub verdicts right, 88 of 90 labelled causes named as likely, no likely
-// cause the labels do not allow.
+// The hand-written set's figures when the floors were set (docs/grading-reference.md, "How well the
+// causes are named"): 181 of 181 stub verdicts right, 88 of 90 labelled causes named as likely, no
+// likely cause the labels do not allow.
 constexpr int kHandWrittenVerdictsRight = 181;
 constexpr int kHandWrittenCausesRight = 88;
 constexpr int kHandWrittenCausesWrong = 0;
@@ -193,8 +193,8 @@ TEST(RealCorpus, GeneratedCorpusVerdictsAllRightCausesNamedNoneWrong) {
 
 // The hand-written submissions (tests/grader/handwritten/README.md): written without reading the
 // grader, with mistakes the catalogue does not name. The floors are what the grader achieved when
-// this test was written (the table of docs/grading.md, "How well the causes are named"): a change
-// that loses ground fails here; one that gains should raise them.
+// this test was written (the table of docs/grading-reference.md, "How well the causes are named"):
+// a change that loses ground fails here; one that gains should raise them.
 TEST(RealCorpus, HandWrittenSubmissionsAtLeastAsGoodAsMeasured) {
   TempDir temp;
   temp.closeToOthers();

@@ -543,9 +543,9 @@ TEST(PerMistake, EveryCatalogueCauseHasADefault) {
     }
 }
 
-// docs/grading.md's table of deductions states every default of the table.
+// docs/grading-reference.md's table of deductions states every default of the table.
 TEST(PerMistake, TheDocsStateEveryDefault) {
-  std::ifstream in(std::string(CLOTHREF_SOURCE_DIR) + "/docs/grading.md");
+  std::ifstream in(std::string(CLOTHREF_SOURCE_DIR) + "/docs/grading-reference.md");
   std::stringstream docs;
   docs << in.rdbuf();
   for (const CauseDeduction& cause : causeDeductions()) {

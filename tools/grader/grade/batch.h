@@ -1,7 +1,7 @@
-// Grading many submissions in one run (`clothref grade DIR... --out BATCHDIR`, docs/grading.md,
-// "Batch"): submissions in parallel, progress on stderr, one folder of results per submission and
-// a CSV summary rebuilt from those folders, resume after an interruption, and shards so a large
-// batch splits across machines.
+// Grading many submissions in one run (`clothref grade DIR... --out BATCHDIR`,
+// docs/grading-reference.md, "Batch"): submissions in parallel, progress on stderr, one folder of
+// results per submission and a CSV summary rebuilt from those folders, resume after an
+// interruption, and shards so a large batch splits across machines.
 //
 // BATCHDIR/<name>/ holds results.json, report.md and, written last and atomically, row.json: the
 // submission's CSV row. row.json is the "graded" marker a rerun skips on. BATCHDIR/.cache holds
@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "grader/grade/grade.h"
+#include "grader/grade/report/class_page.h"
 
 namespace clothref::grader {
 
@@ -63,6 +64,13 @@ nlohmann::ordered_json rowJson(const BatchRow& row);
 // Throws InputError naming `where` when a field is missing or has the wrong type.
 BatchRow rowFromJson(const nlohmann::json& json, const std::string& where);
 
+// The overview's rows for `rows` (the batch's, sorted by name) of the batch in `batch_dir`: each
+// folder's results.json read for its checks and causes (extra_data's causes with whether each is
+// likely; else a test's tags after its stub). A folder whose results.json is missing or unreadable
+// still gets its row, without checks.
+std::vector<ClassRow> classRows(const std::filesystem::path& batch_dir,
+                                const std::vector<BatchRow>& rows);
+
 // The CSV (RFC 4180; fields with a comma or quote are quoted; every field is valid UTF-8 on one
 // line, control characters and line breaks escaped as in text.h): a header line
 //   submission,edition,<the eight stubs of stubNames()>,total,max,verdict,isolation,seconds
@@ -80,7 +88,7 @@ struct BatchOptions {
   bool regrade = false;  // grade again even when row.json exists
   bool quiet = false;    // no progress on stderr
   // Grade a folder that holds several whole submissions as one (else it is not gradable: the
-  // folder names them; run/submission.h, submissionsBelow).
+  // folder names them; submission/submission.h, submissionsBelow).
   bool one_submission = false;
   GradeOptions grade;  // per submission (probe_jobs and toolchain.jobs are set from cores/jobs)
 };

@@ -13,7 +13,8 @@
 
 namespace clothref::grader {
 
-// One entry of the catalogue. The JSON's "stub" is for the docs table only (docs/grading.md).
+// One entry of the catalogue. The JSON's "stub" is for the docs table only
+// (docs/grading-reference.md).
 struct Diagnosis {
   std::string id;
   std::string recognised_by;  // "signature", "property", "guess", "signature + pattern", ...

@@ -11,9 +11,7 @@
 #include <map>
 #include <mutex>
 #include <random>
-#include <regex>
 #include <set>
-#include <sstream>
 #include <thread>
 
 #include "clothref/io/error.h"
@@ -21,38 +19,14 @@
 #include "grader/grade/cause_ids.h"
 #include "grader/grade/probes/probes.h"
 #include "grader/grade/run/folders.h"
-#include "grader/grade/run/source_text.h"
+#include "grader/grade/submission/source_patterns.h"
+#include "grader/grade/submission/source_text.h"
 #include "grader/grade/text.h"
 
 namespace clothref::grader {
 namespace fs = std::filesystem;
 
 namespace {
-
-// Lines that hold an Eigen *expression* in an `auto` variable (e.g. `auto d = p.position(i) -
-// p.position(j);`): it refers to temporaries that are gone when it is read. Not when the
-// expression ends in a call that returns a plain value (`.normalized()`, `.eval()`, `.norm()`,
-// `.dot(...)`, `.cross3(...)`): those hold a vector or a number and nothing dangles.
-std::vector<SourceQuote> autoExpressionLines(const std::string& file, const std::string& source) {
-  std::istringstream in(source);
-  static const std::regex declaration(R"(\bauto\s*&{0,2}\s*\w+\s*=\s*([^;]*);)");
-  static const std::regex over_state(
-      R"((position|velocity|acceleration)\s*\([^;]*\)\s*[-+*/]|[-+*/]\s*[\w>.-]*(position|velocity|acceleration)\s*\()");
-  static const std::regex plain_value(
-      R"(\.\s*(normalized|eval|norm|squaredNorm|stableNorm|sum|dot|cross3|cross|value)\s*\([^()]*\)\s*$)");
-  std::vector<SourceQuote> lines;
-  int number = 0;
-  for (std::string line; std::getline(in, line);) {
-    ++number;
-    std::smatch match;
-    if (!std::regex_search(line, match, declaration)) continue;
-    const std::string value = match[1].str();
-    if (!std::regex_search(value, over_state) || std::regex_search(value, plain_value)) continue;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    lines.push_back({file, number, line.substr(line.find_first_not_of(" \t"))});
-  }
-  return lines;
-}
 
 double since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -111,7 +85,7 @@ bool holdsStudentFiles(const fs::path& dir) {
 }
 
 // The folders beside a single grade's submission that its student's processes must not read, as
-// a batch covers the other submissions (docs/grading.md, "Installing the grader where students'
+// a batch covers the other submissions (docs/grading-reference.md, "Installing the grader where students'
 // code runs"). Where folders can be covered (bubblewrap, a private mount namespace): the
 // submission's parent, unless it is a system folder or holds TMPDIR, else the submission and
 // every folder beside it. Where they cannot (their permissions must close them, or the grade is
@@ -175,7 +149,7 @@ Isolation isolationFor(const CourseToolchain& toolchain, const GradeOptions& opt
 // scratch folder or the course kit inside one (TMPDIR in our tree), a student uid that cannot
 // reach its own folder (TMPDIR inside a closed folder), or, without bubblewrap and without a
 // private mount namespace to cover them, a folder of ours that a student uid can reach by its
-// permissions (docs/grading.md, "Installing the grader where students' code runs").
+// permissions (docs/grading-reference.md, "Installing the grader where students' code runs").
 void checkConfinement(const Isolation& isolation, const GradeScratch& scratch,
                       const CourseKit* kit) {
   if (isolation.uid < 0) return;

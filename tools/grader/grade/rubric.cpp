@@ -15,8 +15,8 @@ namespace clothref::grader {
 
 namespace {
 
-// The kinds of mistake and what each costs once (docs/grading.md, "Points follow mistakes"): a
-// slip costs little, a missing piece of physics more, a wrong method half the stub.
+// The kinds of mistake and what each costs once (docs/grading-reference.md, "Points follow
+// mistakes"): a slip costs little, a missing piece of physics more, a wrong method half the stub.
 constexpr const char* kConstant = "a wrong constant";
 constexpr const char* kEdge = "a missed special case";
 constexpr const char* kSign = "a wrong sign";

@@ -6,9 +6,9 @@
 
 #include "clothref/core/cloth.h"
 #include "grader/grade/cause_ids.h"
-#include "grader/grade/probes/cause_evidence.h"
-#include "grader/grade/probes/formula_variants.h"
-#include "grader/grade/probes/spring_fit.h"
+#include "grader/grade/explain/cause_evidence.h"
+#include "grader/grade/explain/spring_fit.h"
+#include "grader/grade/mistakes/formula_variants.h"
 #include "grader/grade/probes/util.h"
 
 namespace clothref::grader {

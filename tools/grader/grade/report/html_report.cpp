@@ -14,8 +14,6 @@
 
 namespace clothref::grader {
 
-namespace fs = std::filesystem;
-
 namespace {
 
 const char* kReportStyle = R"(
@@ -75,10 +73,8 @@ const char* kInformationStatus[] = {"differs", "identical"};
 
 }  // namespace
 
-GradeReport gradeWithWholeRun(const fs::path& dir, const GradeOptions& options,
-                              nlohmann::ordered_json& whole_run_view) {
-  whole_run_view = nullptr;
-  GradeReport report = gradeSubmission(dir, options);
+nlohmann::ordered_json wholeRunView(GradeReport& report) {
+  nlohmann::ordered_json whole_run_view = nullptr;
   for (const TestResult& t : report.tests) {
     if (!t.traces) continue;
     try {
@@ -93,7 +89,7 @@ GradeReport gradeWithWholeRun(const fs::path& dir, const GradeOptions& options,
                              codeSpan(safeName(problem.what())));
     }
   }
-  return report;
+  return whole_run_view;
 }
 
 std::string studentReportHtml(const GradeReport& given,

@@ -20,8 +20,8 @@
 
 namespace clothref::grader {
 
-// How the checks' numbers read (probes/compare_text.h writes them), said once at the top of every
-// report (results.json's summary, report.md, report.html) and in docs/grading.md.
+// How the checks' numbers read (explain/compare_text.h writes them), said once at the top of every
+// report (results.json's summary, report.md, report.html) and in docs/grading-reference.md.
 inline constexpr const char* kNumberLegend =
     "How to read the checks: numbers have 6 significant digits (C's `%.6g`: 0.000371004, "
     "7.45961e-05), and the numbers of one comparison share one notation. Where yours differs from "

@@ -15,7 +15,7 @@
 #include "grader/grade/results.h"
 #include "grader/grade/run/folders.h"
 #include "grader/grade/run/sandbox.h"
-#include "grader/grade/run/submission.h"
+#include "grader/grade/submission/submission.h"
 
 namespace clothref::grader {
 

@@ -114,10 +114,10 @@ struct ChildRun {
   std::string sanitizer_report;  // what came on the sanitizers' channel (at most 1 MiB)
   // One line for a report: "crashed (SIGSEGV)", "timed out after 20 s", ...
   std::string describe() const;
-  // What the run means for the submission (docs/grading.md, "Verdicts"): Graded (it finished and
-  // answered with finite numbers), NonFinite, TimedOut (wall or CPU limit), MemoryLimit
-  // (std::bad_alloc under the address-space limit, or the memory cgroup's limit), OutputLimit
-  // (file size), Crashed,
+  // What the run means for the submission (docs/grading-reference.md, "Verdicts"): Graded (it
+  // finished and answered with finite numbers), NonFinite, TimedOut (wall or CPU limit),
+  // MemoryLimit (std::bad_alloc under the address-space limit, or the memory cgroup's limit),
+  // OutputLimit (file size), Crashed,
   // ExitedNonZero, NoAnswer, GraderError (NotStarted: ours).
   Verdict verdict() const;
 };
@@ -151,8 +151,8 @@ ChildRun runProbe(const std::filesystem::path& executable, probe::ProbeMessage r
                   const std::filesystem::path& work_dir, const ChildLimits& limits);
 
 // A scored probe: `request` run in both probeVariants() with a fixed address layout, so that the
-// answer is a function of the files alone. The rule (docs/grading.md, "One submission, one
-// score"): both ended alike (the same answer to the bit, or the same failure) -> the first run;
+// answer is a function of the files alone. The rule (docs/grading-reference.md, "One submission,
+// one score"): both ended alike (the same answer to the bit, or the same failure) -> the first run;
 // otherwise the run is Varies, whatever either answered, and its checks fail. A first run stopped
 // at a limit (time, output, disk) or not started is not repeated. One verdict goes to the log.
 ChildRun runProbeTwice(const std::filesystem::path& executable, const probe::ProbeMessage& request,

@@ -1,5 +1,5 @@
-// The folders student code touches, and who may read them (docs/grading.md, "Sandbox"): one
-// grade's scratch folder, laid out so that each part belongs to the uid that needs it and to no
+// The folders student code touches, and who may read them (docs/grading-reference.md, "Sandbox"):
+// one grade's scratch folder, laid out so that each part belongs to the uid that needs it and to no
 // other student; the course kit, the only files of ours that compiles of student code read; and
 // the link-proof tree operations the grader uses on folders a student process could write into
 // (copy, remove, measure), which never follow a symbolic link.

@@ -1,6 +1,6 @@
 // The sanitizer run the grader starts by itself when a probe of a student's code crashed or
-// answered differently in its two runs (docs/grading.md, "One submission, one score"): the
-// student's files are built once more with -fsanitize=address,undefined -g -O1, that probe's
+// answered differently in its two runs (docs/grading-reference.md, "One submission, one score"):
+// the student's files are built once more with -fsanitize=address,undefined -g -O1, that probe's
 // request runs again on the instrumented code, and the first AddressSanitizer or
 // UndefinedBehaviorSanitizer report names the line. Only then: a submission that neither crashes
 // nor varies never pays for the second build. The scores are those of the normal build; the
@@ -16,7 +16,7 @@
 #include "grader/grade/run/build.h"
 #include "grader/grade/run/child_process.h"
 #include "grader/grade/run/folders.h"
-#include "grader/grade/run/submission.h"
+#include "grader/grade/submission/submission.h"
 
 namespace clothref::grader {
 

@@ -47,9 +47,9 @@ ToolLog readToolLog(const std::filesystem::path& path) {
   return log;
 }
 
-// The fallback's confinement of one compile or link (docs/grading.md, "Sandbox"): as root, the
-// tool uid, and (where a private mount namespace can be made) our folders covered. A command
-// writing outside `work_dir` (the precompiled header into the cache) compiles only our own
+// The fallback's confinement of one compile or link (docs/grading-reference.md, "Sandbox"): as
+// root, the tool uid, and (where a private mount namespace can be made) our folders covered. A
+// command writing outside `work_dir` (the precompiled header into the cache) compiles only our own
 // headers and keeps the grader's uid.
 void confineTool(const Isolation& isolation, const std::vector<std::string>& command,
                  const std::filesystem::path& work_dir, ExecLimits& how) {
