@@ -64,8 +64,7 @@ TEST(RunTools, AFailedCompileWithALogOfBlankLinesIsTheStudents) {
   EXPECT_TRUE(runs[1].ours);
 }
 
-// In the fallback (no bubblewrap) a compile runs as the tool uid// In the fallback (no bubblewrap)
-// a compile runs as the tool uid in a private mount namespace:
+// In the fallback (no bubblewrap) a compile runs as the tool uid in a private mount namespace:
 // `.incbin` of a host file only root may read fails, and so does an #include from one of the
 // grader's hidden folders (our reference) the command does not name. Without the confinement the
 // same two commands compile, so the test sees the difference.

@@ -187,8 +187,7 @@ std::vector<ToolRun> runTools(const std::vector<std::vector<std::string>>& comma
         // Judged on the raw bytes of the log and the exit status, never on the lines kept: a
         // `#line` naming the file with thousands of newlines makes every message start blank.
         const bool exited_ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
-        const std::string old_kept = readHead(log_path(finished.index), 200000, 4000);
-        if (!late && !exited_ok && old_kept.find_first_not_of(" \t\r\n") == std::string::npos) {
+        if (!late && !exited_ok && !log.has_text) {
           ours(finished.index, WIFSIGNALED(status)
                                    ? "the tool was stopped by signal " +
                                          std::to_string(WTERMSIG(status)) + " without a message"
