@@ -426,7 +426,9 @@ ChildLimits limitsForTimeout(double seconds) {
 }
 
 double slotWait(const ChildLimits& limits) {
-  return 2 * limits.wall_seconds + 1;
+  return limits.slot_wait_seconds > 0
+             ? limits.slot_wait_seconds
+             : kSanitizerSlowdown * limits.wall_seconds + kSlotWaitMarginSeconds;
 }
 
 std::vector<std::vector<std::string>> probeVariants() {
