@@ -408,8 +408,7 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
   for (auto& group : results)
     for (auto& t : group) report.tests.push_back(std::move(t));
   addDanglingAutoCauses(build.files, scratch.build(), report.tests);
-  (void)nonFiniteStubs;
-  (void)nonFiniteCauses;
+  markNonFinite(nonFiniteStubs(*context.limits.log), nonFiniteCauses(catalogue), report.tests);
   fillCauseTexts(catalogue, report.tests);
   sortInCourseOrder(report.tests);
   applyRubric(rubric, report);
