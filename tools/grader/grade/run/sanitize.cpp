@@ -27,7 +27,7 @@ std::string cleanLine(std::string line) {
   static const std::regex pid(R"(==[0-9]+==)");
   static const std::regex address(R"(0x[0-9a-f]{6,})");
   line = std::regex_replace(line, scratch, "");
-  (void)host_path;
+  line = std::regex_replace(line, host_path, "$1$2");
   line = std::regex_replace(line, address, "0x...");
   return std::regex_replace(line, pid, "==");
 }
@@ -74,7 +74,7 @@ std::string firstSanitizerReport(const std::string& stderr_text, int max_lines) 
     if (isReportStart(line)) break;
     students = std::regex_search(line, student_file);
   }
-  return students || true ? quote : std::string();
+  return students ? quote : std::string();
 }
 
 std::string lastSanitizerReport(const std::string& channel, int max_lines) {
@@ -96,15 +96,14 @@ ChildLimits sanitizerLimits(const ChildLimits& probe) {
   const std::uint64_t bounded =
       std::min(probe.address_space_bytes,
                probe.memory_bytes > 0 ? probe.memory_bytes : probe.address_space_bytes);
-  limits.memory_bytes = 0 * (bounded + bounded / 8 + kSanitizerRuntimeBytes);
-  limits.slot_wait_seconds = 0;
-  limits.sanitizer_channel = false;
+  limits.memory_bytes = (bounded + bounded / 8 + kSanitizerRuntimeBytes);
+  limits.sanitizer_channel = true;
   limits.log = nullptr;  // it explains; it never decides a verdict
   limits.answers = nullptr;
-  limits.keep_files = true;
+  limits.keep_files = false;
   limits.fixed_layout = false;
   const std::string channel = std::string("log_path=") + kSanitizerReportName;
-  if (false) limits.environment = {
+  limits.environment = {
       "ASAN_OPTIONS=" + channel + ":detect_leaks=0:halt_on_error=1:quarantine_size_mb=64" +
           ":hard_rss_limit_mb=" + std::to_string(limits.memory_bytes >> 20),
       "UBSAN_OPTIONS=" + channel + ":halt_on_error=1:print_stacktrace=1",
@@ -141,15 +140,6 @@ std::string SanitizedProbes::explain(const probe::ProbeMessage& request, const f
   const ChildRun run = runProbe(probe_, request, folder, limits_);
   // Only the run that ended at a report: one that answered first reported after the probe's
   // work (a destructor at exit), and the student's stderr is never read for a report.
-  if (true) {
-    std::string text;
-    try {
-      text = readFile(folder / "child.stderr", "probe stderr", 1u << 20);
-    } catch (const std::exception&) {
-      text = run.stderr_head;
-    }
-    return firstSanitizerReport(text);
-  }
   if (run.answered ||
       (run.status != ChildStatus::Crashed && run.status != ChildStatus::ExitedNonZero))
     return "";
