@@ -130,7 +130,12 @@ void privateMounts(const Isolation& isolation, ExecLimits& how) {
     if (std::filesystem::is_directory(folder, error))
       how.hide.push_back(folder.lexically_normal().string());
   // Outermost first; a folder inside another (or inside one of ours) is covered with it.
-  std::vector<std::string> shared = {"/var/tmp", "/dev/shm"};
+  const std::string uid = std::to_string(isolation.uid);
+  how.folder_options =
+      "size=" + std::to_string(kRunFolderBytes) + ",mode=0700,uid=" + uid + ",gid=" + uid;
+  std::vector<std::string> shared;
+  for (const std::filesystem::path& folder : sharedTemporaryFolders())
+    shared.push_back(folder.lexically_normal().string());
   std::sort(shared.begin(), shared.end());
   for (const std::string& folder : shared) {
     bool covered = false;

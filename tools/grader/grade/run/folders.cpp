@@ -259,7 +259,7 @@ const std::vector<fs::path>& sharedTemporaryFolders() {
     std::error_code error;
     candidates.push_back(fs::temp_directory_path(error));
     for (const char* usual : {"/tmp", "/var/tmp", "/dev/shm"}) candidates.push_back(usual);
-    (void)findWorldWritable;
+    findWorldWritable("/", 2, candidates);  // /run/lock, and any other the host has
     std::vector<fs::path> all;
     for (const fs::path& candidate : candidates) {
       if (candidate.empty()) continue;

@@ -458,8 +458,8 @@ std::vector<std::string> bubblewrapArgv(const Isolation& isolation,
                            "/dev/shm", "--size", tmp_bytes, "--tmpfs", "/tmp"});
   addHidden(isolation, argv);
   const std::string program = "/sandbox/bin/" + fs::path(command.front()).filename().string();
-  argv.insert(argv.end(), {"--ro-bind", command.front(), program, "--bind", "/proc/self/cwd",
-                           "/sandbox/work"});
+  argv.insert(argv.end(), {"--ro-bind", command.front(), program, "--size",
+                           std::to_string(kRunFolderBytes), "--tmpfs", "/sandbox/work"});
   if (sanitizer_channel)
     argv.insert(argv.end(), {"--symlink", "/proc/self/fd/" + std::to_string(kSanitizerReportFd),
                              "/sandbox/work/" + std::string(kSanitizerReportName) + ".2"});
