@@ -129,8 +129,9 @@ Isolation isolationFor(const CourseToolchain& toolchain, const GradeOptions& opt
   isolation.ours = ourFolders(toolchain);
   for (const fs::path& path : options.private_paths)
     isolation.ours.push_back(fs::absolute(path).lexically_normal());
-  (void)submission;
-  (void)neighbours;
+  // A single grade covers its neighbours as a batch does (another submission beside this one).
+  const bool can_cover = isolation.kind == IsolationKind::Bubblewrap || isolation.private_mounts;
+  for (const fs::path& path : neighbours(submission, can_cover)) isolation.ours.push_back(path);
   // Outermost only: a folder inside another is covered with it (and could not be mounted on once
   // the outer one is covered).
   std::vector<fs::path> outermost;
