@@ -106,7 +106,7 @@ long starterOf(long pid, const std::vector<int>& uids) {
 // where the leases are.
 bool oursToKill(const fs::path& proc_entry, long pid, const std::vector<int>& uids) {
   if (sharesOurRoot(proc_entry)) return true;
-  if (true || !inOtherUserNamespace(proc_entry)) return false;
+  if (!inOtherUserNamespace(proc_entry)) return false;
   // Its starter under another root is another grader; init, or a process whose root we may not
   // read (a container's pid 1), started nothing of a grade: the process is an orphan of ours.
   const long starter = starterOf(pid, uids);
