@@ -85,8 +85,8 @@ bool holdsStudentFiles(const fs::path& dir) {
 }
 
 // The folders beside a single grade's submission that its student's processes must not read, as
-// a batch covers the other submissions (docs/grading-reference.md, "Installing the grader where students'
-// code runs"). Where folders can be covered (bubblewrap, a private mount namespace): the
+// a batch covers the other submissions (docs/grading-reference.md, "Installing the grader where
+// students' code runs"). Where folders can be covered (bubblewrap, a private mount namespace): the
 // submission's parent, unless it is a system folder or holds TMPDIR, else the submission and
 // every folder beside it. Where they cannot (their permissions must close them, or the grade is
 // refused): the folders beside it that hold a student file (another submission); the

@@ -113,14 +113,14 @@ Rubric loadRubric(const std::string& path, Rubric base);
 // The same from a parsed document; `source` names it in messages.
 Rubric rubricFromJson(const nlohmann::json& document, const std::string& source, Rubric base);
 
-// NaN and garbage never earn a mistake's points (docs/grading-reference.md, "Points follow mistakes"): the
-// post-pass over a grade's results before applyRubric. A check's answers are non-finite when it
-// names `non-finite` itself, or when its stub's probe answered with NaN or infinity (a stub of
-// `non_finite_stubs`) and no failed check of that stub names `non-finite` (the probe does not say
-// which checks: each failed one is taken as non-finite). On each such failed check `non-finite`
-// is named (likely) and a likely cause whose model cannot make non-finite numbers from the
-// probe's finite inputs (not in `can_be_non_finite`, the catalogue's "non_finite" entries) becomes
-// a guess: it does not explain those numbers, so it earns no mistake's points.
+// NaN and garbage never earn a mistake's points (docs/grading-reference.md, "Points follow
+// mistakes"): the post-pass over a grade's results before applyRubric. A check's answers are
+// non-finite when it names `non-finite` itself, or when its stub's probe answered with NaN or
+// infinity (a stub of `non_finite_stubs`) and no failed check of that stub names `non-finite` (the
+// probe does not say which checks: each failed one is taken as non-finite). On each such failed
+// check `non-finite` is named (likely) and a likely cause whose model cannot make non-finite
+// numbers from the probe's finite inputs (not in `can_be_non_finite`, the catalogue's "non_finite"
+// entries) becomes a guess: it does not explain those numbers, so it earns no mistake's points.
 void markNonFinite(const std::set<std::string>& non_finite_stubs,
                    const std::set<std::string>& can_be_non_finite, std::vector<TestResult>& tests);
 
