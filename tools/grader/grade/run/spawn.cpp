@@ -164,12 +164,10 @@ static Entered privateFilesystems(const ExecArgs& exec, const ExecLimits& how) {
 // `.sanitizer-report.<pid>` -> /proc/self/fd/<kSanitizerReportFd> in the current folder (no
 // allocation: the name is built in place).
 static void linkSanitizerChannel() {
-  char target[64] = "/proc/self/fd/";
-  std::size_t at = std::strlen(target);
-  target[at++] = static_cast<char>('0' + kSanitizerReportFd);
-  target[at] = '\0';
-  char name[64];
-  at = 0;
+  static_assert(kSanitizerReportFd >= 0 && kSanitizerReportFd < 10);
+  char target[] = "/proc/self/fd/N", name[64];
+  target[sizeof target - 2] = static_cast<char>('0' + kSanitizerReportFd);
+  std::size_t at = 0;
   for (const char* c = kSanitizerReportName; *c && at < 40; ++c) name[at++] = *c;
   name[at++] = '.';
   char digits[24];
@@ -186,31 +184,16 @@ static void linkSanitizerChannel() {
 static void placeDescriptors(const ChildFds& fds) {
   constexpr int kHigh = 100;
   const int from[] = {fds.in, fds.out, fds.err, fds.answer, fds.info, fds.setup, fds.report};
+  const int target[] = {0, 1, 2, probe::kResultFd, kInfoFd, kSetupFd, kSanitizerReportFd};
   int high[7];
   for (int k = 0; k < 7; ++k) high[k] = from[k] >= 0 ? fcntl(from[k], F_DUPFD_CLOEXEC, kHigh) : -1;
-  for (int k = 0; k < 3; ++k)
-    if (high[k] >= 0) dup2(high[k], k);
-  if (high[3] >= 0) {
-    dup2(high[3], probe::kResultFd);
-  } else {
-    const int devnull = open("/dev/null", O_RDONLY);
-    if (devnull >= 0 && devnull != probe::kResultFd) {
-      dup2(devnull, probe::kResultFd);
-      close(devnull);
-    }
-  }
-  if (high[4] >= 0)
-    dup2(high[4], kInfoFd);
-  else
-    close(kInfoFd);  // no descriptor of the grader's leaks into the program
-  if (high[5] >= 0)
-    dup3(high[5], kSetupFd, O_CLOEXEC);
-  else
-    close(kSetupFd);
-  if (high[6] >= 0)
-    dup2(high[6], kSanitizerReportFd);
-  else
-    close(kSanitizerReportFd);
+  if (high[3] < 0)  // no answer expected: /dev/null in its place
+    high[3] = fcntl(open("/dev/null", O_RDONLY | O_CLOEXEC), F_DUPFD_CLOEXEC, kHigh);
+  for (int k = 0; k < 7; ++k)
+    if (high[k] >= 0)
+      dup3(high[k], target[k], k == 5 ? O_CLOEXEC : 0);
+    else if (k >= 3)
+      close(target[k]);  // no descriptor of the grader's leaks into the program
   if (syscall(SYS_close_range, kSanitizerReportFd + 1, ~0u, 0) != 0)
     for (int fd = kSanitizerReportFd + 1; fd < 1024 + kHigh; ++fd) close(fd);
 }
