@@ -192,8 +192,7 @@ Command addGradeCommand(CLI::App& root) {
             if (!options->rubric.empty()) grade.rubric_path = options->rubric;
             grade.keep_work = options->keep_work;
             grade.whole_run = !options->no_whole_run;
-            grade.limits.wall_seconds = options->timeout;
-            grade.limits.cpu_seconds = static_cast<std::uint64_t>(options->timeout) + 1;
+            grade.limits = grader::limitsForTimeout(options->timeout);
             grade.max_file_bytes = options->max_file_bytes;
             grade.toolchain.optimisation = options->optimisation;
             grade.toolchain.cache_dir = options->cache_dir;

@@ -15,6 +15,7 @@
 //                                                stub's points
 #pragma once
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -111,6 +112,17 @@ Rubric loadRubric(const std::string& path, Rubric base);
 
 // The same from a parsed document; `source` names it in messages.
 Rubric rubricFromJson(const nlohmann::json& document, const std::string& source, Rubric base);
+
+// NaN and garbage never earn a mistake's points (docs/grading-reference.md, "Points follow
+// mistakes"): the post-pass over a grade's results before applyRubric. A check's answers are
+// non-finite when it names `non-finite` itself, or when its stub's probe answered with NaN or
+// infinity (a stub of `non_finite_stubs`) and no failed check of that stub names `non-finite` (the
+// probe does not say which checks: each failed one is taken as non-finite). On each such failed
+// check `non-finite` is named (likely) and a likely cause whose model cannot make non-finite
+// numbers from the probe's finite inputs (not in `can_be_non_finite`, the catalogue's "non_finite"
+// entries) becomes a guess: it does not explain those numbers, so it earns no mistake's points.
+void markNonFinite(const std::set<std::string>& non_finite_stubs,
+                   const std::set<std::string>& can_be_non_finite, std::vector<TestResult>& tests);
 
 // Splits each stub's points over its scored tests by weight and fills score / max_score; fills
 // the report's totals. Per-mistake scoring: a stub whose failed checks all name one likely cause
