@@ -14,7 +14,7 @@
 #
 # OUT must be outside the repository (e.g. /tmp/house-before); --jobs 2. BATCH_IDENTITY_CACHE:
 # a compile cache the runs share (the student objects do not depend on the grader's code). Used
-# for the refactors of issue 37 (docs/grading.md, "Adding a probe"): "byte-identical" in a
+# for the refactors of issue 37 (docs/grading-reference.md, "Adding a probe"): "byte-identical" in a
 # commit message means `compare` printed nothing.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
@@ -24,29 +24,41 @@ usage() {
   exit 2
 }
 
+# Copies BATCH to OUT with what varies from run to run replaced: in JSON (results.json, row.json,
+# the class page's embedded rows) every "seconds" and "execution_time" value, in any text the
+# batch's own path and the folder it is in (OUT, where the mutants are laid out), scratch paths,
+# sanitizer addresses and pids; grades.csv's seconds column.
 normalise() {
-  local batch=$1 out=$2
-  rm -rf "$out"
-  mkdir -p "$out"
-  (cd "$batch" && find . -type f ! -name '*.tmp*' -print0) | while IFS= read -r -d '' f; do
-    mkdir -p "$out/$(dirname "$f")"
-    # seconds: "seconds":{...} objects, execution_time, the CSV's last column, the page's "s"
-    # cells; the batch's own path; 0x... addresses and pids of sanitizer reports.
-    sed -E \
-      -e 's/"(total|build|probes|[a-z_-]+_seconds|seconds)": ?[0-9.eE+-]+/"\1":T/g' \
-      -e 's/"execution_time": ?[0-9.eE+-]+/"execution_time":T/g' \
-      -e 's/"seconds": ?\{[^}]*\}/"seconds":{T}/g' \
-      -e "s#$batch#BATCH#g" \
-      -e 's#/tmp/[A-Za-z0-9._-]*clothref[A-Za-z0-9._/-]*#SCRATCH#g' \
-      -e 's/0x[0-9a-f]{6,16}/0xADDR/g' \
-      -e 's/==[0-9]+==/==PID==/g' \
-      -e 's/[0-9]+\.[0-9] s\b/N s/g' \
-      "$batch/$f" >"$out/$f"
-  done
-  if [ -f "$out/grades.csv" ]; then
-    # the CSV's last column is the seconds of the submission
-    sed -E -i 's/,[0-9]+\.[0-9]$/,T/' "$out/grades.csv"
-  fi
+  python3 - "$1" "$2" <<'PYTHON'
+import json, os, re, shutil, sys
+batch, out = sys.argv[1], sys.argv[2]
+shutil.rmtree(out, ignore_errors=True)
+def text(s):
+    s = s.replace(batch, 'BATCH').replace(os.path.dirname(batch), 'OUT')
+    s = re.sub(r'/tmp/[A-Za-z0-9._-]*clothref[A-Za-z0-9._/-]*', 'SCRATCH', s)
+    s = re.sub(r'0x[0-9a-f]{6,16}', '0xADDR', s)
+    s = re.sub(r'==[0-9]+==', '==PID==', s)
+    return re.sub(r'"(seconds|execution_time)": ?(\{[^{}]*\}|[-0-9.eE+]+)', r'"\1":"T"', s)
+def walk(v):
+    if isinstance(v, dict):
+        return {k: ('T' if k in ('seconds', 'execution_time') else walk(x)) for k, x in v.items()}
+    if isinstance(v, list):
+        return [walk(x) for x in v]
+    return text(v) if isinstance(v, str) else v
+for root, _, files in os.walk(batch):
+    for name in files:
+        src = os.path.join(root, name)
+        dst = os.path.join(out, os.path.relpath(src, batch))
+        os.makedirs(os.path.dirname(dst), exist_ok=True)
+        data = open(src, 'rb').read().decode('utf-8', 'surrogateescape')
+        if name.endswith('.json'):
+            data = json.dumps(walk(json.loads(data)), indent=1, ensure_ascii=False) + '\n'
+        elif name.endswith('.csv'):
+            data = '\n'.join(re.sub(r',[0-9]+\.[0-9]+$', ',T', l) for l in data.split('\n'))
+        else:
+            data = text(data)
+        open(dst, 'wb').write(data.encode('utf-8', 'surrogateescape'))
+PYTHON
 }
 
 case "${1:-}" in

@@ -1,7 +1,7 @@
-// Reading a spring force back in the course's terms (grader/grade/explain/spring_fit.h): forces made
-// here on a perturbed, moving cloth with the course's formula (clothref::formula::springForce, in
-// float as a student's code runs) and with one thing changed; the course's reads as the course's,
-// and each change is named (a constant with the value that fits).
+// Reading a spring force back in the course's terms (grader/grade/explain/spring_fit.h): forces
+// made here on a perturbed, moving cloth with the course's formula (clothref::formula::springForce,
+// in float as a student's code runs) and with one thing changed; the course's reads as the
+// course's, and each change is named (a constant with the value that fits).
 #include "grader/grade/explain/spring_fit.h"
 
 #include <gtest/gtest.h>

@@ -1,6 +1,6 @@
-// The grader's mistake variants (grader/grade/mistakes/formula_variants.h): with no mistake they are
-// the library's stubs bit for bit (so a variant that matches a student's numbers differs from the
-// course only by its mistake), and each mistake changes something on a state where it can.
+// The grader's mistake variants (grader/grade/mistakes/formula_variants.h): with no mistake they
+// are the library's stubs bit for bit (so a variant that matches a student's numbers differs from
+// the course only by its mistake), and each mistake changes something on a state where it can.
 #include "grader/grade/mistakes/formula_variants.h"
 
 #include <gtest/gtest.h>

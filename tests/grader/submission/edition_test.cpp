@@ -1,5 +1,5 @@
-// The edition as a record (grade/submission/edition.h): read from clothref's course scene of the year,
-// so the two editions differ where the course's programs do (docs/course.md).
+// The edition as a record (grade/submission/edition.h): read from clothref's course scene of the
+// year, so the two editions differ where the course's programs do (docs/course.md).
 #include "grader/grade/submission/edition.h"
 
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
-// The stage fit (grade/explain/stages/stages.h) on records made here, as the probe driver makes them: a
-// 4 x 4 cloth (corners fixed, k_s = 500, k_d = 5, randomly perturbed) and two spheres under
+// The stage fit (grade/explain/stages/stages.h) on records made here, as the probe driver makes
+// them: a 4 x 4 cloth (corners fixed, k_s = 500, k_d = 5, randomly perturbed) and two spheres under
 // gravity, no contact, one step of dt = 0.01 of a stub written the way students write
 // (stage_students.h), in float and in double. Every course method is recognised with its rationals,
 // each accepted variant as accepted, each known mistake with its catalogue id and its first
@@ -14,10 +14,10 @@
 
 #include "clothref/core/cloth.h"
 #include "clothref/core/spheres.h"
+#include "explain/stages/stage_students.h"
 #include "grader/bridge/probe_keys.h"
 #include "grader/bridge/probe_protocol.h"
 #include "grader/grade/explain/stages/methods.h"
-#include "explain/stages/stage_students.h"
 
 namespace clothref::grader::stages {
 namespace {

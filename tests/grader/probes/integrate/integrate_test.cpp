@@ -1,7 +1,8 @@
-// The integrator probe end to end (grader/grade/probes/integrate/integrate.cpp): the 2022 reference with one
-// integrator rewritten, graded by the CLI. A wrong stub's first failed check carries the stage
-// explanation in the course's terms (results.json and report.md alike), its later failed checks
-// refer to it instead of repeating it, and the fit's cause is likely; a right stub shows none.
+// The integrator probe end to end (grader/grade/probes/integrate/integrate.cpp): the 2022 reference
+// with one integrator rewritten, graded by the CLI. A wrong stub's first failed check carries the
+// stage explanation in the course's terms (results.json and report.md alike), its later failed
+// checks refer to it instead of repeating it, and the fit's cause is likely; a right stub shows
+// none.
 #include <gtest/gtest.h>
 
 #include <filesystem>

@@ -12,10 +12,10 @@
 #include "clothref/core/spheres.h"
 #include "grader/grade/cause_ids.h"
 #include "grader/grade/explain/cause_evidence.h"
-#include "grader/grade/probes/collide_cases.h"
 #include "grader/grade/explain/contact_fit.h"
 #include "grader/grade/explain/replay.h"
 #include "grader/grade/mistakes/formula_variants.h"
+#include "grader/grade/probes/collide_cases.h"
 #include "grader/grade/probes/util.h"
 
 namespace clothref::grader {

@@ -273,12 +273,18 @@ std::vector<TestResult> probeForces(const ProbeContext& context) {
         util::vec3(c.acc0.col(i)) + "\n" +
         util::compareVectors("acceleration after the call", expected.col(i), actual.col(i),
                              util::Tolerance{rel * scale[i] + 1e-6, 0}, "m/s\u00B2");
-    // Measured: shown whatever else explains the numbers. NaN is read directly; a fixed particle
-    // whose acceleration is NaN is that NaN's symptom, not a mistake of its own.
-    if (!util::finite(util::flat(actual))) t.addCause(cause::kNonFinite);
+    // Measured: a fixed particle's acceleration changed. It explains the check (likely) only where
+    // every other particle is right; beside other differences (NaN, garbage, a second mistake)
+    // it is shown as a guess, and earns no mistake's points.
+    bool others_right = true;
     for (int q = 0; q < kN * kN; ++q)
-      if (p.mass[q] == 0 && actual.col(q).allFinite() && actual.col(q) != c.acc0.col(q)) {
-        t.addCause(cause::kFixedParticleMoves);
+      if (p.mass[q] != 0) {
+        const double err = (actual.col(q).cast<double>() - expected.col(q).cast<double>()).norm();
+        others_right = others_right && std::isfinite(err) && err <= rel * scale[q] + 1e-6;
+      }
+    for (int q = 0; q < kN * kN; ++q)
+      if (p.mass[q] == 0 && actual.col(q) != c.acc0.col(q)) {
+        t.addCause(cause::kFixedParticleMoves, others_right);
         break;
       }
     tests.push_back(t);

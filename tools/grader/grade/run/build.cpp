@@ -49,12 +49,17 @@ std::string fromEnv(const char* name, const char* fallback) {
   return value && *value ? value : fallback;
 }
 
-// Sanitizer defaults compiled into a sanitized probe (the child's environment is clean, so no
-// ASAN_OPTIONS): no leak check at exit (a leak is not the crash we look for, and LeakSanitizer
-// needs ptrace, which a sandbox may refuse).
+// Sanitizer defaults compiled into a sanitized probe: no leak check (LeakSanitizer needs ptrace).
+// GCC's libubsan ignores UBSAN_OPTIONS' log_path (sanitizerLimits): given it before student code.
 constexpr const char* kSanitizerOptionsSource =
+    "#include <dlfcn.h>\n#include <stdlib.h>\n"
     "extern \"C\" const char* __asan_default_options() { return \"detect_leaks=0\"; }\n"
-    "extern \"C\" const char* __ubsan_default_options() { return \"print_stacktrace=1\"; }\n";
+    "extern \"C\" const char* __ubsan_default_options() { return \"print_stacktrace=1\"; }\n"
+    "__attribute__((constructor(101))) static void clothrefUbsanReportPath() {\n"
+    "  const char* path = getenv(\"CLOTHREF_SANITIZER_LOG\");\n"
+    "  void* ubsan = path ? dlopen(\"libubsan.so.1\", RTLD_NOLOAD | RTLD_LAZY) : nullptr;\n"
+    "  void* set = ubsan ? dlsym(ubsan, \"__sanitizer_set_report_path\") : nullptr;\n"
+    "  if (set) reinterpret_cast<void (*)(const char*)>(set)(path);\n}\n";
 
 std::vector<std::string> compileCommand(const CourseToolchain& t, int edition,
                                         const fs::path& source, const fs::path& object,

@@ -6,8 +6,8 @@
 #include <array>
 
 #include "clothref/core/integrator.h"
-#include "grader/grade/mistakes/integrate_mistakes.h"
 #include "grader/grade/explain/stages/stages.h"
+#include "grader/grade/mistakes/integrate_mistakes.h"
 #include "grader/grade/submission/source_text.h"
 #include "grader/grade/submission/submission.h"
 

@@ -1,6 +1,6 @@
 // Likely causes of an integrator's wrong first step from its numbers: the known mistakes
-// simulated on the same state (mistakes/integrate_mistakes.h) and compared, RK4's final weights fitted on
-// the course's stages, the simulateOneStep() count; the stub's source only refines them.
+// simulated on the same state (mistakes/integrate_mistakes.h) and compared, RK4's final weights
+// fitted on the course's stages, the simulateOneStep() count; the stub's source only refines them.
 #pragma once
 #include <string>
 #include <vector>

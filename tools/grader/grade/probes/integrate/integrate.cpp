@@ -14,9 +14,9 @@
 #include <mutex>
 
 #include "clothref/verify/verify.h"
-#include "grader/grade/probes/integrate/diagnosis.h"
 #include "grader/grade/mistakes/integrate_mistakes.h"
 #include "grader/grade/probes/integrate/replay.h"
+#include "grader/grade/probes/integrate/diagnosis.h"
 #include "grader/grade/probes/integrate/stages.h"
 #include "grader/grade/probes/integrate/text.h"
 
@@ -97,21 +97,28 @@ std::string firstLikelyCause(const TestResult& one) {
 // Each body the course method moves must move.
 TestResult checkEveryBody(const IntegratorRun& run, const TestResult& one) {
   TestResult all = makeTest(run.stub, kChecks[1].name, kChecks[1].weight);
+  // Moved: by a finite distance (distance() says 1e300 for NaN: a body made NaN was lost, not
+  // integrated).
+  const auto moved = [&](int body) {
+    const double d = distance(run.actual, run.start, body);
+    return d > run.rel && d < 1e299;
+  };
   std::string stuck;
-  if (distance(run.expected, run.start, 0) > run.rel &&
-      distance(run.actual, run.start, 0) <= run.rel)
+  if (distance(run.expected, run.start, 0) > run.rel && !moved(0))
     stuck += "the cloth (particles[0])";
-  if (distance(run.expected, run.start, 1) > run.rel &&
-      distance(run.actual, run.start, 1) <= run.rel)
+  if (distance(run.expected, run.start, 1) > run.rel && !moved(1))
     stuck += std::string(stuck.empty() ? "" : " and ") + "the spheres (particles[1])";
   all.fraction = stuck.empty() ? 1 : 0;
   if (stuck.empty()) {
     all.output = "Every Particles* in the vector was integrated.";
     return all;
   }
-  all.output = "After one step " + stuck +
-               " did not move at all, although the course method moves it (state: " +
-               systemText(run.random) + ").\n\n";
+  const bool lost = !(distance(run.actual, run.start, 0) < 1e299) ||
+                    !(distance(run.actual, run.start, 1) < 1e299);
+  all.output =
+      "After one step " + stuck +
+      (lost ? " was not integrated (its numbers are not finite)" : " did not move at all") +
+      ", although the course method moves it (state: " + systemText(run.random) + ").\n\n";
   const bool only_spheres = stuck.find("cloth") == std::string::npos;
   // Nothing moved: the one-step diagnosis says why (integer division, ...), when it has one.
   const std::string first = firstLikelyCause(one);

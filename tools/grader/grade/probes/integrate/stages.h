@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "grader/grade/probes/integrate/run.h"
 #include "grader/grade/explain/stages/stages.h"
+#include "grader/grade/probes/integrate/run.h"
 
 namespace clothref::grader::integrators {
 
