@@ -214,12 +214,14 @@ GradeReport stubWithFailures(const std::string& stub, std::size_t passing,
     if (planned.stub != stub) continue;
     TestResult test = makeTest(planned.stub, planned.check, planned.weight);
     test.fraction = report.tests.size() < passing ? 1 : 0;
-    if (!test.passed())
-      for (const auto& [id, likely] : causes)
+    if (!test.passed()) {
+      for (const auto& [id, likely] : causes) {
         if (likely && proofs)
           test.addCause(id, likely).proof = "Proven: the model of " + id + " gives your numbers.";
         else
           test.addCause(id, likely);
+      }
+    }
     report.tests.push_back(test);
   }
   return report;
@@ -376,6 +378,8 @@ TEST(PerMistake, ProvenMistakesDeductionsAddUp) {
   applyRubric(perCheck(heavy), capped_old);
   EXPECT_EQ(capped.stub_score.at(kSpheres), capped_old.stub_score.at(kSpheres));
   EXPECT_EQ(notes(capped), "");
+}
+
 // NaN and garbage never earn a mistake's points (issue 36): a cause that cannot make non-finite
 // numbers is no longer likely on a check whose answers are non-finite, so a NaN stub is scored
 // per check. Before, a NaN computeSpringForce named `fixed-particle-moves` and kept 75 %, and a

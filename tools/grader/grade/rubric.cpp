@@ -274,8 +274,8 @@ std::vector<long> apportion(long units, const std::vector<double>& weights) {
   return parts;
 }
 
-// The proven mistakes that explain a stub's failures (docs/grading-reference.md, "Points follow
-// proven mistakes"): every failed check names at least one cause that is proven on this
+// The proven mistakes that explain a stub's failures (docs/grading-reference.md, "Likely means
+// proven" and "Points follow mistakes"): every failed check names at least one cause that is proven on this
 // submission (Cause::proven: likely, with its replay or repair) and has a deduction in the
 // rubric; the mistakes are those causes, each once, in the order the checks name them. Empty when
 // the stub has no failed check, or a failed check names no such cause (a guess, a crash, NaN,
