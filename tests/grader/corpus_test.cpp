@@ -327,8 +327,7 @@ class Blind : public ::testing::Test {
   static nlohmann::json results(const std::string& name) {
     for (const grader::BatchEntry& entry :
          grader::batchEntries(labelledSubmissions(kSource / "tests/grader/blind")))
-      if (entry.dir.parent_path().filename().string() + "/" + entry.dir.filename().string() ==
-          name)
+      if (entry.dir.parent_path().filename().string() + "/" + entry.dir.filename().string() == name)
         return readJson(temp_->path() / "batch" / entry.name / "results.json");
     ADD_FAILURE() << "no blind submission " << name;
     return nlohmann::json::object();
@@ -380,8 +379,8 @@ TEST_F(Blind, DanglingAutoInCollideIsProvenByRepair) {
 
 // A helper that changes the cloth outside the integrator is no per-body loop.
 TEST_F(Blind, ASideEffectingHelperIsNoPerBodyLoop) {
-  for (const char* stub : {"ImplicitEuler::integrate", "MidpointEuler::integrate",
-                           "RungeKuttaFourth::integrate"}) {
+  for (const char* stub :
+       {"ImplicitEuler::integrate", "MidpointEuler::integrate", "RungeKuttaFourth::integrate"}) {
     const Named n = causes("2022/tseng", stub);
     EXPECT_FALSE(n.likely.count("per-body-loop")) << stub;
     EXPECT_TRUE(n.proven.count("integrator-pins-particles")) << stub << ": " << joined(n.named);

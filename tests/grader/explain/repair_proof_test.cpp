@@ -22,13 +22,13 @@ std::string lineOf(const std::string& text, int n) {
 }
 
 const std::string kSphere =
-    "void Spheres::collide(Cloth* cloth) {\n"                                          // 1
-    "  for (int i = 0; i < sphereCount; ++i) {\n"                                      // 2
-    "    // auto old = _particles.position(i) - cloth->particles().position(0);\n"     // 3
-    "    auto N = cloth->particles().position(0) - _particles.position(i);\r\n"        // 4
+    "void Spheres::collide(Cloth* cloth) {\n"                                           // 1
+    "  for (int i = 0; i < sphereCount; ++i) {\n"                                       // 2
+    "    // auto old = _particles.position(i) - cloth->particles().position(0);\n"      // 3
+    "    auto N = cloth->particles().position(0) - _particles.position(i);\r\n"         // 4
     "    auto n = (_particles.position(i) - cloth->particles().position(0)).norm();\n"  // 5
-    "  }\n"                                                                            // 6
-    "}\n"                                                                              // 7
+    "  }\n"                                                                             // 6
+    "}\n"                                                                               // 7
     "void Spheres::collide() { auto d = _particles.position(0) - _particles.position(1); }\n";
 
 // An `auto` Eigen expression inside the stub is evaluated into a vector on its own line; a
@@ -40,8 +40,7 @@ TEST(RepairProof, AutoExpressionsAreEvaluated) {
   ASSERT_NE(r, nullptr);
   ASSERT_EQ(r->lines.size(), 1u);
   EXPECT_EQ(r->lines[0].line, 4);
-  EXPECT_EQ(r->lines[0].text,
-            "auto N = cloth->particles().position(0) - _particles.position(i);");
+  EXPECT_EQ(r->lines[0].text, "auto N = cloth->particles().position(0) - _particles.position(i);");
   EXPECT_EQ(lineOf(r->patched, 4),
             "    auto N = (cloth->particles().position(0) - _particles.position(i)).eval();");
   EXPECT_NE(r->patched.find(".eval();\r\n"), std::string::npos);
@@ -52,18 +51,18 @@ TEST(RepairProof, AutoExpressionsAreEvaluated) {
 }
 
 const std::string kIntegrator =
-    "void MidpointEuler::integrate(const std::vector<Particles*>& particles,\n"      // 1
+    "void MidpointEuler::integrate(const std::vector<Particles*>& particles,\n"           // 1
     "                              std::function<void(void)> simulateOneStep) const {\n"  // 2
-    "  auto backup = particles;\n"                                                   // 3
-    "  float half = 1 / 2 * deltaTime;  // 1 / 2 is fine in a comment\n"             // 4
-    "  deltaTime /= 2;\n"                                                            // 5
-    "}\n"                                                                            // 6
-    "void RungeKuttaFourth::integrate(const std::vector<Particles*>& particles,\n"   // 7
+    "  auto backup = particles;\n"                                                        // 3
+    "  float half = 1 / 2 * deltaTime;  // 1 / 2 is fine in a comment\n"                  // 4
+    "  deltaTime /= 2;\n"                                                                 // 5
+    "}\n"                                                                                 // 6
+    "void RungeKuttaFourth::integrate(const std::vector<Particles*>& particles,\n"        // 7
     "                                 std::function<void(void)> simulateOneStep) const {\n"
-    "  std::vector<Eigen::Ref<Eigen::Matrix4Xf>> x0;\n"                             // 9
-    "  auto v = particles[0]->velocity();\n"                                         // 10
-    "  x = x0 + (1/6) * (k1 + k4);\n"                                                // 11
-    "  y = 1 / 6.0f;\n"                                                              // 12
+    "  std::vector<Eigen::Ref<Eigen::Matrix4Xf>> x0;\n"  // 9
+    "  auto v = particles[0]->velocity();\n"             // 10
+    "  x = x0 + (1/6) * (k1 + k4);\n"                    // 11
+    "  y = 1 / 6.0f;\n"                                  // 12
     "}\n";
 
 TEST(RepairProof, IntegerDivisionBackupsAndDeltaTime) {
@@ -109,8 +108,7 @@ TEST(RepairProof, DiscardedNormalizedInTheSpringForce) {
       "  dir.normalized();  // 單位向量\n"
       "  dir = dir.normalized();\n"
       "}\n";
-  const std::vector<Repair> repairs =
-      repairsOf("cloth.cpp", cloth, "Cloth::computeSpringForce");
+  const std::vector<Repair> repairs = repairsOf("cloth.cpp", cloth, "Cloth::computeSpringForce");
   const Repair* r = find(repairs, "direction-not-normalised");
   ASSERT_NE(r, nullptr);
   ASSERT_EQ(r->lines.size(), 1u);
@@ -199,8 +197,8 @@ TEST(RepairProof, ARepairThatDoesNotBuildOrChangesNothingDisproves) {
               "repair shows nothing.");
   }
   tests = stubTests({false, false, true, true}, {"dangling-auto-expression"});
-  EXPECT_FALSE(applyRepair(autoRepair(), true, "", stubTests({false, false, true, true}, {}),
-                           tests));
+  EXPECT_FALSE(
+      applyRepair(autoRepair(), true, "", stubTests({false, false, true, true}, {}), tests));
   EXPECT_FALSE(tests[0].causes.front().likely);
   EXPECT_EQ(tests[0].causes.front().proof,
             "Not proven: with line 129 repaired (its `auto` expression stored as a vector with "

@@ -86,7 +86,9 @@ TEST(Replay, APlausibleButWrongCauseIsAGuessWithItsLine) {
 TEST(Replay, AProvenModelNamesItsCausesOnEveryFailedCheck) {
   std::vector<TestResult> tests = threeFailed("unknown");
   tests[0].causes[0].likely = false;
-  const Replay r = replayOf({{{"positions", true}}, {{"positions", true}}, {{"positions", true}},
+  const Replay r = replayOf({{{"positions", true}},
+                             {{"positions", true}},
+                             {{"positions", true}},
                              {{"total momentum", true}}});
   applyReplay(r, {"first-sphere-only", "restitution-ignored"}, tests);
   for (const TestResult& t : tests) {

@@ -169,7 +169,8 @@ TEST(FormulaVariants, ContactModelsCombineSwitchesAndConstants) {
     // two mistakes at once: for sphere 0 only, with restitution 1
     const ContactModel both = combined(withMistake(course, ContactMistake::FirstSphereOnly),
                                        withMistake(course, ContactMistake::RestitutionOne), course);
-    EXPECT_EQ(contactModelText(both), "the course's collide for sphere 0 only and with restitution 1");
+    EXPECT_EQ(contactModelText(both),
+              "the course's collide for sphere 0 only and with restitution 1");
     Spheres<float> a = spheres;
     Cloth<float> ca = cloth, cb = cloth;
     collideModel(a, ca, false, both);

@@ -275,8 +275,8 @@ std::vector<long> apportion(long units, const std::vector<double>& weights) {
 }
 
 // The proven mistakes that explain a stub's failures (docs/grading-reference.md, "Likely means
-// proven" and "Points follow mistakes"): every failed check names at least one cause that is proven on this
-// submission (Cause::proven: likely, with its replay or repair) and has a deduction in the
+// proven" and "Points follow mistakes"): every failed check names at least one cause that is proven
+// on this submission (Cause::proven: likely, with its replay or repair) and has a deduction in the
 // rubric; the mistakes are those causes, each once, in the order the checks name them. Empty when
 // the stub has no failed check, or a failed check names no such cause (a guess, a crash, NaN,
 // `unknown`, a likely cause without its proof): per-check scoring then.
@@ -335,16 +335,15 @@ long perMistake(const Rubric& rubric, GradeReport& report, const std::vector<std
   const std::vector<long> back = apportion(target - earned, lost);
   for (std::size_t j = 0; j < parts.size(); ++j) got[j] += back[j];
   const std::string per_check = " (rubric: per-mistake; per-check scoring would give " +
-                                shown(double(earned) * unit) + " / " +
-                                shown(double(total) * unit) + ").";
+                                shown(double(earned) * unit) + " / " + shown(double(total) * unit) +
+                                ").";
   for (std::size_t j = 0; j < parts.size(); ++j) {
     TestResult& test = report.tests[tests[j]];
     if (test.passed()) continue;
     test.rubric_note =
         mistakes.size() == 1
-            ? "One mistake (" + ids +
-                  ") explains every failed check of this stub: it loses " + shares +
-                  " % of its points once" + per_check
+            ? "One mistake (" + ids + ") explains every failed check of this stub: it loses " +
+                  shares + " % of its points once" + per_check
             : std::to_string(mistakes.size()) + " proven mistakes (" + ids +
                   ") explain every failed check of this stub: together they lose " + shares +
                   (mistakes.size() > 1 ? " = " + shown(deduction * 100) : "") +
@@ -367,7 +366,9 @@ void markNonFinite(const std::set<std::string>& non_finite_stubs,
       continue;
     bool explained = false;  // by a likely cause that can make non-finite numbers: NaN a guess
     for (Cause& c : test.causes) {
-      c.likely = c.likely && (c.id == cause::kNonFinite || can_be_non_finite.count(c.id));
+      // A proven cause stays: its replay gave these non-finite numbers, or its repair mended them.
+      c.likely =
+          c.likely && (c.id == cause::kNonFinite || can_be_non_finite.count(c.id) || c.proven());
       explained = explained || (c.likely && c.id != cause::kNonFinite);
     }
     if (!test.names(cause::kNonFinite)) test.addCause(cause::kNonFinite, !explained);

@@ -18,8 +18,8 @@ TEST(IntegratorReplay, CourseTablesAreTheLibrarysMethods) {
     TableModel model;
     model.table = &stages::courseTable(index);
     const Method method = integratorMethod(index);
-    for (const System& start : {randomSystem(20221), randomSystem(7), stageSystem(20221, false,
-                                                                                2022)}) {
+    for (const System& start :
+         {randomSystem(20221), randomSystem(7), stageSystem(20221, false, 2022)}) {
       const System table = stepped(start, tableStep(model));
       const System library = stepped(start, clothrefStep(method));
       EXPECT_LE(distance(table, library), kRel) << index;

@@ -36,9 +36,9 @@ std::string trimmed(std::string line) {
 // One kind of pattern: where it is (on the blanked line) and how its line is repaired.
 struct Pattern {
   std::string cause;
-  std::regex found;                                 // on the blanked line
+  std::regex found;                                    // on the blanked line
   std::function<std::string(const std::string&)> fix;  // the original line -> repaired
-  std::string what;                                 // "stored as a vector (`.eval()`)"
+  std::string what;                                    // "stored as a vector (`.eval()`)"
 };
 
 bool isIntegrator(const std::string& stub) { return stub.find("::integrate") != std::string::npos; }
@@ -56,8 +56,7 @@ std::vector<Pattern> patternsOf(const std::string& stub) {
        [](const std::string& line) {
          static const std::regex declaration(R"(\bauto\s*&{0,2}\s*(\w+)\s*=\s*([^;]*);)");
          std::smatch m;
-         if (!std::regex_search(line, m, declaration) ||
-             std::regex_search(m[0].str(), scalar_end))
+         if (!std::regex_search(line, m, declaration) || std::regex_search(m[0].str(), scalar_end))
            return line;
          return m.prefix().str() + "auto " + m[1].str() + " = (" + m[2].str() + ").eval();" +
                 m.suffix().str();
@@ -66,11 +65,10 @@ std::vector<Pattern> patternsOf(const std::string& stub) {
   // A reference bound to the temporary std::max / std::min return (`const float& l =
   // std::max(a, b);`): it dangles at the end of the line; a copy does not.
   static const std::regex reference(R"((\bconst\s+[\w:]+\s*)&(\s*\w+\s*=\s*std::(max|min)\s*\())");
-  patterns.push_back({cause::kUndefinedBehaviour, reference,
-                      [](const std::string& line) {
-                        return std::regex_replace(line, reference, "$1$2");
-                      },
-                      "its reference to the temporary std::max / std::min returns made a copy"});
+  patterns.push_back(
+      {cause::kUndefinedBehaviour, reference,
+       [](const std::string& line) { return std::regex_replace(line, reference, "$1$2"); },
+       "its reference to the temporary std::max / std::min returns made a copy"});
   if (stub == "RungeKuttaFourth::integrate" || stub == "MidpointEuler::integrate") {
     const bool rk4 = stub == "RungeKuttaFourth::integrate";
     const std::string d = rk4 ? "6" : "2";
@@ -101,8 +99,9 @@ std::vector<Pattern> patternsOf(const std::string& stub) {
              const std::string name = m[3].str(), copies = name + "_copies_";
              return m.prefix().str() + m[1].str() + "std::vector<Particles> " + copies +
                     "; for (auto* p_ : particles) " + copies +
-                    ".push_back(*p_); std::vector<Particles*> " + name + "; for (auto& c_ : " +
-                    copies + ") " + name + ".push_back(&c_);" + m.suffix().str();
+                    ".push_back(*p_); std::vector<Particles*> " + name +
+                    "; for (auto& c_ : " + copies + ") " + name + ".push_back(&c_);" +
+                    m.suffix().str();
            }
            if (std::regex_search(line, m, view))
              return m.prefix().str() + "auto " + m[1].str() + " = " + m[2].str() + ".eval();" +
@@ -111,21 +110,18 @@ std::vector<Pattern> patternsOf(const std::string& stub) {
          },
          "its backup made a copy of the state"});
     // The global deltaTime changed: restored when integrate() returns (a guard at the brace).
-    patterns.push_back({cause::kDeltatimeMutated,
-                        std::regex(R"(\bdeltaTime\s*([-+*/]?=)(?!=))"),
-                        nullptr,
-                        "deltaTime restored to its value when integrate() returns"});
+    patterns.push_back({cause::kDeltatimeMutated, std::regex(R"(\bdeltaTime\s*([-+*/]?=)(?!=))"),
+                        nullptr, "deltaTime restored to its value when integrate() returns"});
   }
   if (stub == "Cloth::computeSpringForce")
-    patterns.push_back({cause::kDirectionNotNormalised,
-                        std::regex(R"(^\s*\w+\s*\.\s*normalized\s*\(\s*\)\s*;)"),
-                        [](const std::string& line) {
-                          static const std::regex discarded(
-                              R"((\w+)\s*\.\s*normalized\s*\(\s*\)\s*;)");
-                          return std::regex_replace(line, discarded, "$1.normalize();",
-                                                    std::regex_constants::format_first_only);
-                        },
-                        "`normalized();` written `normalize();`"});
+    patterns.push_back(
+        {cause::kDirectionNotNormalised, std::regex(R"(^\s*\w+\s*\.\s*normalized\s*\(\s*\)\s*;)"),
+         [](const std::string& line) {
+           static const std::regex discarded(R"((\w+)\s*\.\s*normalized\s*\(\s*\)\s*;)");
+           return std::regex_replace(line, discarded, "$1.normalize();",
+                                     std::regex_constants::format_first_only);
+         },
+         "`normalized();` written `normalize();`"});
   return patterns;
 }
 
@@ -207,8 +203,7 @@ bool applyRepair(const Repair& repair, bool built, const std::string& problem,
       for (const Cause& c : repaired[k].causes)
         if (c.proven()) {
           explained = true;
-          if (std::find(others.begin(), others.end(), c.id) == others.end())
-            others.push_back(c.id);
+          if (std::find(others.begin(), others.end(), c.id) == others.end()) others.push_back(c.id);
         }
       others_explained = others_explained && explained;
     }
@@ -222,8 +217,7 @@ bool applyRepair(const Repair& repair, bool built, const std::string& problem,
     line = "Not proven: with " + repair.what + ", the stub could not be probed again.";
   } else if (!proven) {
     line = "Not proven: with " + repair.what + ", " +
-           (broken ? std::to_string(broken) + " checks that passed fail" :
-                     "the same checks fail") +
+           (broken ? std::to_string(broken) + " checks that passed fail" : "the same checks fail") +
            ": the repair does not mend your numbers.";
   } else {
     line = with + ": " + std::to_string(passing) + " of " + std::to_string(total) +
@@ -273,9 +267,9 @@ bool applyRepair(const Repair& repair, bool built, const std::string& problem,
       causes.push_back(mine);
       for (Cause c : repaired[k].causes) {
         if (c.id == repair.cause) continue;
-        if (!c.proof.empty()) c.proof = with + " (the numbers of the repaired build): " +
-                                        (c.proof.rfind("Proven: ", 0) == 0 ? c.proof.substr(8)
-                                                                           : c.proof);
+        if (!c.proof.empty())
+          c.proof = with + " (the numbers of the repaired build): " +
+                    (c.proof.rfind("Proven: ", 0) == 0 ? c.proof.substr(8) : c.proof);
         causes.push_back(c);
       }
       std::stable_partition(causes.begin(), causes.end(), [](const Cause& c) { return c.likely; });

@@ -18,12 +18,12 @@ namespace clothref::grader {
 
 // One repair of one pattern of a stub.
 struct Repair {
-  std::string file;                 // "integrator.cpp"
-  std::string stub;                 // the course name of the stub whose lines it repairs
-  std::string cause;                // the catalogue id the pattern stands for
-  std::vector<SourceQuote> lines;   // the repaired lines, as the student wrote them
-  std::string patched;              // the whole file with those lines repaired
-  std::string what;                 // "line 129's `auto` expression stored as a vector"
+  std::string file;                // "integrator.cpp"
+  std::string stub;                // the course name of the stub whose lines it repairs
+  std::string cause;               // the catalogue id the pattern stands for
+  std::vector<SourceQuote> lines;  // the repaired lines, as the student wrote them
+  std::string patched;             // the whole file with those lines repaired
+  std::string what;                // "line 129's `auto` expression stored as a vector"
 };
 
 // The repairs of `stub` in `source` (the bytes of `file`): one per kind of pattern found inside

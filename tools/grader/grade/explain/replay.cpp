@@ -35,11 +35,11 @@ std::string Replay::line() const {
     if (c.reproduced()) continue;
     std::vector<std::string> right, wrong;
     for (const auto& [quantity, ok] : c.quantities) (ok ? right : wrong).push_back(quantity);
-    const std::string how = right.empty() ? "none of your " + listed(wrong)
-                                          : "your " + listed(right) + " but not your " +
-                                                listed(wrong);
-    auto it = std::find_if(parts.begin(), parts.end(),
-                           [&](const auto& p) { return p.first == how; });
+    const std::string how = right.empty()
+                                ? "none of your " + listed(wrong)
+                                : "your " + listed(right) + " but not your " + listed(wrong);
+    auto it =
+        std::find_if(parts.begin(), parts.end(), [&](const auto& p) { return p.first == how; });
     if (it == parts.end()) {
       parts.push_back({how, {}});
       it = parts.end() - 1;
@@ -65,9 +65,8 @@ void applyReplay(const Replay& replay, const std::vector<std::string>& ids,
     if (t.passed()) continue;
     for (const std::string& id : ids) {
       if (!proven && !t.names(id)) continue;
-      const bool before = std::any_of(t.causes.begin(), t.causes.end(), [&](const Cause& c) {
-        return c.id == id && c.proven();
-      });
+      const bool before = std::any_of(t.causes.begin(), t.causes.end(),
+                                      [&](const Cause& c) { return c.id == id && c.proven(); });
       if (before) continue;  // proven already (by another model of the same cause)
       // A likely cause without its proof becomes a guess that says where its model parts.
       Cause& cause = t.addCause(id, false);
@@ -80,9 +79,9 @@ void applyReplay(const Replay& replay, const std::vector<std::string>& ids,
 void alternative(const Replay& replay, const std::vector<std::string>& ids,
                  const std::string& named, std::vector<TestResult>& tests) {
   const std::string line = replay.line();
-  const std::string also = "Gives your numbers too: " +
-                           (line.rfind("Proven: ", 0) == 0 ? line.substr(8) : line) +
-                           " The cause named is `" + named + "`.";
+  const std::string also =
+      "Gives your numbers too: " + (line.rfind("Proven: ", 0) == 0 ? line.substr(8) : line) +
+      " The cause named is `" + named + "`.";
   for (TestResult& t : tests)
     for (Cause& cause : t.causes)
       if (!t.passed() && std::find(ids.begin(), ids.end(), cause.id) != ids.end() &&

@@ -26,7 +26,7 @@ struct ContactVariant {
 enum class ForceMistake {
   None,
   DirectionUnnormalised,  // `d.normalized();` discarded: F = d (k_d (v_rel . d) + k_s (|d| - rest))
-  Assign,  // a = -F / m instead of a -= F / m
+  Assign,                 // a = -F / m instead of a -= F / m
   SpringSign,
   DamperSign,
   NoDamper,

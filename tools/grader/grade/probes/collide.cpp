@@ -182,8 +182,8 @@ void proveContacts(std::vector<Candidate> candidates, const std::vector<Case>& c
                    const std::vector<Outcome>& actuals, const std::vector<PlannedTest>& checks,
                    bool sphere_sphere, double rel, const ContactModel& course,
                    std::vector<TestResult>& tests) {
-  const bool failed = std::any_of(tests.begin(), tests.end(),
-                                  [](const TestResult& t) { return !t.passed(); });
+  const bool failed =
+      std::any_of(tests.begin(), tests.end(), [](const TestResult& t) { return !t.passed(); });
   if (!failed) return;
   const auto named = [&](const std::string& id, bool likely_only) {
     for (const TestResult& t : tests)
@@ -479,8 +479,8 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
   proveContacts(candidates, cases, actuals, checks, sphere_sphere, rel, course, tests);
   requireProofs(tests, {cause::kNonFinite});
   for (TestResult& t : tests)
-    if (!t.passed() && std::none_of(t.causes.begin(), t.causes.end(),
-                                    [](const Cause& c) { return c.likely; }) &&
+    if (!t.passed() &&
+        std::none_of(t.causes.begin(), t.causes.end(), [](const Cause& c) { return c.likely; }) &&
         !t.names(cause::kUnknown))
       t.causes.insert(t.causes.begin(), util::guess(cause::kUnknown));
   return tests;

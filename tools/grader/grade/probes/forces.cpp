@@ -9,9 +9,9 @@
 #include "clothref/core/cloth.h"
 #include "grader/grade/cause_ids.h"
 #include "grader/grade/explain/cause_evidence.h"
-#include "grader/grade/mistakes/formula_variants.h"
 #include "grader/grade/explain/replay.h"
 #include "grader/grade/explain/spring_fit.h"
+#include "grader/grade/mistakes/formula_variants.h"
 #include "grader/grade/probes/util.h"
 
 namespace clothref::grader {
@@ -357,8 +357,8 @@ std::vector<TestResult> probeForces(const ProbeContext& context) {
            {{"accelerations",
              sameAnswer(model, actuals[k], scales(cases[k].cloth, cases[k].acc0), rel)}}});
     }
-    const bool failed = std::any_of(tests.begin(), tests.end(),
-                                    [](const TestResult& t) { return !t.passed(); });
+    const bool failed =
+        std::any_of(tests.begin(), tests.end(), [](const TestResult& t) { return !t.passed(); });
     if (replay.proven() && failed && winner.empty()) {
       applyReplay(replay, m.ids, tests);
       winner = m.ids;
@@ -378,8 +378,8 @@ std::vector<TestResult> probeForces(const ProbeContext& context) {
   }
   requireProofs(tests, {cause::kNonFinite, cause::kFixedParticleMoves});
   for (TestResult& t : tests)
-    if (!t.passed() && std::none_of(t.causes.begin(), t.causes.end(),
-                                    [](const Cause& c) { return c.likely; }) &&
+    if (!t.passed() &&
+        std::none_of(t.causes.begin(), t.causes.end(), [](const Cause& c) { return c.likely; }) &&
         !t.names(cause::kUnknown))
       t.causes.insert(t.causes.begin(), util::guess(cause::kUnknown));
   return tests;

@@ -284,8 +284,8 @@ SpringSet modelSprings(const SpringModel& m, int n, const Edition& course) {
     const int copies = f >= 0 ? m.copies[std::size_t(f)] : 1;
     for (const auto& [rest, type] : entries)
       for (int c = 0; c < copies; ++c) {
-        set.pairs[pair].push_back({float(double(rest) * m.rest_ratio[std::size_t(type)]),
-                                   m.label[std::size_t(type)]});
+        set.pairs[pair].push_back(
+            {float(double(rest) * m.rest_ratio[std::size_t(type)]), m.label[std::size_t(type)]});
         ++set.count;
       }
   }
@@ -455,8 +455,8 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
     const Comparison c25 = compare(*student, at25, course_n, rest_rel);
     Replay replay;
     replay.model = springModelText(model);
-    replay.checks.push_back({checks[kConnections].check,
-                             {{"springs", c25.missing + c25.extra + c25.duplicates == 0}}});
+    replay.checks.push_back(
+        {checks[kConnections].check, {{"springs", c25.missing + c25.extra + c25.duplicates == 0}}});
     replay.checks.push_back({checks[kRestLengths].check, {{"rest lengths", c25.wrong_rest == 0}}});
     replay.checks.push_back({checks[kTypeLabels].check, {{"type labels", c25.wrong_type == 0}}});
     if (small_set) {

@@ -150,6 +150,15 @@ GradeReport cleaned(const GradeReport& given) {
         return !c.likely && (c.id == cause::kCrashed || c.id == cause::kTimedOut ||
                              c.id == cause::kUndefinedBehaviour);
       });
+    // A symptom (NaN, a blow-up, a wrong order) beside a cause proven on this check: the proven
+    // cause's model gives that check's numbers (its replay or repair), so it is no cause of its
+    // own.
+    const bool proven = std::any_of(test.causes.begin(), test.causes.end(),
+                                    [](const Cause& c) { return c.proven(); });
+    if (proven)
+      std::erase_if(test.causes, [](const Cause& c) {
+        return c.id == cause::kNonFinite || c.id == cause::kUnstable || c.id == cause::kWrongOrder;
+      });
     name(test.stub);
     name(test.check);
     name(test.visibility);

@@ -435,8 +435,7 @@ ProbeBuild rebuildWithFile(const fs::path& main_dir, const std::string& name,
   std::vector<std::string> command = {toolchain.compiler, "-o", (work_dir / "probe").string()};
   for (const std::string& other : studentFileNames()) {
     const std::string other_stem = other.substr(0, other.size() - 4);
-    command.push_back(other == name ? object.string()
-                                    : (main_dir / (other_stem + ".o")).string());
+    command.push_back(other == name ? object.string() : (main_dir / (other_stem + ".o")).string());
   }
   command.push_back(
       (toolchain.driver_lib_dir / ("libclothref_grader_course_" + ed + ".a")).string());

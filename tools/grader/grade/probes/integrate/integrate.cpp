@@ -15,8 +15,8 @@
 
 #include "clothref/verify/verify.h"
 #include "grader/grade/mistakes/integrate_mistakes.h"
-#include "grader/grade/probes/integrate/replay.h"
 #include "grader/grade/probes/integrate/diagnosis.h"
+#include "grader/grade/probes/integrate/replay.h"
 #include "grader/grade/probes/integrate/stages.h"
 #include "grader/grade/probes/integrate/text.h"
 
@@ -274,8 +274,8 @@ std::vector<TestResult> probeIntegrator(const ProbeContext& context, int index) 
   // Likely means proven: every cause named is replayed on every probe state (replay.h).
   proveIntegratorCauses(context, run, stages, tests);
   for (TestResult& t : tests)
-    if (!t.passed() && std::none_of(t.causes.begin(), t.causes.end(),
-                                    [](const Cause& c) { return c.likely; }) &&
+    if (!t.passed() &&
+        std::none_of(t.causes.begin(), t.causes.end(), [](const Cause& c) { return c.likely; }) &&
         !t.names("unknown"))
       t.causes.insert(t.causes.begin(), util::guess("unknown"));
   addStages(tests, stages);

@@ -16,15 +16,17 @@ using stages::MethodState;
 using stages::MethodTable;
 using stages::MethodTerm;
 
-float coefficient(const MethodTerm& t, double scale) { return float(double(t.num) / t.den * scale); }
+float coefficient(const MethodTerm& t, double scale) {
+  return float(double(t.num) / t.den * scale);
+}
 
 std::string number(double value) { return util::num(value); }
 
 // The state `st` of a table from the backups and the derivatives met so far: v first (a
 // position may use its own new velocity), both from the backups.
 void setState(const MethodState& st, double scale, float h,
-              const std::array<Particles<float>*, 2>& bodies,
-              const std::array<Mat4X<float>, 2>& x0, const std::array<Mat4X<float>, 2>& v0,
+              const std::array<Particles<float>*, 2>& bodies, const std::array<Mat4X<float>, 2>& x0,
+              const std::array<Mat4X<float>, 2>& v0,
               const std::vector<std::array<Mat4X<float>, 2>>& vs,
               const std::vector<std::array<Mat4X<float>, 2>>& as) {
   for (std::size_t b = 0; b < 2; ++b) {
@@ -86,6 +88,8 @@ Step tableStep(const TableModel& m) {
         s.cloth.particles.velocity.col(j).setZero();
         if (m.pinned_position) s.cloth.particles.position.col(j) = x0[0].col(j);
       }
+    for (int j : m.pinned_spheres)
+      if (j >= 0 && j < s.spheres.particles.size()) s.spheres.particles.velocity.col(j).setZero();
     if (m.dt_after_factor) s.dt = float(double(s.dt) * *m.dt_after_factor);
     if (m.dt_after) s.dt = *m.dt_after;
   };
@@ -110,10 +114,10 @@ bool close(const Mat4X<float>& a, const Mat4X<float>& b, double rel) {
 
 // The course's factor c such that the body's velocity after one step is c times the course's.
 double velocityFactorOf(const IntegratorRun& run, int body) {
-  const Mat4X<float>& a = body == 0 ? run.actual.cloth.particles.velocity
-                                    : run.actual.spheres.particles.velocity;
-  const Mat4X<float>& e = body == 0 ? run.expected.cloth.particles.velocity
-                                    : run.expected.spheres.particles.velocity;
+  const Mat4X<float>& a =
+      body == 0 ? run.actual.cloth.particles.velocity : run.actual.spheres.particles.velocity;
+  const Mat4X<float>& e =
+      body == 0 ? run.expected.cloth.particles.velocity : run.expected.spheres.particles.velocity;
   double along = 0, norm = 0;
   for (int k = 0; k < a.size(); ++k) {
     along += double(a.data()[k]) * double(e.data()[k]);
@@ -136,6 +140,17 @@ std::vector<int> pinnedParticles(const IntegratorRun& run, bool& positions) {
       positions = positions && a.position.col(j) == run.start.cloth.particles.position.col(j);
     }
   return pinned;
+}
+
+// The spheres the student's step leaves without velocity where the course's gives them one (a
+// helper that holds them still).
+std::vector<int> stoppedSpheres(const IntegratorRun& run) {
+  std::vector<int> stopped;
+  const auto& a = run.actual.spheres.particles;
+  const auto& e = run.expected.spheres.particles;
+  for (int j = 0; j < a.size() && j < e.size(); ++j)
+    if (a.velocity.col(j).isZero(0) && !e.velocity.col(j).isZero(0)) stopped.push_back(j);
+  return stopped;
 }
 
 std::string ranges(const std::vector<int>& indices) {
@@ -189,18 +204,21 @@ std::vector<IntegratorModel> modelsOf(const std::string& id, const IntegratorRun
   const auto table = [&](const TableModel& t, const std::string& text) {
     models.push_back({{id}, text, tableStep(t), t});
   };
-  const std::string the = "the course's " + std::string(method == Method::Explicit ? "explicit Euler"
-                                                        : method == Method::Implicit ? "implicit Euler"
-                                                        : method == Method::Midpoint ? "midpoint"
-                                                                                     : "RK4");
+  const std::string the =
+      "the course's " + std::string(method == Method::Explicit   ? "explicit Euler"
+                                    : method == Method::Implicit ? "implicit Euler"
+                                    : method == Method::Midpoint ? "midpoint"
+                                                                 : "RK4");
   TableModel base;
   base.table = &course;
   if (id == "only-first-body") {
-    models.push_back({{id}, the + " on particles[0] (the cloth) only", clothrefStep(method, 1),
-                      std::nullopt});
+    models.push_back(
+        {{id}, the + " on particles[0] (the cloth) only", clothrefStep(method, 1), std::nullopt});
     if (method == Method::Explicit)
-      models.push_back({{id}, "symplectic Euler on particles[0] (the cloth) only",
-                        clothrefStep(Method::Symplectic, 1), std::nullopt});
+      models.push_back({{id},
+                        "symplectic Euler on particles[0] (the cloth) only",
+                        clothrefStep(Method::Symplectic, 1),
+                        std::nullopt});
   } else if (id == "position-uses-acceleration" && method == Method::Explicit) {
     variant(Variant::PositionUsesAcceleration, "explicit Euler with x += v dt + a dt²/2");
   } else if (id == "velocity-not-integrated" || id == "position-not-integrated") {
@@ -214,8 +232,7 @@ std::vector<IntegratorModel> modelsOf(const std::string& id, const IntegratorRun
       t.weights_x = velocity ? std::vector<double>{} : std::vector<double>(4, 0.0);
       t.weights_v = velocity ? std::vector<double>(4, 0.0) : std::vector<double>{};
       // A zero weight vector is "no term": x = x0 (or v = v0).
-      table(t, the + " without the " + std::string(velocity ? "velocity" : "position") +
-                   " update");
+      table(t, the + " without the " + std::string(velocity ? "velocity" : "position") + " update");
     }
   } else if (id == "backup-alias" && method != Method::Explicit) {
     variant(Variant::Alias, the + " with a backup that follows the live state");
@@ -227,14 +244,17 @@ std::vector<IntegratorModel> modelsOf(const std::string& id, const IntegratorRun
       variant(Variant::ZeroHalfStep, "the course's midpoint whose half step adds nothing");
     }
   } else if (id == "integer-division-half" && method == Method::Midpoint) {
-    variant(Variant::ZeroHalfStep, "the course's midpoint with 1 / 2 = 0 (the half step adds "
-                                   "nothing)");
+    variant(Variant::ZeroHalfStep,
+            "the course's midpoint with 1 / 2 = 0 (the half step adds "
+            "nothing)");
   } else if (id == "per-body-loop" && method != Method::Explicit) {
     variant(Variant::PerBody,
             the + " run on each body in turn, each with its own simulateOneStep() calls");
   } else if (id == "midpoint-full-step" && method == Method::Midpoint) {
-    models.push_back({{id}, "the course's implicit Euler (a full-step prediction)",
-                      clothrefStep(Method::Implicit), std::nullopt});
+    models.push_back({{id},
+                      "the course's implicit Euler (a full-step prediction)",
+                      clothrefStep(Method::Implicit),
+                      std::nullopt});
   } else if (id == "heun-method") {
     for (const stages::MethodTable& t : stages::methodTables())
       if (t.id == "heun") {
@@ -249,10 +269,12 @@ std::vector<IntegratorModel> modelsOf(const std::string& id, const IntegratorRun
   } else if (id == "velocity-damped") {
     TableModel t = base;
     t.velocity_factor = {velocityFactorOf(run, 0), velocityFactorOf(run, 1)};
-    if (t.velocity_factor[0] != 1 || t.velocity_factor[1] != 1)
-      table(t, the + " with the velocities then multiplied by " +
-                   number(t.velocity_factor[0]) + " (the cloth) and " +
-                   number(t.velocity_factor[1]) + " (the spheres)");
+    // A factor 0 is no damping: the body is held still (integrator-pins-particles).
+    const bool stopped =
+        std::abs(t.velocity_factor[0]) < 1e-6 || std::abs(t.velocity_factor[1]) < 1e-6;
+    if (!stopped && (t.velocity_factor[0] != 1 || t.velocity_factor[1] != 1))
+      table(t, the + " with the velocities then multiplied by " + number(t.velocity_factor[0]) +
+                   " (the cloth) and " + number(t.velocity_factor[1]) + " (the spheres)");
   } else if (id == "deltatime-mutated") {
     TableModel t = base;
     const double scale = stages.recorded ? stages.explanation.scale : 1;
@@ -282,13 +304,14 @@ std::vector<IntegratorModel> modelsOf(const std::string& id, const IntegratorRun
     variant(Variant::RkMixedFinal, "the course's RK4 whose position update adds the velocity k's");
     variant(Variant::RkK4xInVelocity, "the course's RK4 whose velocity update takes k4 of x");
     for (int k = 0; k < 3; ++k)
-      variant(Variant::RkMixedStage,
-              "the course's RK4 whose stage " + std::to_string(k + 2) +
-                  " position adds a velocity k",
-              k);
+      variant(
+          Variant::RkMixedStage,
+          "the course's RK4 whose stage " + std::to_string(k + 2) + " position adds a velocity k",
+          k);
   } else if (id == "rk4-stage-not-from-backup" && method == Method::Rk4) {
-    variant(Variant::RkStageFromCurrent, "the course's RK4 with each stage built on the previous "
-                                         "stage instead of the backup");
+    variant(Variant::RkStageFromCurrent,
+            "the course's RK4 with each stage built on the previous "
+            "stage instead of the backup");
   } else if (id == "rk4-stage-from-wrong-increment" && method == Method::Rk4) {
     variant(Variant::RkStageFromNewVelocity,
             "the course's RK4 with each stage position from that stage's new velocity");
@@ -303,8 +326,9 @@ std::vector<IntegratorModel> modelsOf(const std::string& id, const IntegratorRun
     }();
     TableModel t;
     t.table = &overwritten;
-    table(t, "the course's RK4 with each position increment read after the stage's velocity was "
-             "overwritten with v0 + c·h·a of that stage");
+    table(t,
+          "the course's RK4 with each position increment read after the stage's velocity was "
+          "overwritten with v0 + c·h·a of that stage");
   } else if (id == "rk4-stages-discarded" && method == Method::Rk4) {
     variant(Variant::RkStagesDiscarded, "the course's RK4 whose update uses k1 only");
   } else if (id == "rk4-wrong-weights" && method == Method::Rk4) {
@@ -331,10 +355,15 @@ std::vector<IntegratorModel> modelsOf(const std::string& id, const IntegratorRun
   } else if (id == "integrator-pins-particles") {
     TableModel t = base;
     t.pinned = pinnedParticles(run, t.pinned_position);
+    t.pinned_spheres = stoppedSpheres(run);
+    std::string held;
     if (!t.pinned.empty())
-      table(t, the + " with the cloth's particles " + ranges(t.pinned) +
-                   (t.pinned_position ? " put back and stopped" : " stopped") +
-                   " after the step");
+      held = "the cloth's particles " + ranges(t.pinned) +
+             (t.pinned_position ? " put back and stopped" : " stopped");
+    if (!t.pinned_spheres.empty())
+      held += (held.empty() ? "" : " and ") + std::string("the spheres ") +
+              ranges(t.pinned_spheres) + " stopped";
+    if (!held.empty()) table(t, the + " with " + held + " after the step");
   }
   return models;
 }
@@ -390,9 +419,8 @@ Replay replayIntegrator(const IntegratorModel& model, const ProbeContext& contex
     const std::int64_t steps = std::llround(run.end_time / run.dts[d]);
     const double m = trajectoryError(trajectory(float(run.dts[d]), steps, run.strides[d]),
                                      run.dts[d], run.strides[d], run.spring_particles);
-    const double s =
-        trajectoryError(run.answer.f(key::perCase(key::kTrajectory, int(d) + 1)), run.dts[d],
-                        run.strides[d], run.spring_particles);
+    const double s = trajectoryError(run.answer.f(key::perCase(key::kTrajectory, int(d) + 1)),
+                                     run.dts[d], run.strides[d], run.spring_particles);
     model_errors.push_back(m);
     student_errors.push_back(s);
     model_usable = model_usable && std::isfinite(m) && m > 0 && m < 1e299;
@@ -406,8 +434,7 @@ Replay replayIntegrator(const IntegratorModel& model, const ProbeContext& contex
   replay.checks.push_back({name(k++), {{"convergence order", same_order}}});
   const std::int64_t stable_steps = static_cast<std::int64_t>(20.0 / run.stable_dt);
   const std::int64_t stable_stride = std::max<std::int64_t>(1, stable_steps / 100);
-  const std::vector<float> stable =
-      trajectory(float(run.stable_dt), stable_steps, stable_stride);
+  const std::vector<float> stable = trajectory(float(run.stable_dt), stable_steps, stable_stride);
   const auto amplitude = [&](const std::vector<float>& record) {
     const std::size_t per_record = 4 * std::size_t(run.spring_particles);
     double a = 0;
@@ -439,6 +466,7 @@ std::optional<IntegratorModel> combine(const IntegratorModel& a, const Integrato
   for (std::size_t b2 = 0; b2 < 2; ++b2)
     if (o.velocity_factor[b2] != 1) t.velocity_factor[b2] = o.velocity_factor[b2];
   if (!o.pinned.empty()) t.pinned = o.pinned, t.pinned_position = o.pinned_position;
+  if (!o.pinned_spheres.empty()) t.pinned_spheres = o.pinned_spheres;
   if (o.dt_after_factor) t.dt_after_factor = o.dt_after_factor;
   if (o.dt_after) t.dt_after = o.dt_after;
   if (o.result_dt) t.result_dt = o.result_dt;
@@ -472,9 +500,8 @@ void proveIntegratorCauses(const ProbeContext& context, const IntegratorRun& run
        {"only-first-body", "position-uses-acceleration", "velocity-not-integrated",
         "position-not-integrated", "backup-alias", "no-reevaluation", "per-body-loop",
         "midpoint-full-step", "heun-method", "half-step-corrector", "corrector-start-velocity",
-        "velocity-damped", "integrator-pins-particles", "deltatime-mutated",
-        "rk4-mixed-increments", "rk4-stage-not-from-backup", "rk4-stage-from-wrong-increment",
-        "rk4-stages-discarded"})
+        "velocity-damped", "integrator-pins-particles", "deltatime-mutated", "rk4-mixed-increments",
+        "rk4-stage-not-from-backup", "rk4-stage-from-wrong-increment", "rk4-stages-discarded"})
     add(ids, id);
   std::vector<IntegratorModel> models;
   std::vector<Replay> replays;

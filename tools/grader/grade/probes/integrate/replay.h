@@ -23,14 +23,15 @@ namespace clothref::grader::integrators {
 // as in the course's code), then the result; with a mistake's changes.
 struct TableModel {
   const stages::MethodTable* table = nullptr;
-  double step = 1;          // every term's h is step x deltaTime
-  double result_step = 1;   // the result's terms are taken at result_step x h
+  double step = 1;         // every term's h is step x deltaTime
+  double result_step = 1;  // the result's terms are taken at result_step x h
   // The result's weights on the evaluations' v (positions) and a (velocities), replacing the
   // table's: RK4 with other weights. Empty: the table's.
   std::vector<double> weights_x, weights_v;
   std::array<double, 2> velocity_factor{1, 1};  // the result's velocity of each body times this
   std::vector<int> pinned;                      // cloth particles held still after the step
   bool pinned_position = false;                 // ... put back where they were, not only stopped
+  std::vector<int> pinned_spheres;              // spheres whose velocity is zeroed after the step
   std::optional<double> dt_after_factor;        // deltaTime x this after the call
   std::optional<float> dt_after;                // or this constant
   // The result's terms at this deltaTime, whatever the call's (a constant the stub restored
