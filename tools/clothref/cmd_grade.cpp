@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <iomanip>
 #include <iostream>
 #include <string>
 #include <utility>
@@ -86,6 +87,13 @@ void printBatchEnd(const grader::BatchSummary& summary) {
               << grader::verdictId(summary.not_graded[k].second) << '\n';
   if (summary.not_graded.size() > 20)
     std::cerr << "  ... and " << summary.not_graded.size() - 20 << " more (the CSV has them all)\n";
+  if (!summary.slowest.empty()) {
+    std::cerr << "clothref grade: the slowest:\n";
+    for (const auto& slow : summary.slowest)
+      std::cerr << "  " << grader::safeName(slow.name) << ": " << std::fixed
+                << std::setprecision(1) << slow.seconds << " s (" << slow.why << ")\n";
+    std::cerr.unsetf(std::ios::floatfield);
+  }
   std::cerr << "clothref grade: CSV " << grader::safeName(summary.csv.string())
             << "; class overview " << grader::safeName(summary.index.string()) << '\n';
 }

@@ -31,6 +31,9 @@ struct RunLog {
 inline constexpr std::uint64_t kRunDiskBytes = 128ull << 20;
 inline constexpr double kDiskCheckSeconds = 0.02;
 inline constexpr std::uint64_t kKeptOutputBytes = 64ull << 10;
+// A run held back by the machine's load (it waited for a CPU, runChild) gets at most this many
+// times its wall limit; still held back then, it is ours.
+inline constexpr double kHeldBackFactor = 10;
 
 struct ChildLimits {
   double wall_seconds = 20;                        // killed (whole process group) after this

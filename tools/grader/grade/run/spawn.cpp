@@ -348,6 +348,25 @@ std::optional<int> bubblewrapExitCode(const std::string& json) {
   return std::nullopt;
 }
 
+bool heldBackByLoad(const std::string& cgroup_dir, double wall, double limit) {
+  if (cgroup_dir.empty()) return false;
+  // A "name value" field of a cgroup file, in seconds (the files count microseconds).
+  const auto field = [&](const char* file, const std::string& line_start,
+                         const std::string& name) -> std::optional<double> {
+    std::ifstream in(cgroup_dir + "/" + file);
+    for (std::string line; std::getline(in, line);) {
+      if (line.rfind(line_start, 0) != 0) continue;
+      const std::size_t at = line.find(name);
+      if (at == std::string::npos) break;
+      return std::strtod(line.c_str() + at + name.size(), nullptr) / 1e6;
+    }
+    return std::nullopt;
+  };
+  const std::optional<double> used = field("cpu.stat", "usage_usec", "usage_usec ");
+  const std::optional<double> waited = field("cpu.pressure", "some", "total=");
+  return used && waited && *used < 0.5 * limit && wall - *waited < limit;
+}
+
 long fileSize(const std::filesystem::path& path) {
   struct stat info {};
   return stat(path.c_str(), &info) == 0 ? static_cast<long>(info.st_size) : 0;

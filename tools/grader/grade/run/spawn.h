@@ -145,6 +145,13 @@ struct RunCgroup {
   }
 };
 
+// Whether a run `wall` seconds old, past its wall `limit`, was held back by the machine's load
+// rather than by its code (docs/grading.md, "Limits"): its cgroup used under half the limit in CPU
+// time (cpu.stat), and its wall time less the time it waited for a CPU while other processes had
+// them (the "some" total of cpu.pressure) is still under the limit. False without a cgroup, or
+// where the kernel keeps no CPU pressure.
+bool heldBackByLoad(const std::string& cgroup_dir, double wall, double limit);
+
 // The text of a SetupFailure code (the byte read from the setup pipe).
 const char* setupFailureText(unsigned char why);
 

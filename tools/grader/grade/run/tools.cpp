@@ -8,6 +8,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <memory>
 
 #include "grader/grade/run/spawn.h"
 
@@ -59,6 +60,8 @@ std::vector<ToolRun> runTools(const std::vector<std::vector<std::string>>& comma
     std::size_t index;
     Clock::time_point start;
     int setup_fd, status_fd;
+    // its own cgroup where the machine gives one: what it used and waited for (heldBackByLoad)
+    std::shared_ptr<const RunCgroup> cgroup;
   };
   std::vector<ToolRun> results(commands.size());
   std::vector<int> attempts(commands.size(), 0);
@@ -100,8 +103,13 @@ std::vector<ToolRun> runTools(const std::vector<std::vector<std::string>>& comma
       if (boxed) argv = bubblewrapToolArgv(*isolation, commands[index], work_dir, kInfoFd);
       const ExecArgs exec(argv, work_dir);
       const bool fork_fault = injectFault("tool-fork");
+      const auto cgroup = std::make_shared<const RunCgroup>(
+          isolation && isolation->kind != IsolationKind::None ? isolation->cgroup_parent : "");
       const pid_t pid = in_fd < 0 || log_fd < 0 || !pipes || fork_fault ? -1 : fork();
-      if (pid == 0) execChild(exec, in_fd, log_fd, log_fd, -1, status_fds[1], setup_fds[1], how);
+      if (pid == 0) {
+        cgroup->join();
+        execChild(exec, in_fd, log_fd, log_fd, -1, status_fds[1], setup_fds[1], how);
+      }
       const int fork_error = errno;
       for (int fd : {in_fd, log_fd, setup_fds[1], status_fds[1]})
         if (fd >= 0) close(fd);
@@ -114,12 +122,19 @@ std::vector<ToolRun> runTools(const std::vector<std::vector<std::string>>& comma
         continue;
       }
       setpgid(pid, pid);
-      running.push_back({pid, index, Clock::now(), setup_fds[0], status_fds[0]});
+      running.push_back({pid, index, Clock::now(), setup_fds[0], status_fds[0], cgroup});
     }
     for (std::size_t r = 0; r < running.size();) {
       int status = 0;
       const pid_t done = waitpid(running[r].pid, &status, WNOHANG);
-      const bool late = secondsSince(running[r].start) > wall_seconds;
+      // Past the wall limit, a compile held back by the machine's load (it waited for a CPU most
+      // of the time) gets the time it waited, up to kHeldBackFactor times the limit; held back
+      // still then, it is ours (tried once more), never the student's compile error.
+      const double wall = secondsSince(running[r].start);
+      const bool held_back = done != running[r].pid && wall > wall_seconds &&
+                             heldBackByLoad(running[r].cgroup->dir, wall, wall_seconds);
+      const bool late =
+          wall > wall_seconds && (!held_back || wall >= kHeldBackFactor * wall_seconds);
       if (done == running[r].pid || late) {
         if (late && done != running[r].pid) {
           killGroup(running[r].pid);
@@ -137,6 +152,11 @@ std::vector<ToolRun> runTools(const std::vector<std::vector<std::string>>& comma
         const std::string output = readHead(log_path(finished.index), 200000, 4000);
         if (why) {
           ours(finished.index, setupFailureText(why));
+          continue;
+        }
+        if (late && held_back) {
+          ours(finished.index, "the machine was too busy: the tool waited for a CPU most of its " +
+                                   std::to_string(static_cast<int>(wall + 0.5)) + " s");
           continue;
         }
         if (boxed && !late && !bubblewrapExitCode(json)) {
