@@ -29,7 +29,7 @@ set(RULES_record_EXTERNAL "Eigen/;nlohmann/;fmt/")
 set(RULES_golden_AREAS "base;core;io;scene;trace;diff;record")
 set(RULES_golden_EXTERNAL "Eigen/;nlohmann/;fmt/;unistd.h")
 set(RULES_verify_AREAS "base;core;io;scene;solver")
-set(RULES_verify_EXTERNAL "Eigen/;nlohmann/;fmt/")
+set(RULES_verify_EXTERNAL "Eigen/;nlohmann/;fmt/;boost/numeric/odeint/")
 set(RULES_solver_AREAS "base;core")
 set(RULES_solver_EXTERNAL "Eigen/")
 set(RULES_analysis_AREAS "base;core;io;scene;trace;record;verify;solver")
@@ -44,7 +44,8 @@ set(RULES_clothref.h_EXTERNAL "")
 # run/ is a room, "grader/grade/results.h one file, "clothref/io/ a library area, <Eigen/ a
 # package, "[^/]+$ a course header by its bare name (the course's include path finds it).
 # Standard C++ headers (<vector>) are always allowed; a path with ".." never is.
-set(GRADER_ROOMS bridge course reference driver run probes report grade prebuild)
+set(GRADER_ROOMS bridge course reference driver submission run mistakes explain probes report
+    grade prebuild)
 # the one crossing of the two sides: std only
 set(GRADER_bridge_FILES "^bridge/")
 set(GRADER_bridge_MAY "")
@@ -58,27 +59,45 @@ set(GRADER_reference_MAY "\"[^/]+$" "<Eigen/")
 set(GRADER_driver_FILES "^driver/")
 set(GRADER_driver_MAY "\"[^/]+$" "\"grader/bridge/" "\"clothref/formula/"
     "\"clothref/core/method\\.h\"" "<Eigen/" "<unistd\\.h>")
+# reading a submission (its files, their source text and patterns, the edition they were written
+# for and that edition's course values): of the top level only the plain-data results and text
+set(GRADER_submission_FILES "^grade/submission/")
+set(GRADER_submission_MAY "\"grader/grade/submission/" "\"grader/grade/(results|text)\\.h\""
+    "\"clothref/(io|scene)/" "<unistd\\.h>" "<fcntl\\.h>" "<dirent\\.h>" "<sys/" "<linux/")
 # running untrusted code: never the probes, the reports or the grade's top level beyond its
 # plain-data results and text helpers
 set(GRADER_run_FILES "^grade/run/")
-set(GRADER_run_MAY "\"grader/bridge/" "\"grader/grade/run/" "\"grader/grade/(results|text)\\.h\""
+set(GRADER_run_MAY "\"grader/bridge/" "\"grader/grade/run/" "\"grader/grade/submission/"
+    "\"grader/grade/(results|text)\\.h\""
     "\"clothref/io/" "<unistd\\.h>" "<fcntl\\.h>" "<signal\\.h>" "<sched\\.h>" "<poll\\.h>"
     "<grp\\.h>" "<dirent\\.h>" "<sys/" "<linux/")
-# the probes and fitting engines: run, and of the top level the results, rubric, text helpers,
+# the mistake models: the library's course code with a student's mistake switched on, chosen by
+# data; the edition's values (submission/edition.h), the rubric's accepted variants
+set(GRADER_mistakes_FILES "^grade/mistakes/")
+set(GRADER_mistakes_MAY "\"grader/grade/mistakes/" "\"grader/grade/submission/"
+    "\"grader/grade/(results|rubric|cause_ids)\\.h\"" "\"clothref/(base|core|formula)/" "<Eigen/")
+# the explanations of a student's numbers: the fits (the constants and stage forms that reproduce
+# them), how evidence names causes, and the texts of a comparison; plain data, no child process
+set(GRADER_explain_FILES "^grade/explain/")
+set(GRADER_explain_MAY "\"grader/grade/explain/" "\"grader/grade/submission/" "\"grader/bridge/"
+    "\"grader/grade/(results|text|cause_ids)\\.h\"" "<Eigen/" "<nlohmann/")
+# the probes: run, submission, the mistake models, the explanations, and of the top level the results, rubric, text helpers,
 # the catalogue and its generated cause-id constants (cause_ids.h, in the build tree);
 # never the reports
 set(GRADER_probes_FILES "^grade/probes/")
-set(GRADER_probes_MAY "\"grader/bridge/" "\"grader/grade/run/" "\"grader/grade/probes/"
+set(GRADER_probes_MAY "\"grader/bridge/" "\"grader/grade/run/" "\"grader/grade/submission/"
+    "\"grader/grade/mistakes/" "\"grader/grade/explain/" "\"grader/grade/probes/"
     "\"grader/grade/(results|rubric|text|catalogue|cause_ids)\\.h\""
     "\"clothref/(base|core|io|scene|solver|trace|diff|record|verify|formula|analysis)/" "<Eigen/"
     "<nlohmann/")
-# the writers: the top level (results, and grade.h / batch.h), the pages; never run or probes
+# the writers: results and pages only. Of the top level the plain-data results, the text helpers
+# and the generated cause ids; never the grading (grade.h), the batch (batch.h), run or probes
 set(GRADER_report_FILES "^grade/report/")
-set(GRADER_report_MAY "\"grader/grade/report/" "\"grader/grade/[^/]+$" "\"clothref/io/" "\"clothref/trace/" "\"pages/"
-    "<nlohmann/" "<fmt/" "<stdlib\\.h>")
+set(GRADER_report_MAY "\"grader/grade/report/" "\"grader/grade/(results|text|cause_ids)\\.h\""
+    "\"clothref/io/" "\"clothref/trace/" "\"pages/" "<nlohmann/" "<fmt/" "<stdlib\\.h>")
 # the top level (grade, batch, rubric, text, results): of the probes only their table, probes.h
 set(GRADER_grade_FILES "^grade/[^/]+$")
-set(GRADER_grade_MAY "\"grader/grade/[^/]+$" "\"grader/grade/run/"
+set(GRADER_grade_MAY "\"grader/grade/[^/]+$" "\"grader/grade/run/" "\"grader/grade/submission/"
     "\"grader/grade/probes/probes\\.h\"" "\"grader/grade/report/" "\"clothref/io/" "<nlohmann/"
     "<iconv\\.h>" "<unistd\\.h>" "<fcntl\\.h>" "<sys/")
 set(GRADER_prebuild_FILES "^prebuild/")

@@ -2,7 +2,7 @@
 # ctest `cluster`: a real single-node Slurm (munge + slurmctld + slurmd, started and stopped here,
 # bound to 127.0.0.1, state in a temporary folder) runs tools/grader/slurm/grade-array.sh as an
 # array of 3 shards over a batch of 31 corpus submissions, one of them in a dot folder; the shards'
-# CSVs merged as docs/grading.md says must equal a one-machine batch's CSV row for row (the seconds
+# CSVs merged as docs/grading-reference.md says must equal a one-machine batch's CSV row for row (the seconds
 # column left out). Exit 77 (skipped) only when Slurm or munge is not installed, without root (slurmd
 # starts jobs as their user), or inside a chroot when the node does not come up or the array fails.
 # Usage: slurm_array_test.sh CLOTHREF SOURCE_DIR CACHE_DIR
@@ -129,11 +129,11 @@ if ! timeout 200 sbatch --quiet --wait --array=0-2 --output="$tmp/out/task-%a.ou
   fail "the array did not finish (sbatch --wait)"
 fi
 echo "array done after $(($(date +%s) - start)) s"
-# merged as docs/grading.md says (shards 2 and 3 wrote no header), word for word
+# merged as docs/grading-reference.md says (shards 2 and 3 wrote no header), word for word
 # shellcheck disable=SC2046  # the folder has no spaces; the docs command is copied as it is
 cat $(for k in $(seq 1 3); do echo "$BATCHDIR/grades-$k-of-3.csv"; done) > "$tmp/merged.csv"
 
-# the one-machine batch of every folder, dot folders included (docs/grading.md)
+# the one-machine batch of every folder, dot folders included (docs/grading-reference.md)
 shopt -s dotglob
 "$clothref" grade "$tmp"/subs/*/ --out "$tmp/one" --jobs 2 --cache-dir "$cache" --quiet
 shopt -u dotglob

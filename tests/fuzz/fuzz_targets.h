@@ -27,7 +27,7 @@
 #include "clothref/scene/scene.h"
 #include "clothref/trace/reader.h"
 #include "grader/grade/rubric.h"
-#include "grader/grade/run/submission.h"
+#include "grader/grade/submission/submission.h"
 #include "grader/grade/text.h"
 
 namespace clothref::fuzz {

@@ -216,5 +216,32 @@ TEST(Confinement, TwoSubmissionsOfABatchReachNothingOfEachOther) {
       << csv;
 }
 
+// A single grade covers its neighbours as a batch does (issue 36): `clothref grade subs/alice`
+// beside subs/bobby (a TA's usual layout, folders readable): alice's probe cannot read bobby's
+// files. Before, in the fallback, it read them (alice's results quoted a line of bobby's code).
+TEST(Confinement, ASingleGradeReachesNoNeighbour) {
+  if (geteuid() != 0) GTEST_SKIP() << "the fallback's uids need a grader running as root";
+  TempDir temp;
+  const fs::path subs = temp.path() / "subs";
+  const fs::path a = subs / "alice-subm", b = subs / "bobby-subm";
+  spySubmission(a, "alice", "bobby-subm", (b / "src" / "cloth.cpp").string(), "/nonexistent");
+  spySubmission(b, "bobby", "alice-subm", (a / "src" / "cloth.cpp").string(), "/nonexistent");
+  fs::permissions(temp.path(), fs::perms::owner_all | fs::perms::others_exec |
+                                   fs::perms::group_exec | fs::perms::others_read);
+  setenv("CLOTHREF_GRADER_ISOLATION", "rlimits", 1);
+  const fs::path results = temp.path() / "alice-results.json";
+  const CommandResult run =
+      gradeDirect({"grade", a.string(), "--no-whole-run", "--timeout", "20", "--results",
+                   results.string(), "--cache-dir", CLOTHREF_GRADER_CACHE},
+                  temp.path() / "run");
+  if (run.exit_code == 2 &&
+      run.output.find("allows no private mount namespace") != std::string::npos)
+    GTEST_SKIP() << "no private mount namespace here: the grade refuses readable neighbours";
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::string text = readText(results);
+  EXPECT_EQ(text.find("SPY-READ"), std::string::npos) << text.substr(0, 3000);
+  EXPECT_DOUBLE_EQ(nlohmann::json::parse(text)["score"].get<double>(), 80.0);
+}
+
 }  // namespace
 }  // namespace clothref::test

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "grader/grade/batch.h"
@@ -52,7 +53,21 @@ struct Figures {
   int stubs_cause_named = 0;  // of those, with a labelled cause right
   int causes_labelled = 0, causes_right = 0, causes_missed = 0, causes_wrong = 0;
   std::vector<std::string> problems;  // one line per wrong verdict, missed or wrong cause
+  // What a student reads: report.md's lines per submission, and the Gradescope summary's
+  // (results.json's top-level output) lines naming a failed check, which must be none: its table
+  // has one row per stub.
+  std::vector<std::pair<std::string, int>> report_lines;
+  int summary_rows_over = 0;  // submissions whose summary has more rows than stubs losing points
+  std::vector<std::string> summary_checks;  // a failed check named in a summary
 };
+
+// The lines of a file (its '\n's).
+int lineCount(const fs::path& path) {
+  std::ifstream in(path);
+  int n = 0;
+  for (std::string line; std::getline(in, line);) ++n;
+  return n;
+}
 
 // The causes results.json's failed tests of `stub` name: as likely, and at all.
 void namedCauses(const nlohmann::json& results, const std::string& stub,
@@ -95,6 +110,22 @@ Figures gradeAndScore(const fs::path& root, const fs::path& out) {
       continue;
     }
     const nlohmann::json results = readJson(results_path);
+    f.report_lines.push_back({name, lineCount(out / entry.name / "report.md")});
+    const std::string summary = results["output"].get<std::string>();
+    std::size_t rows = 0;
+    for (std::size_t at = summary.find("<tr>"); at != std::string::npos;
+         at = summary.find("<tr>", at + 1))
+      ++rows;
+    std::set<std::string> failing;  // stubs with a failed check: the summary's rows, and a head
+    for (const auto& test : results["tests"])
+      if (test["status"] == "failed" &&
+          !(test.contains("extra_data") && test["extra_data"].contains("information_only")))
+        failing.insert(test["tags"][0].get<std::string>());
+    if (rows > (failing.empty() ? 0 : failing.size() + 1)) ++f.summary_rows_over;
+    for (const auto& test : results["tests"])
+      if (test["status"] == "failed" &&
+          summary.find(test["name"].get<std::string>()) != std::string::npos)
+        f.summary_checks.push_back(name + ": " + test["name"].get<std::string>());
     EXPECT_EQ(results["extra_data"]["edition"].get<int>(),
               std::stoi(labels["edition"].get<std::string>()))
         << name;
@@ -164,13 +195,30 @@ void print(const std::string& set, const Figures& f) {
   std::string problems;
   for (const std::string& p : f.problems) problems += "  " + p + "\n";
   std::cout << "\n" << tableHead() << tableRow(set, f) << "\n" << problems;
+  std::vector<int> lines;
+  for (const auto& [name, n] : f.report_lines) lines.push_back(n);
+  std::sort(lines.begin(), lines.end());
+  if (!lines.empty())
+    std::cout << "report.md lines: shortest " << lines.front() << ", median "
+              << lines[lines.size() / 2] << ", longest " << lines.back() << "\n";
+}
+
+// A student reads a stub's feedback in a minute: every report.md of the set is at most 250 lines
+// (with --no-whole-run, as this batch grades), and the Gradescope summary has one line per stub,
+// never a line per failed check.
+void expectReadable(const Figures& f) {
+  ASSERT_EQ(f.report_lines.size(), std::size_t(f.submissions));
+  for (const auto& [name, n] : f.report_lines) EXPECT_LE(n, 250) << name << "'s report.md";
+  EXPECT_EQ(f.summary_rows_over, 0);
+  for (const std::string& named : f.summary_checks)
+    ADD_FAILURE() << "the Gradescope summary names a failed check: " << named;
 }
 
 const fs::path kSource = CLOTHREF_SOURCE_DIR;
 
-// The hand-written set's figures when the floors were set (docs/grading.md, "How well the causes
-// are named"): 181 of 181 stub verdicts right, 88 of 90 labelled causes named as likely, no likely
-// cause the labels do not allow.
+// The hand-written set's figures when the floors were set (docs/grading-reference.md, "How well the
+// causes are named"): 181 of 181 stub verdicts right, 88 of 90 labelled causes named as likely, no
+// likely cause the labels do not allow.
 constexpr int kHandWrittenVerdictsRight = 181;
 constexpr int kHandWrittenCausesRight = 88;
 constexpr int kHandWrittenCausesWrong = 0;
@@ -189,12 +237,13 @@ TEST(RealCorpus, GeneratedCorpusVerdictsAllRightCausesNamedNoneWrong) {
   EXPECT_GE(f.stubs_cause_named * 100, 85 * f.stubs_losing)
       << f.stubs_cause_named << " of " << f.stubs_losing << " wrong stubs have a cause named";
   EXPECT_EQ(f.causes_wrong, 0);
+  expectReadable(f);
 }
 
 // The hand-written submissions (tests/grader/handwritten/README.md): written without reading the
 // grader, with mistakes the catalogue does not name. The floors are what the grader achieved when
-// this test was written (the table of docs/grading.md, "How well the causes are named"): a change
-// that loses ground fails here; one that gains should raise them.
+// this test was written (the table of docs/grading-reference.md, "How well the causes are named"):
+// a change that loses ground fails here; one that gains should raise them.
 TEST(RealCorpus, HandWrittenSubmissionsAtLeastAsGoodAsMeasured) {
   TempDir temp;
   temp.closeToOthers();
@@ -204,6 +253,7 @@ TEST(RealCorpus, HandWrittenSubmissionsAtLeastAsGoodAsMeasured) {
   EXPECT_GE(f.verdicts_right, kHandWrittenVerdictsRight) << "of " << f.stubs;
   EXPECT_GE(f.causes_right, kHandWrittenCausesRight) << "of " << f.causes_labelled;
   EXPECT_LE(f.causes_wrong, kHandWrittenCausesWrong);
+  expectReadable(f);
 }
 
 }  // namespace

@@ -315,6 +315,58 @@ TEST(PerMistake, AnythingButOneLikelyCauseWithADeductionIsScoredPerCheck) {
   EXPECT_EQ(notes(report), "");
 }
 
+// NaN and garbage never earn a mistake's points (issue 36): a cause that cannot make non-finite
+// numbers is no longer likely on a check whose answers are non-finite, so a NaN stub is scored
+// per check. Before, a NaN computeSpringForce named `fixed-particle-moves` and kept 75 %, and a
+// NaN RK4 named `no-reevaluation`.
+TEST(PerMistake, NonFiniteAnswersEarnNoMistakesPoints) {
+  const Rubric rubric = defaultRubric(2022);
+  const Catalogue catalogue =
+      loadCatalogue(std::string(CLOTHREF_SOURCE_DIR) + "/tools/grader/diagnoses.json");
+  std::set<std::string> can_be;
+  for (const auto& [id, entry] : catalogue.entries)
+    if (entry.non_finite) can_be.insert(id);
+  ASSERT_TRUE(can_be.count("division-by-speed"));
+  ASSERT_FALSE(can_be.count("no-reevaluation"));
+  const std::string rk4 = "RungeKuttaFourth::integrate";
+  // The probe answered NaN and names no cause per check: each failed check is taken as
+  // non-finite, the stage fit's finding becomes a guess, and the stub is scored per check.
+  GradeReport report = stubWithFailures(rk4, 0, {{"no-reevaluation", true}});
+  ASSERT_GT(report.tests.size(), 1u);
+  GradeReport old = report;
+  applyRubric(perCheck(rubric), old);
+  markNonFinite({rk4}, can_be, report.tests);
+  applyRubric(rubric, report);
+  EXPECT_EQ(report.stub_score.at(rk4), old.stub_score.at(rk4));
+  EXPECT_EQ(notes(report), "");
+  for (const TestResult& t : report.tests) {
+    ASSERT_FALSE(t.causes.empty());
+    EXPECT_EQ(t.causes.front().id, "non-finite");
+    EXPECT_TRUE(t.causes.front().likely);
+    for (const Cause& cause : t.causes) EXPECT_EQ(cause.likely, cause.id == "non-finite");
+  }
+  // Not its stub, and finite: untouched, one mistake.
+  report = stubWithFailures(rk4, 0, {{"no-reevaluation", true}});
+  markNonFinite({kSpheres}, can_be, report.tests);
+  applyRubric(rubric, report);
+  EXPECT_NE(notes(report).find("(`no-reevaluation`)"), std::string::npos) << notes(report);
+  // A cause that makes NaN itself keeps its place: NaN is its symptom (pan-big5).
+  report = stubWithFailures(kSpheres, 1, {{"division-by-speed", true}, {"non-finite", true}});
+  markNonFinite({kSpheres}, can_be, report.tests);
+  applyRubric(rubric, report);
+  EXPECT_NE(notes(report).find("(`division-by-speed`)"), std::string::npos) << notes(report);
+  // A probe that names non-finite on its own checks says which: the others keep their causes.
+  report = stubWithFailures(kSpheres, 1, {{"correction-factor", true}});
+  report.tests.back().addCause("non-finite");
+  markNonFinite({kSpheres}, can_be, report.tests);
+  EXPECT_TRUE(report.tests[1].causes.front().likely);
+  EXPECT_EQ(report.tests[1].causes.front().id, "correction-factor");
+  EXPECT_FALSE(report.tests.back().causes.front().id == "correction-factor" &&
+               report.tests.back().causes.front().likely);
+  applyRubric(rubric, report);
+  EXPECT_EQ(notes(report), "");
+}
+
 // "scoring": "per-check" in a rubric file gives today's scores exactly: each test earns its
 // points times its fraction, in whole units, and nothing is said.
 TEST(PerMistake, PerCheckRubricFileGivesTodaysScores) {
@@ -491,9 +543,9 @@ TEST(PerMistake, EveryCatalogueCauseHasADefault) {
     }
 }
 
-// docs/grading.md's table of deductions states every default of the table.
+// docs/grading-reference.md's table of deductions states every default of the table.
 TEST(PerMistake, TheDocsStateEveryDefault) {
-  std::ifstream in(std::string(CLOTHREF_SOURCE_DIR) + "/docs/grading.md");
+  std::ifstream in(std::string(CLOTHREF_SOURCE_DIR) + "/docs/grading-reference.md");
   std::stringstream docs;
   docs << in.rdbuf();
   for (const CauseDeduction& cause : causeDeductions()) {

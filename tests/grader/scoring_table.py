@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Old (per-check) and new (per-mistake) scores side by side, per submission, for the Markdown
-table in docs/grading.md ("Points follow mistakes").
+table in docs/grading-reference.md ("Points follow mistakes").
 
 Grades each set of submissions twice as a batch (`clothref grade DIR... --out BATCH`): once with
 a rubric {"scoring": "per-check"}, once with the default rubric (per-mistake), then reads the

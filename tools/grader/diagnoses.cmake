@@ -6,7 +6,7 @@
 #       the C++ header of cause-id constants (namespace clothref::grader::cause, one
 #       `kCamelCase` per id), written by the build whenever the JSON changes (rewritten only when
 #       its bytes change, so a new text does not rebuild the grader);
-#   cmake -DMODE=docs -DJSON=<diagnoses.json> -DDOC=<docs/grading.md> [-DOUTPUT=<file>] -P ...
+#   cmake -DMODE=docs -DJSON=<diagnoses.json> -DDOC=<docs/grading-reference.md> [-DOUTPUT=<file>] -P ...
 #       DOC with the part between its two marker comments replaced by the catalogue's table and
 #       the why and example of every cause, in the JSON's order, written to OUTPUT (default DOC:
 #       the `grader_diagnoses_docs` target regenerates the docs in place);
@@ -123,7 +123,7 @@ if(NOT MODE STREQUAL "docs" AND NOT MODE STREQUAL "check-docs")
   message(FATAL_ERROR "diagnoses.cmake: unknown MODE \"${MODE}\" (ids, docs or check-docs)")
 endif()
 if(NOT DOC)
-  message(FATAL_ERROR "diagnoses.cmake: MODE=${MODE} needs -DDOC=<docs/grading.md>")
+  message(FATAL_ERROR "diagnoses.cmake: MODE=${MODE} needs -DDOC=<docs/grading-reference.md>")
 endif()
 if(NOT OUTPUT)
   if(MODE STREQUAL "check-docs")

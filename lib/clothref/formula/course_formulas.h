@@ -27,8 +27,8 @@ inline T dot4(const T* a, const T* b) {
 // The course's spring force and contact as the default variants of the two formulas below:
 // every switch is off at compile time, so the library's code is the course's line for line. The
 // grader models a student's mistake as a variant with one switch on (SpringVariant and
-// ContactVariant, tools/grader/grade/probes/formula_variants.h, read at run time); its tests prove
-// the no-mistake variant bit-equal to the library's stubs.
+// ContactVariant, tools/grader/grade/mistakes/formula_variants.h, read at run time); its tests
+// prove the no-mistake variant bit-equal to the library's stubs.
 struct CourseSpring {
   static constexpr bool spring_negated = false;       // k_s (|d| - rest) with the wrong sign
   static constexpr bool damper_negated = false;       // the damper term with the wrong sign

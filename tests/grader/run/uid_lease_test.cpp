@@ -4,6 +4,7 @@
 
 #include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sched.h>
 #include <signal.h>
 #include <sys/file.h>
 #include <sys/wait.h>
@@ -153,6 +154,65 @@ TEST(UidLease, ProcessesUnderAnotherRootAreNotOursToKill) {
   ASSERT_EQ(waitpid(other, &status, 0), other);
   EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL);
   EXPECT_FALSE(usedUnderAnotherRoot({lease.uid, lease.tool_uid}));
+}
+
+// A student's process that made its own user namespace and chrooted in it (allowed where
+// unprivileged user namespaces are, e.g. Gradescope-like isolation without CAP_SYS_ADMIN) is under
+// another root, but it runs under our uid in a namespace that uid made, and nothing of ours holds
+// it: left behind by a killed grader, it is ours to kill (issue 36). Before, it was taken for
+// another grader's, never killed, and its slot skipped by every later grade.
+TEST(UidLease, AStudentsOwnUserNamespaceAndChrootAreStillOurs) {
+  if (geteuid() != 0) GTEST_SKIP() << "needs root to run a process as another uid";
+  const UidLease lease = leaseUids();
+  const clothref::test::TempDir root;
+  std::filesystem::permissions(root.path(), std::filesystem::perms::owner_all |
+                                                std::filesystem::perms::others_exec |
+                                                std::filesystem::perms::others_read);
+  int ready[2];
+  ASSERT_EQ(pipe(ready), 0);
+  // The orphan's pid comes back through the pipe: its parent exits at once, as a killed grader's
+  // supervisor does, so it is reparented away from us.
+  const pid_t middle = fork();
+  ASSERT_GE(middle, 0);
+  if (middle == 0) {
+    close(ready[0]);
+    if (setgid(static_cast<gid_t>(lease.uid)) != 0 || setuid(static_cast<uid_t>(lease.uid)) != 0)
+      _exit(2);
+    const pid_t orphan = fork();
+    if (orphan == 0) {
+      char ok = 'y';
+      if (unshare(CLONE_NEWUSER) != 0 || chroot(root.path().c_str()) != 0 || chdir("/") != 0)
+        ok = 'n';
+      (void)!write(ready[1], &ok, 1);
+      for (;;) pause();
+    }
+    (void)!write(ready[1], &orphan, sizeof orphan);
+    _exit(0);
+  }
+  close(ready[1]);
+  pid_t orphan = 0;
+  char ok = 0;
+  ASSERT_EQ(read(ready[0], &orphan, sizeof orphan), ssize_t(sizeof orphan));
+  ASSERT_EQ(read(ready[0], &ok, 1), 1);
+  close(ready[0]);
+  int status = 0;
+  waitpid(middle, &status, 0);
+  if (ok != 'y') {
+    kill(orphan, SIGKILL);
+    GTEST_SKIP() << "no unprivileged user namespace here";
+  }
+  EXPECT_FALSE(usedUnderAnotherRoot({lease.uid, lease.tool_uid}));
+  EXPECT_EQ(killProcessesOf({lease.uid, lease.tool_uid}, 20), 1);
+  // A zombie waiting for its new parent to reap it runs nothing.
+  const auto alive_now = [&] {
+    const std::string stat = clothref::test::readText("/proc/" + std::to_string(orphan) + "/stat");
+    const std::size_t close = stat.rfind(')');
+    return close != std::string::npos && close + 2 < stat.size() && stat[close + 2] != 'Z';
+  };
+  for (int k = 0; k < 100 && alive_now(); ++k) usleep(10000);
+  const bool alive = alive_now();
+  EXPECT_FALSE(alive) << "the student's chrooted process survived";
+  if (alive) kill(orphan, SIGKILL);
 }
 
 }  // namespace

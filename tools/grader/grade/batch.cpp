@@ -20,7 +20,7 @@
 #include "grader/grade/batch_files.h"
 #include "grader/grade/report/html_report.h"
 #include "grader/grade/report/outputs.h"
-#include "grader/grade/run/submission.h"
+#include "grader/grade/submission/submission.h"
 #include "grader/grade/text.h"
 
 #include <fcntl.h>
@@ -140,8 +140,9 @@ Outputs gradeOne(const BatchEntry& entry, const BatchOptions& options, const Gra
         return notGradable(entry, Verdict::NotGradable,
                            severalSubmissionsProblem(entry.dir, several));
     }
-    nlohmann::ordered_json whole_run_view;  // the pictures of report.html (html_report.h)
-    GradeReport report = gradeWithWholeRun(entry.dir, grade, whole_run_view);
+    GradeReport report = gradeSubmission(entry.dir, grade);
+    // the pictures of report.html (html_report.h)
+    const nlohmann::ordered_json whole_run_view = wholeRunView(report);
     Outputs out;
     out.row = rowOf(entry, report);
     out.results_json =
@@ -369,6 +370,9 @@ BatchSummary runBatch(const std::vector<fs::path>& dirs, const BatchOptions& opt
       ++summary.failed;
       summary.not_graded.push_back({row->name, row->verdict});
     }
+    if (!row->isolation.empty() && std::find(summary.isolation.begin(), summary.isolation.end(),
+                                             row->isolation) == summary.isolation.end())
+      summary.isolation.push_back(row->isolation);
     summary.rows.push_back(std::move(*row));
   }
   // The CSV where --csv says (the user named it: written as any named output), else beside the
@@ -383,7 +387,7 @@ BatchSummary runBatch(const std::vector<fs::path>& dirs, const BatchOptions& opt
   }
   // the class overview, from the same markers (html_report.h)
   writeNoFollow(batch.fd, options.out_dir, summary.index.filename().string(),
-                batchIndexHtml(options.out_dir, summary.rows));
+                batchIndexHtml(classRows(options.out_dir, summary.rows)));
   return summary;
 }
 

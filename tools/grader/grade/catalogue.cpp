@@ -49,7 +49,7 @@ Diagnosis diagnosisAt(const nlohmann::json& entry, const std::string& source,
     catalogueError(source, pointer, "expected an object, got " + excerpt(entry.dump()));
   for (const auto& [key, value] : entry.items())
     if (key != "id" && key != "stub" && key != "recognised_by" && key != "text" && key != "why" &&
-        key != "example")
+        key != "example" && key != "non_finite")
       catalogueError(source, pointer + "/" + excerpt(key), "unknown field");
   Diagnosis d;
   d.id = stringField(entry, "id", source, pointer);
@@ -67,6 +67,9 @@ Diagnosis diagnosisAt(const nlohmann::json& entry, const std::string& source,
   d.why = stringField(entry, "why", source, pointer);
   // no example where there is no student's line to show (the grader's own failure, `unknown`)
   d.example = stringField(entry, "example", source, pointer, true);
+  if (entry.contains("non_finite") && !entry.at("non_finite").is_boolean())
+    catalogueError(source, pointer + "/non_finite", "expected true or false");
+  d.non_finite = entry.value("non_finite", false);
   return d;
 }
 

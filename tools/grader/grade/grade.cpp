@@ -8,11 +8,10 @@
 #include <exception>
 #include <fstream>
 #include <iomanip>
+#include <map>
 #include <mutex>
 #include <random>
-#include <regex>
 #include <set>
-#include <sstream>
 #include <thread>
 
 #include "clothref/io/error.h"
@@ -20,38 +19,15 @@
 #include "grader/grade/cause_ids.h"
 #include "grader/grade/probes/probes.h"
 #include "grader/grade/run/folders.h"
-#include "grader/grade/run/source_text.h"
+#include "grader/grade/submission/neighbours.h"
+#include "grader/grade/submission/source_patterns.h"
+#include "grader/grade/submission/source_text.h"
 #include "grader/grade/text.h"
 
 namespace clothref::grader {
 namespace fs = std::filesystem;
 
 namespace {
-
-// Lines that hold an Eigen *expression* in an `auto` variable (e.g. `auto d = p.position(i) -
-// p.position(j);`): it refers to temporaries that are gone when it is read. Not when the
-// expression ends in a call that returns a plain value (`.normalized()`, `.eval()`, `.norm()`,
-// `.dot(...)`, `.cross3(...)`): those hold a vector or a number and nothing dangles.
-std::vector<SourceQuote> autoExpressionLines(const std::string& file, const std::string& source) {
-  std::istringstream in(source);
-  static const std::regex declaration(R"(\bauto\s*&{0,2}\s*\w+\s*=\s*([^;]*);)");
-  static const std::regex over_state(
-      R"((position|velocity|acceleration)\s*\([^;]*\)\s*[-+*/]|[-+*/]\s*[\w>.-]*(position|velocity|acceleration)\s*\()");
-  static const std::regex plain_value(
-      R"(\.\s*(normalized|eval|norm|squaredNorm|stableNorm|sum|dot|cross3|cross|value)\s*\([^()]*\)\s*$)");
-  std::vector<SourceQuote> lines;
-  int number = 0;
-  for (std::string line; std::getline(in, line);) {
-    ++number;
-    std::smatch match;
-    if (!std::regex_search(line, match, declaration)) continue;
-    const std::string value = match[1].str();
-    if (!std::regex_search(value, over_state) || std::regex_search(value, plain_value)) continue;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    lines.push_back({file, number, line.substr(line.find_first_not_of(" \t"))});
-  }
-  return lines;
-}
 
 double since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -121,10 +97,16 @@ void chooseEdition(const SubmissionFiles& files, int forced, GradeReport& report
   }
 }
 
+bool isUnder(const fs::path& path, const fs::path& root) {
+  const std::string p = path.lexically_normal().string(), r = root.lexically_normal().string();
+  return p == r || (p.size() > r.size() && p.compare(0, r.size(), r) == 0 && p[r.size()] == '/');
+}
+
 // This grade's own uids (leased host-wide when root), and the folders of ours its student's
 // processes must never read: the grader's (sources, build, install data, reference, cache) and
 // the ones the caller names (other submissions, the batch folder).
-Isolation isolationFor(const CourseToolchain& toolchain, const GradeOptions& options) {
+Isolation isolationFor(const CourseToolchain& toolchain, const GradeOptions& options,
+                       const fs::path& submission) {
   Isolation isolation = detectIsolation();
   if (isolation.uid >= 0) {
     const UidLease lease = leaseUids();
@@ -135,19 +117,28 @@ Isolation isolationFor(const CourseToolchain& toolchain, const GradeOptions& opt
   isolation.ours = ourFolders(toolchain);
   for (const fs::path& path : options.private_paths)
     isolation.ours.push_back(fs::absolute(path).lexically_normal());
+  // A single grade covers its neighbours as a batch does (another submission beside this one).
+  const bool can_cover = isolation.kind == IsolationKind::Bubblewrap || isolation.private_mounts;
+  for (const fs::path& path : neighbours(submission, can_cover)) isolation.ours.push_back(path);
+  // Outermost only: a folder inside another is covered with it (and could not be mounted on once
+  // the outer one is covered).
+  std::vector<fs::path> outermost;
+  for (const fs::path& path : isolation.ours) {
+    bool inside = false;
+    for (const fs::path& other : isolation.ours)
+      inside = inside || (other != path && isUnder(path, other));
+    if (!inside && std::find(outermost.begin(), outermost.end(), path) == outermost.end())
+      outermost.push_back(path);
+  }
+  isolation.ours = outermost;
   return isolation;
-}
-
-bool isUnder(const fs::path& path, const fs::path& root) {
-  const std::string p = path.lexically_normal().string(), r = root.lexically_normal().string();
-  return p == r || (p.size() > r.size() && p.compare(0, r.size(), r) == 0 && p[r.size()] == '/');
 }
 
 // Refuses to grade (InputError, one line) where student code could read a folder of ours: the
 // scratch folder or the course kit inside one (TMPDIR in our tree), a student uid that cannot
 // reach its own folder (TMPDIR inside a closed folder), or, without bubblewrap and without a
 // private mount namespace to cover them, a folder of ours that a student uid can reach by its
-// permissions (docs/grading.md, "Installing the grader where students' code runs").
+// permissions (docs/grading-reference.md, "Installing the grader where students' code runs").
 void checkConfinement(const Isolation& isolation, const GradeScratch& scratch,
                       const CourseKit* kit) {
   if (isolation.uid < 0) return;
@@ -196,6 +187,7 @@ ProbeContext probeContext(const GradeReport& report, const Rubric& rubric,
   context.limits.isolation = isolation;
   context.limits.keep_files = !options.keep_work.empty();
   context.limits.log = std::make_shared<RunLog>();
+  context.limits.answers = context.limits.log;
   context.seed = options.seed;
   // the bytes the finder read: the student's path is never opened again
   for (const UsedFile& used : build.files)
@@ -274,6 +266,25 @@ void addDanglingAutoCauses(const std::vector<UsedFile>& files, const fs::path& s
   }
 }
 
+// The stubs whose probe answered with NaN or infinity (a scored run's verdict, by its folder).
+std::set<std::string> nonFiniteStubs(RunLog& log) {
+  std::map<std::string, std::string> stub_of;
+  for (const auto& [folder, stub] : probeFolders()) stub_of[folder] = stub;
+  std::set<std::string> stubs;
+  std::lock_guard<std::mutex> lock(log.mutex);
+  for (const std::string& folder : log.non_finite)
+    if (stub_of.count(folder) && !stub_of[folder].empty()) stubs.insert(stub_of[folder]);
+  return stubs;
+}
+
+// The causes whose model can make non-finite numbers (the catalogue's "non_finite").
+std::set<std::string> nonFiniteCauses(const Catalogue& catalogue) {
+  std::set<std::string> ids;
+  for (const auto& [id, entry] : catalogue.entries)
+    if (entry.non_finite) ids.insert(id);
+  return ids;
+}
+
 // Course order of stubs, then the order the probes produced.
 void sortInCourseOrder(std::vector<TestResult>& tests) {
   std::stable_sort(tests.begin(), tests.end(), [](const TestResult& a, const TestResult& b) {
@@ -340,12 +351,14 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
   const Catalogue catalogue =
       loadCatalogue(options.toolchain.course_dir.parent_path() / "diagnoses.json");
 
-  const Isolation isolation = isolationFor(options.toolchain, options);
+  const Isolation isolation = isolationFor(options.toolchain, options, dir);
   report.isolation = isolation.describe();
   // What the grade's uids left in the shared temporary folders goes with the grade.
+  // What the grade's uids left running (a compile's child) goes too, before the lease is freed.
   struct Sweep {
     const Isolation& isolation;
     ~Sweep() {
+      if (isolation.uid >= 0) killProcessesOf({isolation.uid, isolation.tool_uid});
       for (const int uid : {isolation.uid, isolation.tool_uid})
         if (uid >= 0) removeOwnedBy(uid, sharedTemporaryFolders());
     }
@@ -385,6 +398,7 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
   for (auto& group : results)
     for (auto& t : group) report.tests.push_back(std::move(t));
   addDanglingAutoCauses(build.files, scratch.build(), report.tests);
+  markNonFinite(nonFiniteStubs(*context.limits.log), nonFiniteCauses(catalogue), report.tests);
   fillCauseTexts(catalogue, report.tests);
   sortInCourseOrder(report.tests);
   applyRubric(rubric, report);

@@ -11,9 +11,9 @@
 namespace clothref::grader {
 
 // What happened to a submission, or to one probe run: one word each (CSV, results.json, JUnit),
-// in the order a submission's verdict is chosen (the first that happened wins; docs/grading.md,
-// "Verdicts"). Verdicts travel as this enum; the words are written only from the table below and
-// read back only through it (a batch's row.json).
+// in the order a submission's verdict is chosen (the first that happened wins;
+// docs/grading-reference.md, "Verdicts"). Verdicts travel as this enum; the words are written only
+// from the table below and read back only through it (a batch's row.json).
 enum class Verdict {
   GraderError,    // our failure (a sandbox, fork, pipe or file of ours): never the student's
   NotGradable,    // batch only: the grader refused the folder (no student file, ...)
@@ -298,7 +298,7 @@ struct GradeReport {
   // worst thing that happened (the first of verdictTable() that happened).
   Verdict verdict = Verdict::Graded;
   // Which isolation the student processes had, e.g. "bubblewrap (net, pid, mount namespaces),
-  // uid 65534, rlimits" or "rlimits only" (docs/grading.md, "Sandbox").
+  // uid 65534, rlimits" or "rlimits only" (docs/grading-reference.md, "Sandbox").
   std::string isolation;
 };
 

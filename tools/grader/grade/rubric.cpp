@@ -15,8 +15,8 @@ namespace clothref::grader {
 
 namespace {
 
-// The kinds of mistake and what each costs once (docs/grading.md, "Points follow mistakes"): a
-// slip costs little, a missing piece of physics more, a wrong method half the stub.
+// The kinds of mistake and what each costs once (docs/grading-reference.md, "Points follow
+// mistakes"): a slip costs little, a missing piece of physics more, a wrong method half the stub.
 constexpr const char* kConstant = "a wrong constant";
 constexpr const char* kEdge = "a missed special case";
 constexpr const char* kSign = "a wrong sign";
@@ -267,10 +267,8 @@ std::vector<long> apportion(long units, const std::vector<double>& weights) {
   return parts;
 }
 
-// The one likely cause every failed check of a stub names, when the stub has a failed check, no
-// failed check names another likely cause or none, and the rubric has a deduction for it; else
-// "". Guesses are not counted, nor `non-finite` beside another likely cause: it is that cause's
-// symptom (a division by a zero speed makes NaN), not a second mistake.
+// The one likely cause with a deduction every failed check of a stub names, when none names
+// another likely cause or none; else "". Not counted: guesses, and `non-finite` beside another.
 std::string oneMistake(const Rubric& rubric, const std::vector<const TestResult*>& tests) {
   std::string mistake;
   for (const TestResult* test : tests) {
@@ -333,6 +331,25 @@ long perMistake(const Rubric& rubric, GradeReport& report, const std::vector<std
 }
 
 }  // namespace
+
+void markNonFinite(const std::set<std::string>& non_finite_stubs,
+                   const std::set<std::string>& can_be_non_finite, std::vector<TestResult>& tests) {
+  std::set<std::string> said_per_check;  // stubs whose probe named non-finite on its checks
+  for (const TestResult& t : tests)
+    if (!t.passed() && t.names(cause::kNonFinite)) said_per_check.insert(t.stub);
+  for (TestResult& test : tests) {
+    const bool by_stub = non_finite_stubs.count(test.stub) && !said_per_check.count(test.stub);
+    if (test.passed() || test.informational || !(by_stub || test.names(cause::kNonFinite)))
+      continue;
+    bool explained = false;  // by a likely cause that can make non-finite numbers: NaN a guess
+    for (Cause& c : test.causes) {
+      c.likely = c.likely && (c.id == cause::kNonFinite || can_be_non_finite.count(c.id));
+      explained = explained || (c.likely && c.id != cause::kNonFinite);
+    }
+    if (!test.names(cause::kNonFinite)) test.addCause(cause::kNonFinite, !explained);
+    std::ranges::stable_partition(test.causes, [](const Cause& c) { return c.likely; });
+  }
+}
 
 void applyRubric(const Rubric& rubric, GradeReport& report) {
   std::map<std::string, std::vector<std::size_t>> of_stub;  // stub -> its scored tests

@@ -11,10 +11,10 @@
 #include "clothref/core/cloth.h"
 #include "clothref/core/spheres.h"
 #include "grader/grade/cause_ids.h"
-#include "grader/grade/probes/cause_evidence.h"
+#include "grader/grade/explain/cause_evidence.h"
+#include "grader/grade/explain/contact_fit.h"
+#include "grader/grade/mistakes/formula_variants.h"
 #include "grader/grade/probes/collide_cases.h"
-#include "grader/grade/probes/contact_fit.h"
-#include "grader/grade/probes/formula_variants.h"
 #include "grader/grade/probes/util.h"
 
 namespace clothref::grader {

@@ -6,9 +6,9 @@
 
 #include "clothref/core/cloth.h"
 #include "grader/grade/cause_ids.h"
-#include "grader/grade/probes/cause_evidence.h"
-#include "grader/grade/probes/formula_variants.h"
-#include "grader/grade/probes/spring_fit.h"
+#include "grader/grade/explain/cause_evidence.h"
+#include "grader/grade/explain/spring_fit.h"
+#include "grader/grade/mistakes/formula_variants.h"
 #include "grader/grade/probes/util.h"
 
 namespace clothref::grader {
@@ -241,9 +241,18 @@ std::vector<TestResult> probeForces(const ProbeContext& context) {
         util::vec3(c.acc0.col(i)) + "\n" +
         util::compareVectors("acceleration after the call", expected.col(i), actual.col(i),
                              util::Tolerance{rel * scale[i] + 1e-6, 0}, "m/s\u00B2");
-    for (int q = 0; q < kN * kN; ++q)  // measured: shown whatever else explains the numbers
+    // Measured: a fixed particle's acceleration changed. It explains the check (likely) only where
+    // every other particle is right; beside other differences (NaN, garbage, a second mistake)
+    // it is shown as a guess, and earns no mistake's points.
+    bool others_right = true;
+    for (int q = 0; q < kN * kN; ++q)
+      if (p.mass[q] != 0) {
+        const double err = (actual.col(q).cast<double>() - expected.col(q).cast<double>()).norm();
+        others_right = others_right && std::isfinite(err) && err <= rel * scale[q] + 1e-6;
+      }
+    for (int q = 0; q < kN * kN; ++q)
       if (p.mass[q] == 0 && actual.col(q) != c.acc0.col(q)) {
-        t.addCause(cause::kFixedParticleMoves);
+        t.addCause(cause::kFixedParticleMoves, others_right);
         break;
       }
     if (!util::finite(util::flat(actual))) evidence.measured[k].push_back(cause::kNonFinite);

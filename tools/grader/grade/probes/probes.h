@@ -11,11 +11,11 @@
 #include <vector>
 
 #include "grader/grade/catalogue.h"
-#include "grader/grade/probes/edition.h"
 #include "grader/grade/results.h"
 #include "grader/grade/rubric.h"
 #include "grader/grade/run/child_process.h"
 #include "grader/grade/run/sanitize.h"
+#include "grader/grade/submission/edition.h"
 
 namespace clothref::grader {
 
@@ -46,7 +46,8 @@ struct PlannedTest {
 std::vector<PlannedTest> plannedTests(int edition);
 
 // The one table of probes: one row per probe group, each group one child process (or two, for a
-// retry or a second size) run as one job. Adding a probe: docs/grading.md, "Adding a probe".
+// retry or a second size) run as one job. Adding a probe: docs/grading-reference.md, "Adding a
+// probe".
 struct ProbeGroup {
   std::string group;                // the protocol's group name (probe::group, bridge/probe_keys.h)
   std::string stub;                 // the course stub it grades; "" = information only

@@ -14,7 +14,7 @@
 #include "clothref/core/types.h"
 #include "grader/bridge/probe_keys.h"
 #include "grader/grade/cause_ids.h"
-#include "grader/grade/probes/compare_text.h"
+#include "grader/grade/explain/compare_text.h"
 #include "grader/grade/probes/probes.h"
 #include "grader/grade/text.h"
 

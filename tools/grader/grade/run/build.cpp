@@ -49,12 +49,17 @@ std::string fromEnv(const char* name, const char* fallback) {
   return value && *value ? value : fallback;
 }
 
-// Sanitizer defaults compiled into a sanitized probe (the child's environment is clean, so no
-// ASAN_OPTIONS): no leak check at exit (a leak is not the crash we look for, and LeakSanitizer
-// needs ptrace, which a sandbox may refuse).
+// Sanitizer defaults compiled into a sanitized probe: no leak check (LeakSanitizer needs ptrace).
+// GCC's libubsan ignores UBSAN_OPTIONS' log_path (sanitizerLimits): given it before student code.
 constexpr const char* kSanitizerOptionsSource =
+    "#include <dlfcn.h>\n#include <stdlib.h>\n"
     "extern \"C\" const char* __asan_default_options() { return \"detect_leaks=0\"; }\n"
-    "extern \"C\" const char* __ubsan_default_options() { return \"print_stacktrace=1\"; }\n";
+    "extern \"C\" const char* __ubsan_default_options() { return \"print_stacktrace=1\"; }\n"
+    "__attribute__((constructor(101))) static void clothrefUbsanReportPath() {\n"
+    "  const char* path = getenv(\"CLOTHREF_SANITIZER_LOG\");\n"
+    "  void* ubsan = path ? dlopen(\"libubsan.so.1\", RTLD_NOLOAD | RTLD_LAZY) : nullptr;\n"
+    "  void* set = ubsan ? dlsym(ubsan, \"__sanitizer_set_report_path\") : nullptr;\n"
+    "  if (set) reinterpret_cast<void (*)(const char*)>(set)(path);\n}\n";
 
 std::vector<std::string> compileCommand(const CourseToolchain& t, int edition,
                                         const fs::path& source, const fs::path& object,
@@ -255,8 +260,8 @@ bool prebuildEdition(const CourseToolchain& t, int edition, const fs::path& work
   const std::vector<ToolRun> runs = compileAll(t, commands, work_dir);
   for (std::size_t k = 0; k < runs.size(); ++k)
     if (!runs[k].ok) {
-      if (problem) *problem = "our reference " + studentFileNames()[k] + " of " + what +
-                              " does not compile";
+      if (problem)
+        *problem = "our reference " + studentFileNames()[k] + " of " + what + " does not compile";
       return false;
     }
   return true;
@@ -287,11 +292,10 @@ bool prebuildCourse(const CourseToolchain& given, const std::vector<int>& editio
     return false;
   }
   const fs::path options_source = work_dir / "sanitizer_options.cpp";
-  wanted.insert(
-      cachePath(t, {t.compiler, "-c", options_source.string(), "-o", options.string()},
-                options_source, work_dir, true)
-          .filename()
-          .string());
+  wanted.insert(cachePath(t, {t.compiler, "-c", options_source.string(), "-o", options.string()},
+                          options_source, work_dir, true)
+                    .filename()
+                    .string());
   // What an older clothref built (other headers or flags) is never found again: remove it.
   std::error_code error;
   for (const auto& entry : fs::directory_iterator(t.cache_dir, error))
@@ -453,55 +457,46 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseTo
 }
 
 ProbeRebuilder::ProbeRebuilder(const ProbeBuild& base, const SubmissionFiles& files, int edition,
-                               const CourseToolchain& toolchain, const fs::path& work_dir)
+                               const CourseToolchain& toolchain, Folder folder)
     : base_(base),
       files_(files),
       edition_(edition),
       toolchain_(absolutePaths(toolchain)),
-      work_dir_(work_dir) {}
-
-double ProbeRebuilder::seconds() const {
-  const std::lock_guard lock(mutex_);
-  return seconds_;
-}
+      folder_(std::move(folder)) {}
 
 fs::path ProbeRebuilder::probe(const std::vector<std::string>& rebuilt) {
   const std::lock_guard lock(mutex_);  // one build at a time: a later set reuses the objects
-  const auto start = std::chrono::steady_clock::now();
-  struct Clock {
-    double& seconds;
-    std::chrono::steady_clock::time_point start;
-    ~Clock() {
-      seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    }
-  } clock{seconds_, start};
   const auto& names = studentFileNames();
-  std::string key;
-  for (const std::string& name : names)
-    if (std::find(rebuilt.begin(), rebuilt.end(), name) != rebuilt.end()) key += name + " ";
-  const auto in = [&](const std::string& name) { return key.find(name + " ") != std::string::npos; };
-  if (const auto found = probes_.find(key); found != probes_.end()) return found->second;
-  fs::path& result = probes_[key];
-  if (!base_.ok || base_.objects.size() != names.size()) return result;
-  const std::string ed = std::to_string(edition_);
   const auto stem = [](const std::string& name) { return name.substr(0, name.size() - 4); };
-  fs::path pch = precompiledHeader(toolchain_, edition_, work_dir_);
+  const auto in = [&](const std::string& name) {
+    return std::find(rebuilt.begin(), rebuilt.end(), name) != rebuilt.end();
+  };
+  std::string set = "probe";
+  for (const std::string& name : names)
+    if (in(name)) set += "-" + stem(name);
+  if (const auto found = probes_.find(set); found != probes_.end()) return found->second;
+  fs::path& result = probes_[set];
+  if (!base_.ok || base_.objects.size() != names.size() || base_.files.size() != names.size())
+    return result;
+  const fs::path work_dir = folder_(set);
+  const std::string ed = std::to_string(edition_);
+  fs::path pch = precompiledHeader(toolchain_, edition_, work_dir);
   if (toolchain_.kit && !pch.empty()) pch = kitHeader(*toolchain_.kit, pch);
 
   // The files not compiled yet: the student's own first (as the tool uid), then our reference
-  // files (as the grader's uid, after every student compile in this folder, as buildProbes does).
+  // files (as the grader's uid); objects of earlier sets are copied in after the compiles.
   const CourseToolchain ours = oursOf(toolchain_);
+  std::map<std::string, fs::path> made;  // this set's files compiled here
   for (const bool reference : {false, true}) {
     std::vector<std::vector<std::string>> commands;
     std::vector<std::string> compiled;
     for (std::size_t k = 0; k < names.size(); ++k) {
       const std::string& name = names[k];
-      if (!in(name) || objects_.count(name) || base_.files.size() <= k) continue;
-      if (base_.files[k].compiled == reference) continue;
-      const fs::path object = work_dir_ / (stem(name) + ".o");
+      if (!in(name) || objects_.count(name) || base_.files[k].compiled == reference) continue;
+      const fs::path object = work_dir / (stem(name) + ".o");
       fs::path source = toolchain_.reference_dir / ed / name;
       if (!reference) {
-        const fs::path folder = work_dir_ / ("src-" + stem(name));
+        const fs::path folder = work_dir / ("src-" + stem(name));
         fs::create_directories(folder);
         source = folder / name;
         // the bytes the finder read, never the student's path again
@@ -509,13 +504,15 @@ fs::path ProbeRebuilder::probe(const std::vector<std::string>& rebuilt) {
         copy << files_.bytes.at(name);
         if (!copy.flush()) throw std::runtime_error("cannot copy " + name + " for a rebuild");
       }
-      commands.push_back(compileCommand(reference ? ours : toolchain_, edition_, source, object,
-                                        25, pch));
+      commands.push_back(
+          compileCommand(reference ? ours : toolchain_, edition_, source, object, 25, pch));
       compiled.push_back(name);
     }
-    const std::vector<ToolRun> runs = compileAll(reference ? ours : toolchain_, commands, work_dir_);
-    for (std::size_t r = 0; r < runs.size(); ++r)
-      objects_[compiled[r]] = runs[r].ok ? work_dir_ / (stem(compiled[r]) + ".o") : fs::path();
+    const std::vector<ToolRun> runs = compileAll(reference ? ours : toolchain_, commands, work_dir);
+    for (std::size_t r = 0; r < runs.size(); ++r) {
+      const fs::path object = work_dir / (stem(compiled[r]) + ".o");
+      objects_[compiled[r]] = made[compiled[r]] = runs[r].ok ? object : fs::path();
+    }
   }
 
   // The rebuilt objects first, then the grade's own objects of the other files.
@@ -523,26 +520,23 @@ fs::path ProbeRebuilder::probe(const std::vector<std::string>& rebuilt) {
   for (const std::string& name : names)
     if (in(name)) {
       if (objects_[name].empty()) return result;
-      objects.push_back(objects_[name]);
+      fs::path object = work_dir / (stem(name) + ".o");
+      if (!made.count(name) && !copyObject(objects_[name], object)) return result;
+      objects.push_back(object);
     }
   for (std::size_t k = 0; k < names.size(); ++k) {
     if (in(names[k])) continue;
-    const fs::path copy = work_dir_ / (stem(names[k]) + "-base.o");
-    if (!fs::exists(copy) && !copyObject(base_.objects[k], copy)) return result;
+    const fs::path copy = work_dir / (stem(names[k]) + "-base.o");
+    if (!copyObject(base_.objects[k], copy)) return result;
     objects.push_back(copy);
   }
-  if (toolchain_.sanitize && !options_tried_) {
-    options_tried_ = true;
-    options_object_ = sanitizerOptionsObject(toolchain_, work_dir_);
-  }
-  std::string name = "probe";
-  for (const std::string& file : names)
-    if (in(file)) name += "-" + stem(file);
-  const fs::path out = work_dir_ / name;
-  const ToolRun linked = checked(
-      runTools({linkCommand(toolchain_, edition_, objects, options_object_, out)}, work_dir_, 1,
-               toolchain_.compile_seconds, &toolchain_.isolation)
-          .front());
+  const fs::path options =
+      toolchain_.sanitize ? sanitizerOptionsObject(toolchain_, work_dir) : fs::path();
+  const fs::path out = work_dir / set;
+  const ToolRun linked =
+      checked(runTools({linkCommand(toolchain_, edition_, objects, options, out)}, work_dir, 1,
+                       toolchain_.compile_seconds, &toolchain_.isolation)
+                  .front());
   if (linked.ok) result = out;
   return result;
 }

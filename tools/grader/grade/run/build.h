@@ -8,6 +8,7 @@
 // edition).
 #pragma once
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <mutex>
 #include <string>
@@ -16,7 +17,7 @@
 #include "grader/grade/results.h"
 #include "grader/grade/run/folders.h"
 #include "grader/grade/run/sandbox.h"
-#include "grader/grade/run/submission.h"
+#include "grader/grade/submission/submission.h"
 
 namespace clothref::grader {
 
@@ -79,41 +80,41 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseTo
                        const std::filesystem::path& work_dir);
 
 // Probes built again from one grade's build (`base`, made by buildProbes in another folder) with
-// some files compiled with `toolchain`'s flags (the sanitizer's, docs/grading.md "Diagnosing
-// crashes") and every other file's object taken from `base` as it is: one file rebuilt costs one
-// compile (against the precompiled header of those flags) and a link. A file of `base` that is our
-// reference (the student's was missing or did not build) is rebuilt from our reference, taken
-// from the objects prebuilt with clothref when they match. Each file is compiled at most once per
-// rebuilder, whatever sets ask for it; the rebuilt objects come first in the link, so the inline
-// functions and templates they share with the others are theirs. Thread-safe.
+// some files compiled with `toolchain`'s flags (the sanitizer's, docs/grading-reference.md
+// "Diagnosing crashes") and every other file's object taken from `base` as it is: one file
+// rebuilt costs one compile (against the precompiled header of those flags, from the cache when
+// another grade compiled the same bytes) and a link. A file of `base` that is our reference (the
+// student's was missing or did not build) is rebuilt from our reference (prebuilt with clothref
+// when it matches). Each set is built in a new folder of its own (`folder(name)`, the tool uid's):
+// its student compiles run before any object or probe of ours is there, as in buildProbes. Each
+// file is compiled at most once per rebuilder, whatever sets ask for it; the rebuilt objects come
+// first in the link, so the inline functions and templates they share with the others are
+// theirs. Thread-safe.
 class ProbeRebuilder {
  public:
+  using Folder = std::function<std::filesystem::path(const std::string& name)>;
   ProbeRebuilder(const ProbeBuild& base, const SubmissionFiles& files, int edition,
-                 const CourseToolchain& toolchain, const std::filesystem::path& work_dir);
+                 const CourseToolchain& toolchain, Folder folder);
   // The probe with the student files `rebuilt` (names of studentFileNames()) compiled again,
-  // linked in the work dir; empty when a compile or the link failed.
+  // linked in that set's folder; empty when a compile or the link failed.
   std::filesystem::path probe(const std::vector<std::string>& rebuilt);
-  // Wall time spent compiling and linking so far.
-  double seconds() const;
 
  private:
   const ProbeBuild& base_;
   const SubmissionFiles& files_;
   int edition_;
   CourseToolchain toolchain_;
-  std::filesystem::path work_dir_;
-  mutable std::mutex mutex_;
+  Folder folder_;
+  std::mutex mutex_;
   std::map<std::string, std::filesystem::path> objects_;  // by file; empty: it failed
   std::map<std::string, std::filesystem::path> probes_;   // by the rebuilt set; empty: failed
-  std::filesystem::path options_object_;                  // the sanitizer's defaults, once
-  bool options_tried_ = false;
-  double seconds_ = 0;
 };
 
 // Fills `out_dir` (a `prebuilt_dir`) with what grading needs whatever the submission: per edition
 // the precompiled stand-in headers and our three reference objects, for the default flags and for
 // the sanitizer's (its diagnostic build), and the sanitizer's defaults object; removes what it
-// holds for other headers or flags. Run with clothref's build; false (and why) when something fails.
+// holds for other headers or flags. Run with clothref's build; false (and why) when something
+// fails.
 bool prebuildCourse(const CourseToolchain& toolchain, const std::vector<int>& editions,
                     const std::filesystem::path& out_dir, const std::filesystem::path& work_dir,
                     std::string* problem);

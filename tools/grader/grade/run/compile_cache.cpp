@@ -223,12 +223,10 @@ fs::path precompiledHeader(const CourseToolchain& t, int edition, const fs::path
   const fs::path temporary = t.cache_dir / (name + ".tmp" + uniqueSuffix());
   fs::create_directories(temporary, error);
   std::ofstream(temporary / "course_pch.h") << precompiledHeaderText(t, edition);
-  // Our own headers only, into our cache: compiled by the grader's uid, as our reference files are
-  // (a student's tool uid can neither write the cache nor, in bubblewrap, see it).
-  const bool built =
-      runTools({precompileCommand(t, edition, temporary)}, work_dir, 1, t.compile_seconds, nullptr)
-          .front()
-          .ok;
+  const bool built = runTools({precompileCommand(t, edition, temporary)}, work_dir, 1,
+                              t.compile_seconds, &t.isolation)
+                         .front()
+                         .ok;
   if (built) fs::rename(temporary, dir, error);  // another grader may have won: use theirs
   fs::remove_all(temporary, error);
   return fs::exists(dir / "course_pch.h.gch", error) ? dir / "course_pch.h" : fs::path();

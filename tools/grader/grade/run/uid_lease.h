@@ -1,4 +1,5 @@
-// The uids student code runs as, one pair per grade, leased host-wide (docs/grading.md, "Layers").
+// The uids student code runs as, one pair per grade, leased host-wide (docs/grading-reference.md,
+// "Layers").
 #pragma once
 #include <filesystem>
 #include <memory>

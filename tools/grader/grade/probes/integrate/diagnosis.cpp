@@ -1,0 +1,186 @@
+// Likely causes of a wrong first step (diagnosis.h).
+#include "grader/grade/probes/integrate/diagnosis.h"
+
+#include <Eigen/QR>
+#include <algorithm>
+#include <array>
+
+#include "clothref/core/integrator.h"
+#include "grader/grade/explain/stages/stages.h"
+#include "grader/grade/mistakes/integrate_mistakes.h"
+#include "grader/grade/submission/source_text.h"
+#include "grader/grade/submission/submission.h"
+
+namespace clothref::grader::integrators {
+namespace {
+
+// RK4's final update fitted as x0 + sum w_k kx_k (and v0 + sum u_k kv_k) over the cloth, with the
+// stages of the course method. Empty when the update is no such sum.
+struct WeightFit {
+  bool fits = false;
+  Eigen::Vector4d w = Eigen::Vector4d::Zero();
+};
+std::pair<WeightFit, WeightFit> fitRk4Weights(const System& random, const System& actual) {
+  // The course's stages: the library's RK4 keeps every body's start and k in its scratch.
+  System s = random;
+  simulate(s);
+  std::array<Particles<float>*, 2> storage{&s.cloth.particles, &s.spheres.particles};
+  IntegratorScratch<float> scratch;
+  auto sim = [&] { simulate(s); };
+  integrateRk4(Bodies<float>(storage.data(), storage.size()), s.dt, FunctionRef<void()>(sim),
+               scratch);
+  const BodyScratch<float>& cloth = scratch[0];
+  const auto fit = [](const Mat4X<float>(&k)[4], const Mat4X<float>& start,
+                      const Mat4X<float>& end) {
+    WeightFit result;
+    const Eigen::Index n = start.size();
+    Eigen::MatrixXd a(n, 4);
+    for (int j = 0; j < 4; ++j)
+      a.col(j) = Eigen::Map<const Eigen::VectorXf>(k[j].data(), n).cast<double>();
+    const Eigen::VectorXd b = (Eigen::Map<const Eigen::VectorXf>(end.data(), n) -
+                               Eigen::Map<const Eigen::VectorXf>(start.data(), n))
+                                  .cast<double>();
+    result.w = a.colPivHouseholderQr().solve(b);
+    const double scale = 1e-12 + a.cwiseAbs().rowwise().sum().norm();
+    result.fits = result.w.allFinite() && (a * result.w - b).norm() <= 1e-4 * scale;
+    return result;
+  };
+  return {fit(cloth.kx, cloth.x0, actual.cloth.particles.position),
+          fit(cloth.kv, cloth.v0, actual.cloth.particles.velocity)};
+}
+
+bool near(const Eigen::Vector4d& w, const Eigen::Vector4d& target) {
+  return (w - target).cwiseAbs().maxCoeff() < 1e-3;
+}
+
+// The known mistakes of `method` that change the first step, as (cause id, its step): the
+// student's numbers equal to one of these name that cause.
+std::vector<std::pair<std::string, Step>> oneStepSignatures(Method method) {
+  std::vector<std::pair<std::string, Step>> signatures = {
+      {"only-first-body", clothrefStep(method, 1)}};
+  if (method == Method::Explicit) {
+    signatures.push_back({"only-first-body", clothrefStep(Method::Symplectic, 1)});
+    signatures.push_back(
+        {"position-uses-acceleration", variantStep(method, Variant::PositionUsesAcceleration)});
+    signatures.push_back({"velocity-not-integrated", variantStep(method, Variant::PositionOnly)});
+    signatures.push_back({"position-not-integrated", variantStep(method, Variant::VelocityOnly)});
+  } else {
+    signatures.push_back({"backup-alias", variantStep(method, Variant::Alias)});
+    signatures.push_back({"no-reevaluation", variantStep(method, Variant::NoReevaluation)});
+    signatures.push_back({"per-body-loop", variantStep(method, Variant::PerBody)});
+  }
+  if (method == Method::Midpoint) {
+    signatures.push_back({"midpoint-full-step", clothrefStep(Method::Implicit)});
+    signatures.push_back(
+        {"no-reevaluation", variantStep(method, Variant::NoReevaluationHalfVelocity)});
+    // simulateOneStep() at the unchanged start state; a contact in it is applied a second time,
+    // so this is not explicit Euler's result.
+    signatures.push_back({"no-reevaluation", variantStep(method, Variant::ZeroHalfStep)});
+  }
+  if (method == Method::Rk4) {
+    signatures.push_back({"integer-division-rk4", variantStep(method, Variant::RkIntDivision)});
+    signatures.push_back({"rk4-mixed-increments", variantStep(method, Variant::RkMixedFinal)});
+    signatures.push_back({"rk4-mixed-increments", variantStep(method, Variant::RkK4xInVelocity)});
+    for (int k = 0; k < 3; ++k)
+      signatures.push_back({"rk4-mixed-increments", variantStep(method, Variant::RkMixedStage, k)});
+    signatures.push_back(
+        {"rk4-stage-not-from-backup", variantStep(method, Variant::RkStageFromCurrent)});
+    signatures.push_back(
+        {"rk4-stage-from-wrong-increment", variantStep(method, Variant::RkStageFromNewVelocity)});
+    signatures.push_back({"rk4-stages-discarded", variantStep(method, Variant::RkStagesDiscarded)});
+  }
+  return signatures;
+}
+
+// RK4 whose first step matches no signature: right stages, other weights? Fits both updates on
+// the course's stages, says what they fit in `output`, and returns the cause ("" = none).
+std::string rk4WeightCause(const IntegratorRun& run, const std::string& source,
+                           std::string& output) {
+  const auto [x, v] = fitRk4Weights(run.random, run.actual);
+  const Eigen::Vector4d course(1.0 / 6, 1.0 / 3, 1.0 / 3, 1.0 / 6);
+  const Eigen::Vector4d zero = Eigen::Vector4d::Zero();
+  const bool missing_term = (x.fits && near(x.w, zero)) || (v.fits && near(v.w, zero)) ||
+                            (x.fits && x.w[0] == 0 && near(x.w, {0, 1.0 / 3, 1.0 / 3, 0}));
+  for (const auto& [what, fit] : {std::pair{"position", x}, std::pair{"velocity", v}})
+    if (fit.fits && !near(fit.w, course))
+      output += "\nYour " + std::string(what) + " update fits x0 + " + util::num(fit.w[0]) +
+                " k1 + " + util::num(fit.w[1]) + " k2 + " + util::num(fit.w[2]) + " k3 + " +
+                util::num(fit.w[3]) + " k4 (the course: 1/6, 1/3, 1/3, 1/6).\n";
+  // A weight of zero where the course has 1/6 is integer division only when the source has it.
+  if (missing_term && sourceHints(source).integer_sixth) return "integer-division-rk4";
+  if ((x.fits && !near(x.w, course)) || (v.fits && !near(v.w, course))) return "rk4-wrong-weights";
+  return "";
+}
+
+}  // namespace
+
+std::string stubSource(const ProbeContext& context, const std::string& stub) {
+  auto file = context.sources.find("integrator.cpp");
+  return file == context.sources.end() ? "" : stubCode(file->second, stub);
+}
+
+std::vector<std::string> diagnoseOneStep(const ProbeContext& context, const IntegratorRun& run,
+                                         std::string& output, std::vector<std::string>& guesses) {
+  const Method method = run.method;
+  const std::vector<std::pair<std::string, Step>> signatures = oneStepSignatures(method);
+  std::vector<std::string> ids;
+  const auto add = [&](const std::string& id) {
+    if (std::find(ids.begin(), ids.end(), id) == ids.end()) ids.push_back(id);
+  };
+  const auto drop = [&](const std::string& id) {
+    ids.erase(std::remove(ids.begin(), ids.end(), id), ids.end());
+  };
+  for (const auto& [id, step] : signatures)
+    if (distance(run.actual, stepped(run.random, step)) <= 10 * run.rel) add(id);
+  // Nothing added by the final update is integer division only when the source divides 1 by 6.
+  const std::string source = stubSource(context, run.stub);
+  const SourceHints hints = sourceHints(source);
+  if (std::find(ids.begin(), ids.end(), "integer-division-rk4") != ids.end() && !source.empty() &&
+      !hints.integer_sixth) {
+    drop("integer-division-rk4");
+    add("rk4-wrong-weights");
+  }
+
+  if (ids.empty() && method == Method::Rk4) {
+    const std::string id = rk4WeightCause(run, source, output);
+    if (!id.empty()) add(id);
+  }
+  const auto& after = run.answer.f(key::perCase(key::kDtAfter, 0));
+  if (!after.empty() && after[0] != run.random.dt) add("deltatime-mutated");
+
+  // simulateOneStep calls during integrate: the method's evaluations but the one before it.
+  const auto& calls_out = run.answer.i(key::perCase(key::kCalls, 0));
+  const std::int64_t calls = calls_out.empty() ? -1 : calls_out[0];
+  const std::int64_t expected_calls = methodInfo(method).evaluations - 1;
+  if (calls >= 0 && calls != expected_calls)
+    output += "\nsimulateOneStep() was called " + std::to_string(calls) +
+              " times during integrate(); the course method calls it " +
+              std::to_string(expected_calls) + " times.\n";
+  if (calls >= 0 && calls < expected_calls) {
+    drop("no-reevaluation");
+    add("no-reevaluation");
+  } else if (method == Method::Midpoint && calls == expected_calls &&
+             distance(run.actual,
+                      stepped(run.random, variantStep(method, Variant::ZeroHalfStep))) <=
+                 10 * run.rel) {
+    // simulateOneStep() ran at the start state: the half step added nothing, or was never written
+    // back. Integer division only when the source divides 1 by 2.
+    if (hints.integer_half) {
+      drop("no-reevaluation");
+      add("integer-division-half");
+    }
+  }
+  // RK4 that called simulateOneStep() three times and then kept only k1 gives explicit Euler's
+  // numbers: the stages were discarded, not skipped.
+  if (method == Method::Rk4 && calls == expected_calls &&
+      std::find(ids.begin(), ids.end(), "rk4-stages-discarded") != ids.end())
+    drop("no-reevaluation");
+  if (calls >= 0 && calls < expected_calls) drop("rk4-stages-discarded");
+  // A per-body loop calls simulateOneStep() once per body and stage.
+  if (calls > expected_calls && expected_calls > 0 && calls % expected_calls == 0 &&
+      std::find(ids.begin(), ids.end(), "per-body-loop") == ids.end() && ids.empty())
+    guesses.push_back("per-body-loop");
+  return ids;
+}
+
+}  // namespace clothref::grader::integrators

@@ -1,0 +1,72 @@
+// One run of the integrator probe (run.h).
+#include "grader/grade/probes/integrate/run.h"
+
+#include <cmath>
+
+#include "grader/grade/explain/stages/stages.h"
+
+namespace clothref::grader::integrators {
+
+bool runIntegrator(const ProbeContext& context, int index, bool course_size, IntegratorRun& run,
+                   util::ProbeFailure& failure, ChildRun& child, bool log) {
+  run.index = index;
+  run.method = integratorMethod(index);
+  run.stub = stubName(integratorStub(index));
+  run.rel = context.rubric.tolerances.integrate_rel;
+  const std::uint64_t seed = context.seed + 7 * std::uint64_t(index);
+  run.random = course_size ? courseSystem(seed, context.edition) : randomSystem(seed);
+  run.spring_particles = course_size ? run.random.cloth.particles.size() : 2;
+  switch (run.method) {
+    case Method::Explicit:
+    case Method::Implicit:
+      run.dts = {0.002, 0.001, 0.0005, 0.00025};
+      break;
+    case Method::Midpoint:
+      run.dts = {0.01, 0.005, 0.0025, 0.00125};
+      break;
+    default:
+      run.dts = {0.1, 0.05, 0.025};
+      run.end_time = 2.0;
+      break;
+  }
+  run.limit = stabilityLimit(run.method);
+  run.stable_dt = 0.5 * run.limit;
+  const std::int64_t stable_steps = static_cast<std::int64_t>(20.0 / run.stable_dt);
+
+  // Case 0: one step on the random state. Cases 1..: the convergence ladder. Last: stability.
+  probe::ProbeMessage request;
+  request.texts[key::kGroup] = group::kIntegrate;
+  request.ints[key::kMethod] = {index};
+  addSystem(request, 0, run.random, 1, 0);
+  for (std::size_t k = 0; k < run.dts.size(); ++k) {
+    const std::int64_t steps = std::llround(run.end_time / run.dts[k]);
+    const std::int64_t stride = std::max<std::int64_t>(1, steps / 50);
+    run.strides.push_back(stride);
+    addSystem(request, int(k) + 1, springSystem(float(run.dts[k]), run.spring_particles), steps,
+              stride);
+  }
+  run.stable_case = int(run.dts.size()) + 1;
+  const std::int64_t stable_stride = std::max<std::int64_t>(1, stable_steps / 100);
+  addSystem(request, run.stable_case, springSystem(float(run.stable_dt), run.spring_particles),
+            stable_steps, stable_stride);
+  // Last: the stage record, one step of a contact-free random state (stages.h).
+  run.stage_case = run.stable_case + 1;
+  addSystem(request, run.stage_case, stageSystem(seed, course_size, context.edition), 1, 0);
+  request.ints[key::perCase(key::kRecordStages, run.stage_case)] = {1};
+  request.ints[key::kCases] = {run.stage_case + 1};
+
+  ProbeContext quiet = context;
+  if (!log) quiet.limits.log = nullptr;  // a crash that the course-size retry may still grade
+  const auto answer = util::runGroup(quiet, context.probe, integratorFolder(index, course_size),
+                                     request, failure, &child);
+  if (!answer) return false;
+  run.answer = *answer;
+  run.actual = answerSystem(run.answer, 0, run.random);
+  run.expected = stepped(run.random, clothrefStep(run.method));
+  run.start = run.random;
+  simulate(run.start);  // contacts move bodies before integrate() does
+  run.distance = distance(run.actual, run.expected);
+  return true;
+}
+
+}  // namespace clothref::grader::integrators

@@ -1,0 +1,39 @@
+// One run of the integrator probe: the request (the random state, the convergence ladder, the
+// stability run and the stage record) built for one course integrator, the child's answer, and
+// what the checks compare it with.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "grader/bridge/probe_protocol.h"
+#include "grader/grade/probes/integrate/systems.h"
+#include "grader/grade/probes/util.h"
+
+namespace clothref::grader::integrators {
+
+struct IntegratorRun {
+  int index = 0;  // the course's currentIntegrator: 0 explicit .. 3 RK4
+  Method method = Method::Explicit;
+  std::string stub;
+  double rel = 0;
+  System random;
+  std::vector<double> dts;
+  std::vector<std::int64_t> strides;
+  double end_time = 1.0;
+  int spring_particles = 2;  // cloth size of the spring systems
+  double limit = 0, stable_dt = 0;
+  int stable_case = 0;
+  int stage_case = 0;  // the contact-free case whose stages are recorded (stages.h)
+  probe::ProbeMessage answer;
+  System start;  // the random state after the simulateOneStep() that precedes integrate()
+  System actual, expected;
+  double distance = 0;  // actual against the course method after one step
+};
+
+// Builds the request for `index` (small systems, or the course's cloth when `course_size`) and
+// runs it; `log` records a failed child's verdict. Returns false with `failure` set when the
+// child did not answer.
+bool runIntegrator(const ProbeContext& context, int index, bool course_size, IntegratorRun& run,
+                   util::ProbeFailure& failure, ChildRun& child, bool log);
+
+}  // namespace clothref::grader::integrators
