@@ -75,9 +75,17 @@ void checkOutputPath(const std::string& option, const std::string& path) {
                      std::strerror(errno));
 }
 
-// The batch's last lines: what it did, the submissions whose verdict is not `graded` (at most 20
-// by name), and where the CSV and the class overview are.
+// The batch's last lines: the slowest submissions and why, what it did, the submissions whose
+// verdict is not `graded` (at most 20 by name), and where the CSV and the class overview are.
 void printBatchEnd(const grader::BatchSummary& summary) {
+  // where the time went first: the lines after the summary stay the last ones
+  if (!summary.slowest.empty()) {
+    std::cerr << "clothref grade: the slowest:\n";
+    for (const auto& slow : summary.slowest)
+      std::cerr << "  " << grader::safeName(slow.name) << ": " << std::fixed << std::setprecision(1)
+                << slow.seconds << " s (" << slow.why << ")\n";
+    std::cerr.unsetf(std::ios::floatfield);
+  }
   std::cerr << "clothref grade: " << summary.rows.size() << " submissions (" << summary.graded
             << " graded now, " << summary.skipped << " already graded), " << summary.failed
             << " with a verdict other than 'graded'" << (summary.not_graded.empty() ? "" : ":")
@@ -87,13 +95,6 @@ void printBatchEnd(const grader::BatchSummary& summary) {
               << grader::verdictId(summary.not_graded[k].second) << '\n';
   if (summary.not_graded.size() > 20)
     std::cerr << "  ... and " << summary.not_graded.size() - 20 << " more (the CSV has them all)\n";
-  if (!summary.slowest.empty()) {
-    std::cerr << "clothref grade: the slowest:\n";
-    for (const auto& slow : summary.slowest)
-      std::cerr << "  " << grader::safeName(slow.name) << ": " << std::fixed << std::setprecision(1)
-                << slow.seconds << " s (" << slow.why << ")\n";
-    std::cerr.unsetf(std::ios::floatfield);
-  }
   for (const std::string& isolation : summary.isolation)
     std::cerr << "clothref grade: student code ran with: " << grader::safeName(isolation) << '\n';
   std::cerr << "clothref grade: CSV " << grader::safeName(summary.csv.string())

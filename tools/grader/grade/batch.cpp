@@ -346,7 +346,8 @@ BatchSummary runBatch(const std::vector<fs::path>& dirs, const BatchOptions& opt
       }
       ++done;
       if (out.row.verdict != Verdict::Graded) ++failed;
-      noteIfSlow(summary.slowest, {entry.name, out.row.seconds, out.time_note});
+      if (!out.time_note.empty())  // graded: a refused folder costs nothing to speak of
+        noteIfSlow(summary.slowest, {entry.name, out.row.seconds, out.time_note});
       const double eta = since(start) / done * static_cast<double>(pending.size() - done);
       progress.update(done, std::to_string(failed) + " failed, ETA " + formatDuration(eta));
     }
