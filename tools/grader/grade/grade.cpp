@@ -7,6 +7,7 @@
 #include <chrono>
 #include <exception>
 #include <fstream>
+#include <iomanip>
 #include <map>
 #include <mutex>
 #include <random>
@@ -30,6 +31,38 @@ namespace {
 
 double since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::string oneDecimal(double seconds) {
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(1) << seconds;
+  return out.str();
+}
+
+// Where a grade's time went (GradeReport::time_note): probes stopped at their time limit, the
+// sanitizer's rebuild and rerun, then the compile and probe seconds.
+std::string timeNote(const GradeReport& report, const ChildLimits& limits, double sanitizer) {
+  std::vector<std::string> parts;
+  std::size_t timed_out = 0;
+  {
+    std::lock_guard<std::mutex> lock(limits.log->mutex);
+    timed_out = static_cast<std::size_t>(
+        std::count(limits.log->verdicts.begin(), limits.log->verdicts.end(), Verdict::TimedOut));
+  }
+  if (timed_out)
+    parts.push_back("endless loop: " + std::to_string(timed_out) +
+                    (timed_out == 1 ? " probe" : " probes") + " stopped at the " +
+                    (std::ostringstream() << limits.wall_seconds).str() + " s limit");
+  if (sanitizer > 0) parts.push_back("sanitizer rebuild and rerun " + oneDecimal(sanitizer) + " s");
+  const auto seconds = [&](const char* key) {
+    const auto found = report.seconds.find(key);
+    return found == report.seconds.end() ? 0.0 : found->second;
+  };
+  parts.push_back("compile " + oneDecimal(seconds("compile") + seconds("link")) + " s, probes " +
+                  oneDecimal(seconds("probes")) + " s");
+  std::string note;
+  for (const std::string& part : parts) note += (note.empty() ? "" : "; ") + part;
+  return note;
 }
 
 }  // namespace
@@ -350,7 +383,7 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
 
   ProbeContext context =
       probeContext(report, rubric, catalogue, build, files, isolation, scratch, options);
-  SanitizedProbes sanitizer(files, report.edition, toolchain, scratch, context.limits);
+  SanitizedProbes sanitizer(files, report.edition, toolchain, scratch, context.limits, build);
   if (!options.toolchain.sanitize) context.sanitizer = &sanitizer;
   const std::map<std::string, TestResult> unavailable = unavailableStubs(build.files);
   std::map<std::string, std::string> skipped;  // the groups of those stubs do not run
@@ -359,6 +392,7 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
   auto results = runProbeGroups(probeGroups(report.edition, options.whole_run), context, skipped,
                                 options.probe_jobs);
   report.seconds["probes"] = since(probe_start);
+  report.time_note = timeNote(report, context.limits, sanitizer.seconds());
 
   report.tests = unavailableTests(report.edition, unavailable);
   for (auto& group : results)

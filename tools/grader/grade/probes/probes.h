@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,15 @@ struct ProbeContext {
   std::map<std::string, std::string> sources;
   // The sanitizer run a crashing or varying probe gets (run/sanitize.h); null: none.
   SanitizedProbes* sanitizer = nullptr;
+  // Set: a crash or a variation is not explained now but kept here, for util::explainLater (a run
+  // whose failure a retry may still replace: its sanitizer build and run are saved then).
+  struct Unexplained* explain_later = nullptr;
+};
+
+// The run a probe kept for later explanation (ProbeContext::explain_later): its request and folder.
+struct Unexplained {
+  std::optional<probe::ProbeMessage> request;
+  std::filesystem::path dir;
 };
 
 // Test names of each group, in order (used for compile errors and crashes, where the group did

@@ -128,6 +128,52 @@ std::vector<ToolRun> compileAll(const CourseToolchain& t,
   return results;
 }
 
+// Our own reference files and helpers are compiled with the grader's uid, unconfined (only it may
+// read them), and keyed as the objects prebuilt with clothref are.
+CourseToolchain oursOf(const CourseToolchain& toolchain) {
+  CourseToolchain ours = toolchain;
+  ours.isolation = Isolation{};
+  ours.trusted_sources = true;
+  return ours;
+}
+
+// The object holding the sanitizer's defaults (kSanitizerOptionsSource), compiled into
+// `work_dir` (prebuilt with clothref, cached, or compiled here); empty when it fails.
+fs::path sanitizerOptionsObject(const CourseToolchain& toolchain, const fs::path& work_dir) {
+  const fs::path source = work_dir / "sanitizer_options.cpp";
+  const fs::path object = work_dir / "sanitizer_options.o";
+  std::ofstream(source) << kSanitizerOptionsSource;
+  const CourseToolchain ours = oursOf(toolchain);
+  const ToolRun built =
+      compileAll(ours, {{ours.compiler, "-c", source.string(), "-o", object.string()}}, work_dir)
+          .front();
+  return built.ok ? object : fs::path();
+}
+
+// The link of a probe: the objects in order, the driver library last; with the sanitizer's flag
+// and defaults for a sanitized build.
+std::vector<std::string> linkCommand(const CourseToolchain& toolchain, int edition,
+                                     const std::vector<fs::path>& objects,
+                                     const fs::path& sanitizer_options, const fs::path& out) {
+  std::vector<std::string> command = {toolchain.compiler, "-o", out.string()};
+  if (toolchain.sanitize) command.push_back(kSanitizeFlag);
+  if (!sanitizer_options.empty()) command.push_back(sanitizer_options.string());
+  for (const auto& o : objects) command.push_back(o.string());
+  command.push_back(
+      (toolchain.driver_lib_dir / ("libclothref_grader_course_" + std::to_string(edition) + ".a"))
+          .string());
+  return command;
+}
+
+// Paths a compile or link in the scratch folder gets are absolute.
+CourseToolchain absolutePaths(const CourseToolchain& given) {
+  CourseToolchain toolchain = given;
+  if (!toolchain.cache_dir.empty()) toolchain.cache_dir = fs::absolute(toolchain.cache_dir);
+  if (!toolchain.prebuilt_dir.empty())
+    toolchain.prebuilt_dir = fs::absolute(toolchain.prebuilt_dir);
+  return toolchain;
+}
+
 }  // namespace
 
 fs::path objectCachePath(const CourseToolchain& t, const std::vector<std::string>& command,
@@ -192,33 +238,64 @@ CourseToolchain defaultToolchain() {
   return t;
 }
 
+namespace {
+
+// One edition's precompiled header and our three reference objects for `t`'s flags, into its
+// cache (the prebuilt folder); their names go to `wanted`.
+bool prebuildEdition(const CourseToolchain& t, int edition, const fs::path& work_dir,
+                     std::set<std::string>& wanted, std::string* problem) {
+  const std::string what = std::to_string(edition) + (t.sanitize ? " (sanitizer)" : "");
+  const fs::path pch = precompiledHeader(t, edition, work_dir);
+  if (pch.empty()) {
+    if (problem) *problem = "the precompiled header of " + what + " failed";
+    return false;
+  }
+  wanted.insert(pch.parent_path().filename().string());
+  std::vector<std::vector<std::string>> commands;
+  for (const std::string& name : studentFileNames()) {
+    const fs::path source = t.reference_dir / std::to_string(edition) / name;
+    commands.push_back(compileCommand(t, edition, source, work_dir / (name + ".o"), 25, pch));
+    wanted.insert(cachePath(t, commands.back(), source, work_dir, true).filename().string());
+  }
+  const std::vector<ToolRun> runs = compileAll(t, commands, work_dir);
+  for (std::size_t k = 0; k < runs.size(); ++k)
+    if (!runs[k].ok) {
+      if (problem)
+        *problem = "our reference " + studentFileNames()[k] + " of " + what + " does not compile";
+      return false;
+    }
+  return true;
+}
+
+}  // namespace
+
 bool prebuildCourse(const CourseToolchain& given, const std::vector<int>& editions,
                     const fs::path& out_dir, const fs::path& work_dir, std::string* problem) {
   CourseToolchain t = given;
   t.cache_dir = fs::absolute(out_dir);
   t.prebuilt_dir.clear();
   t.trusted_sources = true;  // our reference files: keyed for every isolation
+  // Our own files at build time: no limit meant for students' compiles on a loaded machine (an
+  // instrumented header or object takes minutes of wall time there).
+  t.compile_seconds = 3600;
   std::set<std::string> wanted;
-  for (const int edition : editions) {
-    const fs::path pch = precompiledHeader(t, edition, work_dir);
-    if (pch.empty()) {
-      if (problem) *problem = "the precompiled header of " + std::to_string(edition) + " failed";
-      return false;
+  // The normal build, then the sanitizer's (ProbeRebuilder): its own precompiled header, our
+  // reference objects for files that did not build, and the object of its defaults.
+  for (const bool sanitize : {false, true})
+    for (const int edition : editions) {
+      t.sanitize = sanitize;
+      if (!prebuildEdition(t, edition, work_dir, wanted, problem)) return false;
     }
-    wanted.insert(pch.parent_path().filename().string());
-    std::vector<std::vector<std::string>> commands;
-    for (const std::string& name : studentFileNames()) {
-      const fs::path source = t.reference_dir / std::to_string(edition) / name;
-      commands.push_back(compileCommand(t, edition, source, work_dir / (name + ".o"), 25, pch));
-      wanted.insert(cachePath(t, commands.back(), source, work_dir, true).filename().string());
-    }
-    const std::vector<ToolRun> runs = compileAll(t, commands, work_dir);
-    for (std::size_t k = 0; k < runs.size(); ++k)
-      if (!runs[k].ok) {
-        if (problem) *problem = "our reference " + studentFileNames()[k] + " does not compile";
-        return false;
-      }
+  const fs::path options = sanitizerOptionsObject(t, work_dir);
+  if (options.empty()) {
+    if (problem) *problem = "the sanitizer's defaults (sanitizer_options.cpp) do not compile";
+    return false;
   }
+  const fs::path options_source = work_dir / "sanitizer_options.cpp";
+  wanted.insert(cachePath(t, {t.compiler, "-c", options_source.string(), "-o", options.string()},
+                          options_source, work_dir, true)
+                    .filename()
+                    .string());
   // What an older clothref built (other headers or flags) is never found again: remove it.
   std::error_code error;
   for (const auto& entry : fs::directory_iterator(t.cache_dir, error))
@@ -229,10 +306,7 @@ bool prebuildCourse(const CourseToolchain& given, const std::vector<int>& editio
 ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseToolchain& given,
                        const fs::path& work_dir) {
   // Compiles run inside the scratch folder: every path they get must be absolute.
-  CourseToolchain toolchain = given;
-  if (!toolchain.cache_dir.empty()) toolchain.cache_dir = fs::absolute(toolchain.cache_dir);
-  if (!toolchain.prebuilt_dir.empty())
-    toolchain.prebuilt_dir = fs::absolute(toolchain.prebuilt_dir);
+  const CourseToolchain toolchain = absolutePaths(given);
   ProbeBuild build;
   const std::string ed = std::to_string(edition);
   const auto stem = [](const std::string& name) { return name.substr(0, name.size() - 4); };
@@ -302,9 +376,7 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseTo
   // 2. Our reference version for every file that is missing or did not compile: our own source,
   // compiled (when nothing prebuilt matches) with the grader's uid, which alone may read it, and
   // keyed as our prebuilt objects are. No student compile runs in this folder after it.
-  CourseToolchain ours = toolchain;
-  ours.isolation = Isolation{};
-  ours.trusted_sources = true;
+  const CourseToolchain ours = oursOf(toolchain);
   commands.clear();
   names.clear();
   for (const UsedFile& used : build.files) {
@@ -328,26 +400,12 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseTo
   // 3. Link. A link error (e.g. a framework function deleted) makes us swap in our version of
   // the file the linker complains about, one file at a time.
   const auto link_start = std::chrono::steady_clock::now();
-  const fs::path driver_lib = toolchain.driver_lib_dir / ("libclothref_grader_course_" + ed + ".a");
-  fs::path sanitizer_options;
-  if (toolchain.sanitize) {
-    std::ofstream(work_dir / "sanitizer_options.cpp") << kSanitizerOptionsSource;
-    sanitizer_options = work_dir / "sanitizer_options.o";
-    const ToolRun built =
-        runTools({{toolchain.compiler, "-c", (work_dir / "sanitizer_options.cpp").string(), "-o",
-                   sanitizer_options.string()}},
-                 work_dir, 1, toolchain.compile_seconds, &toolchain.isolation)
-            .front();
-    if (!built.ok) sanitizer_options.clear();
-  }
+  const fs::path sanitizer_options =
+      toolchain.sanitize ? sanitizerOptionsObject(toolchain, work_dir) : fs::path();
   const auto link = [&](const std::vector<fs::path>& objects, const fs::path& out) {
-    std::vector<std::string> command = {toolchain.compiler, "-o", out.string()};
-    if (toolchain.sanitize) command.push_back(kSanitizeFlag);
-    if (!sanitizer_options.empty()) command.push_back(sanitizer_options.string());
-    for (const auto& o : objects) command.push_back(o.string());
-    command.push_back(driver_lib.string());
-    return checked(
-        runTools({command}, work_dir, 1, toolchain.compile_seconds, &toolchain.isolation).front());
+    return checked(runTools({linkCommand(toolchain, edition, objects, sanitizer_options, out)},
+                            work_dir, 1, toolchain.compile_seconds, &toolchain.isolation)
+                       .front());
   };
   std::vector<fs::path> objects = {work_dir / "cloth.o", work_dir / "sphere.o",
                                    work_dir / "integrator.o"};
@@ -393,8 +451,94 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseTo
   }
   build.link_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - link_start).count();
+  build.objects = objects;
   build.ok = true;
   return build;
+}
+
+ProbeRebuilder::ProbeRebuilder(const ProbeBuild& base, const SubmissionFiles& files, int edition,
+                               const CourseToolchain& toolchain, Folder folder)
+    : base_(base),
+      files_(files),
+      edition_(edition),
+      toolchain_(absolutePaths(toolchain)),
+      folder_(std::move(folder)) {}
+
+fs::path ProbeRebuilder::probe(const std::vector<std::string>& rebuilt) {
+  const std::lock_guard lock(mutex_);  // one build at a time: a later set reuses the objects
+  const auto& names = studentFileNames();
+  const auto stem = [](const std::string& name) { return name.substr(0, name.size() - 4); };
+  const auto in = [&](const std::string& name) {
+    return std::find(rebuilt.begin(), rebuilt.end(), name) != rebuilt.end();
+  };
+  std::string set = "probe";
+  for (const std::string& name : names)
+    if (in(name)) set += "-" + stem(name);
+  if (const auto found = probes_.find(set); found != probes_.end()) return found->second;
+  fs::path& result = probes_[set];
+  if (!base_.ok || base_.objects.size() != names.size() || base_.files.size() != names.size())
+    return result;
+  const fs::path work_dir = folder_(set);
+  const std::string ed = std::to_string(edition_);
+  fs::path pch = precompiledHeader(toolchain_, edition_, work_dir);
+  if (toolchain_.kit && !pch.empty()) pch = kitHeader(*toolchain_.kit, pch);
+
+  // The files not compiled yet: the student's own first (as the tool uid), then our reference
+  // files (as the grader's uid); objects of earlier sets are copied in after the compiles.
+  const CourseToolchain ours = oursOf(toolchain_);
+  std::map<std::string, fs::path> made;  // this set's files compiled here
+  for (const bool reference : {false, true}) {
+    std::vector<std::vector<std::string>> commands;
+    std::vector<std::string> compiled;
+    for (std::size_t k = 0; k < names.size(); ++k) {
+      const std::string& name = names[k];
+      if (!in(name) || objects_.count(name) || base_.files[k].compiled == reference) continue;
+      const fs::path object = work_dir / (stem(name) + ".o");
+      fs::path source = toolchain_.reference_dir / ed / name;
+      if (!reference) {
+        const fs::path folder = work_dir / ("src-" + stem(name));
+        fs::create_directories(folder);
+        source = folder / name;
+        // the bytes the finder read, never the student's path again
+        std::ofstream copy(source, std::ios::binary | std::ios::trunc);
+        copy << files_.bytes.at(name);
+        if (!copy.flush()) throw std::runtime_error("cannot copy " + name + " for a rebuild");
+      }
+      commands.push_back(
+          compileCommand(reference ? ours : toolchain_, edition_, source, object, 25, pch));
+      compiled.push_back(name);
+    }
+    const std::vector<ToolRun> runs = compileAll(reference ? ours : toolchain_, commands, work_dir);
+    for (std::size_t r = 0; r < runs.size(); ++r) {
+      const fs::path object = work_dir / (stem(compiled[r]) + ".o");
+      objects_[compiled[r]] = made[compiled[r]] = runs[r].ok ? object : fs::path();
+    }
+  }
+
+  // The rebuilt objects first, then the grade's own objects of the other files.
+  std::vector<fs::path> objects;
+  for (const std::string& name : names)
+    if (in(name)) {
+      if (objects_[name].empty()) return result;
+      fs::path object = work_dir / (stem(name) + ".o");
+      if (!made.count(name) && !copyObject(objects_[name], object)) return result;
+      objects.push_back(object);
+    }
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    if (in(names[k])) continue;
+    const fs::path copy = work_dir / (stem(names[k]) + "-base.o");
+    if (!copyObject(base_.objects[k], copy)) return result;
+    objects.push_back(copy);
+  }
+  const fs::path options =
+      toolchain_.sanitize ? sanitizerOptionsObject(toolchain_, work_dir) : fs::path();
+  const fs::path out = work_dir / set;
+  const ToolRun linked =
+      checked(runTools({linkCommand(toolchain_, edition_, objects, options, out)}, work_dir, 1,
+                       toolchain_.compile_seconds, &toolchain_.isolation)
+                  .front());
+  if (linked.ok) result = out;
+  return result;
 }
 
 }  // namespace clothref::grader
