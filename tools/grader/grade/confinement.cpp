@@ -11,15 +11,6 @@
 namespace clothref::grader {
 namespace fs = std::filesystem;
 
-namespace {
-
-bool isUnder(const fs::path& path, const fs::path& root) {
-  const std::string p = path.lexically_normal().string(), r = root.lexically_normal().string();
-  return p == r || (p.size() > r.size() && p.compare(0, r.size(), r) == 0 && p[r.size()] == '/');
-}
-
-}  // namespace
-
 Isolation isolationFor(const CourseToolchain& toolchain, const std::vector<fs::path>& private_paths,
                        const fs::path& submission) {
   Isolation isolation = detectIsolation();
