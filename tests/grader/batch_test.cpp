@@ -393,6 +393,15 @@ TEST_F(Batch, RowPerSubmissionRightVerdictsResumeSkipsGradedAndRegradesHalfGrade
   // the batch: the CSV has no column for it), then where the CSV and the class overview are
   const std::vector<std::string> said = lines(first.output);
   ASSERT_GE(said.size(), 4u) << first.output;
+  // before them, where the batch's time went: the graded submissions, slowest first, with their
+  // compile and probe seconds (issue 39); the refused folder is not among them
+  const std::size_t slowest = first.output.find("clothref grade: the slowest:\n");
+  ASSERT_NE(slowest, std::string::npos) << first.output;
+  EXPECT_LT(slowest, first.output.find(" with a verdict other than")) << first.output;
+  const std::string slow_lines = first.output.substr(slowest);
+  EXPECT_NE(slow_lines.find("  reference: "), std::string::npos) << first.output;
+  EXPECT_NE(slow_lines.find("compile "), std::string::npos) << first.output;
+  EXPECT_EQ(slow_lines.find("  nothing-here: 0"), std::string::npos) << first.output;
   EXPECT_NE(said[said.size() - 4].find("1 with a verdict other than 'graded':"), std::string::npos)
       << first.output;
   EXPECT_EQ(said[said.size() - 3], "  nothing-here: not-gradable") << first.output;

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <set>
+#include <sstream>
 #include <string>
 #include <thread>
 
@@ -72,6 +73,12 @@ const char* kSpy = R"spy(
     }
   }
 )spy";
+
+// The submissions' folder names, unique to this test process: a spy aborts on any command line
+// naming the other submission, and the suite runs these tests side by side (ctest -j), so with
+// shared names one test's grader, before it blanks its arguments, could stop another's spy.
+const std::string kAlice = "alice-subm-" + std::to_string(getpid());
+const std::string kBobby = "bobby-subm-" + std::to_string(getpid());
 
 // SPY-OF-<name> marks each spy's own source, so reading the other's is visible.
 std::string spySubmission(const fs::path& dir, const std::string& name, const std::string& other,
@@ -141,15 +148,15 @@ CommandResult gradeDirect(const std::vector<std::string>& args, const fs::path& 
 TEST(Confinement, TwoGradersSideBySideInTheFallbackRunAsDistinctUidsAndReachNothing) {
   if (geteuid() != 0) GTEST_SKIP() << "the fallback's uids need a grader running as root";
   TempDir temp;
-  const fs::path a = temp.path() / "alice-subm", b = temp.path() / "bobby-subm";
+  const fs::path a = temp.path() / kAlice, b = temp.path() / kBobby;
   const fs::path a_results = temp.path() / "alice-out" / "results.json";
   const fs::path b_results = temp.path() / "bobby-out" / "results.json";
   fs::create_directories(a_results.parent_path());
   fs::create_directories(b_results.parent_path());
   // Two graders know nothing of each other's submission folders (what a TA leaves readable is
   // the TA's to close): the spies go for what the graders hold, the probes and scratch folders.
-  spySubmission(a, "alice", "bobby-subm", "/nonexistent", "/nonexistent");
-  spySubmission(b, "bobby", "alice-subm", "/nonexistent", "/nonexistent");
+  spySubmission(a, "alice", kBobby, "/nonexistent", "/nonexistent");
+  spySubmission(b, "bobby", kAlice, "/nonexistent", "/nonexistent");
   setenv("CLOTHREF_GRADER_ISOLATION", "rlimits", 1);
   const auto grade = [&](const fs::path& dir, const fs::path& results, const fs::path& keep,
                          CommandResult& out) {
@@ -190,13 +197,18 @@ TEST(Confinement, TwoGradersSideBySideInTheFallbackRunAsDistinctUidsAndReachNoth
 // submission folder), its results in the batch folder, or the grader's command line.
 TEST(Confinement, TwoSubmissionsOfABatchReachNothingOfEachOther) {
   if (geteuid() != 0) GTEST_SKIP() << "the fallback's uids need a grader running as root";
-  TempDir temp;
+  // In /srv, as ASingleGradeReachesNoNeighbour: under /tmp the probes' private /tmp hid the other
+  // submission and the batch folder whatever the batch covered.
+  const fs::path base = "/srv";
+  if (!fs::is_directory(base) || access(base.c_str(), W_OK) != 0)
+    GTEST_SKIP() << base << " is not a folder this test may make its own folder in";
+  TempDir temp(base);
   const fs::path subs = temp.path() / "subs", out = temp.path() / "batch";
-  const fs::path a = subs / "alice-subm", b = subs / "bobby-subm";
-  spySubmission(a, "alice", "bobby-subm", (b / "src" / "cloth.cpp").string(),
-                (out / "bobby-subm" / "report.md").string());
-  spySubmission(b, "bobby", "alice-subm", (a / "src" / "cloth.cpp").string(),
-                (out / "alice-subm" / "report.md").string());
+  const fs::path a = subs / kAlice, b = subs / kBobby;
+  spySubmission(a, "alice", kBobby, (b / "src" / "cloth.cpp").string(),
+                (out / kBobby / "report.md").string());
+  spySubmission(b, "bobby", kAlice, (a / "src" / "cloth.cpp").string(),
+                (out / kAlice / "report.md").string());
   fs::permissions(temp.path(), fs::perms::owner_all | fs::perms::others_exec |
                                    fs::perms::group_exec | fs::perms::others_read);
   setenv("CLOTHREF_GRADER_ISOLATION", "rlimits", 1);
@@ -207,13 +219,23 @@ TEST(Confinement, TwoSubmissionsOfABatchReachNothingOfEachOther) {
   const std::string csv = readText(out / "grades.csv");
   // The folders are readable on purpose: the batch must cover them. Where no private mount
   // namespace can be made (a chroot) it refuses them instead, which is the rule, not this test's.
-  const std::string problem = readText(out / "alice-subm" / "row.json");
+  const std::string problem = readText(out / kAlice / "row.json");
   if (problem.find("allows no private mount namespace") != std::string::npos)
     GTEST_SKIP() << "no private mount namespace here: the batch refuses readable folders";
-  EXPECT_NE(csv.find("alice-subm,2022,15,20,10,10,5,2.5,2.5,15,80,80,graded"), std::string::npos)
-      << csv;
-  EXPECT_NE(csv.find("bobby-subm,2022,15,20,10,10,5,2.5,2.5,15,80,80,graded"), std::string::npos)
-      << csv;
+  // On a failure, why: each report's lines on how its probes ended (a spy that got something
+  // aborts, and its two runs then differ).
+  const auto why = [&](const std::string& name) {
+    std::string lines;
+    std::istringstream report(readText(out / name / "report.md"));
+    for (std::string line; std::getline(report, line);)
+      if (line.find("run") != std::string::npos && line.find("first") != std::string::npos)
+        lines += line + "\n";
+    return std::string(name) + ": " + (lines.empty() ? "(no run lines)\n" : lines);
+  };
+  EXPECT_NE(csv.find(kAlice + ",2022,15,20,10,10,5,2.5,2.5,15,80,80,graded"), std::string::npos)
+      << csv << why(kAlice);
+  EXPECT_NE(csv.find(kBobby + ",2022,15,20,10,10,5,2.5,2.5,15,80,80,graded"), std::string::npos)
+      << csv << why(kBobby);
 }
 
 // A single grade covers its neighbours as a batch does (issue 36): `clothref grade subs/alice`
@@ -221,11 +243,24 @@ TEST(Confinement, TwoSubmissionsOfABatchReachNothingOfEachOther) {
 // files. Before, in the fallback, it read them (alice's results quoted a line of bobby's code).
 TEST(Confinement, ASingleGradeReachesNoNeighbour) {
   if (geteuid() != 0) GTEST_SKIP() << "the fallback's uids need a grader running as root";
-  TempDir temp;
+  // In /srv, as a TA's folder of hand-ins lies outside every folder the grader hides anyway: a
+  // probe gets a private /tmp (and /var/tmp, /dev/shm), and the checkout with the build is ours,
+  // so under either this test passed with the cover taken out.
+  const fs::path base = "/srv";
+  if (!fs::is_directory(base) || access(base.c_str(), W_OK) != 0)
+    GTEST_SKIP() << base << " is not a folder this test may make its own folder in";
+  TempDir temp(base);
+  // Every folder above must let other uids through, or the probe could not reach the
+  // neighbour anyway and the test would prove nothing.
+  for (fs::path up = base; !up.empty(); up = up.parent_path()) {
+    if ((fs::status(up).permissions() & fs::perms::others_exec) == fs::perms::none)
+      GTEST_SKIP() << up << " is closed to other uids: no neighbour is reachable to test";
+    if (up == up.root_path()) break;
+  }
   const fs::path subs = temp.path() / "subs";
-  const fs::path a = subs / "alice-subm", b = subs / "bobby-subm";
-  spySubmission(a, "alice", "bobby-subm", (b / "src" / "cloth.cpp").string(), "/nonexistent");
-  spySubmission(b, "bobby", "alice-subm", (a / "src" / "cloth.cpp").string(), "/nonexistent");
+  const fs::path a = subs / kAlice, b = subs / kBobby;
+  spySubmission(a, "alice", kBobby, (b / "src" / "cloth.cpp").string(), "/nonexistent");
+  spySubmission(b, "bobby", kAlice, (a / "src" / "cloth.cpp").string(), "/nonexistent");
   fs::permissions(temp.path(), fs::perms::owner_all | fs::perms::others_exec |
                                    fs::perms::group_exec | fs::perms::others_read);
   setenv("CLOTHREF_GRADER_ISOLATION", "rlimits", 1);

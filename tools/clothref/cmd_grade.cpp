@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <iomanip>
 #include <iostream>
 #include <string>
 #include <utility>
@@ -74,9 +75,17 @@ void checkOutputPath(const std::string& option, const std::string& path) {
                      std::strerror(errno));
 }
 
-// The batch's last lines: what it did, the submissions whose verdict is not `graded` (at most 20
-// by name), and where the CSV and the class overview are.
+// The batch's last lines: the slowest submissions and why, what it did, the submissions whose
+// verdict is not `graded` (at most 20 by name), and where the CSV and the class overview are.
 void printBatchEnd(const grader::BatchSummary& summary) {
+  // where the time went first: the lines after the summary stay the last ones
+  if (!summary.slowest.empty()) {
+    std::cerr << "clothref grade: the slowest:\n";
+    for (const auto& slow : summary.slowest)
+      std::cerr << "  " << grader::safeName(slow.name) << ": " << std::fixed << std::setprecision(1)
+                << slow.seconds << " s (" << slow.why << ")\n";
+    std::cerr.unsetf(std::ios::floatfield);
+  }
   std::cerr << "clothref grade: " << summary.rows.size() << " submissions (" << summary.graded
             << " graded now, " << summary.skipped << " already graded), " << summary.failed
             << " with a verdict other than 'graded'" << (summary.not_graded.empty() ? "" : ":")

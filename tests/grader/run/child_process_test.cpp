@@ -84,6 +84,39 @@ TEST(RunChild, PrintingAFrameOnStdoutIsNotAnAnswer) {
   EXPECT_EQ(runShell(temp, "cat frame >&3").status, ChildStatus::NoAnswer);
 }
 
+// A scored probe runs twice; a second run stopped at the wall-clock limit after a first that
+// finished is tried once more and the retry stands (a loaded machine can hold a run back for its
+// whole wall time). The program here exits 3, then sleeps past the limit, then exits 3 again:
+// without the retry the pair read as "results vary" (undefined behaviour, the student's).
+TEST(RunProbeTwice, ASecondRunHeldBackToTheWallLimitIsTriedOnceMore) {
+  test::TempDir temp;
+  const fs::path marks = temp.path() / "marks", work = temp.path() / "work";
+  fs::create_directories(marks);
+  fs::create_directories(work);
+  const fs::path program = temp.path() / "program";
+  std::ofstream(program) << "#!/bin/sh\n"
+                         << "cd '" << marks.string() << "'\n"
+                         << "n=$(ls | wc -l); touch run-$n\n"
+                         << "[ \"$n\" = 1 ] && exec sleep 30\n"
+                         << "exit 3\n";
+  fs::permissions(program, fs::perms::owner_all);
+  ChildLimits limits;
+  limits.wall_seconds = 3;  // the quick runs finish well within it, even on a loaded machine
+  const ChildRun run = runProbeTwice(program, probe::ProbeMessage{}, work, limits);
+  EXPECT_EQ(run.status, ChildStatus::ExitedNonZero) << run.describe() << "\n" << run.stderr_head;
+  EXPECT_EQ(run.exit_code, 3);
+  std::size_t runs = 0;
+  for ([[maybe_unused]] const auto& entry : fs::directory_iterator(marks)) ++runs;
+  EXPECT_EQ(runs, 3u);  // first, second (held back), the second's retry
+  // An endless first run is not repeated: one wall limit, not two or three.
+  fs::remove_all(marks);
+  fs::create_directories(marks);
+  std::ofstream(program, std::ios::trunc)
+      << "#!/bin/sh\ntouch '" << (marks / "run").string() << "'\nexec sleep 30\n";
+  EXPECT_EQ(runProbeTwice(program, probe::ProbeMessage{}, work, limits).status,
+            ChildStatus::TimedOut);
+}
+
 // Faults of ours, injected (CLOTHREF_GRADER_FAULT, read by the grader process only): each is
 // tried once more and then, if it is still there, the grader's error, never the student's. Once:
 // the retry grades the reference at full marks. Always: the verdict is grader-error (a probe) or

@@ -214,6 +214,7 @@ struct SanitizerRun {
   CourseToolchain toolchain = defaultToolchain();
   SubmissionFiles files;
   ChildLimits limits;
+  ProbeBuild base;
   std::unique_ptr<SanitizedProbes> sanitizer;
 
   explicit SanitizerRun(std::uint64_t address_space = 4ull << 30) {
@@ -243,12 +244,16 @@ struct SanitizerRun {
     limits = limitsForTimeout(20);
     limits.isolation = isolation;
     limits.address_space_bytes = address_space;
-    sanitizer = std::make_unique<SanitizedProbes>(files, 2022, toolchain, *scratch, limits);
+    // the grade's own build, whose objects of the files not rebuilt the instrumented probe takes
+    base = buildProbes(files, 2022, toolchain, scratch->build());
+    sanitizer = std::make_unique<SanitizedProbes>(files, 2022, toolchain, *scratch, limits, base);
   }
-  // The quote of one run in `mode`, in `folder` below the scratch's probes folder.
-  std::string explain(const std::string& mode, const fs::path& folder) {
+  // The quote of one run in `mode`, in `folder` below the scratch's probes folder; `group` a
+  // probe group's name, or (by default) text no group has, whose run all three files make.
+  std::string explain(const std::string& mode, const fs::path& folder,
+                      const std::string& group = "") {
     probe::ProbeMessage request;
-    request.texts[probe::key::kGroup] = "forces MODE=" + mode;
+    request.texts[probe::key::kGroup] = group.empty() ? "forces MODE=" + mode : group;
     return sanitizer->explain(request, scratch->probes() / folder);
   }
   // What the run left to read when a quote is not the one expected (its stderr's start).
@@ -294,6 +299,28 @@ TEST(SanitizerRun, AReportPrintedByTheStudentIsNotQuoted) {
   EXPECT_EQ(quote.find("fault of the grader"), std::string::npos) << quote;
   EXPECT_NE(quote.find("heap-buffer-overflow"), std::string::npos) << quote;
   EXPECT_NE(quote.find("cloth.cpp:"), std::string::npos) << quote;
+}
+
+// A crash in a group that runs only cloth.cpp rebuilds cloth.cpp alone (issue 39: all three files
+// were rebuilt, most of a crashing grade's time): the report still names its line, the set's
+// folder holds no other student file, and the other files are the grade's own objects. The
+// whole run's set, asked next, compiles the two others in a folder of its own and reuses cloth.o.
+TEST(SanitizerRun, AGroupRebuildsOnlyTheFilesItRuns) {
+  SanitizerRun run;
+  ASSERT_TRUE(run.base.ok) << run.base.problem;
+  const std::string quote = run.explain("none", "springs", probe::group::kSprings);
+  EXPECT_NE(quote.find("cloth.cpp:"), std::string::npos) << quote << run.said("springs");
+  const fs::path set = run.scratch->root() / "sanitize-probe-cloth";
+  EXPECT_TRUE(fs::exists(set / "src-cloth" / "cloth.cpp"));
+  for (const char* other : {"src-sphere", "src-integrator"})
+    EXPECT_FALSE(fs::exists(set / other)) << other << " was compiled again for a cloth crash";
+  for (const char* base : {"sphere-base.o", "integrator-base.o"})
+    EXPECT_TRUE(fs::exists(set / base)) << base;
+  const std::string whole = run.explain("none", "whole", probe::group::kWholeRun);
+  EXPECT_NE(whole.find("cloth.cpp:"), std::string::npos) << whole << run.said("whole");
+  const fs::path all = run.scratch->root() / "sanitize-probe-cloth-sphere-integrator";
+  EXPECT_TRUE(fs::exists(all / "src-sphere" / "sphere.cpp"));
+  EXPECT_FALSE(fs::exists(all / "src-cloth")) << "cloth.cpp was compiled twice";
 }
 
 // Only the run that crashed is quoted: a report the instrumented run makes at exit, after the

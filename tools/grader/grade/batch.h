@@ -98,12 +98,22 @@ struct BatchOptions {
   GradeOptions grade;  // per submission (probe_jobs and toolchain.jobs are set from cores/jobs)
 };
 
+inline constexpr std::size_t kSlowestShown = 3;
+
 struct BatchSummary {
   std::vector<BatchRow> rows;  // the shard's submissions, sorted by name
   int graded = 0;              // graded by this run
   int skipped = 0;             // already graded (row.json found)
   int failed = 0;              // rows whose verdict is not Graded
   std::vector<std::pair<std::string, Verdict>> not_graded;  // those rows: name, verdict
+  // The slowest submissions graded by this run (at most kSlowestShown, slowest first): where the
+  // batch's time went, with why (GradeReport::time_note).
+  struct Slow {
+    std::string name;
+    double seconds = 0;  // wall time of grading it
+    std::string why;
+  };
+  std::vector<Slow> slowest;
   std::filesystem::path csv;
   std::filesystem::path index;  // the class overview
   // how the student processes were isolated, each description once (one on a machine)

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <exception>
 #include <fstream>
+#include <iomanip>
 #include <map>
 #include <mutex>
 #include <random>
@@ -16,9 +17,9 @@
 #include "clothref/io/error.h"
 #include "clothref/io/files.h"
 #include "grader/grade/cause_ids.h"
+#include "grader/grade/confinement.h"
 #include "grader/grade/probes/probes.h"
 #include "grader/grade/run/folders.h"
-#include "grader/grade/submission/neighbours.h"
 #include "grader/grade/submission/source_patterns.h"
 #include "grader/grade/submission/source_text.h"
 #include "grader/grade/text.h"
@@ -30,6 +31,38 @@ namespace {
 
 double since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::string oneDecimal(double seconds) {
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(1) << seconds;
+  return out.str();
+}
+
+// Where a grade's time went (GradeReport::time_note): probes stopped at their time limit, the
+// sanitizer's rebuild and rerun, then the compile and probe seconds.
+std::string timeNote(const GradeReport& report, const ChildLimits& limits, double sanitizer) {
+  std::vector<std::string> parts;
+  std::size_t timed_out = 0;
+  {
+    std::lock_guard<std::mutex> lock(limits.log->mutex);
+    timed_out = static_cast<std::size_t>(
+        std::count(limits.log->verdicts.begin(), limits.log->verdicts.end(), Verdict::TimedOut));
+  }
+  if (timed_out)
+    parts.push_back("endless loop: " + std::to_string(timed_out) +
+                    (timed_out == 1 ? " probe" : " probes") + " stopped at the " +
+                    (std::ostringstream() << limits.wall_seconds).str() + " s limit");
+  if (sanitizer > 0) parts.push_back("sanitizer rebuild and rerun " + oneDecimal(sanitizer) + " s");
+  const auto seconds = [&](const char* key) {
+    const auto found = report.seconds.find(key);
+    return found == report.seconds.end() ? 0.0 : found->second;
+  };
+  parts.push_back("compile " + oneDecimal(seconds("compile") + seconds("link")) + " s, probes " +
+                  oneDecimal(seconds("probes")) + " s");
+  std::string note;
+  for (const std::string& part : parts) note += (note.empty() ? "" : "; ") + part;
+  return note;
 }
 
 }  // namespace
@@ -61,77 +94,6 @@ void chooseEdition(const SubmissionFiles& files, int forced, GradeReport& report
     report.edition = detected ? detected : 2022;
     report.edition_source =
         detected ? "detected: " + why : "not detected (" + why + "); assumed 2022";
-  }
-}
-
-bool isUnder(const fs::path& path, const fs::path& root) {
-  const std::string p = path.lexically_normal().string(), r = root.lexically_normal().string();
-  return p == r || (p.size() > r.size() && p.compare(0, r.size(), r) == 0 && p[r.size()] == '/');
-}
-
-// This grade's own uids (leased host-wide when root), and the folders of ours its student's
-// processes must never read: the grader's (sources, build, install data, reference, cache) and
-// the ones the caller names (other submissions, the batch folder).
-Isolation isolationFor(const CourseToolchain& toolchain, const GradeOptions& options,
-                       const fs::path& submission) {
-  Isolation isolation = detectIsolation();
-  if (isolation.uid >= 0) {
-    const UidLease lease = leaseUids();
-    isolation.uid = lease.uid;
-    isolation.tool_uid = lease.tool_uid;
-    isolation.uid_lease = lease.hold;
-  }
-  isolation.ours = ourFolders(toolchain);
-  for (const fs::path& path : options.private_paths)
-    isolation.ours.push_back(fs::absolute(path).lexically_normal());
-  // A single grade covers its neighbours as a batch does (another submission beside this one).
-  const bool can_cover = isolation.kind == IsolationKind::Bubblewrap || isolation.private_mounts;
-  for (const fs::path& path : neighbours(submission, can_cover)) isolation.ours.push_back(path);
-  // Outermost only: a folder inside another is covered with it (and could not be mounted on once
-  // the outer one is covered).
-  std::vector<fs::path> outermost;
-  for (const fs::path& path : isolation.ours) {
-    bool inside = false;
-    for (const fs::path& other : isolation.ours)
-      inside = inside || (other != path && isUnder(path, other));
-    if (!inside && std::find(outermost.begin(), outermost.end(), path) == outermost.end())
-      outermost.push_back(path);
-  }
-  isolation.ours = outermost;
-  return isolation;
-}
-
-// Refuses to grade (InputError, one line) where student code could read a folder of ours: the
-// scratch folder or the course kit inside one (TMPDIR in our tree), a student uid that cannot
-// reach its own folder (TMPDIR inside a closed folder), or, without bubblewrap and without a
-// private mount namespace to cover them, a folder of ours that a student uid can reach by its
-// permissions (docs/grading-reference.md, "Installing the grader where students' code runs").
-void checkConfinement(const Isolation& isolation, const GradeScratch& scratch,
-                      const CourseKit* kit) {
-  if (isolation.uid < 0) return;
-  std::error_code error;
-  const fs::path temp = fs::temp_directory_path(error);
-  for (const fs::path& folder : isolation.ours)
-    for (const fs::path& ours : {scratch.root(), kit ? kit->root : fs::path()})
-      if (!ours.empty() && isUnder(fs::weakly_canonical(ours, error), folder))
-        throw InputError("TMPDIR (" + safeName(temp.string()) + ") is inside " +
-                         safeName(folder.string()) +
-                         ", which student code must not see: set TMPDIR to another folder");
-  for (const int uid : {isolation.uid, isolation.tool_uid})
-    if (!readableAs(uid, {scratch.root()}, nullptr) &&
-        firstReachableAs(uid, {scratch.root()}).empty())
-      throw InputError("TMPDIR (" + safeName(temp.string()) + ") cannot be reached by uid " +
-                       std::to_string(uid) +
-                       " (a folder on its path is closed to other users): set TMPDIR to a "
-                       "folder every user may pass through, such as /tmp");
-  if (isolation.kind == IsolationKind::Bubblewrap || isolation.private_mounts) return;
-  for (const int uid : {isolation.uid, isolation.tool_uid}) {
-    const std::string open = firstReachableAs(uid, isolation.ours);
-    if (!open.empty())
-      throw InputError(safeName(open) + " can be read by uid " + std::to_string(uid) +
-                       ", which runs student code, and this machine allows no private mount "
-                       "namespace to cover it: make it unreadable to other users (chmod o-rwx), "
-                       "as the Gradescope set-up does");
   }
 }
 
@@ -318,7 +280,7 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
   const Catalogue catalogue =
       loadCatalogue(options.toolchain.course_dir.parent_path() / "diagnoses.json");
 
-  const Isolation isolation = isolationFor(options.toolchain, options, dir);
+  const Isolation isolation = isolationFor(options.toolchain, options.private_paths, dir);
   report.isolation = isolation.describe();
   // What the grade's uids left in the shared temporary folders goes with the grade.
   // What the grade's uids left running (a compile's child) goes too, before the lease is freed.
@@ -350,14 +312,14 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
 
   ProbeContext context =
       probeContext(report, rubric, catalogue, build, files, isolation, scratch, options);
-  SanitizedProbes sanitizer(files, report.edition, toolchain, scratch, context.limits);
+  SanitizedProbes sanitizer(files, report.edition, toolchain, scratch, context.limits, build);
   if (!options.toolchain.sanitize) context.sanitizer = &sanitizer;
   // Repairs rebuild one student file beside the grade's objects (probes.h, proveByRepair).
   int repair_builds = 0;
   if (!options.toolchain.sanitize)
     context.rebuild = [&](const std::string& file, const std::string& bytes) {
       const std::string name = "repair-" + std::to_string(++repair_builds);
-      ProbeBuild repaired = rebuildWithFile(scratch.build(), file, bytes, report.edition, toolchain,
+      ProbeBuild repaired = rebuildWithFile(build, file, bytes, report.edition, toolchain,
                                             scratch.extraBuild(name));
       if (repaired.ok) repaired.probe = scratch.publish(repaired.probe, "probe-" + name);
       return repaired;
@@ -369,6 +331,7 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
   auto results = runProbeGroups(probeGroups(report.edition, options.whole_run), context, skipped,
                                 options.probe_jobs);
   report.seconds["probes"] = since(probe_start);
+  report.time_note = timeNote(report, context.limits, sanitizer.seconds());
 
   report.tests = unavailableTests(report.edition, unavailable);
   for (auto& group : results)

@@ -298,6 +298,10 @@ struct GradeReport {
   double score = 0, max_score = 0;
   std::map<std::string, double> stub_score, stub_max;  // per course stub
   std::map<std::string, double> seconds;               // "compile", "link", "probes", "total"
+  // Where the time went, for the batch's closing lines: what made it slow ("sanitizer rebuild and
+  // rerun 6.1 s", "endless loop: 2 probes stopped at the 20 s limit"), then the compile and probe
+  // seconds. Never written to the student's outputs.
+  std::string time_note;
   // The outcome for batch summaries (CSV): Graded when every probe group answered, else the
   // worst thing that happened (the first of verdictTable() that happened).
   Verdict verdict = Verdict::Graded;

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,15 @@ struct ProbeContext {
   // the given bytes (run/build.h, rebuildWithFile), published for the probe uid. Empty: no
   // repairs (a repaired probe's own run).
   std::function<ProbeBuild(const std::string& file, const std::string& bytes)> rebuild;
+  // Set: a crash or a variation is not explained now but kept here, for util::explainLater (a run
+  // whose failure a retry may still replace: its sanitizer build and run are saved then).
+  struct Unexplained* explain_later = nullptr;
+};
+
+// The run a probe kept for later explanation (ProbeContext::explain_later): its request and folder.
+struct Unexplained {
+  std::optional<probe::ProbeMessage> request;
+  std::filesystem::path dir;
 };
 
 // Test names of each group, in order (used for compile errors and crashes, where the group did

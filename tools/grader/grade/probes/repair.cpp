@@ -23,6 +23,7 @@ std::vector<TestResult> probeAgain(const ProbeContext& context, const std::strin
   again.work_dir = context.work_dir / folder;
   again.sanitizer = nullptr;
   again.rebuild = nullptr;
+  again.explain_later = nullptr;
   again.limits.log = nullptr;  // it proves or disproves a cause; it never decides a verdict
   again.sources[file] = bytes;
   std::vector<TestResult> tests;

@@ -476,7 +476,12 @@ ChildRun runProbeTwice(const std::filesystem::path& executable, const probe::Pro
                       first.status == ChildStatus::NoAnswer;
   if (repeat) {
     variant.environment = variants[1];
-    const ChildRun second = runProbe(executable, request, work_dir, variant);
+    ChildRun second = runProbe(executable, request, work_dir, variant);
+    // The first run finished; a second one stopped at the wall-clock limit may have waited for a
+    // CPU on a loaded machine rather than run: it is tried once more, and the retry
+    // stands. An endless loop is stopped in the first run and still costs one limit.
+    if (first.status != ChildStatus::TimedOut && second.status == ChildStatus::TimedOut)
+      second = runProbe(executable, request, work_dir, variant);
     const bool alike =
         second.status == first.status &&
         (first.status == ChildStatus::Ok

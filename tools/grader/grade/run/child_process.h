@@ -154,7 +154,9 @@ ChildRun runProbe(const std::filesystem::path& executable, probe::ProbeMessage r
 // answer is a function of the files alone. The rule (docs/grading-reference.md, "One submission,
 // one score"): both ended alike (the same answer to the bit, or the same failure) -> the first run;
 // otherwise the run is Varies, whatever either answered, and its checks fail. A first run stopped
-// at a limit (time, output, disk) or not started is not repeated. One verdict goes to the log.
+// at a limit (time, output, disk) or not started is not repeated; a second run stopped at the
+// wall-clock limit is tried once more (load, not the code, may have held it back) and the retry
+// stands. One verdict goes to the log.
 ChildRun runProbeTwice(const std::filesystem::path& executable, const probe::ProbeMessage& request,
                        const std::filesystem::path& work_dir, const ChildLimits& limits);
 

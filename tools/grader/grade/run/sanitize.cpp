@@ -1,11 +1,13 @@
 #include "grader/grade/run/sanitize.h"
 
 #include <algorithm>
+#include <chrono>
 #include <regex>
 #include <sstream>
 #include <vector>
 
 #include "clothref/io/files.h"
+#include "grader/bridge/probe_keys.h"
 
 namespace clothref::grader {
 namespace fs = std::filesystem;
@@ -113,31 +115,56 @@ ChildLimits sanitizerLimits(const ChildLimits& probe) {
   return limits;
 }
 
+std::vector<std::string> filesRunBy(const std::string& group) {
+  namespace g = probe::group;
+  if (group == g::kSprings || group == g::kForces) return {"cloth.cpp"};
+  if (group == g::kCollideCloth || group == g::kCollideSpheres) return {"cloth.cpp", "sphere.cpp"};
+  if (group == g::kIntegrate) return {"integrator.cpp"};
+  return studentFileNames();
+}
+
 SanitizedProbes::SanitizedProbes(const SubmissionFiles& files, int edition,
                                  CourseToolchain toolchain, const GradeScratch& scratch,
-                                 ChildLimits limits)
-    : files_(files),
-      edition_(edition),
-      toolchain_(std::move(toolchain)),
-      scratch_(scratch),
-      limits_(sanitizerLimits(limits)) {
-  toolchain_.sanitize = true;
+                                 ChildLimits limits, const ProbeBuild& base)
+    : scratch_(scratch), limits_(sanitizerLimits(limits)) {
+  toolchain.sanitize = true;
+  rebuilder_ = std::make_unique<ProbeRebuilder>(
+      base, files, edition, toolchain,
+      [&scratch](const std::string& set) { return scratch.extraBuild("sanitize-" + set); });
+}
+
+double SanitizedProbes::seconds() const {
+  const std::lock_guard lock(seconds_mutex_);
+  return seconds_;
 }
 
 std::string SanitizedProbes::explain(const probe::ProbeMessage& request, const fs::path& folder) {
-  std::call_once(built_, [&] {
-    try {
-      const fs::path where = scratch_.extraBuild("sanitize");
-      const ProbeBuild build = buildProbes(files_, edition_, toolchain_, where);
-      if (build.ok) probe_ = scratch_.publish(build.probe, "probe-sanitize");
-    } catch (const std::exception&) {
-      probe_.clear();  // no explanation; the grade stands
+  const auto start = std::chrono::steady_clock::now();
+  struct Timed {
+    SanitizedProbes& self;
+    std::chrono::steady_clock::time_point start;
+    ~Timed() {
+      const std::lock_guard lock(self.seconds_mutex_);
+      self.seconds_ +=
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
-  });
-  if (probe_.empty()) return "";
+  } timed{*this, start};
+  fs::path instrumented;
+  try {
+    const std::vector<std::string> files = filesRunBy(request.text(probe::key::kGroup));
+    const fs::path built = rebuilder_->probe(files);
+    const std::lock_guard lock(mutex_);
+    const auto [at, added] = published_.try_emplace(built.filename().string());
+    if (added && !built.empty())
+      at->second = scratch_.publish(built, built.filename().string() + "-sanitize");
+    instrumented = at->second;
+  } catch (const std::exception&) {
+    instrumented.clear();  // no explanation; the grade stands
+  }
+  if (instrumented.empty()) return "";
   std::error_code error;
   fs::create_directories(folder, error);
-  const ChildRun run = runProbe(probe_, request, folder, limits_);
+  const ChildRun run = runProbe(instrumented, request, folder, limits_);
   // Only the run that ended at a report: one that answered first reported after the probe's
   // work (a destructor at exit), and the student's stderr is never read for a report.
   if (run.answered ||

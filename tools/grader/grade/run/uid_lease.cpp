@@ -168,7 +168,7 @@ void sayOnce(int slot, const std::string& why) {
 
 }  // namespace
 
-UidLease leaseUids(const fs::path& lock_dir) {
+UidLease leaseUids(const fs::path& lock_dir, int kill_rounds) {
   // flock holds between open file descriptions, in this process as in others: one mutex keeps
   // this process's own leases from racing to the same slot's file.
   static std::mutex mutex;
@@ -195,7 +195,7 @@ UidLease leaseUids(const fs::path& lock_dir) {
     }
     // A grader killed while it graded may have left processes under these uids: they are ours.
     // One that does not die (stuck in the kernel) keeps the slot from us until it ends.
-    killProcessesOf({lease.uid, lease.tool_uid});
+    killProcessesOf({lease.uid, lease.tool_uid}, kill_rounds);
     if (!processesOf({lease.uid, lease.tool_uid}).empty()) {
       close(fd);
       sayOnce(slot,

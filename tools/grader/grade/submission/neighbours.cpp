@@ -8,12 +8,12 @@ namespace clothref::grader {
 
 namespace fs = std::filesystem;
 
-namespace {
-
 bool isUnder(const fs::path& path, const fs::path& root) {
   const std::string p = path.lexically_normal().string(), r = root.lexically_normal().string();
   return p == r || (p.size() > r.size() && p.compare(0, r.size(), r) == 0 && p[r.size()] == '/');
 }
+
+namespace {
 
 // Whether `dir` (a folder beside the submission) holds a student file within three levels: another
 // student's submission, in a TA's usual layout (subs/alice, subs/bob).

@@ -15,4 +15,8 @@ namespace clothref::grader {
 // submission itself is the student's own.
 std::vector<std::filesystem::path> neighbours(const std::filesystem::path& dir, bool can_cover);
 
+// Whether `path` is `root` or lies inside it, compared lexically after normalising both (no link
+// followed): the test of which folder a cover hides.
+bool isUnder(const std::filesystem::path& path, const std::filesystem::path& root);
+
 }  // namespace clothref::grader

@@ -238,7 +238,13 @@ std::vector<TestResult> probeIntegrator(const ProbeContext& context, int index) 
   util::ProbeFailure failure;
   ChildRun child;
   std::string note;  // why the course-size cloth was used
-  bool ok = runIntegrator(context, index, false, run, failure, child, false);
+  // A crash on the probe cloth is explained only when the course's cloth crashes too: its text
+  // is then the same, and a retry that answers saves the sanitizer's build and run.
+  Unexplained kept;
+  ProbeContext first = context;
+  first.explain_later = &kept;
+  bool ok = runIntegrator(first, index, false, run, failure, child, false);
+  if (!ok && failure.verdict != Verdict::Crashed) util::explainLater(context, kept, failure);
   if (!ok && failure.verdict == Verdict::Crashed) {
     // Code written for the course's cloth (e.g. indexing particlesPerEdge into it) crashes on the
     // small probe cloth: grade it on the course's cloth instead, and say so.
@@ -248,11 +254,13 @@ std::vector<TestResult> probeIntegrator(const ProbeContext& context, int index) 
     util::ProbeFailure again;
     IntegratorRun course;
     ok = runIntegrator(context, index, true, course, again, child, true);
-    if (ok)
+    if (ok) {
       run = std::move(course);
-    else
+    } else {
+      util::explainLater(context, kept, failure);
       failure = {again.verdict, "On the 4 x 4 probe cloth: " + failure.text +
                                     "\n\nOn the course's cloth: " + again.text};
+    }
   } else if (!ok && context.limits.log) {
     std::lock_guard<std::mutex> lock(context.limits.log->mutex);
     context.limits.log->verdicts.push_back(child.verdict());
