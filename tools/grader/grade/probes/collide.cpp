@@ -16,65 +16,13 @@
 #include "grader/grade/explain/replay.h"
 #include "grader/grade/mistakes/formula_variants.h"
 #include "grader/grade/probes/collide_cases.h"
+#include "grader/grade/probes/collide_replay.h"
 #include "grader/grade/probes/util.h"
 
 namespace clothref::grader {
 namespace {
 
 using namespace contacts;
-
-struct Outcome {
-  Mat4X<float> cloth_x, cloth_v, sphere_x, sphere_v;
-};
-
-Outcome outcomeOf(const State& s) {
-  return {s.cloth.particles.position, s.cloth.particles.velocity, s.spheres.particles.position,
-          s.spheres.particles.velocity};
-}
-
-// Largest |a - b| / (1 + |b|) over every value (NaN counts as infinitely far).
-double distance(const Outcome& a, const Outcome& b) {
-  double worst = 0;
-  const auto one = [&](const Mat4X<float>& x, const Mat4X<float>& y) {
-    for (int k = 0; k < x.size(); ++k) {
-      const double d =
-          std::abs(double(x.data()[k]) - double(y.data()[k])) / (1 + std::abs(double(y.data()[k])));
-      worst = std::isfinite(d) ? std::max(worst, d) : 1e300;
-    }
-  };
-  one(a.cloth_x, b.cloth_x);
-  one(a.cloth_v, b.cloth_v);
-  one(a.sphere_x, b.sphere_x);
-  one(a.sphere_v, b.sphere_v);
-  return worst;
-}
-
-Vec4<double> momentum(const State& s, const Outcome& o) {
-  Vec4<double> total = Vec4<double>::Zero();
-  for (int i = 0; i < s.cloth.particles.size(); ++i)
-    total += double(s.cloth.particles.mass[i]) * o.cloth_v.col(i).cast<double>();
-  for (int i = 0; i < s.spheres.size(); ++i)
-    total += double(s.spheres.particles.mass[i]) * o.sphere_v.col(i).cast<double>();
-  return total;
-}
-
-// How far the case's total momentum may move: 1e-5 of the momenta involved (float sums).
-double momentumTolerance(const Case& c) {
-  double scale = 0;
-  for (int q : c.spheres)
-    scale += c.state.spheres.particles.mass[q] *
-             c.state.spheres.particles.velocity.col(q).cast<double>().norm();
-  for (int q : c.particles)
-    scale += c.state.cloth.particles.mass[q] *
-             c.state.cloth.particles.velocity.col(q).cast<double>().norm();
-  return 1e-5 * (1 + scale);
-}
-
-// Whether the call left the case's total momentum unchanged (within momentumTolerance).
-bool conserves(const Case& c, const Outcome& after) {
-  const Vec4<double> change = momentum(c.state, after) - momentum(c.state, outcomeOf(c.state));
-  return change.norm() <= momentumTolerance(c);
-}
 
 // The pairs of a case that touch before the call, each read back in the course's terms
 // (contact_fit.h) from the student's result; a body in two contacts is left out (its change mixes
@@ -126,107 +74,6 @@ int readPairs(const Case& c, bool sphere_sphere, const Outcome& actual,
     readings.push_back(readContact(pair));
   }
   return static_cast<int>(pairs.size());
-}
-
-// The model's values against the student's within the check's tolerance (|model - yours| <= rel
-// (1 + |yours|)); a value that is not finite matches only one that is not finite either.
-bool close(const Mat4X<float>& model, const Mat4X<float>& student, double rel) {
-  if (model.size() != student.size()) return false;
-  for (int k = 0; k < model.size(); ++k) {
-    const double m = model.data()[k], a = student.data()[k];
-    if (!std::isfinite(m) || !std::isfinite(a)) {
-      if (std::isfinite(m) != std::isfinite(a)) return false;
-      continue;
-    }
-    if (std::abs(m - a) > rel * (1 + std::abs(a))) return false;
-  }
-  return true;
-}
-
-// A model of the student's collide and the causes it stands for.
-struct Candidate {
-  std::vector<std::string> ids;
-  ContactModel model;
-};
-
-// `model` replayed on every case (explain/replay.h): its positions and velocities against the
-// student's on each case's check, then whether it conserves momentum exactly where the student's
-// call does (the momentum check).
-Replay replayContacts(const ContactModel& model, const std::vector<Case>& cases,
-                      const std::vector<Outcome>& actuals, const std::vector<PlannedTest>& checks,
-                      bool sphere_sphere, double rel) {
-  Replay replay;
-  replay.model = contactModelText(model);
-  bool momentum_same = true;
-  for (std::size_t k = 0; k < cases.size() && k < actuals.size(); ++k) {
-    const Case& c = cases[k];
-    State s = c.state;
-    collideModel(s.spheres, s.cloth, sphere_sphere, model);
-    const Outcome m = outcomeOf(s);
-    const Outcome& a = actuals[k];
-    replay.checks.push_back(
-        {checks[c.check].check,
-         {{"positions", close(m.cloth_x, a.cloth_x, rel) && close(m.sphere_x, a.sphere_x, rel)},
-          {"velocities", close(m.cloth_v, a.cloth_v, rel) && close(m.sphere_v, a.sphere_v, rel)}}});
-    if (c.free_bodies) momentum_same = momentum_same && conserves(c, m) == conserves(c, a);
-  }
-  replay.checks.push_back({checks.back().check, {{"total momentum", momentum_same}}});
-  return replay;
-}
-
-// Names the causes the replays prove (explain/replay.h): the first model (those of the causes
-// named likely first) that gives the student's numbers on every check, else the first pair of
-// models that does together; another proving model is an alternative reading, a guess saying so.
-// A cause named that no model proves becomes a guess whose line says where its best model parts.
-void proveContacts(std::vector<Candidate> candidates, const std::vector<Case>& cases,
-                   const std::vector<Outcome>& actuals, const std::vector<PlannedTest>& checks,
-                   bool sphere_sphere, double rel, const ContactModel& course,
-                   std::vector<TestResult>& tests) {
-  const bool failed =
-      std::any_of(tests.begin(), tests.end(), [](const TestResult& t) { return !t.passed(); });
-  if (!failed) return;
-  const auto named = [&](const std::string& id, bool likely_only) {
-    for (const TestResult& t : tests)
-      for (const Cause& c : t.causes)
-        if (c.id == id && (c.likely || !likely_only)) return true;
-    return false;
-  };
-  std::stable_partition(candidates.begin(), candidates.end(),
-                        [&](const Candidate& c) { return named(c.ids.front(), true); });
-  std::vector<Replay> replays;
-  std::string winner;
-  for (const Candidate& c : candidates) {
-    replays.push_back(replayContacts(c.model, cases, actuals, checks, sphere_sphere, rel));
-    if (!replays.back().proven()) continue;
-    if (winner.empty()) {
-      applyReplay(replays.back(), c.ids, tests);
-      winner = c.ids.front();
-    } else if (c.ids.front() != winner) {
-      alternative(replays.back(), c.ids, winner, tests);
-    }
-  }
-  // Two mistakes at once: each pair of models with different causes, the first that proves.
-  for (std::size_t i = 0; i < candidates.size() && winner.empty(); ++i)
-    for (std::size_t j = i + 1; j < candidates.size() && winner.empty(); ++j) {
-      if (candidates[i].ids == candidates[j].ids) continue;
-      const ContactModel both = combined(candidates[i].model, candidates[j].model, course);
-      const Replay pair = replayContacts(both, cases, actuals, checks, sphere_sphere, rel);
-      if (!pair.proven()) continue;
-      std::vector<std::string> ids = candidates[i].ids;
-      ids.insert(ids.end(), candidates[j].ids.begin(), candidates[j].ids.end());
-      applyReplay(pair, ids, tests);
-      winner = ids.front();
-    }
-  // The causes named that no model proved: their best model's line.
-  for (std::size_t m = 0; m < candidates.size(); ++m) {
-    const std::string& id = candidates[m].ids.front();
-    if (!named(id, false)) continue;
-    std::size_t best = m;
-    for (std::size_t q = 0; q < candidates.size(); ++q)
-      if (candidates[q].ids.front() == id && replays[q].reproduced() > replays[best].reproduced())
-        best = q;
-    if (best == m && !replays[m].proven()) applyReplay(replays[m], candidates[m].ids, tests);
-  }
 }
 
 std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_sphere) {

@@ -11,6 +11,7 @@
 #include "clothref/formula/course_formulas.h"
 #include "grader/grade/cause_ids.h"
 #include "grader/grade/explain/replay.h"
+#include "grader/grade/explain/spring_set_fit.h"
 #include "grader/grade/probes/util.h"
 #include "grader/grade/run/build.h"
 #include "grader/grade/text.h"
@@ -19,16 +20,10 @@ namespace clothref::grader {
 namespace {
 
 const std::string& kStub = stubName(Stub::InitializeSpring);
-const char* kTypeNames[] = {"STRUCTURAL", "SHEAR", "BEND"};
+constexpr const auto& kTypeNames = kSpringTypeNames;
 
 // Rows of springsChecks(), the probe's check table.
 enum SpringCheck { kConnections, kRestLengths, kTypeLabels, kSecondSize };
-
-struct SpringSet {
-  // (lower index, higher index) -> every (rest length, type) pushed for that pair.
-  std::map<std::pair<int, int>, std::vector<std::pair<float, int>>> pairs;
-  int count = 0;
-};
 
 // Ours on an n x n cloth of the course's size, height and particle mass.
 SpringSet referenceSprings(int n, const Edition& course) {
@@ -73,15 +68,12 @@ std::optional<SpringSet> studentSprings(const probe::ProbeMessage& answer, int n
 
 // The grid family of a pair: "structural horizontal", ..., or "" for a non-neighbour pair.
 std::string family(std::pair<int, int> pair, int n) {
-  const int ia = pair.first / n, ja = pair.first % n, ib = pair.second / n, jb = pair.second % n;
-  const int di = ib - ia, dj = jb - ja;
-  if (di == 0 && dj == 1) return "structural horizontal (i,j)-(i,j+1)";
-  if (di == 1 && dj == 0) return "structural vertical (i,j)-(i+1,j)";
-  if (di == 1 && dj == 1) return "shear down-right (i,j)-(i+1,j+1)";
-  if (di == 1 && dj == -1) return "shear down-left (i,j)-(i+1,j-1)";
-  if (di == 0 && dj == 2) return "bend horizontal (i,j)-(i,j+2)";
-  if (di == 2 && dj == 0) return "bend vertical (i,j)-(i+2,j)";
-  return "";
+  static const char* names[] = {
+      "structural horizontal (i,j)-(i,j+1)", "structural vertical (i,j)-(i+1,j)",
+      "shear down-right (i,j)-(i+1,j+1)",    "shear down-left (i,j)-(i+1,j-1)",
+      "bend horizontal (i,j)-(i,j+2)",       "bend vertical (i,j)-(i+2,j)"};
+  const int f = springFamily(pair, n);
+  return f < 0 ? "" : names[f];
 }
 
 std::string pairText(std::pair<int, int> pair, int n) {
@@ -197,106 +189,6 @@ void addCauses(TestResult& test, const std::vector<std::string>& ids,
                const std::set<std::string>& only) {
   for (const auto& id : ids)
     if (only.count(id)) test.addCause(id);
-}
-
-// The grid family (formula::forEachGridSpring's 0..5) of a pair of an n x n cloth; -1 for none.
-int familyIndex(std::pair<int, int> pair, int n) {
-  const int di = pair.second / n - pair.first / n, dj = pair.second % n - pair.first % n;
-  if (di == 0 && dj == 1) return 0;
-  if (di == 1 && dj == 0) return 1;
-  if (di == 1 && dj == 1) return 2;
-  if (di == 1 && dj == -1) return 3;
-  if (di == 0 && dj == 2) return 4;
-  if (di == 2 && dj == 0) return 5;
-  return -1;
-}
-
-// A model of the student's initializeSpring: the course's springs with whole families left out
-// or pushed more than once, each type's rest length scaled and its label changed, all fitted from
-// the student's springs at N = 25 and replayed at both sizes (explain/replay.h).
-struct SpringModel {
-  std::array<bool, 6> missing{};
-  std::array<int, 6> copies{1, 1, 1, 1, 1, 1};
-  std::array<double, 3> rest_ratio{1, 1, 1};  // the student's rest / the course's, per type
-  std::array<int, 3> label{0, 1, 2};          // the student's label of each course type
-  std::vector<std::string> changes;
-};
-
-SpringModel fitSpringModel(const SpringSet& student, const SpringSet& reference, int n) {
-  SpringModel m;
-  std::array<int, 6> present{}, total{};
-  std::array<std::set<int>, 6> counts;
-  std::array<std::vector<double>, 3> ratios;
-  std::array<std::map<int, int>, 3> labels;
-  for (const auto& [pair, entries] : reference.pairs) {
-    const int f = familyIndex(pair, n);
-    if (f < 0) continue;
-    ++total[std::size_t(f)];
-    auto it = student.pairs.find(pair);
-    if (it == student.pairs.end()) continue;
-    ++present[std::size_t(f)];
-    counts[std::size_t(f)].insert(int(it->second.size()));
-    const int type = entries.front().second;
-    ratios[std::size_t(type)].push_back(double(it->second.front().first) /
-                                        double(entries.front().first));
-    ++labels[std::size_t(type)][it->second.front().second];
-  }
-  static const char* families[] = {"structural along a row", "structural along a column",
-                                   "shear down-right",       "shear down-left",
-                                   "bend along a row",       "bend along a column"};
-  for (std::size_t f = 0; f < 6; ++f) {
-    m.missing[f] = total[f] > 0 && present[f] == 0;
-    if (m.missing[f]) m.changes.push_back(std::string("without the ") + families[f] + " springs");
-    if (counts[f].size() == 1 && *counts[f].begin() > 1) {
-      m.copies[f] = *counts[f].begin();
-      m.changes.push_back(std::string("with the ") + families[f] + " springs pushed " +
-                          std::to_string(m.copies[f]) + " times");
-    }
-  }
-  for (std::size_t t = 0; t < 3; ++t) {
-    if (!ratios[t].empty()) {
-      std::sort(ratios[t].begin(), ratios[t].end());
-      const double r = ratios[t][ratios[t].size() / 2];
-      if (std::abs(r - 1) > 1e-7) {
-        m.rest_ratio[t] = r;
-        m.changes.push_back(std::string("with the ") + kTypeNames[t] + " rest length times " +
-                            util::num(r));
-      }
-    }
-    int best = int(t), votes = 0;
-    for (const auto& [label, count] : labels[t])
-      if (count > votes) best = label, votes = count;
-    if (best != int(t)) {
-      m.label[t] = best;
-      m.changes.push_back(std::string("with the ") + kTypeNames[t] + " springs labelled " +
-                          (best >= 0 && best < 3 ? kTypeNames[best] : "?"));
-    }
-  }
-  return m;
-}
-
-SpringSet modelSprings(const SpringModel& m, int n, const Edition& course) {
-  const SpringSet reference = referenceSprings(n, course);
-  SpringSet set;
-  for (const auto& [pair, entries] : reference.pairs) {
-    const int f = familyIndex(pair, n);
-    if (f >= 0 && m.missing[std::size_t(f)]) continue;
-    const int copies = f >= 0 ? m.copies[std::size_t(f)] : 1;
-    for (const auto& [rest, type] : entries)
-      for (int c = 0; c < copies; ++c) {
-        set.pairs[pair].push_back(
-            {float(double(rest) * m.rest_ratio[std::size_t(type)]), m.label[std::size_t(type)]});
-        ++set.count;
-      }
-  }
-  return set;
-}
-
-std::string springModelText(const SpringModel& m) {
-  std::string text = "the course's springs";
-  for (std::size_t k = 0; k < m.changes.size(); ++k)
-    text += (k == 0 ? " " : " and ") + m.changes[k];
-  return text;
 }
 
 }  // namespace
@@ -451,7 +343,7 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
   // stand for (foreign pairs, hard-coded sizes) is read directly, never proven by it.
   if (student) {
     const SpringModel model = fitSpringModel(*student, reference, course_n);
-    const SpringSet at25 = modelSprings(model, course_n, context.course);
+    const SpringSet at25 = modelSprings(model, reference, course_n);
     const Comparison c25 = compare(*student, at25, course_n, rest_rel);
     Replay replay;
     replay.model = springModelText(model);
@@ -460,8 +352,8 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
     replay.checks.push_back({checks[kRestLengths].check, {{"rest lengths", c25.wrong_rest == 0}}});
     replay.checks.push_back({checks[kTypeLabels].check, {{"type labels", c25.wrong_type == 0}}});
     if (small_set) {
-      const Comparison c10 =
-          compare(*small_set, modelSprings(model, n, context.course), n, rest_rel);
+      const Comparison c10 = compare(
+          *small_set, modelSprings(model, referenceSprings(n, context.course), n), n, rest_rel);
       replay.checks.push_back(
           {checks[kSecondSize].check,
            {{"springs", c10.missing + c10.extra + c10.duplicates == 0},

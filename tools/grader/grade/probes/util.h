@@ -144,4 +144,20 @@ inline bool finite(const std::vector<float>& v) {
   return true;
 }
 
+// A model's values against the student's within a check's tolerance, |model - yours| <= rel (1 +
+// |yours|); a value that is not finite matches only one that is not finite either (a replay's
+// comparison, explain/replay.h).
+inline bool closeTo(const Mat4X<float>& model, const Mat4X<float>& yours, double rel) {
+  if (model.size() != yours.size()) return false;
+  for (int k = 0; k < model.size(); ++k) {
+    const double m = model.data()[k], y = yours.data()[k];
+    if (!std::isfinite(m) || !std::isfinite(y)) {
+      if (std::isfinite(m) != std::isfinite(y)) return false;
+      continue;
+    }
+    if (std::abs(m - y) > rel * (1 + std::abs(y))) return false;
+  }
+  return true;
+}
+
 }  // namespace clothref::grader::util

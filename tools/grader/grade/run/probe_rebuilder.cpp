@@ -129,9 +129,10 @@ ProbeBuild rebuildWithFile(const ProbeBuild& base, const std::string& name,
   // Through the object cache like every student compile: the same repaired bytes (a regrade, or
   // two students with one mistake written alike) compile once.
   const fs::path object = work_dir / (stem(name) + ".o");
-  const ToolRun compiled = compileAll(
-      toolchain, {compileCommand(toolchain, edition, folder / name, object, 25, pch)}, work_dir)
-                               .front();
+  const ToolRun compiled =
+      compileAll(toolchain, {compileCommand(toolchain, edition, folder / name, object, 25, pch)},
+                 work_dir)
+          .front();
   build.compile_seconds = since(start);
   if (!compiled.ok) {
     build.problem = firstCompilerError(
