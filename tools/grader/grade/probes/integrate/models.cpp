@@ -223,6 +223,18 @@ std::vector<IntegratorModel> modelsOf(const std::string& id, const IntegratorRun
     variant(Variant::Alias, the + " with a backup that follows the live state");
   } else if (id == "no-reevaluation" && method != Method::Explicit) {
     variant(Variant::NoReevaluation, "explicit Euler (what simulateOneStep() computes unused)");
+    // The same step taken from the live state after the stub's own simulateOneStep() (no
+    // backups, or "backups" that follow the live state): the course's explicit Euler after a
+    // second call, which resolves a contact a second time.
+    const Step explicit_step = clothrefStep(Method::Explicit);
+    models.push_back({{id},
+                      "explicit Euler from the state your own simulateOneStep() leaves (the "
+                      "step starts after that call, not from backups taken before it)",
+                      [explicit_step](System& s) {
+                        simulate(s);
+                        explicit_step(s);
+                      },
+                      std::nullopt});
     if (method == Method::Midpoint) {
       variant(Variant::NoReevaluationHalfVelocity,
               "the course's midpoint with simulateOneStep() before the half step");
