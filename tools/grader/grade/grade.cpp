@@ -319,8 +319,8 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
   if (!options.toolchain.sanitize)
     context.rebuild = [&](const std::string& file, const std::string& bytes) {
       const std::string name = "repair-" + std::to_string(++repair_builds);
-      ProbeBuild repaired = rebuildWithFile(build, file, bytes, report.edition, toolchain,
-                                            scratch.extraBuild(name));
+      ProbeBuild repaired =
+          rebuildWithFile(build, file, bytes, report.edition, toolchain, scratch.extraBuild(name));
       if (repaired.ok) repaired.probe = scratch.publish(repaired.probe, "probe-" + name);
       return repaired;
     };

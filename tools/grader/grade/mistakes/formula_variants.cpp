@@ -97,13 +97,6 @@ ContactVariant contactVariant(ContactMistake m) {
   return v;
 }
 
-void contact(Particles<float>& a, int i, Particles<float>& b, int j, float reach, float e,
-             float correction, const ContactVariant& variant) {
-  formula::resolveContact(a.position.col(i).data(), a.velocity.col(i).data(), a.inverse_mass[i],
-                          b.position.col(j).data(), b.velocity.col(j).data(), b.inverse_mass[j],
-                          reach, e, correction, variant);
-}
-
 }  // namespace
 
 void collideWithMistake(Spheres<float>& spheres, Cloth<float>& cloth, bool sphere_sphere,
