@@ -205,16 +205,23 @@ TEST(Rubric, OddPointsSplitIntoThousandthsThatAddUp) {
 const std::string kSpheres = "Spheres::collide()";
 
 // The 2022 edition's planned checks of `stub`: the first `passing` pass, the others fail naming
-// `causes` (id, likely).
+// `causes` (id, likely); a likely cause comes with its proof (a replay), unless `proofs` is false.
 GradeReport stubWithFailures(const std::string& stub, std::size_t passing,
-                             const std::vector<std::pair<std::string, bool>>& causes) {
+                             const std::vector<std::pair<std::string, bool>>& causes,
+                             bool proofs = true) {
   GradeReport report;
   for (const PlannedTest& planned : plannedTests(2022)) {
     if (planned.stub != stub) continue;
     TestResult test = makeTest(planned.stub, planned.check, planned.weight);
     test.fraction = report.tests.size() < passing ? 1 : 0;
-    if (!test.passed())
-      for (const auto& [id, likely] : causes) test.addCause(id, likely);
+    if (!test.passed()) {
+      for (const auto& [id, likely] : causes) {
+        if (likely && proofs)
+          test.addCause(id, likely).proof = "Proven: the model of " + id + " gives your numbers.";
+        else
+          test.addCause(id, likely);
+      }
+    }
     report.tests.push_back(test);
   }
   return report;
@@ -270,16 +277,12 @@ TEST(PerMistake, OneLikelyCauseWithADeductionCostsItOnce) {
   EXPECT_EQ(notes(report), report.tests[1].rubric_note);
 }
 
-// Two different likely causes, a guess alone, a cause without a deduction (a crash), a check
-// with no cause: the stub is scored per check and nothing is said.
-TEST(PerMistake, AnythingButOneLikelyCauseWithADeductionIsScoredPerCheck) {
+// A guess alone, a cause without a deduction (a crash), a check with no cause: the stub is scored
+// per check and nothing is said.
+TEST(PerMistake, AnythingButProvenMistakesWithADeductionIsScoredPerCheck) {
   const Rubric rubric = defaultRubric(2022);
   const std::vector<std::vector<std::pair<std::string, bool>>> cases = {
-      {{"correction-factor", true}, {"restitution-ignored", true}},
-      {{"correction-factor", false}},
-      {{"crashed", true}},
-      {{"unknown", false}},
-      {}};
+      {{"correction-factor", false}}, {{"crashed", true}}, {{"unknown", false}}, {}};
   for (const auto& causes : cases) {
     GradeReport report = stubWithFailures(kSpheres, 1, causes);
     GradeReport old = report;
@@ -288,9 +291,9 @@ TEST(PerMistake, AnythingButOneLikelyCauseWithADeductionIsScoredPerCheck) {
     EXPECT_EQ(report.stub_score.at(kSpheres), old.stub_score.at(kSpheres)) << causes.size();
     EXPECT_EQ(notes(report), "");
   }
-  // Failed checks naming different single causes: per check too.
+  // A failed check naming only a guess beside checks naming a proven mistake: per check too.
   GradeReport report = stubWithFailures(kSpheres, 1, {{"correction-factor", true}});
-  report.tests.back().causes = {Cause{"restitution-ignored", true, {}, {}, {}, {}, {}}};
+  report.tests.back().causes = {Cause{"restitution-ignored", false, {}, {}, {}, {}, {}, {}}};
   GradeReport old = report;
   applyRubric(rubric, report);
   applyRubric(perCheck(rubric), old);
@@ -315,6 +318,65 @@ TEST(PerMistake, AnythingButOneLikelyCauseWithADeductionIsScoredPerCheck) {
   EXPECT_EQ(notes(report), "");
 }
 
+// Points follow proven mistakes only: a cause named as likely without its proof (a replay or a
+// repair) never earns per-mistake points, whatever its deduction.
+TEST(PerMistake, AnUnprovenLikelyCauseIsScoredPerCheck) {
+  const Rubric rubric = defaultRubric(2022);
+  GradeReport report =
+      stubWithFailures(kSpheres, 1, {{"correction-factor", true}}, /*proofs=*/false);
+  ASSERT_TRUE(report.tests.back().causes.front().likely);
+  ASSERT_FALSE(report.tests.back().causes.front().proven());
+  GradeReport old = report;
+  applyRubric(rubric, report);
+  applyRubric(perCheck(rubric), old);
+  EXPECT_EQ(report.stub_score.at(kSpheres), old.stub_score.at(kSpheres));
+  EXPECT_EQ(notes(report), "");
+  // The same with its proof: the deduction applies.
+  report = stubWithFailures(kSpheres, 1, {{"correction-factor", true}});
+  applyRubric(rubric, report);
+  EXPECT_GT(report.stub_score.at(kSpheres), old.stub_score.at(kSpheres));
+}
+
+// Two proven mistakes in one stub (each failed check names one of them, or both): their
+// deductions add up, at most the stub's points, and the line names both.
+TEST(PerMistake, ProvenMistakesDeductionsAddUp) {
+  const Rubric rubric = defaultRubric(2022);
+  GradeReport report = stubWithFailures(kSpheres, 1, {{"correction-factor", true}});
+  ASSERT_GT(report.tests.size(), 3u);
+  report.tests[2].causes.clear();
+  report.tests[2].addCause("wrong-mass-split").proof = "Proven: a split.";
+  GradeReport old = report;
+  applyRubric(rubric, report);
+  applyRubric(perCheck(rubric), old);
+  const double max = rubric.stub_points.at(kSpheres);
+  const double both =
+      rubric.deductions.at("correction-factor") + rubric.deductions.at("wrong-mass-split");
+  ASSERT_LT(both, 1);
+  EXPECT_EQ(report.stub_score.at(kSpheres),
+            std::max(old.stub_score.at(kSpheres), std::round(max * (1 - both) * 8) / 8));
+  EXPECT_EQ(testSum(report, kSpheres), report.stub_score.at(kSpheres));
+  EXPECT_EQ(report.tests[1].rubric_note,
+            "2 proven mistakes (`correction-factor`, `wrong-mass-split`) explain every failed "
+            "check of this stub: together they lose " +
+                points(rubric.deductions.at("correction-factor") * 100) + " + " +
+                points(rubric.deductions.at("wrong-mass-split") * 100) + " = " +
+                points(both * 100) +
+                " % of its points once (rubric: per-mistake; per-check scoring would give " +
+                points(old.stub_score.at(kSpheres)) + " / " + points(max) + ").");
+  // Deductions that add up to more than the stub: nothing given back beyond per check.
+  Rubric heavy = rubric;
+  heavy.deductions["correction-factor"] = 0.7;
+  heavy.deductions["wrong-mass-split"] = 0.6;
+  GradeReport capped = stubWithFailures(kSpheres, 1, {{"correction-factor", true}});
+  capped.tests[2].causes.clear();
+  capped.tests[2].addCause("wrong-mass-split").proof = "Proven: a split.";
+  GradeReport capped_old = capped;
+  applyRubric(heavy, capped);
+  applyRubric(perCheck(heavy), capped_old);
+  EXPECT_EQ(capped.stub_score.at(kSpheres), capped_old.stub_score.at(kSpheres));
+  EXPECT_EQ(notes(capped), "");
+}
+
 // NaN and garbage never earn a mistake's points (issue 36): a cause that cannot make non-finite
 // numbers is no longer likely on a check whose answers are non-finite, so a NaN stub is scored
 // per check. Before, a NaN computeSpringForce named `fixed-particle-moves` and kept 75 %, and a
@@ -331,7 +393,8 @@ TEST(PerMistake, NonFiniteAnswersEarnNoMistakesPoints) {
   const std::string rk4 = "RungeKuttaFourth::integrate";
   // The probe answered NaN and names no cause per check: each failed check is taken as
   // non-finite, the stage fit's finding becomes a guess, and the stub is scored per check.
-  GradeReport report = stubWithFailures(rk4, 0, {{"no-reevaluation", true}});
+  // Its stage fit's finding has no proof: no model of it gives NaN on the probe's finite states.
+  GradeReport report = stubWithFailures(rk4, 0, {{"no-reevaluation", true}}, /*proofs=*/false);
   ASSERT_GT(report.tests.size(), 1u);
   GradeReport old = report;
   applyRubric(perCheck(rubric), old);
@@ -356,8 +419,10 @@ TEST(PerMistake, NonFiniteAnswersEarnNoMistakesPoints) {
   applyRubric(rubric, report);
   EXPECT_NE(notes(report).find("(`division-by-speed`)"), std::string::npos) << notes(report);
   // A probe that names non-finite on its own checks says which: the others keep their causes.
+  // (The correction factor's model gives no NaN: on the NaN check it has no proof.)
   report = stubWithFailures(kSpheres, 1, {{"correction-factor", true}});
   report.tests.back().addCause("non-finite");
+  report.tests.back().causes.front().proof.clear();
   markNonFinite({kSpheres}, can_be, report.tests);
   EXPECT_TRUE(report.tests[1].causes.front().likely);
   EXPECT_EQ(report.tests[1].causes.front().id, "correction-factor");
@@ -365,6 +430,11 @@ TEST(PerMistake, NonFiniteAnswersEarnNoMistakesPoints) {
                report.tests.back().causes.front().likely);
   applyRubric(rubric, report);
   EXPECT_EQ(notes(report), "");
+  // A cause proven on these numbers (its replay gave the NaN too) keeps its place (issue 38).
+  report = stubWithFailures(rk4, 0, {{"no-reevaluation", true}});
+  markNonFinite({rk4}, can_be, report.tests);
+  applyRubric(rubric, report);
+  EXPECT_NE(notes(report).find("(`no-reevaluation`)"), std::string::npos) << notes(report);
 }
 
 // "scoring": "per-check" in a rubric file gives today's scores exactly: each test earns its
@@ -405,8 +475,9 @@ TEST(PerMistake, NeverLowersAScoreAndTheScoresAddUp) {
       const int kind = std::uniform_int_distribution<>(0, 5)(rng);
       t.fraction = kind < 3 ? 1.0 : kind == 3 ? std::uniform_real_distribution<>(0, 1)(rng) : 0;
       if (t.passed()) continue;
-      t.addCause(ids[std::uniform_int_distribution<>(0, round % 4 == 0 ? 2 : 0)(rng)],
-                 rng() % 8 != 0);
+      Cause& cause = t.addCause(
+          ids[std::uniform_int_distribution<>(0, round % 4 == 0 ? 2 : 0)(rng)], rng() % 8 != 0);
+      if (rng() % 6 != 0) cause.proof = "Proven: a replay.";
     }
     GradeReport old = report;
     applyRubric(rubric, report);
@@ -424,19 +495,23 @@ TEST(PerMistake, NeverLowersAScoreAndTheScoresAddUp) {
         if (t.stub == stub) units += std::lround(t.score * 1000);
       EXPECT_EQ(units, std::lround(score * 1000)) << round << " " << stub;
       total += score;
-      // The rule as the docs state it, worked out here: each failed check has one cause.
-      std::string mistake;
-      bool one = true, failed = false;
+      // The rule as the docs state it, worked out here: each failed check has one cause; every
+      // failed check must name a proven one with a deduction, and their deductions add up.
+      std::set<std::string> mistakes;
+      bool covered = true, failed = false;
       for (const TestResult& t : report.tests) {
         if (t.stub != stub || t.passed()) continue;
         failed = true;
         const Cause& cause = t.causes.front();
-        one = one && cause.likely && (mistake.empty() || mistake == cause.id);
-        mistake = cause.id;
+        covered = covered && cause.proven() && rubric.deductions.count(cause.id);
+        mistakes.insert(cause.id);
       }
-      const bool qualifies = failed && one && rubric.deductions.count(mistake);
+      const bool qualifies = failed && covered;
+      double deduction = 0;
+      if (qualifies)
+        for (const std::string& id : mistakes) deduction += rubric.deductions.at(id);
       const double target =
-          qualifies ? report.stub_max.at(stub) * (1 - rubric.deductions.at(mistake)) : 0;
+          qualifies ? report.stub_max.at(stub) * (1 - std::min(1.0, deduction)) : 0;
       const bool said = [&] {
         for (const TestResult& t : report.tests)
           if (t.stub == stub && !t.rubric_note.empty()) return true;

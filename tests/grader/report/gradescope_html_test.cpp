@@ -82,7 +82,7 @@ TEST(GradescopeHtml, SummaryIsStaticHtml) {
 TEST(GradescopeHtml, SummaryKeepsLikelyCausesAndGuessesApart) {
   GradeReport report = sampleReport();
   report.tests[1].causes.insert(report.tests[1].causes.begin(),
-                                Cause{"unknown", false, {}, {}, {}, {}, {}});
+                                Cause{"unknown", false, {}, {}, {}, {}, {}, {}});
   const std::string output = withHtmlSummary(resultsJson(report), report)["output"];
   EXPECT_NE(output.find("<td><em>collision-normal-sign</em>, <em>unknown</em>?</td>"),
             std::string::npos)

@@ -40,7 +40,8 @@ GradeReport sampleReport() {
   TestResult failed = makeTest("Spheres::collide(Cloth*)", "approaching pair", 1);
   failed.max_score = 2;
   failed.output = "expected <1> & got \"2\"\x01";
-  failed.causes = {Cause{cause::kNoApproachCheck, true, {}, {}, "The impulse is applied.", {}, {}}};
+  failed.causes = {
+      Cause{cause::kNoApproachCheck, true, {}, {}, "The impulse is applied.", {}, {}, {}}};
   report.tests = {passed, failed};
   report.score = 3;
   report.max_score = 5;
@@ -96,7 +97,8 @@ TEST(CauseMarkdown, ALikelyCauseExplainsItselfOnceAGuessStaysShort) {
                      {},
                      "Your backup is a view.",
                      "The backup follows the live state.",
-                     "auto b = particles;  // mistake\nstd::vector<Particles> b;  // fix"};
+                     "auto b = particles;  // mistake\nstd::vector<Particles> b;  // fix",
+                     {}};
   Cause guess = likely;
   guess.id = cause::kUnknown;
   guess.likely = false;
@@ -135,6 +137,35 @@ TEST(CauseMarkdown, ALikelyCauseExplainsItselfOnceAGuessStaysShort) {
 }
 
 // A stub that lost points, as a student reads it: its points and the rule, what is wrong, the
+// A symptom (`unstable`, `non-finite`, `wrong-order`) beside a cause proven on the same check is
+// left out of every output: the proven cause's model gave that check's numbers (issue 38: a blind
+// midpoint told `unstable` as likely beside its proven `corrector-start-velocity`). Beside an
+// unproven cause, or alone, it stays.
+TEST(AllWriters, ASymptomBesideAProvenCauseIsLeftOut) {
+  GradeReport report = sampleReport();
+  Cause proven{cause::kCorrectorStartVelocity, true, {}, {}, "The corrector uses v0.", {}, {}, {}};
+  proven.proof = "Proven: the course's midpoint whose corrector uses v0 gives your numbers.";
+  report.tests[1].causes = {proven,
+                            Cause{cause::kUnstable, true, {}, {}, "It blows up.", {}, {}, {}},
+                            Cause{cause::kNonFinite, true, {}, {}, "NaN.", {}, {}, {}}};
+  TestResult unproven = makeTest("ImplicitEuler::integrate", "one step on a random state", 1);
+  unproven.max_score = 1;
+  unproven.causes = {Cause{cause::kHeunMethod, true, {}, {}, "Heun.", {}, {}, {}},
+                     Cause{cause::kUnstable, true, {}, {}, "It blows up.", {}, {}, {}}};
+  report.tests.push_back(unproven);
+  const GradeReport clean = cleaned(report);
+  ASSERT_EQ(clean.tests.size(), 3u);
+  EXPECT_EQ(clean.tests[1].causeIds(), std::vector<std::string>{cause::kCorrectorStartVelocity});
+  EXPECT_EQ(clean.tests[2].causeIds(),
+            (std::vector<std::string>{cause::kHeunMethod, cause::kUnstable}));
+  const nlohmann::ordered_json json = resultsJson(report);
+  ASSERT_EQ(json["tests"].size(), 3u);
+  EXPECT_EQ(json["tests"][1]["extra_data"]["causes"].size(), 1u) << json.dump();
+  EXPECT_EQ(json["tests"][2]["extra_data"]["causes"].size(), 2u) << json.dump();
+  EXPECT_EQ(json.dump().find(cause::kNonFinite), std::string::npos) << json.dump();
+  EXPECT_NE(markdownReport(report).find("Proven: the course's midpoint"), std::string::npos);
+}
+
 // failed checks as a table (check, expected, yours, by how much), the first failed check in full;
 // a stub whose checks all passed is named once.
 // A guess that only says how a probe's run ended (`crashed`, `timed-out`, `undefined-behaviour`)
@@ -143,12 +174,13 @@ TEST(CauseMarkdown, ALikelyCauseExplainsItselfOnceAGuessStaysShort) {
 TEST(AllWriters, AGuessTheNamedCauseExplainsIsLeftOut) {
   GradeReport report = sampleReport();
   report.tests[1].causes = {
-      Cause{cause::kDanglingAutoExpression, true, {}, {}, "An auto holds an expression.", {}, {}},
-      Cause{cause::kCrashed, false, {}, {}, "It crashed.", {}, {}},
-      Cause{cause::kTimedOut, false, {}, {}, "It ran too long.", {}, {}}};
+      Cause{
+          cause::kDanglingAutoExpression, true, {}, {}, "An auto holds an expression.", {}, {}, {}},
+      Cause{cause::kCrashed, false, {}, {}, "It crashed.", {}, {}, {}},
+      Cause{cause::kTimedOut, false, {}, {}, "It ran too long.", {}, {}, {}}};
   TestResult alone = makeTest("ImplicitEuler::integrate", "one step on a random state", 1);
   alone.max_score = 1;
-  alone.causes = {Cause{cause::kCrashed, false, {}, {}, "It crashed.", {}, {}}};
+  alone.causes = {Cause{cause::kCrashed, false, {}, {}, "It crashed.", {}, {}, {}}};
   report.tests.push_back(alone);
   const GradeReport clean = cleaned(report);
   ASSERT_EQ(clean.tests.size(), 3u);
@@ -621,9 +653,9 @@ TEST(AllWriters, LikelyCausesAndGuessesAreBlocksOfTheirOwnInEveryOutput) {
   GradeReport report = sampleReport();
   TestResult& t = report.tests[1];
   t.output = "Expected 1, yours 2.";
-  t.causes = {Cause{"no-approach-check", true, "Measured: 3 of 4.", {}, "The impulse.", {}, {}},
-              Cause{"wrong-mass-split", true, {}, {}, "The split.", {}, {}},
-              Cause{"unknown", false, {}, {}, "No known mistake.", {}, {}}};
+  t.causes = {Cause{"no-approach-check", true, "Measured: 3 of 4.", {}, "The impulse.", {}, {}, {}},
+              Cause{"wrong-mass-split", true, {}, {}, "The split.", {}, {}, {}},
+              Cause{"unknown", false, {}, {}, "No known mistake.", {}, {}, {}}};
   t.sketch.bodies.push_back({"sphere 0", {0, 0.5f, 0}, 0.5f, {0, -1, 0}, {0, 0, 0}, {0, -1, 0}});
   const std::string md_blocks =
       "Expected 1, yours 2.\n\n**Likely cause** (`no-approach-check`): The impulse.\n\nMeasured: "

@@ -314,6 +314,16 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
       probeContext(report, rubric, catalogue, build, files, isolation, scratch, options);
   SanitizedProbes sanitizer(files, report.edition, toolchain, scratch, context.limits, build);
   if (!options.toolchain.sanitize) context.sanitizer = &sanitizer;
+  // Repairs rebuild one student file beside the grade's objects (probes.h, proveByRepair).
+  int repair_builds = 0;
+  if (!options.toolchain.sanitize)
+    context.rebuild = [&](const std::string& file, const std::string& bytes) {
+      const std::string name = "repair-" + std::to_string(++repair_builds);
+      ProbeBuild repaired =
+          rebuildWithFile(build, file, bytes, report.edition, toolchain, scratch.extraBuild(name));
+      if (repaired.ok) repaired.probe = scratch.publish(repaired.probe, "probe-" + name);
+      return repaired;
+    };
   const std::map<std::string, TestResult> unavailable = unavailableStubs(build.files);
   std::map<std::string, std::string> skipped;  // the groups of those stubs do not run
   for (const auto& [stub, test] : unavailable) skipped[stub] = test.output;
@@ -327,6 +337,9 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
   for (auto& group : results)
     for (auto& t : group) report.tests.push_back(std::move(t));
   addDanglingAutoCauses(build.files, scratch.build(), report.tests);
+  const auto repair_start = std::chrono::steady_clock::now();
+  proveByRepair(context, report.tests);
+  report.seconds["repairs"] = since(repair_start);
   markNonFinite(nonFiniteStubs(*context.limits.log), nonFiniteCauses(catalogue), report.tests);
   fillCauseTexts(catalogue, report.tests);
   sortInCourseOrder(report.tests);

@@ -182,6 +182,14 @@ struct Cause {
   // The catalogue's why (a paragraph: why the mistake gives these numbers) and example (the
   // mistaken line and its fix, two lines of C++), shown under a likely cause only.
   std::string why, example;
+  // One line under the cause: how it was proven on this submission's numbers (docs/grading-
+  // reference.md, "Likely means proven"): a replay ("Proven: the course's collide without the
+  // position correction gives your numbers on 8 of 8 checks.") or a repair ("With line 129 ...:
+  // 6 of 8 checks pass; ..."); for a guess, where its model and the student's numbers part.
+  // Empty: nothing was tried (a property read directly, a crash, a guess).
+  std::string proof;
+  // Named as likely with a proof: only such a cause earns per-mistake points (rubric.h).
+  bool proven() const { return likely && !proof.empty(); }
   bool operator==(const Cause&) const = default;
 };
 
@@ -230,7 +238,7 @@ struct TestResult {
         cause.likely = cause.likely || likely;
         return cause;
       }
-    causes.push_back(Cause{id, likely, {}, {}, {}, {}, {}});
+    causes.push_back(Cause{id, likely, {}, {}, {}, {}, {}, {}});
     return causes.back();
   }
 };

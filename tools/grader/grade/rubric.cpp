@@ -22,6 +22,9 @@ constexpr const char* kEdge = "a missed special case";
 constexpr const char* kSign = "a wrong sign";
 constexpr const char* kTerm = "a missing term";
 constexpr const char* kMethod = "a wrong method";
+// Undefined behaviour the grader proved by repairing its lines (an `auto` over temporaries): the
+// physics may be right, the code cannot be trusted.
+constexpr const char* kUndefined = "undefined behaviour (repaired)";
 constexpr const char* kNever = "never";  // a crash, a timeout, a symptom or a guess
 constexpr double kNone = -1;
 
@@ -37,7 +40,7 @@ const std::vector<CauseDeduction>& causeDeductions() {
       {"undefined-behaviour", kNever, kNone},
       {"timed-out", kNever, kNone},
       {"non-finite", kNever, kNone},
-      {"dangling-auto-expression", kNever, kNone},
+      {"dangling-auto-expression", kUndefined, 0.3},
       {"shear-rest-length", kConstant, 0.25},
       {"bend-rest-length", kConstant, 0.25},
       {"approximate-sqrt2", kConstant, 0.2},
@@ -50,6 +53,7 @@ const std::vector<CauseDeduction>& causeDeductions() {
       {"spring-force-sign", kSign, 0.4},
       {"damper-sign", kSign, 0.4},
       {"damper-not-normalised", kTerm, 0.3},
+      {"direction-not-normalised", kTerm, 0.3},
       {"missing-damper", kTerm, 0.4},
       {"force-one-end-only", kMethod, 0.5},
       {"fixed-particle-moves", kEdge, 0.25},
@@ -63,6 +67,7 @@ const std::vector<CauseDeduction>& causeDeductions() {
       {"correction-one-body", kTerm, 0.3},
       {"no-position-correction", kTerm, 0.4},
       {"correction-factor", kConstant, 0.25},
+      {"contact-distance", kConstant, 0.25},
       {"fixed-particle-massless", kEdge, 0.25},
       {"first-sphere-only", kTerm, 0.4},
       {"collision-normal-sign", kSign, 0.4},
@@ -82,7 +87,9 @@ const std::vector<CauseDeduction>& causeDeductions() {
       {"midpoint-full-step", kMethod, 0.5},
       {"heun-method", kMethod, 0.5},
       {"half-step-corrector", kMethod, 0.5},
+      {"corrector-start-velocity", kMethod, 0.5},
       {"velocity-damped", kMethod, 0.3},
+      {"integrator-pins-particles", kEdge, 0.3},
       {"rk4-mixed-increments", kMethod, 0.5},
       {"rk4-wrong-weights", kMethod, 0.5},
       {"rk4-stage-not-from-backup", kMethod, 0.5},
@@ -234,167 +241,6 @@ Rubric rubricFromJson(const nlohmann::json& document, const std::string& source,
     }
   }
   return rubric;
-}
-
-namespace {
-
-// A stub's points in whole units: 1/8 point when the points are a multiple of it (the course's
-// weights are), else 1/1000. Both print exactly with three decimals (results.json rounds to
-// three), and 1/8 is a power of two, so every sum of test points is exact in binary too.
-double pointUnit(double points) {
-  return std::abs(points * 8 - std::round(points * 8)) < 1e-9 ? 0.125 : 0.001;
-}
-
-// Splits `units` over `weights` by the largest remainder: the parts add up to `units` exactly.
-std::vector<long> apportion(long units, const std::vector<double>& weights) {
-  double sum = 0;
-  for (double w : weights) sum += w;
-  std::vector<long> parts(weights.size(), 0);
-  if (!(sum > 0)) return parts;
-  std::vector<std::pair<double, std::size_t>> remainders;
-  long given = 0;
-  for (std::size_t k = 0; k < weights.size(); ++k) {
-    const double share = double(units) * weights[k] / sum;
-    parts[k] = static_cast<long>(std::floor(share));
-    given += parts[k];
-    remainders.push_back({share - double(parts[k]), k});
-  }
-  // Ties go to the earlier test, so the split does not depend on the sort's stability.
-  std::stable_sort(remainders.begin(), remainders.end(),
-                   [](const auto& a, const auto& b) { return a.first > b.first; });
-  for (std::size_t k = 0; given < units && k < remainders.size(); ++k, ++given)
-    ++parts[remainders[k].second];
-  return parts;
-}
-
-// The one likely cause with a deduction every failed check of a stub names, when none names
-// another likely cause or none; else "". Not counted: guesses, and `non-finite` beside another.
-std::string oneMistake(const Rubric& rubric, const std::vector<const TestResult*>& tests) {
-  std::string mistake;
-  for (const TestResult* test : tests) {
-    if (test->passed()) continue;
-    std::vector<std::string> likely;
-    for (const Cause& cause : test->causes)
-      if (cause.likely && std::find(likely.begin(), likely.end(), cause.id) == likely.end())
-        likely.push_back(cause.id);
-    if (likely.size() > 1)
-      likely.erase(std::remove(likely.begin(), likely.end(), cause::kNonFinite), likely.end());
-    if (likely.size() > 1) return "";  // two likely causes
-    const std::string named = likely.empty() ? "" : likely.front();
-    if (named.empty() || (!mistake.empty() && named != mistake)) return "";
-    mistake = named;
-  }
-  return rubric.deductions.count(mistake) ? mistake : "";
-}
-
-// Points as the outputs show them: rounded to 0.001, no trailing zeros (report/outputs.h points).
-std::string shown(double value) {
-  std::ostringstream out;
-  out << std::round(value * 1000) / 1000;
-  return out.str();
-}
-
-// Per-mistake scoring of one stub: `got` (units each test earned per check) raised so the stub
-// earns round(total x (1 - deduction)) units when that is more; the units given back go to the
-// failed checks in proportion to the units each lost, so no check earns less than per check.
-// Returns the units the stub earns.
-long perMistake(const Rubric& rubric, GradeReport& report, const std::vector<std::size_t>& tests,
-                const std::vector<long>& parts, std::vector<long>& got, double unit) {
-  long total = 0, earned = 0;
-  std::vector<const TestResult*> of_stub;
-  for (std::size_t j = 0; j < parts.size(); ++j) {
-    total += parts[j];
-    earned += got[j];
-    of_stub.push_back(&report.tests[tests[j]]);
-  }
-  if (rubric.scoring != Scoring::PerMistake || total == 0) return earned;
-  const std::string mistake = oneMistake(rubric, of_stub);
-  if (mistake.empty()) return earned;
-  const double deduction = rubric.deductions.at(mistake);
-  const long target = std::lround(double(total) * (1 - deduction));
-  if (target <= earned) return earned;  // per check costs no more: nothing to say
-  std::vector<double> lost;
-  for (std::size_t j = 0; j < parts.size(); ++j) lost.push_back(double(parts[j] - got[j]));
-  const std::vector<long> back = apportion(target - earned, lost);
-  for (std::size_t j = 0; j < parts.size(); ++j) got[j] += back[j];
-  for (std::size_t j = 0; j < parts.size(); ++j) {
-    TestResult& test = report.tests[tests[j]];
-    if (test.passed()) continue;
-    test.rubric_note = "One mistake (" + codeSpan(mistake) +
-                       ") explains every failed check of this stub: it loses " +
-                       shown(deduction * 100) +
-                       " % of its points once (rubric: per-mistake; per-check scoring would give " +
-                       shown(double(earned) * unit) + " / " + shown(double(total) * unit) + ").";
-    break;
-  }
-  return target;
-}
-
-}  // namespace
-
-void markNonFinite(const std::set<std::string>& non_finite_stubs,
-                   const std::set<std::string>& can_be_non_finite, std::vector<TestResult>& tests) {
-  std::set<std::string> said_per_check;  // stubs whose probe named non-finite on its checks
-  for (const TestResult& t : tests)
-    if (!t.passed() && t.names(cause::kNonFinite)) said_per_check.insert(t.stub);
-  for (TestResult& test : tests) {
-    const bool by_stub = non_finite_stubs.count(test.stub) && !said_per_check.count(test.stub);
-    if (test.passed() || test.informational || !(by_stub || test.names(cause::kNonFinite)))
-      continue;
-    bool explained = false;  // by a likely cause that can make non-finite numbers: NaN a guess
-    for (Cause& c : test.causes) {
-      c.likely = c.likely && (c.id == cause::kNonFinite || can_be_non_finite.count(c.id));
-      explained = explained || (c.likely && c.id != cause::kNonFinite);
-    }
-    if (!test.names(cause::kNonFinite)) test.addCause(cause::kNonFinite, !explained);
-    std::ranges::stable_partition(test.causes, [](const Cause& c) { return c.likely; });
-  }
-}
-
-void applyRubric(const Rubric& rubric, GradeReport& report) {
-  std::map<std::string, std::vector<std::size_t>> of_stub;  // stub -> its scored tests
-  for (std::size_t k = 0; k < report.tests.size(); ++k) {
-    TestResult& test = report.tests[k];
-    test.max_score = test.score = 0;
-    test.rubric_note.clear();
-    if (test.informational) continue;
-    auto it = rubric.test_weights.find(test.name());
-    if (it != rubric.test_weights.end()) test.weight = it->second;
-    of_stub[test.stub].push_back(k);
-  }
-  report.score = report.max_score = 0;
-  report.stub_score.clear();
-  report.stub_max.clear();
-  // Points are whole units (pointUnit), so test points add up to the stub's points exactly and
-  // the stubs to the total, in every output and in whatever order a reader sums them.
-  for (const std::string& stub : stubNames()) {
-    auto tests = of_stub.find(stub);
-    if (tests == of_stub.end()) continue;
-    auto points = rubric.stub_points.find(stub);
-    const double stub_points = points == rubric.stub_points.end() ? 0 : points->second;
-    const double unit = pointUnit(stub_points);
-    std::vector<double> weights;
-    for (std::size_t k : tests->second) weights.push_back(report.tests[k].weight);
-    const std::vector<long> parts = apportion(std::lround(stub_points / unit), weights);
-    std::vector<long> got;
-    for (std::size_t j = 0; j < parts.size(); ++j) {
-      const double fraction = std::clamp(report.tests[tests->second[j]].fraction, 0.0, 1.0);
-      got.push_back(std::lround(double(parts[j]) * fraction));
-    }
-    const long earned = perMistake(rubric, report, tests->second, parts, got, unit);
-    long total = 0;
-    for (std::size_t j = 0; j < parts.size(); ++j) {
-      TestResult& test = report.tests[tests->second[j]];
-      test.max_score = double(parts[j]) * unit;
-      test.score = double(got[j]) * unit;
-      total += parts[j];
-    }
-    report.stub_max[stub] = double(total) * unit;
-    report.stub_score[stub] = double(earned) * unit;
-  }
-  // Whole units of 1/8 sum exactly in any order; 1/1000 units are summed as integers first.
-  for (const auto& [stub, max] : report.stub_max) report.max_score += max;
-  for (const auto& [stub, score] : report.stub_score) report.score += score;
 }
 
 }  // namespace clothref::grader

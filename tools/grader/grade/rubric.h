@@ -52,8 +52,8 @@ inline const std::vector<std::string>& visibilityNames() {
 }
 
 // How a stub's failed checks cost points. PerCheck: each check loses its own points. PerMistake
-// (the default): a stub whose failed checks one recognised mistake explains loses that mistake's
-// deduction once, never more than per check would take.
+// (the default): a stub whose failed checks proven mistakes explain loses their deductions once,
+// never more than per check would take.
 enum class Scoring { PerMistake, PerCheck };
 
 inline const char* scoringName(Scoring scoring) {
@@ -125,10 +125,10 @@ void markNonFinite(const std::set<std::string>& non_finite_stubs,
                    const std::set<std::string>& can_be_non_finite, std::vector<TestResult>& tests);
 
 // Splits each stub's points over its scored tests by weight and fills score / max_score; fills
-// the report's totals. Per-mistake scoring: a stub whose failed checks all name one likely cause
-// with a deduction totals max(per-check score, its points x (1 - deduction)); the points given
-// back go to its failed checks in proportion to what each lost, and the first failed check's
-// rubric_note says so.
+// the report's totals. Per-mistake scoring: a stub each of whose failed checks names a proven
+// mistake with a deduction (Cause::proven) totals max(per-check score, its points x (1 - the sum
+// of those mistakes' deductions, at most 1)); the points given back go to its failed checks in
+// proportion to what each lost, and the first failed check's rubric_note says so.
 void applyRubric(const Rubric& rubric, GradeReport& report);
 
 }  // namespace clothref::grader

@@ -1,5 +1,7 @@
 #include "grader/grade/probes/collide_cases.h"
 
+#include <algorithm>
+#include <cmath>
 #include <functional>
 #include <iterator>
 
@@ -143,6 +145,52 @@ std::vector<PlannedTest> checkTable(bool sphere_sphere) {
            : std::vector<const char*>(std::begin(kClothCheckNames), std::end(kClothCheckNames)))
     checks.push_back({stub, name, 1});
   return checks;
+}
+
+Outcome outcomeOf(const State& s) {
+  return {s.cloth.particles.position, s.cloth.particles.velocity, s.spheres.particles.position,
+          s.spheres.particles.velocity};
+}
+
+double distance(const Outcome& a, const Outcome& b) {
+  double worst = 0;
+  const auto one = [&](const Mat4X<float>& x, const Mat4X<float>& y) {
+    for (int k = 0; k < x.size(); ++k) {
+      const double d =
+          std::abs(double(x.data()[k]) - double(y.data()[k])) / (1 + std::abs(double(y.data()[k])));
+      worst = std::isfinite(d) ? std::max(worst, d) : 1e300;
+    }
+  };
+  one(a.cloth_x, b.cloth_x);
+  one(a.cloth_v, b.cloth_v);
+  one(a.sphere_x, b.sphere_x);
+  one(a.sphere_v, b.sphere_v);
+  return worst;
+}
+
+Vec4<double> momentum(const State& s, const Outcome& o) {
+  Vec4<double> total = Vec4<double>::Zero();
+  for (int i = 0; i < s.cloth.particles.size(); ++i)
+    total += double(s.cloth.particles.mass[i]) * o.cloth_v.col(i).cast<double>();
+  for (int i = 0; i < s.spheres.size(); ++i)
+    total += double(s.spheres.particles.mass[i]) * o.sphere_v.col(i).cast<double>();
+  return total;
+}
+
+double momentumTolerance(const Case& c) {
+  double scale = 0;
+  for (int q : c.spheres)
+    scale += c.state.spheres.particles.mass[q] *
+             c.state.spheres.particles.velocity.col(q).cast<double>().norm();
+  for (int q : c.particles)
+    scale += c.state.cloth.particles.mass[q] *
+             c.state.cloth.particles.velocity.col(q).cast<double>().norm();
+  return 1e-5 * (1 + scale);
+}
+
+bool conserves(const Case& c, const Outcome& after) {
+  const Vec4<double> change = momentum(c.state, after) - momentum(c.state, outcomeOf(c.state));
+  return change.norm() <= momentumTolerance(c);
 }
 
 }  // namespace clothref::grader::contacts

@@ -56,4 +56,22 @@ std::vector<Case> clothCases(int edition);   // Spheres::collide(Cloth*)
 std::vector<Case> sphereCases(int edition);  // Spheres::collide()
 std::vector<PlannedTest> checkTable(bool sphere_sphere);
 
+// What a call left: every body's positions (m) and velocities (m/s), cloth then spheres.
+struct Outcome {
+  Mat4X<float> cloth_x, cloth_v, sphere_x, sphere_v;
+};
+Outcome outcomeOf(const State& s);
+
+// Largest |a - b| / (1 + |b|) over every value (NaN counts as infinitely far).
+double distance(const Outcome& a, const Outcome& b);
+
+// The total momentum (kg m/s) of the case's bodies moving as in `o`.
+Vec4<double> momentum(const State& s, const Outcome& o);
+
+// How far the case's total momentum may move: 1e-5 of the momenta involved (float sums).
+double momentumTolerance(const Case& c);
+
+// Whether the call left the case's total momentum unchanged (within momentumTolerance).
+bool conserves(const Case& c, const Outcome& after);
+
 }  // namespace clothref::grader::contacts

@@ -125,8 +125,8 @@ inline TestResult test(const PlannedTest& check) {
 }
 
 // A cause the numbers confirm, and one they only suggest (results.h, Cause).
-inline Cause likely(const std::string& id) { return Cause{id, true, {}, {}, {}, {}, {}}; }
-inline Cause guess(const std::string& id) { return Cause{id, false, {}, {}, {}, {}, {}}; }
+inline Cause likely(const std::string& id) { return Cause{id, true, {}, {}, {}, {}, {}, {}}; }
+inline Cause guess(const std::string& id) { return Cause{id, false, {}, {}, {}, {}, {}, {}}; }
 
 // A test of the group that could not run: zero points, the verdict as output.
 inline TestResult failedTest(const PlannedTest& check, const std::string& why,
@@ -141,6 +141,22 @@ inline TestResult failedTest(const PlannedTest& check, const std::string& why,
 inline bool finite(const std::vector<float>& v) {
   for (float x : v)
     if (!std::isfinite(x)) return false;
+  return true;
+}
+
+// A model's values against the student's within a check's tolerance, |model - yours| <= rel (1 +
+// |yours|); a value that is not finite matches only one that is not finite either (a replay's
+// comparison, explain/replay.h).
+inline bool closeTo(const Mat4X<float>& model, const Mat4X<float>& yours, double rel) {
+  if (model.size() != yours.size()) return false;
+  for (int k = 0; k < model.size(); ++k) {
+    const double m = model.data()[k], y = yours.data()[k];
+    if (!std::isfinite(m) || !std::isfinite(y)) {
+      if (std::isfinite(m) != std::isfinite(y)) return false;
+      continue;
+    }
+    if (std::abs(m - y) > rel * (1 + std::abs(y))) return false;
+  }
   return true;
 }
 

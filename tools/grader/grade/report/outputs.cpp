@@ -71,6 +71,8 @@ std::string causeMarkdown(const Cause& cause, const std::string& stub, const Cau
   // what the probe measured for this check: one paragraph right under the head
   if (!cause.detail.empty())
     block += "\n" + cause.detail + (cause.detail.back() == '\n' ? "" : "\n");
+  // how the cause was proven on this submission, or where its model and the numbers part
+  if (!cause.proof.empty()) block += "\n" + cause.proof + "\n";
   if (shown.explained_under.empty() && cause.likely) {
     if (!cause.why.empty()) block += "\n**Why**: " + cause.why + "\n";
     if (!cause.example.empty())
@@ -148,6 +150,15 @@ GradeReport cleaned(const GradeReport& given) {
         return !c.likely && (c.id == cause::kCrashed || c.id == cause::kTimedOut ||
                              c.id == cause::kUndefinedBehaviour);
       });
+    // A symptom (NaN, a blow-up, a wrong order) beside a cause proven on this check: the proven
+    // cause's model gives that check's numbers (its replay or repair), so it is no cause of its
+    // own.
+    const bool proven = std::any_of(test.causes.begin(), test.causes.end(),
+                                    [](const Cause& c) { return c.proven(); });
+    if (proven)
+      std::erase_if(test.causes, [](const Cause& c) {
+        return c.id == cause::kNonFinite || c.id == cause::kUnstable || c.id == cause::kWrongOrder;
+      });
     name(test.stub);
     name(test.check);
     name(test.visibility);
@@ -156,6 +167,7 @@ GradeReport cleaned(const GradeReport& given) {
     for (Cause& cause : test.causes) {
       name(cause.id);
       text(cause.detail);
+      text(cause.proof);
       text(cause.text);
       text(cause.why);
       text(cause.example);
@@ -307,7 +319,7 @@ nlohmann::ordered_json resultsJson(const GradeReport& given) {
       if (t.informational) extra["information_only"] = statusWord(t);
       nlohmann::ordered_json causes = nlohmann::ordered_json::array();
       for (const Cause& cause : t.causes)
-        causes.push_back({{"id", cause.id}, {"likely", cause.likely}});
+        causes.push_back({{"id", cause.id}, {"likely", cause.likely}, {"proven", cause.proven()}});
       if (!t.causes.empty()) extra["causes"] = causes;
       test["extra_data"] = extra;
     }

@@ -79,6 +79,14 @@ struct ProbeBuild {
 ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseToolchain& toolchain,
                        const std::filesystem::path& work_dir);
 
+// A repair's probe (issue 38, grade/probes/repair.cpp): the student file `name` replaced by
+// `bytes` (the quoted lines repaired in a private copy) and compiled alone as the student's files
+// are, then linked with `base`'s objects of the other files: one compile and one link.
+// `ok` false, with the compiler's (or linker's) first error in `problem`, when it does not build.
+ProbeBuild rebuildWithFile(const ProbeBuild& base, const std::string& name,
+                           const std::string& bytes, int edition, const CourseToolchain& toolchain,
+                           const std::filesystem::path& work_dir);
+
 // Probes built again from one grade's build (`base`, made by buildProbes in another folder) with
 // some files compiled with `toolchain`'s flags (the sanitizer's, docs/grading-reference.md
 // "Diagnosing crashes") and every other file's object taken from `base` as it is: one file

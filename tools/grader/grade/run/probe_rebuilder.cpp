@@ -1,12 +1,15 @@
 // ProbeRebuilder (grader/grade/run/build.h): the files a crashed probe group runs, rebuilt with
-// the sanitizers and linked against the grade's own objects of the rest.
+// the sanitizers and linked against the grade's own objects of the rest; and rebuildWithFile, a
+// repair's probe: one student file's repaired bytes compiled and linked the same way.
 #include <algorithm>
+#include <chrono>
 #include <fstream>
 #include <map>
 #include <stdexcept>
 
 #include "grader/grade/run/build.h"
 #include "grader/grade/run/compile_cache.h"
+#include "grader/grade/run/compiler_messages.h"
 #include "grader/grade/run/folders.h"
 #include "grader/grade/run/tools.h"
 #include "grader/grade/submission/submission.h"
@@ -97,6 +100,68 @@ fs::path ProbeRebuilder::probe(const std::vector<std::string>& rebuilt) {
                   .front());
   if (linked.ok) result = out;
   return result;
+}
+
+ProbeBuild rebuildWithFile(const ProbeBuild& base, const std::string& name,
+                           const std::string& bytes, int edition, const CourseToolchain& given,
+                           const fs::path& work_dir) {
+  const CourseToolchain toolchain = absolutePaths(given);
+  const auto& names = studentFileNames();
+  ProbeBuild build;
+  if (!base.ok || base.objects.size() != names.size()) {
+    build.problem = "the grade's own build has no objects to link a repair with";
+    return build;
+  }
+  const auto stem = [](const std::string& file) { return file.substr(0, file.size() - 4); };
+  fs::path pch = precompiledHeader(toolchain, edition, work_dir);
+  if (toolchain.kit && !pch.empty()) pch = kitHeader(*toolchain.kit, pch);
+  const fs::path folder = work_dir / ("src-" + stem(name));
+  fs::create_directories(folder);
+  {
+    std::ofstream copy(folder / name, std::ios::binary | std::ios::trunc);
+    copy << bytes;
+    if (!copy.flush()) throw std::runtime_error("cannot write the repaired " + name);
+  }
+  const auto since = [](auto start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  const auto start = std::chrono::steady_clock::now();
+  // Through the object cache like every student compile: the same repaired bytes (a regrade, or
+  // two students with one mistake written alike) compile once.
+  const fs::path object = work_dir / (stem(name) + ".o");
+  const ToolRun compiled =
+      compileAll(toolchain, {compileCommand(toolchain, edition, folder / name, object, 25, pch)},
+                 work_dir)
+          .front();
+  build.compile_seconds = since(start);
+  if (!compiled.ok) {
+    build.problem = firstCompilerError(
+        compiled.output,
+        CompileSite{work_dir, folder / name, name,
+                    courseHeaderDirs(toolchain.course_dir, edition, toolchain.eigen_include)});
+    return build;
+  }
+  // The repaired object first (as ProbeRebuilder's), then the grade's own objects of the others.
+  std::vector<fs::path> objects = {object};
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    if (names[k] == name) continue;
+    const fs::path copy = work_dir / (stem(names[k]) + "-base.o");
+    if (!copyObject(base.objects[k], copy)) throw std::runtime_error("cannot copy an object");
+    objects.push_back(copy);
+  }
+  const auto link_start = std::chrono::steady_clock::now();
+  const ToolRun linked =
+      checked(runTools({linkCommand(toolchain, edition, objects, {}, work_dir / "probe")}, work_dir,
+                       1, toolchain.compile_seconds, &toolchain.isolation)
+                  .front());
+  build.link_seconds = since(link_start);
+  if (!linked.ok) {
+    build.problem = firstCompilerError(linked.output, CompileSite{work_dir, {}, name, {}});
+    return build;
+  }
+  build.probe = work_dir / "probe";
+  build.ok = true;
+  return build;
 }
 
 }  // namespace clothref::grader

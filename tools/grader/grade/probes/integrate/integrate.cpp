@@ -16,6 +16,7 @@
 #include "clothref/verify/verify.h"
 #include "grader/grade/mistakes/integrate_mistakes.h"
 #include "grader/grade/probes/integrate/diagnosis.h"
+#include "grader/grade/probes/integrate/replay.h"
 #include "grader/grade/probes/integrate/stages.h"
 #include "grader/grade/probes/integrate/text.h"
 
@@ -278,6 +279,13 @@ std::vector<TestResult> probeIntegrator(const ProbeContext& context, int index) 
   if (method != Method::Explicit) tests.push_back(checkBackups(run));
   tests.push_back(checkOrder(context, run, one, stages));
   tests.push_back(checkStability(run, one, stages));
+  // Likely means proven: every cause named is replayed on every probe state (replay.h).
+  proveIntegratorCauses(context, run, stages, tests);
+  for (TestResult& t : tests)
+    if (!t.passed() &&
+        std::none_of(t.causes.begin(), t.causes.end(), [](const Cause& c) { return c.likely; }) &&
+        !t.names("unknown"))
+      t.causes.insert(t.causes.begin(), util::guess("unknown"));
   addStages(tests, stages);
   if (!note.empty())
     for (TestResult& t : tests) t.output = note + t.output;
