@@ -108,8 +108,12 @@ TEST(Replay, AProvenModelNamesItsCausesOnEveryFailedCheck) {
   // A later failed replay of the same cause does not undo the proof.
   const Replay worse = replayOf({{{"positions", false}}});
   applyReplay(worse, {"first-sphere-only"}, tests);
-  for (const Cause& c : tests[0].causes)
-    if (c.id == "first-sphere-only") EXPECT_TRUE(c.proven());
+  ASSERT_FALSE(tests.empty());
+  for (const Cause& c : tests[0].causes) {
+    if (c.id == "first-sphere-only") {
+      EXPECT_TRUE(c.proven());
+    }
+  }
 }
 
 // What no replay proved becomes a guess, except what is read directly (NaN); likely causes first.

@@ -191,7 +191,7 @@ TEST(GradescopeHtml, AHiddenStubAppearsNowhereAStudentSeesBeforeItsRelease) {
     report.max_score = 27.25;
     const nlohmann::ordered_json md = resultsJson(report);
     const nlohmann::ordered_json html = withHtmlSummary(md, report);
-    for (const std::string summary :
+    for (const std::string& summary :
          {md["output"].get<std::string>(), html["output"].get<std::string>()}) {
       for (const char* hidden :
            {"Spheres::collide(Cloth*)", "Cloth::computeSpringForce", "1.25", "0 of 1", "6 / 20",

@@ -7,6 +7,7 @@
 
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <utility>
 
 #include "test_util.h"
 
@@ -108,13 +109,55 @@ TEST(RunProbeTwice, ASecondRunHeldBackToTheWallLimitIsTriedOnceMore) {
   std::size_t runs = 0;
   for ([[maybe_unused]] const auto& entry : fs::directory_iterator(marks)) ++runs;
   EXPECT_EQ(runs, 3u);  // first, second (held back), the second's retry
-  // An endless first run is not repeated: one wall limit, not two or three.
+  // An endless first run (it computes) is not repeated: one wall limit, not two or three.
+  const auto runs_of = [&](const std::string& body) {
+    fs::remove_all(marks);
+    fs::create_directories(marks);
+    std::ofstream(program, std::ios::trunc)
+        << "#!/bin/sh\ncd '" << marks.string() << "'\nn=$(ls | wc -l); touch run-$n\n"
+        << body;
+    const ChildRun run = runProbeTwice(program, probe::ProbeMessage{}, work, limits);
+    std::size_t count = 0;
+    for ([[maybe_unused]] const auto& entry : fs::directory_iterator(marks)) ++count;
+    return std::make_pair(run, count);
+  };
+  // (On a machine so loaded that the loop got under half a CPU, it is held back too: one retry.)
+  const auto [busy, busy_runs] = runs_of("while :; do :; done\n");
+  EXPECT_EQ(busy.status, ChildStatus::TimedOut);
+  EXPECT_GT(busy.cpu_seconds, 0.3) << "the loop's CPU time was not read";
+  EXPECT_EQ(busy_runs, busy.cpu_seconds >= 0.5 * limits.wall_seconds ? 1u : 2u);
+}
+
+// A first run stopped at the wall-clock limit that used little CPU time waited (a loaded
+// machine holds a run back; here it sleeps): it is tried once more and the retry stands, so a
+// program held back once is graded on its retry, and one that always waits still times out.
+TEST(RunProbeTwice, AFirstRunThatWaitedToTheWallLimitIsTriedOnceMore) {
+  test::TempDir temp;
+  const fs::path marks = temp.path() / "marks", work = temp.path() / "work";
+  fs::create_directories(marks);
+  fs::create_directories(work);
+  const fs::path program = temp.path() / "program";
+  std::ofstream(program) << "#!/bin/sh\n"
+                         << "cd '" << marks.string() << "'\n"
+                         << "n=$(ls | wc -l); touch run-$n\n"
+                         << "[ \"$n\" = 0 ] && exec sleep 30\n"
+                         << "exit 3\n";
+  fs::permissions(program, fs::perms::owner_all);
+  ChildLimits limits;
+  limits.wall_seconds = 3;
+  const ChildRun run = runProbeTwice(program, probe::ProbeMessage{}, work, limits);
+  EXPECT_EQ(run.status, ChildStatus::ExitedNonZero) << run.describe() << "\n" << run.stderr_head;
+  std::size_t runs = 0;
+  for ([[maybe_unused]] const auto& entry : fs::directory_iterator(marks)) ++runs;
+  EXPECT_EQ(runs, 3u);  // the held-back first, its retry, the second
   fs::remove_all(marks);
   fs::create_directories(marks);
   std::ofstream(program, std::ios::trunc)
       << "#!/bin/sh\ntouch '" << (marks / "run").string() << "'\nexec sleep 30\n";
-  EXPECT_EQ(runProbeTwice(program, probe::ProbeMessage{}, work, limits).status,
-            ChildStatus::TimedOut);
+  const ChildRun waits = runProbeTwice(program, probe::ProbeMessage{}, work, limits);
+  EXPECT_EQ(waits.status, ChildStatus::TimedOut);
+  EXPECT_GE(waits.cpu_seconds, 0);
+  EXPECT_LT(waits.cpu_seconds, 1);
 }
 
 // Faults of ours, injected (CLOTHREF_GRADER_FAULT, read by the grader process only): each is

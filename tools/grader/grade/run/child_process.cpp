@@ -20,6 +20,7 @@
 #include <sstream>
 
 #include "grader/grade/run/folders.h"
+#include "grader/grade/run/process_tree.h"
 #include "grader/grade/run/spawn.h"
 
 namespace clothref::grader {
@@ -320,6 +321,8 @@ ChildRun runChildOnce(const std::vector<std::string>& command,
     readReport();
     usleep(2000);
   }
+  // Read before the kill: whether a run stopped at the limit computed or waited.
+  const double cpu_at_limit = reaped ? -1 : treeCpuSeconds(pid);
   if (boxed) {
     readAvailable(info_fds[0], info);
     close(info_fds[0]);
@@ -327,6 +330,7 @@ ChildRun runChildOnce(const std::vector<std::string>& command,
   }
   ChildRun run;
   run.disk_limit_bytes = limits.disk_bytes;
+  run.cpu_seconds = cpu_at_limit;
   if (expect_answer) {
     const std::optional<probe::ProbeMessage> frame = probe::decodeMessage(answer);
     run.answered = frame && frame->nonce == request_nonce;
@@ -471,6 +475,12 @@ ChildRun runProbeTwice(const std::filesystem::path& executable, const probe::Pro
   const std::vector<std::vector<std::string>> variants = probeVariants();
   variant.environment = variants[0];
   ChildRun first = runProbe(executable, request, work_dir, variant);
+  // A first run stopped at the wall-clock limit having used less than half of it in CPU time
+  // waited (for a CPU on a loaded machine, or in a sleep) rather than computed: it is tried once
+  // more and the retry stands. An endless loop computes: it is stopped once, one limit.
+  if (first.status == ChildStatus::TimedOut && first.cpu_seconds >= 0 &&
+      first.cpu_seconds < 0.5 * limits.wall_seconds)
+    first = runProbe(executable, request, work_dir, variant);
   const bool repeat = first.status == ChildStatus::Ok || first.status == ChildStatus::Crashed ||
                       first.status == ChildStatus::ExitedNonZero ||
                       first.status == ChildStatus::NoAnswer;

@@ -97,9 +97,11 @@ enum class ChildStatus {
 
 struct ChildRun {
   ChildStatus status = ChildStatus::NoAnswer;
-  int signal = 0;           // for Crashed
-  int exit_code = 0;        // for ExitedNonZero
-  double seconds = 0;       // wall time
+  int signal = 0;      // for Crashed
+  int exit_code = 0;   // for ExitedNonZero
+  double seconds = 0;  // wall time
+  // Stopped at the wall-clock limit: the CPU time (s) its processes had used (-1: unknown).
+  double cpu_seconds = -1;
   std::string stderr_head;  // first lines of the child's stderr (for the report)
   std::optional<probe::ProbeMessage> answer;
   // NotStarted: what failed on our side (for the staff), and whether it was the uid's process
