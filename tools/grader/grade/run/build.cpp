@@ -19,6 +19,7 @@
 #include "grader/grade/run/compile_cache.h"
 #include "grader/grade/run/compiler_messages.h"
 #include "grader/grade/run/tools.h"
+#include "grader/grade/submission/neighbours.h"
 
 #ifndef CLOTHREF_GRADER_COURSE_DIR
 #define CLOTHREF_GRADER_COURSE_DIR ""
@@ -79,16 +80,12 @@ std::vector<fs::path> ourFolders(const CourseToolchain& t) {
       if (path == fs::path(folder)) return true;
     return path == fs::temp_directory_path(error).lexically_normal() || !path.has_relative_path();
   };
-  const auto under = [](const fs::path& path, const fs::path& root) {
-    const std::string p = path.string(), r = root.string();
-    return p == r || (p.size() > r.size() && p.compare(0, r.size(), r) == 0 && p[r.size()] == '/');
-  };
   std::vector<fs::path> ours;
   for (const fs::path& path : candidates) {
     if (system(path)) continue;
     bool inside = false;
     for (const fs::path& other : candidates)
-      inside = inside || (other != path && !system(other) && under(path, other));
+      inside = inside || (other != path && !system(other) && isUnder(path, other));
     if (!inside && std::find(ours.begin(), ours.end(), path) == ours.end()) ours.push_back(path);
   }
   return ours;

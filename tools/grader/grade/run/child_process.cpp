@@ -22,6 +22,7 @@
 #include "grader/grade/run/folders.h"
 #include "grader/grade/run/process_tree.h"
 #include "grader/grade/run/spawn.h"
+#include "grader/grade/submission/neighbours.h"
 
 namespace clothref::grader {
 using namespace spawn;
@@ -110,11 +111,6 @@ ChildRun notStarted(const std::string& why, bool waiting_for_slot = false) {
   run.grader_problem = why;
   run.waiting_for_slot = waiting_for_slot;
   return run;
-}
-
-bool isUnder(const std::string& path, const std::string& root) {
-  return path == root || (path.size() > root.size() && path.compare(0, root.size(), root) == 0 &&
-                          (root == "/" || path[root.size()] == '/'));
 }
 
 // The fallback's filesystems for a probe run as root with a private mount namespace: our folders

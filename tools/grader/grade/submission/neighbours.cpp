@@ -9,8 +9,12 @@ namespace clothref::grader {
 namespace fs = std::filesystem;
 
 bool isUnder(const fs::path& path, const fs::path& root) {
-  const std::string p = path.lexically_normal().string(), r = root.lexically_normal().string();
-  return p == r || (p.size() > r.size() && p.compare(0, r.size(), r) == 0 && p[r.size()] == '/');
+  std::string p = path.lexically_normal().string(), r = root.lexically_normal().string();
+  // "/srv/subs/" and "/srv/subs" are one folder; "/" stays itself
+  while (p.size() > 1 && p.back() == '/') p.pop_back();
+  while (r.size() > 1 && r.back() == '/') r.pop_back();
+  return p == r || (p.size() > r.size() && p.compare(0, r.size(), r) == 0 &&
+                    (r == "/" || p[r.size()] == '/'));
 }
 
 namespace {
