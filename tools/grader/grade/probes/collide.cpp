@@ -78,7 +78,10 @@ int readPairs(const Case& c, bool sphere_sphere, const Outcome& actual,
 
 std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_sphere) {
   const std::vector<PlannedTest> checks = checkTable(sphere_sphere);
-  const float e = sphere_sphere ? 0.8f : 0.0f;
+  // The course's values (the edition's scene): restitution of the pair's kind, the correction.
+  const float e = static_cast<float>(sphere_sphere ? context.course.restitution_sphere
+                                                   : context.course.restitution_cloth);
+  const float correction = static_cast<float>(context.course.correction);
   const double rel = context.rubric.tolerances.collide_rel;
   std::vector<Case> cases =
       sphere_sphere ? sphereCases(context.edition) : clothCases(context.edition);
@@ -152,7 +155,7 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
                          util::matrix(answer->f(key::perCase(key::kSphereVel, n)), 3)};
     actuals.push_back(actual);
     State reference = c.state;
-    collideCourse(reference, sphere_sphere, e);
+    collideCourse(reference, sphere_sphere, e, correction);
     const Outcome expected = outcomeOf(reference);
     if (c.free_bodies && !conserves(c, actual)) {
       const Vec4<double> before = momentum(c.state, outcomeOf(c.state));
@@ -166,7 +169,7 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
     TestResult t = util::test(checks[c.check]);
     for (std::size_t m = 0; m < signatures.size(); ++m) {
       State variant = c.state;
-      collideWithMistake(variant.spheres, variant.cloth, sphere_sphere, e, kCorrection,
+      collideWithMistake(variant.spheres, variant.cloth, sphere_sphere, e, correction,
                          signatures[m].first);
       const Outcome v = outcomeOf(variant);
       evidence.differs[k][m] = distance(v, expected) > rel;
@@ -229,7 +232,7 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
   // What the numbers say in the course's terms (contact_fit.h): the one quantity that differs,
   // shown on the cases with a touching pair.
   const std::vector<ContactFinding> findings =
-      answer ? explainContacts(readings, e, kCorrection) : std::vector<ContactFinding>{};
+      answer ? explainContacts(readings, e, correction) : std::vector<ContactFinding>{};
   for (const ContactFinding& f : findings)
     if (!f.cause.empty()) evidence.findings.push_back({f.cause, f.text});
   const auto finding = [&](const std::string& id) -> const ContactFinding* {
@@ -252,7 +255,7 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
       continue;
     for (const Case& c : cases) {
       State variant = c.state;
-      collideWithMistake(variant.spheres, variant.cloth, sphere_sphere, e, kCorrection,
+      collideWithMistake(variant.spheres, variant.cloth, sphere_sphere, e, correction,
                          signatures[m].first);
       if (c.free_bodies && !conserves(c, outcomeOf(variant))) {
         breaks_momentum.push_back(id);
@@ -293,7 +296,7 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
     return tests;
   }
   // Likely means proven: every model of a cause replayed on every case (explain/replay.h).
-  const ContactModel course = courseContact(e, kCorrection);
+  const ContactModel course = courseContact(e, correction);
   std::vector<Candidate> candidates;
   for (const auto& [mistake, id] : signatures)
     candidates.push_back({{id}, withMistake(course, mistake)});
@@ -311,7 +314,7 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
     }
     candidates.push_back({{f.cause}, fitted});
   }
-  if (const std::optional<double> d = contactDistanceOffset(readings, kCorrection)) {
+  if (const std::optional<double> d = contactDistanceOffset(readings, correction)) {
     ContactModel reach = course;
     reach.reach_offset = float(*d);
     reach.changes.push_back("with a contact distance of " +

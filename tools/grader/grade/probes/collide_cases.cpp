@@ -5,20 +5,25 @@
 #include <functional>
 #include <iterator>
 
+#include "grader/grade/submission/edition.h"
+
 namespace clothref::grader::contacts {
 
-void collideCourse(State& s, bool sphere_sphere, float restitution) {
+void collideCourse(State& s, bool sphere_sphere, float restitution, float correction) {
   if (sphere_sphere)
-    collide(s.spheres, restitution, kCorrection);
+    collide(s.spheres, restitution, correction);
   else
-    collide(s.spheres, s.cloth, restitution, kCorrection);
+    collide(s.spheres, s.cloth, restitution, correction);
 }
 
 namespace {
 
 State baseState(int edition) {
   State s;
-  s.cloth.particles = initializeVertex<float>(kN, 2.0f, edition == 2024 ? 1.0f : 0.0f, 1.0f);
+  const Edition course = courseEdition(edition);
+  s.cloth.particles = initializeVertex<float>(kN, static_cast<float>(course.cloth_half_extent),
+                                              static_cast<float>(course.cloth_height),
+                                              static_cast<float>(course.particle_mass));
   for (int i = 0; i < kN; ++i)
     for (int j = 0; j < kN; ++j)  // parked 50 m below, 3 m apart: nothing touches them
       s.cloth.particles.position.col(i * kN + j) =

@@ -13,15 +13,15 @@ namespace clothref::grader::contacts {
 
 inline constexpr int kN = 25;                          // particles per cloth edge
 inline constexpr float kRadii[] = {0.5f, 0.5f, 1.0f};  // m: the three spheres
-inline constexpr float kCorrection = 0.15f;            // the course's position correction
 
 struct State {
   Cloth<float> cloth;
   Spheres<float> spheres;
 };
 
-// The library's stub on `s`: the expected answer.
-void collideCourse(State& s, bool sphere_sphere, float restitution);
+// The library's stub on `s` with the course's restitution and position correction (the fraction
+// of the overlap undone): the expected answer.
+void collideCourse(State& s, bool sphere_sphere, float restitution, float correction);
 
 // Rows of the check tables (checkTable()): one case each, then momentum over them all.
 enum ClothCheck {

@@ -138,11 +138,15 @@ std::vector<PlannedTest> forcesChecks() {
 std::vector<TestResult> probeForces(const ProbeContext& context) {
   const double rel = context.rubric.tolerances.force_rel;
   Cloth<float> base;
-  base.particles = initializeVertex<float>(kN, 2.0f, context.edition == 2024 ? 1.0f : 0.0f, 1.0f);
+  // The course's cloth and constants (the edition's scene).
+  const Edition& course = context.course;
+  base.particles = initializeVertex<float>(kN, static_cast<float>(course.cloth_half_extent),
+                                           static_cast<float>(course.cloth_height),
+                                           static_cast<float>(course.particle_mass));
   for (int corner : {0, kN - 1, kN * (kN - 1), kN * kN - 1}) setMass(base.particles, corner, 0.0f);
   initializeSpring(base, kN);
-  base.spring_coef = context.edition == 2024 ? 20000.0f : 25000.0f;
-  base.damper_coef = 750.0f;
+  base.spring_coef = static_cast<float>(course.spring_coef);
+  base.damper_coef = static_cast<float>(course.damper_coef);
   std::mt19937 rng(static_cast<unsigned>(context.seed));
   std::uniform_real_distribution<float> u(-1.0f, 1.0f);
   const auto noise = [&](Mat4X<float>& m, float amount, bool keep_w) {
