@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "clothref/verify/verify.h"
+#include "grader/grade/cause_ids.h"
 #include "grader/grade/mistakes/integrate_mistakes.h"
 
 namespace clothref::grader::integrators {
@@ -196,7 +197,7 @@ std::vector<IntegratorModel> modelsOf(const std::string& id, const IntegratorRun
                                                                  : "RK4");
   TableModel base;
   base.table = &course;
-  if (id == "only-first-body") {
+  if (id == cause::kOnlyFirstBody) {
     models.push_back(
         {{id}, the + " on particles[0] (the cloth) only", clothrefStep(method, 1), std::nullopt});
     if (method == Method::Explicit)
@@ -204,10 +205,10 @@ std::vector<IntegratorModel> modelsOf(const std::string& id, const IntegratorRun
                         "symplectic Euler on particles[0] (the cloth) only",
                         clothrefStep(Method::Symplectic, 1),
                         std::nullopt});
-  } else if (id == "position-uses-acceleration" && method == Method::Explicit) {
+  } else if (id == cause::kPositionUsesAcceleration && method == Method::Explicit) {
     variant(Variant::PositionUsesAcceleration, "explicit Euler with x += v dt + a dt²/2");
-  } else if (id == "velocity-not-integrated" || id == "position-not-integrated") {
-    const bool velocity = id == "velocity-not-integrated";
+  } else if (id == cause::kVelocityNotIntegrated || id == cause::kPositionNotIntegrated) {
+    const bool velocity = id == cause::kVelocityNotIntegrated;
     if (method == Method::Explicit) {
       variant(velocity ? Variant::PositionOnly : Variant::VelocityOnly,
               "explicit Euler without the " + std::string(velocity ? "velocity" : "position") +
@@ -219,9 +220,9 @@ std::vector<IntegratorModel> modelsOf(const std::string& id, const IntegratorRun
       // A zero weight vector is "no term": x = x0 (or v = v0).
       table(t, the + " without the " + std::string(velocity ? "velocity" : "position") + " update");
     }
-  } else if (id == "backup-alias" && method != Method::Explicit) {
+  } else if (id == cause::kBackupAlias && method != Method::Explicit) {
     variant(Variant::Alias, the + " with a backup that follows the live state");
-  } else if (id == "no-reevaluation" && method != Method::Explicit) {
+  } else if (id == cause::kNoReevaluation && method != Method::Explicit) {
     variant(Variant::NoReevaluation, "explicit Euler (what simulateOneStep() computes unused)");
     // The same step taken from the live state after the stub's own simulateOneStep() (no
     // backups, or "backups" that follow the live state): the course's explicit Euler after a
@@ -240,30 +241,30 @@ std::vector<IntegratorModel> modelsOf(const std::string& id, const IntegratorRun
               "the course's midpoint with simulateOneStep() before the half step");
       variant(Variant::ZeroHalfStep, "the course's midpoint whose half step adds nothing");
     }
-  } else if (id == "integer-division-half" && method == Method::Midpoint) {
+  } else if (id == cause::kIntegerDivisionHalf && method == Method::Midpoint) {
     variant(Variant::ZeroHalfStep,
             "the course's midpoint with 1 / 2 = 0 (the half step adds "
             "nothing)");
-  } else if (id == "per-body-loop" && method != Method::Explicit) {
+  } else if (id == cause::kPerBodyLoop && method != Method::Explicit) {
     variant(Variant::PerBody,
             the + " run on each body in turn, each with its own simulateOneStep() calls");
-  } else if (id == "midpoint-full-step" && method == Method::Midpoint) {
+  } else if (id == cause::kMidpointFullStep && method == Method::Midpoint) {
     models.push_back({{id},
                       "the course's implicit Euler (a full-step prediction)",
                       clothrefStep(Method::Implicit),
                       std::nullopt});
-  } else if (id == "heun-method") {
+  } else if (id == cause::kHeunMethod) {
     for (const stages::MethodTable& t : stages::methodTables())
       if (t.id == "heun") {
         TableModel heun;
         heun.table = &t;
         table(heun, "Heun's method (the trapezoidal corrector)");
       }
-  } else if (id == "half-step-corrector" && method != Method::Explicit) {
+  } else if (id == cause::kHalfStepCorrector && method != Method::Explicit) {
     TableModel t = base;
     t.result_step = 0.5;
     table(t, the + " whose corrector takes h/2");
-  } else if (id == "velocity-damped") {
+  } else if (id == cause::kVelocityDamped) {
     TableModel t = base;
     t.velocity_factor = {velocityFactorOf(run, 0), velocityFactorOf(run, 1)};
     // A factor 0 is no damping: the body is held still (integrator-pins-particles).
@@ -272,7 +273,7 @@ std::vector<IntegratorModel> modelsOf(const std::string& id, const IntegratorRun
     if (!stopped && (t.velocity_factor[0] != 1 || t.velocity_factor[1] != 1))
       table(t, the + " with the velocities then multiplied by " + number(t.velocity_factor[0]) +
                    " (the cloth) and " + number(t.velocity_factor[1]) + " (the spheres)");
-  } else if (id == "deltatime-mutated") {
+  } else if (id == cause::kDeltatimeMutated) {
     TableModel t = base;
     const double scale = stages.recorded ? stages.explanation.scale : 1;
     t.step = scale;
@@ -295,9 +296,9 @@ std::vector<IntegratorModel> modelsOf(const std::string& id, const IntegratorRun
       }
     }
     table(t, text);
-  } else if (id == "integer-division-rk4" && method == Method::Rk4) {
+  } else if (id == cause::kIntegerDivisionRk4 && method == Method::Rk4) {
     variant(Variant::RkIntDivision, "the course's RK4 with 1 / 6 = 0 in the update");
-  } else if (id == "rk4-mixed-increments" && method == Method::Rk4) {
+  } else if (id == cause::kRk4MixedIncrements && method == Method::Rk4) {
     variant(Variant::RkMixedFinal, "the course's RK4 whose position update adds the velocity k's");
     variant(Variant::RkK4xInVelocity, "the course's RK4 whose velocity update takes k4 of x");
     for (int k = 0; k < 3; ++k)
@@ -305,11 +306,11 @@ std::vector<IntegratorModel> modelsOf(const std::string& id, const IntegratorRun
           Variant::RkMixedStage,
           "the course's RK4 whose stage " + std::to_string(k + 2) + " position adds a velocity k",
           k);
-  } else if (id == "rk4-stage-not-from-backup" && method == Method::Rk4) {
+  } else if (id == cause::kRk4StageNotFromBackup && method == Method::Rk4) {
     variant(Variant::RkStageFromCurrent,
             "the course's RK4 with each stage built on the previous "
             "stage instead of the backup");
-  } else if (id == "rk4-stage-from-wrong-increment" && method == Method::Rk4) {
+  } else if (id == cause::kRk4StageFromWrongIncrement && method == Method::Rk4) {
     variant(Variant::RkStageFromNewVelocity,
             "the course's RK4 with each stage position from that stage's new velocity");
     // Each increment read after the velocity was overwritten with v0 + c·h·a_k of its own stage:
@@ -326,15 +327,15 @@ std::vector<IntegratorModel> modelsOf(const std::string& id, const IntegratorRun
     table(t,
           "the course's RK4 with each position increment read after the stage's velocity was "
           "overwritten with v0 + c·h·a of that stage");
-  } else if (id == "rk4-stages-discarded" && method == Method::Rk4) {
+  } else if (id == cause::kRk4StagesDiscarded && method == Method::Rk4) {
     variant(Variant::RkStagesDiscarded, "the course's RK4 whose update uses k1 only");
-  } else if (id == "rk4-wrong-weights" && method == Method::Rk4) {
+  } else if (id == cause::kRk4WrongWeights && method == Method::Rk4) {
     TableModel t = base;
     fittedWeights(stages, t.weights_x, t.weights_v);
     if (!t.weights_x.empty() && !t.weights_v.empty())
       table(t, "the course's RK4 stages with the weights " + weightText(t.weights_x) +
                    " (positions) and " + weightText(t.weights_v) + " (velocities)");
-  } else if (id == "corrector-start-velocity" &&
+  } else if (id == cause::kCorrectorStartVelocity &&
              (method == Method::Implicit || method == Method::Midpoint)) {
     static const MethodTable implicit_start = [] {
       MethodTable t = stages::courseTable(1);
@@ -349,7 +350,7 @@ std::vector<IntegratorModel> modelsOf(const std::string& id, const IntegratorRun
     TableModel t;
     t.table = method == Method::Implicit ? &implicit_start : &midpoint_start;
     table(t, the + " whose corrector moves the positions with the start velocity v0");
-  } else if (id == "integrator-pins-particles") {
+  } else if (id == cause::kIntegratorPinsParticles) {
     TableModel t = base;
     t.pinned = pinnedParticles(run, t.pinned_position);
     t.pinned_spheres = stoppedSpheres(run);

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "clothref/verify/verify.h"
+#include "grader/grade/cause_ids.h"
 #include "grader/grade/probes/util.h"
 
 namespace clothref::grader::integrators {
@@ -138,11 +139,13 @@ void proveIntegratorCauses(const ProbeContext& context, const IntegratorRun& run
   for (bool likely : {true, false})
     for (const std::string& id : stages.causes(likely)) add(ids, id);
   for (const char* id :
-       {"only-first-body", "position-uses-acceleration", "velocity-not-integrated",
-        "position-not-integrated", "backup-alias", "no-reevaluation", "per-body-loop",
-        "midpoint-full-step", "heun-method", "half-step-corrector", "corrector-start-velocity",
-        "velocity-damped", "integrator-pins-particles", "deltatime-mutated", "rk4-mixed-increments",
-        "rk4-stage-not-from-backup", "rk4-stage-from-wrong-increment", "rk4-stages-discarded"})
+       {cause::kOnlyFirstBody, cause::kPositionUsesAcceleration, cause::kVelocityNotIntegrated,
+        cause::kPositionNotIntegrated, cause::kBackupAlias, cause::kNoReevaluation,
+        cause::kPerBodyLoop, cause::kMidpointFullStep, cause::kHeunMethod,
+        cause::kHalfStepCorrector, cause::kCorrectorStartVelocity, cause::kVelocityDamped,
+        cause::kIntegratorPinsParticles, cause::kDeltatimeMutated, cause::kRk4MixedIncrements,
+        cause::kRk4StageNotFromBackup, cause::kRk4StageFromWrongIncrement,
+        cause::kRk4StagesDiscarded})
     add(ids, id);
   std::vector<IntegratorModel> models;
   std::vector<Replay> replays;
@@ -179,7 +182,7 @@ void proveIntegratorCauses(const ProbeContext& context, const IntegratorRun& run
         best = q;
     if (best == m && !replays[m].proven()) applyReplay(replays[m], models[m].ids, tests);
   }
-  requireProofs(tests, {"deltatime-mutated", "unstable", "wrong-order"});
+  requireProofs(tests, {cause::kDeltatimeMutated, "unstable", cause::kWrongOrder});
 }
 
 }  // namespace clothref::grader::integrators
