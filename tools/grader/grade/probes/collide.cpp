@@ -84,7 +84,7 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
   const float correction = static_cast<float>(context.course.correction);
   const double rel = context.rubric.tolerances.collide_rel;
   std::vector<Case> cases =
-      sphere_sphere ? sphereCases(context.edition) : clothCases(context.edition);
+      sphere_sphere ? sphereCases(context.course) : clothCases(context.course);
   probe::ProbeMessage request;
   const char* group_name = sphere_sphere ? group::kCollideSpheres : group::kCollideCloth;
   request.texts[key::kGroup] = group_name;

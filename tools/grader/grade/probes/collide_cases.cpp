@@ -5,8 +5,6 @@
 #include <functional>
 #include <iterator>
 
-#include "grader/grade/submission/edition.h"
-
 namespace clothref::grader::contacts {
 
 void collideCourse(State& s, bool sphere_sphere, float restitution, float correction) {
@@ -18,9 +16,8 @@ void collideCourse(State& s, bool sphere_sphere, float restitution, float correc
 
 namespace {
 
-State baseState(int edition) {
+State baseState(const Edition& course) {
   State s;
-  const Edition course = courseEdition(edition);
   s.cloth.particles = initializeVertex<float>(kN, static_cast<float>(course.cloth_half_extent),
                                               static_cast<float>(course.cloth_height),
                                               static_cast<float>(course.particle_mass));
@@ -55,11 +52,11 @@ static_assert(std::size(kSphereCheckNames) == kSpheresMomentum + 1);
 
 }  // namespace
 
-std::vector<Case> clothCases(int edition) {
+std::vector<Case> clothCases(const Edition& course) {
   std::vector<Case> cases;
   const auto make = [&](ClothCheck check, std::vector<int> spheres, std::vector<int> particles,
                         const std::function<void(State&)>& setup, bool free_bodies = true) {
-    Case c{check, baseState(edition), std::move(spheres), std::move(particles), free_bodies};
+    Case c{check, baseState(course), std::move(spheres), std::move(particles), free_bodies};
     setup(c.state);
     cases.push_back(std::move(c));
   };
@@ -101,11 +98,11 @@ std::vector<Case> clothCases(int edition) {
   return cases;
 }
 
-std::vector<Case> sphereCases(int edition) {
+std::vector<Case> sphereCases(const Edition& course) {
   std::vector<Case> cases;
   const auto make = [&](SphereCheck check, std::vector<int> spheres,
                         const std::function<void(State&)>& setup) {
-    Case c{check, baseState(edition), std::move(spheres), {}, true};
+    Case c{check, baseState(course), std::move(spheres), {}, true};
     setup(c.state);
     cases.push_back(std::move(c));
   };

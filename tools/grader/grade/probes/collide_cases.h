@@ -8,6 +8,7 @@
 #include "clothref/core/cloth.h"
 #include "clothref/core/spheres.h"
 #include "grader/grade/probes/probes.h"
+#include "grader/grade/submission/edition.h"
 
 namespace clothref::grader::contacts {
 
@@ -52,8 +53,9 @@ struct Case {
   bool free_bodies = true;              // momentum must be conserved
 };
 
-std::vector<Case> clothCases(int edition);   // Spheres::collide(Cloth*)
-std::vector<Case> sphereCases(int edition);  // Spheres::collide()
+// On the edition's course cloth (its half extent, height and particle mass).
+std::vector<Case> clothCases(const Edition& course);   // Spheres::collide(Cloth*)
+std::vector<Case> sphereCases(const Edition& course);  // Spheres::collide()
 std::vector<PlannedTest> checkTable(bool sphere_sphere);
 
 // What a call left: every body's positions (m) and velocities (m/s), cloth then spheres.

@@ -5,7 +5,6 @@
 #include <array>
 #include <cmath>
 
-#include "clothref/verify/verify.h"
 #include "grader/grade/cause_ids.h"
 #include "grader/grade/mistakes/integrate_mistakes.h"
 
