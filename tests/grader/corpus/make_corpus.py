@@ -967,7 +967,11 @@ SUBMISSIONS = {
                 S_SPR: SPRINGS_BEND_STRUCTURAL,
                 S_CC: cloth_contact("0.0f", CONTACT_CORRECTION_CLOTH_ONLY)},
         labels={S_SPR: (["bend-rest-length"], [], "bend springs get the structural length"),
-                S_CC: (["correction-one-body"], [], "only the cloth particle is pushed out")}),
+                S_CC: (["correction-one-body"], [], "only the cloth particle is pushed out"),
+                **{stub: (["integrator-pins-particles"], [],
+                          "the corners re-pinned by index: the 2024 program's keys 1-4 unpin "
+                          "them, and the stub holds them still again")
+                   for stub in (S_EX, S_IM, S_MI, S_RK)}}),
 }
 
 

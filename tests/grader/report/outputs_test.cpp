@@ -232,6 +232,44 @@ TEST(MarkdownReport, AStubSaysItsPointsWhatIsWrongAndItsFailedChecksAsATable) {
   EXPECT_EQ(countOf(md, "**Likely cause** (`no-approach-check`)"), 1u) << md;
 }
 
+// One helper that pins particles in all four integrators: the why and example once, under the
+// first stub; the later stubs keep their head and proof and refer to it. A stub whose checks are
+// shown later never refers to one shown earlier than it.
+TEST(MarkdownReport, ACausesWhyIsGivenOnceAcrossStubsShownTogether) {
+  GradeReport report;
+  report.submission = "sub";
+  report.edition = 2024;
+  for (const char* stub :
+       {"ExplicitEuler::integrate", "ImplicitEuler::integrate", "MidpointEuler::integrate"}) {
+    TestResult t = makeTest(stub, "one step on a random state", 1);
+    t.max_score = 1;
+    t.causes = {
+        Cause{cause::kIntegratorPinsParticles, true, {}, {}, "Holds particles.", {}, {}, {}}};
+    t.causes[0].why = "Fixed particles have mass 0.";
+    t.causes[0].example = "p->velocity(0).setZero();  // mistake";
+    t.causes[0].proof = std::string("Proven: ") + stub + ".";
+    report.tests.push_back(t);
+  }
+  report.tests[2].visibility = "after_published";
+  const std::string md = markdownReport(report);
+  EXPECT_EQ(countOf(md, "**Why**: Fixed particles have mass 0."), 2u) << md;
+  EXPECT_EQ(countOf(md, "p->velocity(0).setZero();  // mistake"), 2u) << md;
+  EXPECT_EQ(countOf(md,
+                    "**Why**, and the mistake with its fix: as under "
+                    "`ExplicitEuler::integrate` above."),
+            1u)
+      << md;
+  for (const char* stub :
+       {"ExplicitEuler::integrate", "ImplicitEuler::integrate", "MidpointEuler::integrate"})
+    EXPECT_EQ(countOf(md, std::string("Proven: ") + stub + "."), 1u) << md;
+  const std::size_t implicit = md.find("## ImplicitEuler::integrate");
+  const std::size_t midpoint = md.find("## MidpointEuler::integrate");
+  ASSERT_NE(implicit, std::string::npos);
+  ASSERT_NE(midpoint, std::string::npos);
+  EXPECT_NE(md.find("as under `ExplicitEuler::integrate`", implicit), std::string::npos);
+  EXPECT_EQ(md.find("as under", midpoint), std::string::npos);  // shown later: its own why
+}
+
 TEST(AllWriters, StateTheVerdictAndTheIsolation) {
   GradeReport report = sampleReport();
   report.verdict = grader::Verdict::TimedOut;

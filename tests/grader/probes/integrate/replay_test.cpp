@@ -12,6 +12,7 @@ namespace clothref::grader::integrators {
 namespace {
 
 constexpr double kRel = 2e-5;  // the rubric's integrate_rel
+const Rubric kRubric = defaultRubric(2022);
 
 TEST(IntegratorReplay, CourseTablesAreTheLibrarysMethods) {
   for (int index = 0; index < 4; ++index) {
@@ -80,14 +81,14 @@ TEST(IntegratorReplay, OverwrittenIncrementsAreTheirModel) {
   const IntegratorRun run = runOf(3, overwrittenRk4);
   ASSERT_GT(distance(run.actual, run.expected), kRel);  // a mistake the check sees
   const std::vector<IntegratorModel> models =
-      modelsOf("rk4-stage-from-wrong-increment", run, RunStages{});
+      modelsOf("rk4-stage-from-wrong-increment", kRubric, run, RunStages{});
   ASSERT_EQ(models.size(), 2u);
   EXPECT_GT(distance(stepped(run.random, models[0].step), run.actual), kRel);
   EXPECT_LE(distance(stepped(run.random, models[1].step), run.actual), kRel);
   // RK4 with other weights on the course's stages is no model of it: the fit has no weights
   // without a stage record, and a variant of the stages is far.
-  EXPECT_TRUE(modelsOf("rk4-wrong-weights", run, RunStages{}).empty());
-  for (const IntegratorModel& m : modelsOf("rk4-mixed-increments", run, RunStages{}))
+  EXPECT_TRUE(modelsOf("rk4-wrong-weights", kRubric, run, RunStages{}).empty());
+  for (const IntegratorModel& m : modelsOf("rk4-mixed-increments", kRubric, run, RunStages{}))
     EXPECT_GT(distance(stepped(run.random, m.step), run.actual), kRel) << m.text;
 }
 
@@ -98,13 +99,59 @@ TEST(IntegratorReplay, PinnedParticlesAreReadAndReplayed) {
     for (int j : {1, 2, 6}) s.cloth.particles.velocity.col(j).setZero();
   };
   const IntegratorRun run = runOf(2, pinning);
-  const std::vector<IntegratorModel> models = modelsOf("integrator-pins-particles", run, {});
-  ASSERT_EQ(models.size(), 1u);
+  const std::vector<IntegratorModel> models =
+      modelsOf("integrator-pins-particles", kRubric, run, {});
+  // after the course's midpoint, and after its accepted variant (a symplectic predictor)
+  ASSERT_EQ(models.size(), 2u);
+  EXPECT_GT(distance(stepped(run.random, models[1].step), run.actual), kRel);
   ASSERT_TRUE(models[0].table.has_value());
-  EXPECT_EQ(models[0].table->pinned, (std::vector<int>{1, 2, 6}));
-  EXPECT_FALSE(models[0].table->pinned_position);
+  ASSERT_EQ(models[0].table->pinned.size(), 1u);
+  EXPECT_EQ(models[0].table->pinned[0].cloth_size, run.random.cloth.particles.size());
+  EXPECT_EQ(models[0].table->pinned[0].particles, (std::vector<int>{1, 2, 6}));
+  EXPECT_FALSE(models[0].table->pinned[0].positions);
   EXPECT_LE(distance(stepped(run.random, models[0].step), run.actual), kRel);
   EXPECT_NE(models[0].text.find("particles 1-2, 6 stopped"), std::string::npos) << models[0].text;
+}
+
+// A helper that stops the top row only on the course's 25 x 25 cloth, after explicit Euler written
+// as symplectic Euler (accepted): invisible on the small random state, read on the course's cloth
+// with its corners unpinned, and replayed on both after the accepted variant.
+TEST(IntegratorReplay, PinsOnTheCoursesClothOnlyAreReadThereAfterAnAcceptedVariant) {
+  const Step curtain = [](System& s) {
+    clothrefStep(Method::Symplectic)(s);
+    if (s.cloth.particles.size() == 625)
+      for (int j = 0; j < 25; ++j) s.cloth.particles.velocity.col(j).setZero();
+  };
+  IntegratorRun run = runOf(0, curtain);
+  ASSERT_LE(distance(run.actual, stepped(run.random, clothrefStep(Method::Symplectic))), kRel);
+  OneStep course_cloth;
+  course_cloth.state = courseSystem(20221, 2024, true);
+  ASSERT_EQ(course_cloth.state.cloth.particles.size(), 625);
+  for (int corner : {0, 24, 600, 624})
+    ASSERT_GT(course_cloth.state.cloth.particles.mass[corner], 0);
+  course_cloth.actual = stepped(course_cloth.state, curtain);
+  course_cloth.expected = stepped(course_cloth.state, clothrefStep(Method::Explicit));
+  course_cloth.start = course_cloth.state;
+  simulate(course_cloth.start);
+  run.course_cloth = course_cloth;
+  const std::vector<IntegratorModel> models =
+      modelsOf("integrator-pins-particles", kRubric, run, {});
+  ASSERT_EQ(models.size(), 2u);  // after the course's explicit Euler, after symplectic Euler
+  ASSERT_TRUE(models[1].table.has_value());
+  ASSERT_EQ(models[1].table->pinned.size(), 1u);
+  EXPECT_EQ(models[1].table->pinned[0].cloth_size, 625);
+  std::vector<int> top_row(25);
+  for (int j = 0; j < 25; ++j) top_row[std::size_t(j)] = j;
+  EXPECT_EQ(models[1].table->pinned[0].particles, top_row);
+  EXPECT_NE(models[1].text.find("particles 0-24 stopped (of a 625-particle cloth)"),
+            std::string::npos)
+      << models[1].text;
+  for (std::size_t m = 0; m < models.size(); ++m) {
+    const bool symplectic = m == 1;
+    EXPECT_EQ(distance(stepped(run.random, models[m].step), run.actual) <= kRel, symplectic);
+    EXPECT_EQ(distance(stepped(course_cloth.state, models[m].step), course_cloth.actual) <= kRel,
+              symplectic);
+  }
 }
 
 // Velocities scaled after the step, on one body only (a helper that damps the spheres).
@@ -114,7 +161,7 @@ TEST(IntegratorReplay, AVelocityFactorIsReadPerBody) {
     s.spheres.particles.velocity *= 0.999f;
   };
   const IntegratorRun run = runOf(0, damped);
-  const std::vector<IntegratorModel> models = modelsOf("velocity-damped", run, {});
+  const std::vector<IntegratorModel> models = modelsOf("velocity-damped", kRubric, run, {});
   ASSERT_EQ(models.size(), 1u);
   EXPECT_EQ(models[0].table->velocity_factor[0], 1);
   EXPECT_NEAR(models[0].table->velocity_factor[1], 0.999, 1e-6);

@@ -73,7 +73,11 @@ std::string causeMarkdown(const Cause& cause, const std::string& stub, const Cau
     block += "\n" + cause.detail + (cause.detail.back() == '\n' ? "" : "\n");
   // how the cause was proven on this submission, or where its model and the numbers part
   if (!cause.proof.empty()) block += "\n" + cause.proof + "\n";
-  if (shown.explained_under.empty() && cause.likely) {
+  if (shown.explained_under.empty() && cause.likely && !shown.why_under.empty() &&
+      (!cause.why.empty() || !cause.example.empty())) {
+    block += "\n**Why**, and the mistake with its fix: as under " + codeSpan(shown.why_under) +
+             " above.\n";
+  } else if (shown.explained_under.empty() && cause.likely) {
     if (!cause.why.empty()) block += "\n**Why**: " + cause.why + "\n";
     if (!cause.example.empty())
       block += "\nThe mistake and its fix, in short:\n\n" + codeBlock(cause.example);

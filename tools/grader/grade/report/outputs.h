@@ -65,10 +65,12 @@ GradeReport cleaned(const GradeReport& report);
 // and example; then the quoted source lines, inside `stub`. Shown again for a later check of the
 // same stub (`explained_under` names the check that explained it): the head names the id and
 // where it was explained, what this check measured stays, the why and example are left out, and
-// the lines only when they differ (`quote`).
+// the lines only when they differ (`quote`). A cause whose why and example an earlier stub showed
+// (`why_under` names that stub) keeps its head, measure, proof and lines, and refers to them.
 struct CauseShown {
   std::string explained_under;  // empty: the first time
   bool quote = true;
+  std::string why_under;  // empty: the why and example shown here
 };
 std::string causeMarkdown(const Cause& cause, const std::string& stub, const CauseShown& shown);
 

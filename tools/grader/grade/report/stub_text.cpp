@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <map>
 #include <regex>
+#include <set>
 #include <sstream>
 
 #include "grader/grade/report/outputs.h"
@@ -126,8 +127,12 @@ CheckRow checkRow(const TestResult& test, std::size_t index) {
 
 std::vector<StubText> stubTexts(const GradeReport& report) {
   std::vector<StubText> stubs;
+  // cause and when the stub is shown -> the stub that showed the cause's why and example in full:
+  // a later stub shown at the same time refers to it (the four integrators with one helper)
+  std::map<std::string, std::string> why_shown;
   for (const std::string& stub : stubNames()) {
     StubText text;
+    std::set<std::string> visibility;  // when its checks are shown
     text.stub = stub;
     bool any = false;
     std::string rubric_note;
@@ -137,6 +142,7 @@ std::vector<StubText> stubTexts(const GradeReport& report) {
     for (std::size_t k = 0; k < report.tests.size(); ++k) {
       const TestResult& t = report.tests[k];
       if (t.stub != stub) continue;
+      visibility.insert(t.visibility);
       any = true;
       if (t.informational) {
         text.information.push_back(k);
@@ -165,7 +171,14 @@ std::vector<StubText> stubTexts(const GradeReport& report) {
     }
     if (!any) continue;
     for (const Cause& cause : causes) {
-      (cause.likely ? text.likely : text.guesses).push_back(causeMarkdown(cause, stub, {}));
+      CauseShown shown;
+      if (cause.likely) {
+        std::string when;
+        for (const std::string& v : visibility) when += v + "\n";
+        const auto [first, new_here] = why_shown.emplace(when + cause.id, stub);
+        if (!new_here) shown.why_under = first->second;
+      }
+      (cause.likely ? text.likely : text.guesses).push_back(causeMarkdown(cause, stub, shown));
       text.ids.push_back({cause.id, cause.likely});
     }
     const auto of = [&](const std::map<std::string, double>& values) {

@@ -49,7 +49,8 @@ struct StubText {
   std::string passedMarkdown(const GradeReport& report) const;
 };
 
-// One per stub that has checks in the report, in the course's order.
+// One per stub that has checks in the report, in the course's order. A likely cause whose why and
+// example an earlier stub shown at the same time already gave refers to that stub for them.
 std::vector<StubText> stubTexts(const GradeReport& cleaned_report);
 
 }  // namespace clothref::grader

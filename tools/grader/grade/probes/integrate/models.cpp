@@ -83,13 +83,7 @@ Step tableStep(const TableModel& m) {
     setState(result, m.result_step, result_h, bodies, x0, v0, vs, as);
     for (std::size_t b = 0; b < 2; ++b)
       if (m.velocity_factor[b] != 1) bodies[b]->velocity *= float(m.velocity_factor[b]);
-    for (int j : m.pinned)
-      if (j >= 0 && j < s.cloth.particles.size()) {
-        s.cloth.particles.velocity.col(j).setZero();
-        if (m.pinned_position) s.cloth.particles.position.col(j) = x0[0].col(j);
-      }
-    for (int j : m.pinned_spheres)
-      if (j >= 0 && j < s.spheres.particles.size()) s.spheres.particles.velocity.col(j).setZero();
+    holdStill(m.pinned, m.pinned_spheres, s, x0[0]);
     if (m.dt_after_factor) s.dt = float(double(s.dt) * *m.dt_after_factor);
     if (m.dt_after) s.dt = *m.dt_after;
   };
@@ -111,43 +105,6 @@ double velocityFactorOf(const IntegratorRun& run, int body) {
   if (!(norm > 0) || !std::isfinite(along)) return 1;
   const double c = along / norm;
   return std::abs(c - 1) < 1e-6 ? 1 : c;
-}
-
-// The cloth particles the student's step leaves at rest where the course's moves them.
-std::vector<int> pinnedParticles(const IntegratorRun& run, bool& positions) {
-  std::vector<int> pinned;
-  positions = true;
-  const auto& a = run.actual.cloth.particles;
-  const auto& e = run.expected.cloth.particles;
-  for (int j = 0; j < a.size(); ++j)
-    if (a.velocity.col(j).isZero(0) && !e.velocity.col(j).isZero(0)) {
-      pinned.push_back(j);
-      positions = positions && a.position.col(j) == run.start.cloth.particles.position.col(j);
-    }
-  return pinned;
-}
-
-// The spheres the student's step leaves without velocity where the course's gives them one (a
-// helper that holds them still).
-std::vector<int> stoppedSpheres(const IntegratorRun& run) {
-  std::vector<int> stopped;
-  const auto& a = run.actual.spheres.particles;
-  const auto& e = run.expected.spheres.particles;
-  for (int j = 0; j < a.size() && j < e.size(); ++j)
-    if (a.velocity.col(j).isZero(0) && !e.velocity.col(j).isZero(0)) stopped.push_back(j);
-  return stopped;
-}
-
-std::string ranges(const std::vector<int>& indices) {
-  std::string out;
-  for (std::size_t k = 0; k < indices.size();) {
-    std::size_t e = k;
-    while (e + 1 < indices.size() && indices[e + 1] == indices[e] + 1) ++e;
-    out += (out.empty() ? "" : ", ") + std::to_string(indices[k]) +
-           (e > k ? "-" + std::to_string(indices[e]) : "");
-    k = e + 1;
-  }
-  return out;
 }
 
 // The stage fit's result weights on the student's evaluations (x0 + sum w_k h v_k, v0 + sum
@@ -178,8 +135,8 @@ std::string weightText(const std::vector<double>& w) {
 
 }  // namespace
 
-std::vector<IntegratorModel> modelsOf(const std::string& id, const IntegratorRun& run,
-                                      const RunStages& stages) {
+std::vector<IntegratorModel> modelsOf(const std::string& id, const Rubric& rubric,
+                                      const IntegratorRun& run, const RunStages& stages) {
   const Method method = run.method;
   const stages::MethodTable& course = stages::courseTable(run.index);
   std::vector<IntegratorModel> models;
@@ -285,7 +242,13 @@ std::vector<IntegratorModel> modelsOf(const std::string& id, const IntegratorRun
       if (constant) {
         t.dt_after = after[0];
         table(t, text + ", leaving deltaTime at " + number(after[0]) + " s after the call");
-        // ... restored to that constant before the corrector, which then steps it.
+        // ... restored to that constant before the corrector, which then steps it; the stages
+        // before it keep the call's h (the fit's scale is the corrector's).
+        TableModel restored = base;
+        restored.dt_after = after[0];
+        restored.result_dt = after[0];
+        table(restored, the + " whose corrector steps deltaTime = " + number(after[0]) +
+                            " s (restored to a constant), left so after the call");
         t.result_dt = after[0];
         text += " whose corrector steps deltaTime = " + number(after[0]) +
                 " s (restored to a constant), left so after the call";
@@ -351,16 +314,30 @@ std::vector<IntegratorModel> modelsOf(const std::string& id, const IntegratorRun
     table(t, the + " whose corrector moves the positions with the start velocity v0");
   } else if (id == cause::kIntegratorPinsParticles) {
     TableModel t = base;
-    t.pinned = pinnedParticles(run, t.pinned_position);
+    t.pinned = pinnedParticles(run);
     t.pinned_spheres = stoppedSpheres(run);
     std::string held;
-    if (!t.pinned.empty())
-      held = "the cloth's particles " + ranges(t.pinned) +
-             (t.pinned_position ? " put back and stopped" : " stopped");
+    for (const Pins& pins : t.pinned)
+      held += (held.empty() ? "" : " and ") + std::string("the cloth's particles ") +
+              indexRanges(pins.particles) +
+              (pins.positions ? " put back and stopped" : " stopped") +
+              (t.pinned.size() > 1 || pins.cloth_size != run.random.cloth.particles.size()
+                   ? " (of a " + std::to_string(pins.cloth_size) + "-particle cloth)"
+                   : "");
     if (!t.pinned_spheres.empty())
       held += (held.empty() ? "" : " and ") + std::string("the spheres ") +
-              ranges(t.pinned_spheres) + " stopped";
-    if (!held.empty()) table(t, the + " with " + held + " after the step");
+              indexRanges(t.pinned_spheres) + " stopped";
+    if (!held.empty()) {
+      table(t, the + " with " + held + " after the step");
+      // The same after a variant the rubric accepts (explicit written as symplectic Euler, ...).
+      for (const MethodTable& accepted : stages::methodTables())
+        if (accepted.stub == run.index && !accepted.accepted.empty() &&
+            rubric.accepts(accepted.accepted)) {
+          TableModel v = t;
+          v.table = &accepted;
+          table(v, accepted.name + " with " + held + " after the step");
+        }
+    }
   }
   return models;
 }

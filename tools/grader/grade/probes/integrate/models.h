@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "grader/grade/explain/stages/methods.h"
+#include "grader/grade/probes/integrate/held_still.h"
 #include "grader/grade/probes/integrate/run.h"
 #include "grader/grade/probes/integrate/stages.h"
 
@@ -26,8 +27,7 @@ struct TableModel {
   // table's: RK4 with other weights. Empty: the table's.
   std::vector<double> weights_x, weights_v;
   std::array<double, 2> velocity_factor{1, 1};  // the result's velocity of each body times this
-  std::vector<int> pinned;                      // cloth particles held still after the step
-  bool pinned_position = false;                 // ... put back where they were, not only stopped
+  std::vector<Pins> pinned;                     // cloth particles held still after the step
   std::vector<int> pinned_spheres;              // spheres whose velocity is zeroed after the step
   std::optional<double> dt_after_factor;        // deltaTime x this after the call
   std::optional<float> dt_after;                // or this constant
@@ -45,8 +45,9 @@ struct IntegratorModel {
   std::optional<TableModel> table;  // a table model: it combines with another's changes
 };
 
-// Every model of cause `id` for this run (none when the cause has no model).
-std::vector<IntegratorModel> modelsOf(const std::string& id, const IntegratorRun& run,
-                                      const RunStages& stages);
+// Every model of cause `id` for this run (none when the cause has no model); the rubric's
+// accepted variants are the steps a pinning helper may follow.
+std::vector<IntegratorModel> modelsOf(const std::string& id, const Rubric& rubric,
+                                      const IntegratorRun& run, const RunStages& stages);
 
 }  // namespace clothref::grader::integrators

@@ -19,14 +19,24 @@ Replay replayIntegrator(const IntegratorModel& model, const ProbeContext& contex
     return k < tests.size() ? tests[k].check : std::string("check ") + std::to_string(k + 1);
   };
   std::size_t k = 0;
-  // The one-step check, on the random state.
+  // The one-step check, on the random state and on the course's cloth.
   const System one = stepped(run.random, model.step);
-  const bool positions =
-      util::closeTo(one.cloth.particles.position, run.actual.cloth.particles.position, rel) &&
-      util::closeTo(one.spheres.particles.position, run.actual.spheres.particles.position, rel);
-  const bool velocities =
-      util::closeTo(one.cloth.particles.velocity, run.actual.cloth.particles.velocity, rel) &&
-      util::closeTo(one.spheres.particles.velocity, run.actual.spheres.particles.velocity, rel);
+  bool positions = true, velocities = true;
+  const auto compare = [&](const System& model_state, const System& actual) {
+    positions =
+        positions &&
+        util::closeTo(model_state.cloth.particles.position, actual.cloth.particles.position, rel) &&
+        util::closeTo(model_state.spheres.particles.position, actual.spheres.particles.position,
+                      rel);
+    velocities =
+        velocities &&
+        util::closeTo(model_state.cloth.particles.velocity, actual.cloth.particles.velocity, rel) &&
+        util::closeTo(model_state.spheres.particles.velocity, actual.spheres.particles.velocity,
+                      rel);
+  };
+  compare(one, run.actual);
+  if (run.course_cloth)
+    compare(stepped(run.course_cloth->state, model.step), run.course_cloth->actual);
   replay.checks.push_back({name(k++), {{"positions", positions}, {"velocities", velocities}}});
   // Every body integrated: the same bodies stand still.
   bool same_bodies = true;
@@ -96,9 +106,56 @@ Replay replayIntegrator(const IntegratorModel& model, const ProbeContext& contex
 
 namespace {
 
-// Two table models' changes together (the same table): a mistake of each at once.
+// The course's own method of a stub or a variant the rubric accepts: a model on it changes
+// only what a mistake adds (weights, factors, pins, deltaTime), which applies to another table.
+bool courseLike(const stages::MethodTable* table) {
+  return table && (table->course || !table->accepted.empty());
+}
+
+// Two table models' changes together (the same table, or one on the course's method and its
+// changes laid over the other's table): a mistake of each at once.
+// What a model's text says it changes, without the method it changes ("the course's midpoint
+// whose corrector takes h/2" -> "whose corrector takes h/2"): the second of two models joined.
+std::string changeOf(const std::string& text) {
+  std::size_t at = std::string::npos;
+  for (const char* word :
+       {" with ", " whose ", " without ", " at a step", " on particles", " run on "})
+    at = std::min(at, text.find(word));
+  return at == std::string::npos ? text : text.substr(at + 1);
+}
+
+// A table model whose only change is particles held still after the course's own method.
+bool onlyHoldsStill(const std::optional<TableModel>& t) {
+  return t && t->table && t->table->course && t->step == 1 && t->result_step == 1 &&
+         t->weights_x.empty() && t->weights_v.empty() && t->velocity_factor[0] == 1 &&
+         t->velocity_factor[1] == 1 && !t->dt_after_factor && !t->dt_after && !t->result_dt &&
+         (!t->pinned.empty() || !t->pinned_spheres.empty());
+}
+
 std::optional<IntegratorModel> combine(const IntegratorModel& a, const IntegratorModel& b) {
-  if (!a.table || !b.table || a.table->table != b.table->table) return std::nullopt;
+  if (!a.table || !b.table) {
+    // A mistake's variant of the course's code, then a helper that holds particles still.
+    const IntegratorModel& variant = a.table ? b : a;
+    const IntegratorModel& held = a.table ? a : b;
+    if (variant.table || !onlyHoldsStill(held.table)) return std::nullopt;
+    IntegratorModel both;
+    both.ids = variant.ids;
+    both.ids.insert(both.ids.end(), held.ids.begin(), held.ids.end());
+    both.text = variant.text + ", then " + changeOf(held.text);
+    both.step = [step = variant.step, pins = *held.table](System& s) {
+      System start = s;
+      simulate(start);  // the positions the step begins from, as tableStep's x0
+      step(s);
+      holdStill(pins.pinned, pins.pinned_spheres, s, start.cloth.particles.position);
+    };
+    return both;
+  }
+  if (a.table->table != b.table->table) {
+    // The table kept: the one that is not the course's own method.
+    if (!courseLike(b.table->table))
+      return courseLike(a.table->table) ? combine(b, a) : std::nullopt;
+    if (a.table->table->course && !b.table->table->course) return combine(b, a);
+  }
   TableModel t = *a.table;
   const TableModel& o = *b.table;
   if (o.step != 1) t.step = o.step;
@@ -107,7 +164,7 @@ std::optional<IntegratorModel> combine(const IntegratorModel& a, const Integrato
   if (!o.weights_v.empty()) t.weights_v = o.weights_v;
   for (std::size_t b2 = 0; b2 < 2; ++b2)
     if (o.velocity_factor[b2] != 1) t.velocity_factor[b2] = o.velocity_factor[b2];
-  if (!o.pinned.empty()) t.pinned = o.pinned, t.pinned_position = o.pinned_position;
+  if (!o.pinned.empty()) t.pinned = o.pinned;
   if (!o.pinned_spheres.empty()) t.pinned_spheres = o.pinned_spheres;
   if (o.dt_after_factor) t.dt_after_factor = o.dt_after_factor;
   if (o.dt_after) t.dt_after = o.dt_after;
@@ -115,7 +172,7 @@ std::optional<IntegratorModel> combine(const IntegratorModel& a, const Integrato
   IntegratorModel both;
   both.ids = a.ids;
   both.ids.insert(both.ids.end(), b.ids.begin(), b.ids.end());
-  both.text = a.text + "; and " + b.text.substr(b.text.find(' ', 4) + 1);
+  both.text = a.text + "; and " + changeOf(b.text);
   both.step = tableStep(t);
   both.table = t;
   return both;
@@ -151,7 +208,7 @@ void proveIntegratorCauses(const ProbeContext& context, const IntegratorRun& run
   std::vector<Replay> replays;
   std::string winner;  // the cause the first proving model names
   for (const std::string& id : ids)
-    for (IntegratorModel& m : modelsOf(id, run, stages)) {
+    for (IntegratorModel& m : modelsOf(id, context.rubric, run, stages)) {
       replays.push_back(replayIntegrator(m, context, run, tests));
       models.push_back(std::move(m));
       if (!replays.back().proven()) continue;

@@ -53,7 +53,14 @@ bool runIntegrator(const ProbeContext& context, int index, bool course_size, Int
   run.stage_case = run.stable_case + 1;
   addSystem(request, run.stage_case, stageSystem(seed, course_size, context.edition), 1, 0);
   request.ints[key::perCase(key::kRecordStages, run.stage_case)] = {1};
-  request.ints[key::kCases] = {run.stage_case + 1};
+  // Last: one step on the course's cloth; in 2024 with its corners unpinned, as the program's keys
+  // 1-4 leave them (2022's program has no such keys: its corners are always fixed, and a step that
+  // pins them again changes nothing there).
+  OneStep course_cloth;
+  course_cloth.state = courseSystem(seed + 2000, context.edition, context.edition == 2024);
+  course_cloth.case_index = run.stage_case + 1;
+  addSystem(request, course_cloth.case_index, course_cloth.state, 1, 0);
+  request.ints[key::kCases] = {course_cloth.case_index + 1};
 
   ProbeContext quiet = context;
   if (!log) quiet.limits.log = nullptr;  // a crash that the course-size retry may still grade
@@ -66,6 +73,12 @@ bool runIntegrator(const ProbeContext& context, int index, bool course_size, Int
   run.start = run.random;
   simulate(run.start);  // contacts move bodies before integrate() does
   run.distance = distance(run.actual, run.expected);
+  course_cloth.actual = answerSystem(run.answer, course_cloth.case_index, course_cloth.state);
+  course_cloth.expected = stepped(course_cloth.state, clothrefStep(run.method));
+  course_cloth.start = course_cloth.state;
+  simulate(course_cloth.start);
+  course_cloth.distance = distance(course_cloth.actual, course_cloth.expected);
+  run.course_cloth = std::move(course_cloth);
   return true;
 }
 

@@ -2,6 +2,7 @@
 // stability run and the stage record) built for one course integrator, the child's answer, and
 // what the checks compare it with.
 #pragma once
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -10,6 +11,14 @@
 #include "grader/grade/probes/util.h"
 
 namespace clothref::grader::integrators {
+
+// One step of one state: the state sent, after the simulateOneStep() that precedes integrate(),
+// the student's answer and the course method's.
+struct OneStep {
+  System state, start, actual, expected;
+  int case_index = 0;
+  double distance = 0;  // actual against expected
+};
 
 struct IntegratorRun {
   int index = 0;  // the course's currentIntegrator: 0 explicit .. 3 RK4
@@ -28,6 +37,11 @@ struct IntegratorRun {
   System start;  // the random state after the simulateOneStep() that precedes integrate()
   System actual, expected;
   double distance = 0;  // actual against the course method after one step
+  // One step on the course's cloth as the course's program can have it (courseSystem; 2024: its
+  // corners unpinned, as keys 1-4 do): a step that holds particles of its own still (the top row,
+  // hard-coded corners) shows only there. Part of the one-step check; none in a run put together
+  // by hand.
+  std::optional<OneStep> course_cloth;
 };
 
 // Builds the request for `index` (small systems, or the course's cloth when `course_size`) and

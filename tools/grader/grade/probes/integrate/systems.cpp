@@ -71,12 +71,17 @@ System randomSystem(std::uint64_t seed) {
 }
 
 // For code that only runs on the course's cloth (e.g. indexing particlesPerEdge into it).
-System courseSystem(std::uint64_t seed, int edition) {
+System courseSystem(std::uint64_t seed, int edition, bool corners_free) {
   const Scene* scene = findBuiltinScene(edition == 2024 ? "course2024" : "course2022");
   const World<float> world = makeWorld<float>(*scene, Method::Explicit);
   System s;
   s.cloth = *world.cloth;
   s.spheres = *world.spheres;
+  // An unpinned corner gets a free particle's mass, as the 2024 program's keys do (particle 1,
+  // on the first edge between two corners, is free).
+  const float free_mass = s.cloth.particles.mass[1];
+  if (corners_free)
+    for (int i : scene->cloth->fixed) setMass(s.cloth.particles, i, free_mass);
   s.cloth.spring_coef = 500;
   s.cloth.damper_coef = 5;
   std::mt19937 rng(static_cast<unsigned>(seed));
