@@ -39,6 +39,7 @@
   X(kClothMass, "cloth.mass")       /* float[n]: cloth masses (kg, 0 = fixed) */                   \
   X(kSpherePos, "sphere.pos")       /* float[4 s]: sphere centres (m) */                           \
   X(kSphereVel, "sphere.vel")       /* float[4 s]: sphere velocities (m/s) */                      \
+  X(kSphereAcc, "sphere.acc")       /* float[4 s]: sphere accelerations (m/s^2; collide) */        \
   X(kSphereMass, "sphere.mass")     /* float[s]: sphere masses (kg) */                             \
   X(kSphereRadius, "sphere.radius") /* float[s]: sphere radii (m) */                               \
   /* ---- A spring set: springs' answer; forces' request (once); integrate's request (per case) */ \

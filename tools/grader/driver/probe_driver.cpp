@@ -135,11 +135,14 @@ void collide(const ProbeMessage& in, ProbeMessage& out, bool sphereSphere) {
   for (int k = 0; k < cases; ++k) {
     load(c.position(), in.f(perCase(key::kClothPos, k)));
     load(c.velocity(), in.f(perCase(key::kClothVel, k)));
+    // what simulateOneStep() computed before collide (the stub must leave it alone)
     c.acceleration().setZero();
+    load(c.acceleration(), in.f(perCase(key::kClothAcc, k)));
     loadMass(c, in.f(perCase(key::kClothMass, k)));
     load(s.position(), in.f(perCase(key::kSpherePos, k)));
     load(s.velocity(), in.f(perCase(key::kSphereVel, k)));
     s.acceleration().setZero();
+    load(s.acceleration(), in.f(perCase(key::kSphereAcc, k)));
     loadMass(s, in.f(perCase(key::kSphereMass, k)));
 #ifdef CLOTHREF_GRADER_EDITION_2024
     (void)sphereSphere;
@@ -154,6 +157,8 @@ void collide(const ProbeMessage& in, ProbeMessage& out, bool sphereSphere) {
     out.floats[perCase(key::kClothVel, k)] = save(c.velocity());
     out.floats[perCase(key::kSpherePos, k)] = save(s.position());
     out.floats[perCase(key::kSphereVel, k)] = save(s.velocity());
+    out.floats[perCase(key::kClothAcc, k)] = save(c.acceleration());
+    out.floats[perCase(key::kSphereAcc, k)] = save(s.acceleration());
   }
 }
 void probeCollideCloth(const ProbeMessage& in, ProbeMessage& out) { collide(in, out, false); }

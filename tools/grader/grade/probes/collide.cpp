@@ -98,6 +98,8 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
     request.floats[key::perCase(key::kClothMass, n)] = util::flat(s.cloth.particles.mass);
     request.floats[key::perCase(key::kSpherePos, n)] = util::flat(s.spheres.particles.position);
     request.floats[key::perCase(key::kSphereVel, n)] = util::flat(s.spheres.particles.velocity);
+    request.floats[key::perCase(key::kClothAcc, n)] = util::flat(s.cloth.particles.acceleration);
+    request.floats[key::perCase(key::kSphereAcc, n)] = util::flat(s.spheres.particles.acceleration);
     request.floats[key::perCase(key::kSphereMass, n)] = util::flat(s.spheres.particles.mass);
   }
   util::ProbeFailure failure;
@@ -152,7 +154,9 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
     const Outcome actual{util::matrix(answer->f(key::perCase(key::kClothPos, n)), kN * kN),
                          util::matrix(answer->f(key::perCase(key::kClothVel, n)), kN * kN),
                          util::matrix(answer->f(key::perCase(key::kSpherePos, n)), 3),
-                         util::matrix(answer->f(key::perCase(key::kSphereVel, n)), 3)};
+                         util::matrix(answer->f(key::perCase(key::kSphereVel, n)), 3),
+                         util::matrix(answer->f(key::perCase(key::kClothAcc, n)), kN * kN),
+                         util::matrix(answer->f(key::perCase(key::kSphereAcc, n)), 3)};
     actuals.push_back(actual);
     State reference = c.state;
     collideCourse(reference, sphere_sphere, e, correction);
@@ -179,7 +183,7 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
       evidence.passed[k] = true;
       readPairs(c, sphere_sphere, actual, readings);
       t.fraction = 1;
-      t.output = "Velocities and positions of every body match.";
+      t.output = "Positions, velocities and accelerations of every body match.";
       tests.push_back(t);
       continue;
     }
@@ -190,7 +194,7 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
     const auto body = [&](const char* what, const char* short_name, int index,
                           const Mat4X<float>& x0, const Mat4X<float>& v0, float mass, float radius,
                           const Mat4X<float>& xe, const Mat4X<float>& ve, const Mat4X<float>& xa,
-                          const Mat4X<float>& va) {
+                          const Mat4X<float>& va, const Mat4X<float>& ae, const Mat4X<float>& aa) {
       t.output += "- " + std::string(what) + " " + std::to_string(index) + " (mass " +
                   util::num(mass) + "), before the call: x " + util::vec3(x0.col(index)) +
                   " m, v " + util::vec3(v0.col(index)) + " m/s\n" +
@@ -198,6 +202,11 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
                                        util::Tolerance{rel, rel}, "m", "  ") +
                   util::compareVectors("v after the call", ve.col(index), va.col(index),
                                        util::Tolerance{rel, rel}, "m/s", "  ");
+      // the acceleration only where the call changed it (the course's collide never does)
+      if (!util::closeTo(ae.col(index), aa.col(index), rel))
+        t.output += util::compareVectors(
+            "a after the call (expected: as simulateOneStep() left it)", ae.col(index),
+            aa.col(index), util::Tolerance{rel, rel}, "m/s^2", "  ");
       const auto xyz = [index](const Mat4X<float>& m) {
         return std::array<float, 3>{m(0, index), m(1, index), m(2, index)};
       };
@@ -209,10 +218,11 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
     for (int q : c.spheres)
       body("sphere", "sphere", q, spheres.particles.position, spheres.particles.velocity,
            spheres.particles.mass[q], spheres.radius[q], expected.sphere_x, expected.sphere_v,
-           actual.sphere_x, actual.sphere_v);
+           actual.sphere_x, actual.sphere_v, expected.sphere_a, actual.sphere_a);
     for (int q : c.particles)
       body("cloth particle", "particle", q, cloth.position, cloth.velocity, cloth.mass[q], 0,
-           expected.cloth_x, expected.cloth_v, actual.cloth_x, actual.cloth_v);
+           expected.cloth_x, expected.cloth_v, actual.cloth_x, actual.cloth_v, expected.cloth_a,
+           actual.cloth_a);
     // Measured directly: NaN out of the call, or the fixed particle's velocity changed.
     non_finite[k] =
         !util::finite(util::flat(actual.sphere_v)) || !util::finite(util::flat(actual.cloth_v)) ||

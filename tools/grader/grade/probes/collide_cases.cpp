@@ -27,8 +27,15 @@ State baseState(const Edition& course) {
           Vec4<float>(-36.0f + 3.0f * float(j), -50.0f, -36.0f + 3.0f * float(i), 1.0f);
   for (int corner : {0, kN - 1, kN * (kN - 1), kN * kN - 1})
     setMass(s.cloth.particles, corner, 0.0f);
+  // The accelerations simulateOneStep() leaves before collide: gravity on every free particle
+  // (and on the spheres where they have an external force); the course's collide keeps them.
+  const Vec4<float> g(float(course.gravity[0]), float(course.gravity[1]), float(course.gravity[2]),
+                      0);
+  for (int i = 0; i < kN * kN; ++i)
+    if (s.cloth.particles.mass[i] != 0) s.cloth.particles.acceleration.col(i) = g;
   for (int k = 0; k < 3; ++k)
     addSphere(s.spheres, Vec4<float>(100.0f * float(k + 1), 100, 0, 1), kRadii[k], 1000.0f);
+  if (course.sphere_external_force) s.spheres.particles.acceleration.colwise() = g;
   return s;
 }
 
@@ -150,8 +157,9 @@ std::vector<PlannedTest> checkTable(bool sphere_sphere) {
 }
 
 Outcome outcomeOf(const State& s) {
-  return {s.cloth.particles.position, s.cloth.particles.velocity, s.spheres.particles.position,
-          s.spheres.particles.velocity};
+  return {s.cloth.particles.position,     s.cloth.particles.velocity,
+          s.spheres.particles.position,   s.spheres.particles.velocity,
+          s.cloth.particles.acceleration, s.spheres.particles.acceleration};
 }
 
 double distance(const Outcome& a, const Outcome& b) {
@@ -167,6 +175,8 @@ double distance(const Outcome& a, const Outcome& b) {
   one(a.cloth_v, b.cloth_v);
   one(a.sphere_x, b.sphere_x);
   one(a.sphere_v, b.sphere_v);
+  one(a.cloth_a, b.cloth_a);
+  one(a.sphere_a, b.sphere_a);
   return worst;
 }
 

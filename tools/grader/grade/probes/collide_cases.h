@@ -58,9 +58,11 @@ std::vector<Case> clothCases(const Edition& course);   // Spheres::collide(Cloth
 std::vector<Case> sphereCases(const Edition& course);  // Spheres::collide()
 std::vector<PlannedTest> checkTable(bool sphere_sphere);
 
-// What a call left: every body's positions (m) and velocities (m/s), cloth then spheres.
+// What a call left: every body's positions (m) and velocities (m/s), cloth then spheres, and
+// their accelerations (m/s^2), which the course's collide leaves as simulateOneStep() made them.
 struct Outcome {
   Mat4X<float> cloth_x, cloth_v, sphere_x, sphere_v;
+  Mat4X<float> cloth_a, sphere_a;
 };
 Outcome outcomeOf(const State& s);
 

@@ -29,7 +29,9 @@ Replay replayContacts(const ContactModel& model, const std::vector<Case>& cases,
                              {{"positions", util::closeTo(m.cloth_x, a.cloth_x, rel) &&
                                                 util::closeTo(m.sphere_x, a.sphere_x, rel)},
                               {"velocities", util::closeTo(m.cloth_v, a.cloth_v, rel) &&
-                                                 util::closeTo(m.sphere_v, a.sphere_v, rel)}}});
+                                                 util::closeTo(m.sphere_v, a.sphere_v, rel)},
+                              {"accelerations", util::closeTo(m.cloth_a, a.cloth_a, rel) &&
+                                                    util::closeTo(m.sphere_a, a.sphere_a, rel)}}});
     if (c.free_bodies) momentum_same = momentum_same && conserves(c, m) == conserves(c, a);
   }
   replay.checks.push_back({checks.back().check, {{"total momentum", momentum_same}}});
