@@ -22,14 +22,14 @@ import argparse
 import csv
 import json
 import os
-import re
-import resource
 import shutil
 import statistics
 import subprocess
 import sys
 import tempfile
-import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from busy_cpu import BusyCpu, load, yardstick  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 GRADER = os.path.join(ROOT, "tests", "grader")
@@ -102,70 +102,12 @@ def lay_out(out):
     return entries
 
 
-def load():
-    with open("/proc/loadavg") as f:
-        text = "load " + " ".join(f.read().split()[:3])
-    try:
-        with open("/proc/pressure/cpu") as f:
-            some = f.readline().split()
-            text += ", CPU pressure " + some[1].replace("avg10=", "") + " %"
-    except OSError:
-        pass
-    return text
-
-
-class BusyCpu:
-    """Busy CPU of a command and everything it starts: a cgroup of its own where this machine
-    allows one (cgroup v1 cpuacct, or v2 cpu.stat; the grader's own cgroups for its runs nest
-    inside it), else getrusage of the children (which misses what a sandbox's init reaps)."""
-
-    def __init__(self):
-        self.path, self.read = None, None
-        name = f"clothref-bench-{os.getpid()}"
-        v1 = "/sys/fs/cgroup/cpuacct"
-        try:
-            if os.path.exists(os.path.join(v1, "cpuacct.usage")):
-                self.path = os.path.join(v1, name)
-                os.mkdir(self.path)
-                self.read = lambda: int(open(os.path.join(self.path, "cpuacct.usage")).read()) / 1e9
-            else:
-                own = [line.split("::", 1)[1].strip() for line in open("/proc/self/cgroup")
-                       if line.startswith("0::")][0]
-                self.path = os.path.join("/sys/fs/cgroup" + own, name)
-                os.mkdir(self.path)
-                self.read = lambda: int(next(
-                    line.split()[1] for line in open(os.path.join(self.path, "cpu.stat"))
-                    if line.startswith("usage_usec"))) / 1e6
-        except (OSError, IndexError):
-            self.path, self.read = None, None
-        self.how = ("cgroup " + self.path) if self.path else "getrusage of the children"
-
-    def join(self):
-        """In the child before exec: into the cgroup."""
-        if self.path:
-            with open(os.path.join(self.path, "cgroup.procs"), "w") as f:
-                f.write("0")
-
-    def close(self):
-        if self.path:
-            try:
-                os.rmdir(self.path)
-            except OSError:
-                pass
-
-
 CPU = None
 
 
 def run(command, **kwargs):
     """Runs `command`; returns (exit code, wall s, busy CPU s of it and everything it started)."""
-    before = CPU.read() if CPU.read else 0
-    start = time.monotonic()
-    process = subprocess.Popen(command, preexec_fn=CPU.join, **kwargs)
-    _, status, usage = os.wait4(process.pid, 0)
-    wall = time.monotonic() - start
-    busy = CPU.read() - before if CPU.read else usage.ru_utime + usage.ru_stime
-    return os.waitstatus_to_exitcode(status), wall, busy
+    return CPU.run(command, **kwargs)
 
 
 def summary(values):
@@ -185,7 +127,8 @@ def main():
     work = tempfile.mkdtemp(prefix="clothref-class-mix-")
     global CPU
     CPU = BusyCpu()
-    print(f"busy CPU measured by {CPU.how}")
+    print(f"busy CPU measured by {CPU.how}; yardstick (a fixed compile, what a CPU second is "
+          f"worth now): {yardstick(CPU):.2f} s")
     try:
         entries = lay_out(os.path.join(work, "subs"))
         count = len(entries)
@@ -213,7 +156,7 @@ def main():
                 verdicts[name] = verdict
                 print(f"  {name:58s} {verdict:14s} busy CPU {busy:6.2f} s, wall {seconds:6.2f} s",
                       flush=True)
-            print(f"alone, after: {load()}")
+            print(f"alone, after: {load()}; yardstick {yardstick(CPU):.2f} s")
             print("per kind, graded alone (s):")
             for k in KINDS:
                 if k in cpu:
@@ -240,7 +183,7 @@ def main():
             slowest = [k for k, line in enumerate(closing) if "the slowest" in line]
             for line in closing[slowest[0]:] if slowest else []:  # the batch's own account
                 print("  " + line)
-            print(f"batch, after: {load()}")
+            print(f"batch, after: {load()}; yardstick {yardstick(CPU):.2f} s")
             rows = list(csv.DictReader(open(os.path.join(out, "grades.csv"))))
             if code != 0 or len(rows) != count:
                 sys.exit(f"class_mix: the batch exited {code} with {len(rows)} rows of {count}")

@@ -5,7 +5,10 @@
 # are the corpus's (13 of 2024, the first 17 of 2022 in name order, mutants laid over their base)
 # with a comment and a blank line added to every file, different per submission, so no two share
 # a file and the cache cannot help. Prints medians and where the time of one submission goes
-# (compile, link, probes: medians of the results.json "seconds" of the cold runs).
+# (compile, link, probes: medians of the results.json "seconds" of the cold runs), and the busy
+# CPU of each cold run and each batch (tests/bench/busy_cpu.py: the grader and everything it
+# started), with a yardstick of what a CPU second was worth then (a fixed compile; the machine's
+# load makes the same work cost more CPU seconds).
 #
 # Usage: tests/bench/grade_speed.sh [BUILD_DIR] [SINGLE_RUNS] [BATCH_RUNS]
 #   (defaults: build 5 1). Work goes to a temporary folder, removed at the end.
@@ -30,6 +33,7 @@ files=$(find "$work/subs" -mindepth 2 -maxdepth 2 -name "*.cpp" | wc -l)
 echo "submissions: $count, files: $files, distinct files: $distinct"
 [ "$distinct" -eq "$files" ] || { echo "grade_speed: two submissions share a file" >&2; exit 1; }
 
+busy=$root/tests/bench/busy_cpu.py
 seconds() { python3 -c 'import sys; print(f"{float(sys.argv[1]):.2f}")' "$1"; }
 now() { date +%s.%N; }
 median() { python3 -c 'import statistics,sys; print(f"{statistics.median(map(float,sys.argv[1:])):.2f}")' "$@"; }
@@ -40,7 +44,8 @@ cold=() cached=()
 for r in $(seq "$single_runs"); do
   rm -rf "$work/cache"
   t0=$(now)
-  "$clothref" grade "$one" --cache-dir "$work/cache" --results "$work/cold-$r.json" >/dev/null
+  "$busy" --label "one submission, cold, run $r" "$clothref" grade "$one" \
+    --cache-dir "$work/cache" --results "$work/cold-$r.json" >/dev/null
   t1=$(now)
   "$clothref" grade "$one" --cache-dir "$work/cache" --results "$work/cached-$r.json" >/dev/null
   t2=$(now)
@@ -69,10 +74,19 @@ for jobs in 1 2; do
   walls=()
   for r in $(seq "$batch_runs"); do
     rm -rf "$work/batch"
-    t0=$(now)
-    "$clothref" grade "$work"/subs/*/ --out "$work/batch" --jobs "$jobs" --quiet
-    t1=$(now)
-    walls+=("$(python3 -c "print($t1 - $t0)")")
+    "$busy" --yardstick --label "batch of $count, --jobs $jobs, run $r" \
+      "$clothref" grade "$work"/subs/*/ --out "$work/batch" --jobs "$jobs" --quiet \
+      2>"$work/busy.txt"
+    cat "$work/busy.txt" >&2
+    # the batch's wall as busy_cpu.py measured it (without its yardstick), and its busy CPU
+    walls+=("$(python3 - "$work/busy.txt" "$count" <<'EOF'
+import re, sys
+text = open(sys.argv[1]).read()
+busy, wall = (float(x) for x in re.findall(r"busy CPU ([0-9.]+) s, wall ([0-9.]+) s", text)[-1])
+print(f"  busy CPU {busy:.1f} s, {busy / int(sys.argv[2]):.2f} s per submission", file=sys.stderr)
+print(wall)
+EOF
+)")
     rows=$(($(wc -l < "$work/batch/grades.csv") - 1))
     [ "$rows" -eq "$count" ] || { echo "grade_speed: $rows rows, expected $count" >&2; exit 1; }
   done

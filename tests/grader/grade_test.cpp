@@ -18,6 +18,8 @@
 #include <nlohmann/json.hpp>
 #include <set>
 #include <stdexcept>
+#include <string>
+#include <thread>
 
 #include "corpus.h"
 #include "grader/grade/grade.h"
@@ -173,6 +175,30 @@ TEST(ProbeGroups, ALongGroupDoesNotHoldBackTheGroupsBehindIt) {
     ASSERT_EQ(results[g].size(), 1u) << g;
     EXPECT_EQ(results[g][0].stub, groups[g].stub);
   }
+}
+
+// The information-only groups (the whole run: stub "") start only once every scored group has
+// ended (issue 39: the whole run's crash is explained with the sanitizer's rebuilds of the scored
+// groups' crashes, which must all be there, whatever the workers' timing): here the whole run,
+// second in the table, would start at once on the free worker while the first group still runs.
+TEST(ProbeGroups, TheWholeRunStartsAfterEveryScoredGroupEnded) {
+  std::atomic<int> scored_ended{0};
+  std::vector<grader::ProbeGroup> groups;
+  const auto scored = [&](const grader::ProbeContext&) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    ++scored_ended;
+    return std::vector<grader::TestResult>{};
+  };
+  groups.push_back(groupOf("first", scored));
+  groups.push_back(groupOf("", [&](const grader::ProbeContext&) {
+    return std::vector<grader::TestResult>{
+        grader::makeTest("", "scored groups ended: " + std::to_string(scored_ended.load()), 1)};
+  }));
+  groups.push_back(groupOf("third", scored));
+  const auto results = grader::runProbeGroups(groups, grader::ProbeContext{}, {}, 2);
+  ASSERT_EQ(results.size(), groups.size());
+  ASSERT_EQ(results[1].size(), 1u);
+  EXPECT_EQ(results[1][0].check, "scored groups ended: 2");
 }
 
 // An exception a group throws reaches the caller once every group has ended.

@@ -244,22 +244,28 @@ std::vector<std::vector<TestResult>> runProbeGroups(
     const std::map<std::string, std::string>& unavailable, int jobs) {
   std::vector<std::vector<TestResult>> results(groups.size());
   std::vector<std::exception_ptr> errors(groups.size());
-  // `jobs` workers take the groups in order, each the next one as soon as it is free: a group that
-  // runs into its time limit holds one worker, never the start of the groups behind it.
-  std::atomic<std::size_t> next{0};
-  const auto worker = [&] {
-    for (std::size_t g = next++; g < groups.size(); g = next++) {
-      if (!groups[g].stub.empty() && unavailable.count(groups[g].stub)) continue;
-      try {
-        results[g] = groups[g].run(context);
-      } catch (...) {
-        errors[g] = std::current_exception();
+  // The scored groups first, then the information-only ones (the whole run): a crash of the whole
+  // run is explained with the sanitizer's objects the scored groups' crashes built, when they
+  // suffice (SanitizedProbes::explain), so those must all be built, whatever the workers' timing.
+  for (const bool information : {false, true}) {
+    // `jobs` workers take the groups in order, each the next one as soon as it is free: a group
+    // that runs into its time limit holds one worker, never the start of the groups behind it.
+    std::atomic<std::size_t> next{0};
+    const auto worker = [&] {
+      for (std::size_t g = next++; g < groups.size(); g = next++) {
+        if (groups[g].stub.empty() != information) continue;
+        if (!groups[g].stub.empty() && unavailable.count(groups[g].stub)) continue;
+        try {
+          results[g] = groups[g].run(context);
+        } catch (...) {
+          errors[g] = std::current_exception();
+        }
       }
-    }
-  };
-  std::vector<std::thread> workers;
-  for (int k = 0; k < std::max(1, jobs); ++k) workers.emplace_back(worker);
-  for (std::thread& w : workers) w.join();
+    };
+    std::vector<std::thread> workers;
+    for (int k = 0; k < std::max(1, jobs); ++k) workers.emplace_back(worker);
+    for (std::thread& w : workers) w.join();
+  }
   for (const std::exception_ptr& error : errors)
     if (error) std::rethrow_exception(error);
   return results;

@@ -106,6 +106,8 @@ class ProbeRebuilder {
   // The probe with the student files `rebuilt` (names of studentFileNames()) compiled again,
   // linked in that set's folder; empty when a compile or the link failed.
   std::filesystem::path probe(const std::vector<std::string>& rebuilt);
+  // The student files compiled again so far (and built), in studentFileNames() order.
+  std::vector<std::string> rebuiltFiles();
 
  private:
   const ProbeBuild& base_;

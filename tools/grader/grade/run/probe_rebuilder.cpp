@@ -102,6 +102,15 @@ fs::path ProbeRebuilder::probe(const std::vector<std::string>& rebuilt) {
   return result;
 }
 
+std::vector<std::string> ProbeRebuilder::rebuiltFiles() {
+  const std::lock_guard lock(mutex_);
+  std::vector<std::string> files;
+  for (const std::string& name : studentFileNames())
+    if (const auto found = objects_.find(name); found != objects_.end() && !found->second.empty())
+      files.push_back(name);
+  return files;
+}
+
 ProbeBuild rebuildWithFile(const ProbeBuild& base, const std::string& name,
                            const std::string& bytes, int edition, const CourseToolchain& given,
                            const fs::path& work_dir) {

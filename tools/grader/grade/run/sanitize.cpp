@@ -149,9 +149,25 @@ std::string SanitizedProbes::explain(const probe::ProbeMessage& request, const f
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
   } timed{*this, start};
+  const std::string group = request.text(probe::key::kGroup);
+  const std::vector<std::string> files = filesRunBy(group);
+  // The whole run (information only, run after every scored group) crashes where a scored group
+  // crashed, as a rule: first on the files the scored groups' crashes had rebuilt (a link, no
+  // compile), and with all its files only when that run ends at no report of the student's code.
+  if (group == probe::group::kWholeRun) {
+    const std::vector<std::string> rebuilt = rebuilder_->rebuiltFiles();
+    if (!rebuilt.empty() && rebuilt.size() < files.size()) {
+      const std::string report = reportOn(rebuilt, request, folder);
+      if (!report.empty()) return report;
+    }
+  }
+  return reportOn(files, request, folder);
+}
+
+std::string SanitizedProbes::reportOn(const std::vector<std::string>& files,
+                                      const probe::ProbeMessage& request, const fs::path& folder) {
   fs::path instrumented;
   try {
-    const std::vector<std::string> files = filesRunBy(request.text(probe::key::kGroup));
     const fs::path built = rebuilder_->probe(files);
     const std::lock_guard lock(mutex_);
     const auto [at, added] = published_.try_emplace(built.filename().string());

@@ -62,9 +62,15 @@ class SanitizedProbes {
   // Runs `request` on the instrumented probe in `folder` (made under the probe's folder) and
   // returns the sanitizers' report of the run's end, or "": no report, the build failed, or the
   // run answered first (a report at exit, after the probe's work, is not the crash it explains).
+  // The whole run's crash is explained first on the files scored groups had rebuilt already, and
+  // on all three only when that finds no report (docs/grading-reference.md, "Diagnosing crashes").
   std::string explain(const probe::ProbeMessage& request, const std::filesystem::path& folder);
 
  private:
+  // The report of `request` run on the probe with `files` instrumented ("" as explain()).
+  std::string reportOn(const std::vector<std::string>& files, const probe::ProbeMessage& request,
+                       const std::filesystem::path& folder);
+
   const GradeScratch& scratch_;
   ChildLimits limits_;
   std::unique_ptr<ProbeRebuilder> rebuilder_;
