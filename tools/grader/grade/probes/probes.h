@@ -77,9 +77,11 @@ std::vector<ProbeGroup> probeTable();
 // stubTable()), and the information-only ones when `information` (the whole run).
 std::vector<ProbeGroup> probeGroups(int edition, bool information);
 
-// Runs the groups on `jobs` workers, in order, each worker taking the next group when it is free;
-// groups whose stub is in `unavailable` are skipped (their results stay empty). Results by group,
-// in the groups' order; an exception a group throws is rethrown once all have ended.
+// Runs the groups on `jobs` workers, each worker taking the next group when it is free: the
+// scored groups in order, then the information-only ones once every scored group has ended (their
+// crash is explained with the sanitizer builds the scored groups already made); groups whose stub
+// is in `unavailable` are skipped (their results stay empty). Results by group, in the groups'
+// order; an exception a group throws is rethrown once all have ended.
 std::vector<std::vector<TestResult>> runProbeGroups(
     const std::vector<ProbeGroup>& groups, const ProbeContext& context,
     const std::map<std::string, std::string>& unavailable, int jobs);
