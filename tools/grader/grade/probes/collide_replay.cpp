@@ -38,6 +38,18 @@ Replay replayContacts(const ContactModel& model, const std::vector<Case>& cases,
   return replay;
 }
 
+// Every check reproduced on its positions and velocities, and some check not on its accelerations.
+bool allButAccelerations(const Replay& replay) {
+  bool all_xv = true, accelerations_part = false;
+  for (const ReplayCheck& check : replay.checks)
+    for (const auto& [quantity, same] : check.quantities)
+      if (quantity == "accelerations")
+        accelerations_part = accelerations_part || !same;
+      else
+        all_xv = all_xv && same;
+  return all_xv && accelerations_part;
+}
+
 }  // namespace
 
 void proveContacts(std::vector<Candidate> candidates, const std::vector<Case>& cases,
@@ -79,6 +91,14 @@ void proveContacts(std::vector<Candidate> candidates, const std::vector<Case>& c
       applyReplay(pair, ids, tests);
       winner = ids.front();
     }
+  // A model that gives every position and velocity but not the accelerations the call changed (a
+  // second mistake no model has, e.g. friction on the accelerations): named as a guess whose
+  // line says so.
+  for (std::size_t m = 0; m < candidates.size() && winner.empty(); ++m)
+    if (allButAccelerations(replays[m]))
+      for (TestResult& t : tests)
+        if (!t.passed() && !t.names(candidates[m].ids.front()))
+          t.addCause(candidates[m].ids.front(), false).proof = replays[m].line();
   // The causes named that no model proved: their best model's line.
   for (std::size_t m = 0; m < candidates.size(); ++m) {
     const std::string& id = candidates[m].ids.front();
