@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "grader/grade/batch.h"
+#include "grader/grade/cause_ids.h"
 #include "test_util.h"
 
 namespace clothref::test {
@@ -130,7 +131,8 @@ Figures gradeAndScore(const fs::path& root, const fs::path& out) {
       for (const auto& cause : label["causes"]) {
         const std::string id = cause.get<std::string>();
         ++f.causes_labelled;
-        const bool right = id == "unknown" ? named.count(id) > 0 : likely.count(id) > 0;
+        const bool right =
+            id == grader::cause::kUnknown ? named.count(id) > 0 : likely.count(id) > 0;
         any_right = any_right || right;
         if (right) {
           ++f.causes_right;

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "clothref/io/error.h"
+#include "grader/grade/cause_ids.h"
 #include "grader/grade/probes/probes.h"
 #include "grader/grade/report/outputs.h"
 #include "test_util.h"
@@ -243,13 +244,13 @@ std::string notes(const GradeReport& report) {
 // so with the per-check score beside it.
 TEST(PerMistake, OneLikelyCauseWithADeductionCostsItOnce) {
   const Rubric rubric = defaultRubric(2022);
-  GradeReport report = stubWithFailures(kSpheres, 1, {{"correction-factor", true}});
+  GradeReport report = stubWithFailures(kSpheres, 1, {{cause::kCorrectionFactor, true}});
   ASSERT_GT(report.tests.size(), 2u);
   GradeReport old = report;
   applyRubric(perCheck(rubric), old);
   applyRubric(rubric, report);
   const double max = rubric.stub_points.at(kSpheres);
-  const double deduction = rubric.deductions.at("correction-factor");
+  const double deduction = rubric.deductions.at(cause::kCorrectionFactor);
   EXPECT_GT(deduction, 0);
   EXPECT_EQ(report.stub_score.at(kSpheres), max * (1 - deduction));
   EXPECT_LT(old.stub_score.at(kSpheres), report.stub_score.at(kSpheres));
@@ -275,10 +276,10 @@ TEST(PerMistake, OneLikelyCauseWithADeductionCostsItOnce) {
 TEST(PerMistake, AnythingButOneLikelyCauseWithADeductionIsScoredPerCheck) {
   const Rubric rubric = defaultRubric(2022);
   const std::vector<std::vector<std::pair<std::string, bool>>> cases = {
-      {{"correction-factor", true}, {"restitution-ignored", true}},
-      {{"correction-factor", false}},
-      {{"crashed", true}},
-      {{"unknown", false}},
+      {{cause::kCorrectionFactor, true}, {cause::kRestitutionIgnored, true}},
+      {{cause::kCorrectionFactor, false}},
+      {{cause::kCrashed, true}},
+      {{cause::kUnknown, false}},
       {}};
   for (const auto& causes : cases) {
     GradeReport report = stubWithFailures(kSpheres, 1, causes);
@@ -289,27 +290,29 @@ TEST(PerMistake, AnythingButOneLikelyCauseWithADeductionIsScoredPerCheck) {
     EXPECT_EQ(notes(report), "");
   }
   // Failed checks naming different single causes: per check too.
-  GradeReport report = stubWithFailures(kSpheres, 1, {{"correction-factor", true}});
-  report.tests.back().causes = {Cause{"restitution-ignored", true, {}, {}, {}, {}, {}}};
+  GradeReport report = stubWithFailures(kSpheres, 1, {{cause::kCorrectionFactor, true}});
+  report.tests.back().causes = {Cause{cause::kRestitutionIgnored, true, {}, {}, {}, {}, {}}};
   GradeReport old = report;
   applyRubric(rubric, report);
   applyRubric(perCheck(rubric), old);
   EXPECT_EQ(report.stub_score.at(kSpheres), old.stub_score.at(kSpheres));
   EXPECT_EQ(notes(report), "");
   // A guess beside the one likely cause does not count: the stub qualifies.
-  report = stubWithFailures(kSpheres, 1, {{"correction-factor", true}, {"unknown", false}});
+  report =
+      stubWithFailures(kSpheres, 1, {{cause::kCorrectionFactor, true}, {cause::kUnknown, false}});
   applyRubric(rubric, report);
   EXPECT_NE(notes(report), "");
   // NaN beside the mistake that makes it is its symptom, not a second mistake: the stub
   // qualifies (pan-big5's division by a zero speed); NaN alone has no deduction.
-  report = stubWithFailures(kSpheres, 1, {{"division-by-speed", true}, {"non-finite", true}});
+  report =
+      stubWithFailures(kSpheres, 1, {{cause::kDivisionBySpeed, true}, {cause::kNonFinite, true}});
   applyRubric(rubric, report);
   EXPECT_NE(notes(report).find("(`division-by-speed`)"), std::string::npos) << notes(report);
-  report = stubWithFailures(kSpheres, 1, {{"non-finite", true}});
+  report = stubWithFailures(kSpheres, 1, {{cause::kNonFinite, true}});
   applyRubric(rubric, report);
   EXPECT_EQ(notes(report), "");
   // A stub without a failed check is untouched.
-  report = stubWithFailures(kSpheres, 100, {{"correction-factor", true}});
+  report = stubWithFailures(kSpheres, 100, {{cause::kCorrectionFactor, true}});
   applyRubric(rubric, report);
   EXPECT_EQ(report.stub_score.at(kSpheres), rubric.stub_points.at(kSpheres));
   EXPECT_EQ(notes(report), "");
@@ -322,7 +325,7 @@ TEST(PerMistake, PerCheckRubricFileGivesTodaysScores) {
   std::ofstream(temp.file("rubric.json")) << R"({"scoring": "per-check"})";
   const Rubric rubric = loadRubric(temp.file("rubric.json"), defaultRubric(2022));
   EXPECT_EQ(rubric.scoring, Scoring::PerCheck);
-  GradeReport report = stubWithFailures(kSpheres, 1, {{"correction-factor", true}});
+  GradeReport report = stubWithFailures(kSpheres, 1, {{cause::kCorrectionFactor, true}});
   report.tests[2].fraction = 0.5;
   applyRubric(rubric, report);
   double sum = 0;
@@ -331,7 +334,8 @@ TEST(PerMistake, PerCheckRubricFileGivesTodaysScores) {
     sum += t.score;
   }
   EXPECT_EQ(report.stub_score.at(kSpheres), sum);
-  EXPECT_LT(sum, rubric.stub_points.at(kSpheres) * (1 - rubric.deductions.at("correction-factor")));
+  EXPECT_LT(sum,
+            rubric.stub_points.at(kSpheres) * (1 - rubric.deductions.at(cause::kCorrectionFactor)));
   EXPECT_EQ(notes(report), "");
 }
 
@@ -340,11 +344,12 @@ TEST(PerMistake, PerCheckRubricFileGivesTodaysScores) {
 // stubs to the total, and a stub that qualifies earns max(per check, points x (1 - deduction)).
 TEST(PerMistake, NeverLowersAScoreAndTheScoresAddUp) {
   std::mt19937 rng(33);
-  const std::vector<std::string> ids = {"correction-factor", "restitution-ignored", "crashed"};
+  const std::vector<std::string> ids = {cause::kCorrectionFactor, cause::kRestitutionIgnored,
+                                        cause::kCrashed};
   int raised = 0;
   for (int round = 0; round < 400; ++round) {
     Rubric rubric = defaultRubric(2022);
-    rubric.deductions["correction-factor"] = std::uniform_real_distribution<>(0, 1)(rng);
+    rubric.deductions[cause::kCorrectionFactor] = std::uniform_real_distribution<>(0, 1)(rng);
     if (round % 3 == 0) rubric.stub_points[kSpheres] = 3.3;  // thousandths
     GradeReport report;
     for (const PlannedTest& planned : plannedTests(2022)) {
@@ -411,7 +416,7 @@ TEST(PerMistake, NeverLowersAScoreAndTheScoresAddUp) {
 
 // The line is part of the test's text, so every output shows it: results.json, JUnit, Markdown.
 TEST(PerMistake, EveryOutputShowsTheLine) {
-  GradeReport report = stubWithFailures(kSpheres, 1, {{"correction-factor", true}});
+  GradeReport report = stubWithFailures(kSpheres, 1, {{cause::kCorrectionFactor, true}});
   applyRubric(defaultRubric(2022), report);
   const std::string line = report.tests[1].rubric_note;
   ASSERT_FALSE(line.empty());
@@ -431,11 +436,11 @@ TEST(PerMistake, RubricSetsScoringAndDeductions) {
                        "crashed": null}})"),
                                        "r.json", perCheck(defaultRubric(2022)));
   EXPECT_EQ(rubric.scoring, Scoring::PerMistake);
-  EXPECT_EQ(rubric.deductions.at("correction-factor"), 0.5);
-  EXPECT_EQ(rubric.deductions.at("missing-damper"), 0.0);
-  EXPECT_EQ(rubric.deductions.count("rk4-wrong-weights"), 0u);  // null: scored per check
-  EXPECT_EQ(rubric.deductions.at("restitution-ignored"),
-            defaultRubric(2022).deductions.at("restitution-ignored"));
+  EXPECT_EQ(rubric.deductions.at(cause::kCorrectionFactor), 0.5);
+  EXPECT_EQ(rubric.deductions.at(cause::kMissingDamper), 0.0);
+  EXPECT_EQ(rubric.deductions.count(cause::kRk4WrongWeights), 0u);  // null: scored per check
+  EXPECT_EQ(rubric.deductions.at(cause::kRestitutionIgnored),
+            defaultRubric(2022).deductions.at(cause::kRestitutionIgnored));
 }
 
 // A scoring word, cause id or deduction the rubric does not know is refused, one line naming
@@ -482,8 +487,9 @@ TEST(PerMistake, EveryCatalogueCauseHasADefault) {
   }
   for (const auto& [id, entry] : catalogue.entries) EXPECT_TRUE(table.count(id)) << id;
   const Rubric rubric = defaultRubric(2024);
-  for (const char* never : {"compile-error", "crashed", "timed-out", "undefined-behaviour",
-                            "unknown", "unstable", "wrong-order", "grader-error"})
+  for (const char* never :
+       {cause::kCompileError, cause::kCrashed, cause::kTimedOut, cause::kUndefinedBehaviour,
+        cause::kUnknown, cause::kUnstable, cause::kWrongOrder, cause::kGraderError})
     EXPECT_EQ(rubric.deductions.count(never), 0u) << never;
   for (const auto& [id, entry] : catalogue.entries)
     if (entry.recognised_by == "guess") {

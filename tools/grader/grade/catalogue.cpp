@@ -48,8 +48,8 @@ Diagnosis diagnosisAt(const nlohmann::json& entry, const std::string& source,
   if (!entry.is_object())
     catalogueError(source, pointer, "expected an object, got " + excerpt(entry.dump()));
   for (const auto& [key, value] : entry.items())
-    if (key != "id" && key != "stub" && key != "recognised_by" && key != "text" && key != "why" &&
-        key != "example")
+    if (key != "id" && key != "stub" && key != "recognised_by" && key != "kind" &&
+        key != "deduction" && key != "model" && key != "text" && key != "why" && key != "example")
       catalogueError(source, pointer + "/" + excerpt(key), "unknown field");
   Diagnosis d;
   d.id = stringField(entry, "id", source, pointer);
@@ -63,6 +63,19 @@ Diagnosis diagnosisAt(const nlohmann::json& entry, const std::string& source,
   if (!known)
     catalogueError(source, pointer + "/recognised_by",
                    "unknown: \"" + excerpt(d.recognised_by) + "\"");
+  // The build reads these (diagnoses.cmake: the rubric's defaults, the mistake models); here they
+  // are only checked to be there with their types.
+  stringField(entry, "kind", source, pointer);
+  for (const char* key : {"deduction", "model"}) {
+    if (!entry.contains(key)) catalogueError(source, pointer + "/" + key, "missing");
+    const nlohmann::json& value = entry.at(key);
+    if (!value.is_null() &&
+        !(std::string(key) == "deduction" ? value.is_number() : value.is_string()))
+      catalogueError(source, pointer + "/" + key,
+                     std::string("expected ") +
+                         (std::string(key) == "deduction" ? "a number" : "a string") +
+                         " or null, got " + excerpt(value.dump()));
+  }
   d.text = stringField(entry, "text", source, pointer);
   d.why = stringField(entry, "why", source, pointer);
   // no example where there is no student's line to show (the grader's own failure, `unknown`)

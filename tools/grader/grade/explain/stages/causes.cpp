@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "grader/grade/cause_ids.h"
 #include "grader/grade/explain/stages/methods.h"
 #include "grader/grade/submission/source_patterns.h"
 
@@ -154,7 +155,7 @@ StageExplanation explainStages(const StageFit& fit, int method, const SourceHint
   const double h = fit.record.h;
   const bool dt_changed = fit.record.h_after != h;
   if (dt_changed)
-    addCause(e, "deltatime-mutated", true,
+    addCause(e, cause::kDeltatimeMutated, true,
              "deltaTime is " + number(fit.record.h_after) +
                  " s after integrate(), not h = " + number(h) + " s");
   if (e.course || !e.accepted.empty()) return e;
@@ -181,7 +182,8 @@ StageExplanation explainStages(const StageFit& fit, int method, const SourceHint
       later = departure(fit, course, s);
       const bool throughout = e.departure.state == 1 && later.state == 0;
       if (!dt_changed && throughout)
-        addCause(e, "deltatime-mutated", false, "every stage uses a step of " + number(s) + "·h");
+        addCause(e, cause::kDeltatimeMutated, false,
+                 "every stage uses a step of " + number(s) + "·h");
     }
   }
 
@@ -192,36 +194,37 @@ StageExplanation explainStages(const StageFit& fit, int method, const SourceHint
   const bool nothing_added = m > 0 && fit.result().same_as == m;
   if (e.equals == "heun")
     addCause(
-        e, "heun-method", true,
+        e, cause::kHeunMethod, true,
         "the result averages the slopes at the start and at the prediction: x0 + h/2·(v0 + v1)");
   // The predictor-corrector whose result (only) is the course's at h/2: the step advances h/2.
   if ((method == 1 || method == 2) && e.departure.state == result && e.scale != 1 &&
       sameStep(e.scale, 0.5) && !dt_changed)
-    addCause(e, "half-step-corrector", true,
+    addCause(e, cause::kHalfStepCorrector, true,
              "the result is the course's with a step of h/2: x0 + h/2·v1, v0 + h/2·a1");
   if (method == 2 && e.equals.rfind("implicit", 0) == 0)
-    addCause(e, "midpoint-full-step", true, "the prediction takes the full step x0 + h·v0");
+    addCause(e, cause::kMidpointFullStep, true, "the prediction takes the full step x0 + h·v0");
   if (method != 0 && is_explicit) {
     if (e.calls == 0) {
-      addCause(e, "no-reevaluation", true, "simulateOneStep() is never called");
+      addCause(e, cause::kNoReevaluation, true, "simulateOneStep() is never called");
     } else if (at_start) {
       const bool half = method == 2 && hints.integer_half;
       if (half)
-        addCause(e, "integer-division-half", true,
+        addCause(e, cause::kIntegerDivisionHalf, true,
                  "simulateOneStep() runs at the unchanged start state and the source has 1 / 2");
-      addCause(e, "no-reevaluation", !half, "simulateOneStep() runs at the unchanged start state");
+      addCause(e, cause::kNoReevaluation, !half,
+               "simulateOneStep() runs at the unchanged start state");
     } else if (nothing_added) {
-      addCause(e, "backup-alias", hints.alias_backup,
+      addCause(e, cause::kBackupAlias, hints.alias_backup,
                "the result is the state of evaluation " + std::to_string(m) +
                    " unchanged: the corrector adds nothing (a difference from a backup that "
                    "follows the live state is zero)");
-      addCause(e, "no-reevaluation", !hints.alias_backup,
+      addCause(e, cause::kNoReevaluation, !hints.alias_backup,
                "what simulateOneStep() computed is never used");
     } else if (method == 3) {
-      addCause(e, "rk4-stages-discarded", true,
+      addCause(e, cause::kRk4StagesDiscarded, true,
                "the stages are evaluated but the result uses only k1 (a0 and v0)");
     } else {
-      addCause(e, "no-reevaluation", true, "what simulateOneStep() computed is never used");
+      addCause(e, cause::kNoReevaluation, true, "what simulateOneStep() computed is never used");
     }
   }
 
@@ -246,9 +249,10 @@ StageExplanation explainStages(const StageFit& fit, int method, const SourceHint
     if (fit.states[std::size_t(q - 1)].same_as == 0 && method != 0 && !is_explicit) {
       const bool half = method == 2 && hints.integer_half;
       if (half)
-        addCause(e, "integer-division-half", true,
+        addCause(e, cause::kIntegerDivisionHalf, true,
                  "evaluation at the unchanged start state and 1 / 2 in the source");
-      addCause(e, "no-reevaluation", !half, "simulateOneStep() runs at the unchanged start state");
+      addCause(e, cause::kNoReevaluation, !half,
+               "simulateOneStep() runs at the unchanged start state");
     }
   }
   stateFindings(fit, result, course.result, method, result_on_previous, mixed, wrong_stage,
@@ -256,23 +260,24 @@ StageExplanation explainStages(const StageFit& fit, int method, const SourceHint
   if (method == 2 && m >= 1 && fit.states[0].x.fits) {
     std::vector<int> map = {0, 1};
     if (sameState(fit, 1, courseTable(1).evaluations[0], map))
-      addCause(e, "midpoint-full-step", true, "the prediction takes the full step x0 + h·v0");
+      addCause(e, cause::kMidpointFullStep, true, "the prediction takes the full step x0 + h·v0");
   }
   if (result_on_previous)
-    addCause(e, "backup-alias", true,
+    addCause(e, cause::kBackupAlias, true,
              "the result is built on the state of the last evaluation instead of the backup");
   if (stage_on_previous)
-    addCause(e, method == 3 && !result_on_previous ? "rk4-stage-not-from-backup" : "backup-alias",
-             true, "a stage is built on the previous stage's state instead of the backup");
+    addCause(
+        e, method == 3 && !result_on_previous ? cause::kRk4StageNotFromBackup : cause::kBackupAlias,
+        true, "a stage is built on the previous stage's state instead of the backup");
   if (stage_on_previous && result_on_previous && method == 3)
-    addCause(e, "rk4-stage-not-from-backup", false, "the stages are built on the previous stage");
+    addCause(e, cause::kRk4StageNotFromBackup, false, "the stages are built on the previous stage");
   if (mixed && method == 3)
-    addCause(e, "rk4-mixed-increments", true,
+    addCause(e, cause::kRk4MixedIncrements, true,
              "a position adds h·a (a velocity increment) or a velocity adds h·v");
   if (wrong_stage && method == 3)
-    addCause(e, "rk4-mixed-increments", true, "a stage uses the k of another evaluation");
+    addCause(e, cause::kRk4MixedIncrements, true, "a stage uses the k of another evaluation");
   if (own_velocity && method == 3)
-    addCause(e, "rk4-stage-from-wrong-increment", true,
+    addCause(e, cause::kRk4StageFromWrongIncrement, true,
              "a stage position uses that stage's new velocity instead of the previous k");
 
   // The result's own shape.
@@ -313,24 +318,24 @@ StageExplanation explainStages(const StageFit& fit, int method, const SourceHint
     if (wrong) {
       const bool integer = zero_ends && hints.integer_sixth;
       if (integer)
-        addCause(e, "integer-division-rk4", true,
+        addCause(e, cause::kIntegerDivisionRk4, true,
                  "the weights are 0 where the course has 1/6, and the source has 1 / 6");
-      addCause(e, "rk4-wrong-weights", !integer,
+      addCause(e, cause::kRk4WrongWeights, !integer,
                "the result's weights are not (k1 + 2 k2 + 2 k3 + k4) / 6");
     }
   } else if (!is_explicit || method == 0) {
-    if (!moved_v) addCause(e, "velocity-not-integrated", true, "the result's velocity is v0");
-    if (!moved_x) addCause(e, "position-not-integrated", true, "the result's position is x0");
+    if (!moved_v) addCause(e, cause::kVelocityNotIntegrated, true, "the result's velocity is v0");
+    if (!moved_x) addCause(e, cause::kPositionNotIntegrated, true, "the result's position is x0");
   }
   if (method == 0 && r.x.fits && moved_x) {
     // x0 + h·v0 + c·h²·a0 with c not 0 (forward) or 1 (symplectic): the position uses a dt²/2.
     for (const Term& t : r.x.form)
       if (t.gen == genA(0) && t.power == 2 && t.coef != Rational(1) && !t.coef.zero())
-        addCause(e, "position-uses-acceleration", true,
+        addCause(e, cause::kPositionUsesAcceleration, true,
                  "the position adds " + text(t.coef) + "·h²·a0");
   }
   if (e.calls < e.course_calls && e.causes.empty())
-    addCause(e, "no-reevaluation", true,
+    addCause(e, cause::kNoReevaluation, true,
              "simulateOneStep() is called fewer times than the method needs");
 
   // A result velocity scaled down as a whole (v *= 0.999: damping added by hand).
@@ -338,7 +343,7 @@ StageExplanation explainStages(const StageFit& fit, int method, const SourceHint
     const double c = velocityFactor(fit, course.result);
     if (c > 0.5 && c < 1 && !sameStep(c, 1)) {
       e.damping = c;
-      addCause(e, "velocity-damped", true,
+      addCause(e, cause::kVelocityDamped, true,
                "the result's velocity is " + number(c) + " times the course's");
     }
   }
@@ -349,9 +354,9 @@ StageExplanation explainStages(const StageFit& fit, int method, const SourceHint
     split = split || a == SpheresAre::AtStart || a == SpheresAre::Own;
   }
   if (r.spheres == SpheresAre::AtStart)
-    addCause(e, "only-first-body", true, "the spheres (particles[1]) never move");
+    addCause(e, cause::kOnlyFirstBody, true, "the spheres (particles[1]) never move");
   else if (split)
-    addCause(e, "per-body-loop", true,
+    addCause(e, cause::kPerBodyLoop, true,
              "at an evaluation the spheres and the cloth are at different stages");
   return e;
 }

@@ -6,6 +6,7 @@
 #include <array>
 
 #include "clothref/core/integrator.h"
+#include "grader/grade/cause_ids.h"
 #include "grader/grade/explain/stages/stages.h"
 #include "grader/grade/mistakes/integrate_mistakes.h"
 #include "grader/grade/submission/source_text.h"
@@ -57,37 +58,42 @@ bool near(const Eigen::Vector4d& w, const Eigen::Vector4d& target) {
 // student's numbers equal to one of these name that cause.
 std::vector<std::pair<std::string, Step>> oneStepSignatures(Method method) {
   std::vector<std::pair<std::string, Step>> signatures = {
-      {"only-first-body", clothrefStep(method, 1)}};
+      {cause::kOnlyFirstBody, clothrefStep(method, 1)}};
   if (method == Method::Explicit) {
-    signatures.push_back({"only-first-body", clothrefStep(Method::Symplectic, 1)});
+    signatures.push_back({cause::kOnlyFirstBody, clothrefStep(Method::Symplectic, 1)});
     signatures.push_back(
-        {"position-uses-acceleration", variantStep(method, Variant::PositionUsesAcceleration)});
-    signatures.push_back({"velocity-not-integrated", variantStep(method, Variant::PositionOnly)});
-    signatures.push_back({"position-not-integrated", variantStep(method, Variant::VelocityOnly)});
+        {cause::kPositionUsesAcceleration, variantStep(method, Variant::PositionUsesAcceleration)});
+    signatures.push_back(
+        {cause::kVelocityNotIntegrated, variantStep(method, Variant::PositionOnly)});
+    signatures.push_back(
+        {cause::kPositionNotIntegrated, variantStep(method, Variant::VelocityOnly)});
   } else {
-    signatures.push_back({"backup-alias", variantStep(method, Variant::Alias)});
-    signatures.push_back({"no-reevaluation", variantStep(method, Variant::NoReevaluation)});
-    signatures.push_back({"per-body-loop", variantStep(method, Variant::PerBody)});
+    signatures.push_back({cause::kBackupAlias, variantStep(method, Variant::Alias)});
+    signatures.push_back({cause::kNoReevaluation, variantStep(method, Variant::NoReevaluation)});
+    signatures.push_back({cause::kPerBodyLoop, variantStep(method, Variant::PerBody)});
   }
   if (method == Method::Midpoint) {
-    signatures.push_back({"midpoint-full-step", clothrefStep(Method::Implicit)});
+    signatures.push_back({cause::kMidpointFullStep, clothrefStep(Method::Implicit)});
     signatures.push_back(
-        {"no-reevaluation", variantStep(method, Variant::NoReevaluationHalfVelocity)});
+        {cause::kNoReevaluation, variantStep(method, Variant::NoReevaluationHalfVelocity)});
     // simulateOneStep() at the unchanged start state; a contact in it is applied a second time,
     // so this is not explicit Euler's result.
-    signatures.push_back({"no-reevaluation", variantStep(method, Variant::ZeroHalfStep)});
+    signatures.push_back({cause::kNoReevaluation, variantStep(method, Variant::ZeroHalfStep)});
   }
   if (method == Method::Rk4) {
-    signatures.push_back({"integer-division-rk4", variantStep(method, Variant::RkIntDivision)});
-    signatures.push_back({"rk4-mixed-increments", variantStep(method, Variant::RkMixedFinal)});
-    signatures.push_back({"rk4-mixed-increments", variantStep(method, Variant::RkK4xInVelocity)});
+    signatures.push_back({cause::kIntegerDivisionRk4, variantStep(method, Variant::RkIntDivision)});
+    signatures.push_back({cause::kRk4MixedIncrements, variantStep(method, Variant::RkMixedFinal)});
+    signatures.push_back(
+        {cause::kRk4MixedIncrements, variantStep(method, Variant::RkK4xInVelocity)});
     for (int k = 0; k < 3; ++k)
-      signatures.push_back({"rk4-mixed-increments", variantStep(method, Variant::RkMixedStage, k)});
+      signatures.push_back(
+          {cause::kRk4MixedIncrements, variantStep(method, Variant::RkMixedStage, k)});
     signatures.push_back(
-        {"rk4-stage-not-from-backup", variantStep(method, Variant::RkStageFromCurrent)});
+        {cause::kRk4StageNotFromBackup, variantStep(method, Variant::RkStageFromCurrent)});
     signatures.push_back(
-        {"rk4-stage-from-wrong-increment", variantStep(method, Variant::RkStageFromNewVelocity)});
-    signatures.push_back({"rk4-stages-discarded", variantStep(method, Variant::RkStagesDiscarded)});
+        {cause::kRk4StageFromWrongIncrement, variantStep(method, Variant::RkStageFromNewVelocity)});
+    signatures.push_back(
+        {cause::kRk4StagesDiscarded, variantStep(method, Variant::RkStagesDiscarded)});
   }
   return signatures;
 }
@@ -107,8 +113,9 @@ std::string rk4WeightCause(const IntegratorRun& run, const std::string& source,
                 " k1 + " + util::num(fit.w[1]) + " k2 + " + util::num(fit.w[2]) + " k3 + " +
                 util::num(fit.w[3]) + " k4 (the course: 1/6, 1/3, 1/3, 1/6).\n";
   // A weight of zero where the course has 1/6 is integer division only when the source has it.
-  if (missing_term && sourceHints(source).integer_sixth) return "integer-division-rk4";
-  if ((x.fits && !near(x.w, course)) || (v.fits && !near(v.w, course))) return "rk4-wrong-weights";
+  if (missing_term && sourceHints(source).integer_sixth) return cause::kIntegerDivisionRk4;
+  if ((x.fits && !near(x.w, course)) || (v.fits && !near(v.w, course)))
+    return cause::kRk4WrongWeights;
   return "";
 }
 
@@ -135,10 +142,10 @@ std::vector<std::string> diagnoseOneStep(const ProbeContext& context, const Inte
   // Nothing added by the final update is integer division only when the source divides 1 by 6.
   const std::string source = stubSource(context, run.stub);
   const SourceHints hints = sourceHints(source);
-  if (std::find(ids.begin(), ids.end(), "integer-division-rk4") != ids.end() && !source.empty() &&
-      !hints.integer_sixth) {
-    drop("integer-division-rk4");
-    add("rk4-wrong-weights");
+  if (std::find(ids.begin(), ids.end(), cause::kIntegerDivisionRk4) != ids.end() &&
+      !source.empty() && !hints.integer_sixth) {
+    drop(cause::kIntegerDivisionRk4);
+    add(cause::kRk4WrongWeights);
   }
 
   if (ids.empty() && method == Method::Rk4) {
@@ -146,7 +153,7 @@ std::vector<std::string> diagnoseOneStep(const ProbeContext& context, const Inte
     if (!id.empty()) add(id);
   }
   const auto& after = run.answer.f(key::perCase(key::kDtAfter, 0));
-  if (!after.empty() && after[0] != run.random.dt) add("deltatime-mutated");
+  if (!after.empty() && after[0] != run.random.dt) add(cause::kDeltatimeMutated);
 
   // simulateOneStep calls during integrate: the method's evaluations but the one before it.
   const auto& calls_out = run.answer.i(key::perCase(key::kCalls, 0));
@@ -157,8 +164,8 @@ std::vector<std::string> diagnoseOneStep(const ProbeContext& context, const Inte
               " times during integrate(); the course method calls it " +
               std::to_string(expected_calls) + " times.\n";
   if (calls >= 0 && calls < expected_calls) {
-    drop("no-reevaluation");
-    add("no-reevaluation");
+    drop(cause::kNoReevaluation);
+    add(cause::kNoReevaluation);
   } else if (method == Method::Midpoint && calls == expected_calls &&
              distance(run.actual,
                       stepped(run.random, variantStep(method, Variant::ZeroHalfStep))) <=
@@ -166,20 +173,20 @@ std::vector<std::string> diagnoseOneStep(const ProbeContext& context, const Inte
     // simulateOneStep() ran at the start state: the half step added nothing, or was never written
     // back. Integer division only when the source divides 1 by 2.
     if (hints.integer_half) {
-      drop("no-reevaluation");
-      add("integer-division-half");
+      drop(cause::kNoReevaluation);
+      add(cause::kIntegerDivisionHalf);
     }
   }
   // RK4 that called simulateOneStep() three times and then kept only k1 gives explicit Euler's
   // numbers: the stages were discarded, not skipped.
   if (method == Method::Rk4 && calls == expected_calls &&
-      std::find(ids.begin(), ids.end(), "rk4-stages-discarded") != ids.end())
-    drop("no-reevaluation");
-  if (calls >= 0 && calls < expected_calls) drop("rk4-stages-discarded");
+      std::find(ids.begin(), ids.end(), cause::kRk4StagesDiscarded) != ids.end())
+    drop(cause::kNoReevaluation);
+  if (calls >= 0 && calls < expected_calls) drop(cause::kRk4StagesDiscarded);
   // A per-body loop calls simulateOneStep() once per body and stage.
   if (calls > expected_calls && expected_calls > 0 && calls % expected_calls == 0 &&
-      std::find(ids.begin(), ids.end(), "per-body-loop") == ids.end() && ids.empty())
-    guesses.push_back("per-body-loop");
+      std::find(ids.begin(), ids.end(), cause::kPerBodyLoop) == ids.end() && ids.empty())
+    guesses.push_back(cause::kPerBodyLoop);
   return ids;
 }
 

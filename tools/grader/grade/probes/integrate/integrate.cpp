@@ -14,6 +14,7 @@
 #include <mutex>
 
 #include "clothref/verify/verify.h"
+#include "grader/grade/cause_ids.h"
 #include "grader/grade/mistakes/integrate_mistakes.h"
 #include "grader/grade/probes/integrate/diagnosis.h"
 #include "grader/grade/probes/integrate/stages.h"
@@ -52,7 +53,7 @@ void addOneStepCauses(TestResult& one, const std::vector<std::string>& numeric,
   for (const std::string& id : numeric)
     if (std::find(likely.begin(), likely.end(), id) == likely.end())
       // deltaTime's value after integrate() is read, not fitted
-      (id == "deltatime-mutated" ? likely : possible).push_back(id);
+      (id == cause::kDeltatimeMutated ? likely : possible).push_back(id);
   for (const std::string& id : stages.causes(false)) possible.push_back(id);
   for (const std::string& id : guesses) possible.push_back(id);
   for (const std::string& id : likely) {
@@ -62,7 +63,7 @@ void addOneStepCauses(TestResult& one, const std::vector<std::string>& numeric,
   }
   for (const std::string& id : possible)
     if (std::find(likely.begin(), likely.end(), id) == likely.end()) one.addCause(id, false);
-  if (likely.empty()) one.addCause("unknown", false);
+  if (likely.empty()) one.addCause(cause::kUnknown, false);
 }
 
 TestResult checkOneStep(const ProbeContext& context, const IntegratorRun& run,
@@ -90,7 +91,7 @@ TestResult checkOneStep(const ProbeContext& context, const IntegratorRun& run,
 std::string firstLikelyCause(const TestResult& one) {
   for (const Cause& cause : one.causes)
     if (cause.likely) return cause.id;
-  return "unknown";
+  return cause::kUnknown;
 }
 
 // Each body the course method moves must move.
@@ -114,8 +115,8 @@ TestResult checkEveryBody(const IntegratorRun& run, const TestResult& one) {
   const bool only_spheres = stuck.find("cloth") == std::string::npos;
   // Nothing moved: the one-step diagnosis says why (integer division, ...), when it has one.
   const std::string first = firstLikelyCause(one);
-  const std::string id = only_spheres ? "only-first-body" : first;
-  all.addCause(id, id != "unknown");
+  const std::string id = only_spheres ? cause::kOnlyFirstBody : first;
+  all.addCause(id, id != cause::kUnknown);
   return all;
 }
 
@@ -127,7 +128,7 @@ TestResult checkDeltaTime(const IntegratorRun& run) {
   t.output = t.fraction == 1 ? "The global deltaTime is unchanged after integrate()."
                              : "deltaTime was " + util::num(run.random.dt) +
                                    " before integrate() and " + util::num(dt_after) + " after.\n";
-  if (t.fraction == 0) t.addCause("deltatime-mutated");
+  if (t.fraction == 0) t.addCause(cause::kDeltatimeMutated);
   return t;
 }
 
@@ -141,7 +142,7 @@ TestResult checkBackups(const IntegratorRun& run) {
   t.output = alias ? "The result is exactly what a step gives when the backup follows the live "
                      "state (same state as the one-step test).\n"
                    : "The backed-up start state is not changed by the later stages.";
-  if (alias) t.addCause("backup-alias");
+  if (alias) t.addCause(cause::kBackupAlias);
   return t;
 }
 
@@ -171,9 +172,9 @@ TestResult checkOrder(const ProbeContext& context, const IntegratorRun& run, con
       usable && std::abs(observed - expected_order) <= context.rubric.tolerances.order ? 1 : 0;
   order.output = orderText(run, student_errors, reference_errors, usable, observed, expected_order);
   if (order.fraction == 0) {
-    const std::string id =
-        one.fraction == 1 ? causeAfterPassedStep(stages, "wrong-order") : firstLikelyCause(one);
-    order.addCause(id, id != "unknown");
+    const std::string id = one.fraction == 1 ? causeAfterPassedStep(stages, cause::kWrongOrder)
+                                             : firstLikelyCause(one);
+    order.addCause(id, id != cause::kUnknown);
   }
   return order;
 }
@@ -193,9 +194,9 @@ TestResult checkStability(const IntegratorRun& run, const TestResult& one,
   if (stable.fraction == 0) {
     // The blow-up is a consequence: the one-step finding names the mistake when there is one.
     const std::string first = firstLikelyCause(one);
-    const std::string id = one.fraction == 1    ? causeAfterPassedStep(stages, "unstable")
-                           : first == "unknown" ? "unstable"
-                                                : first;
+    const std::string id = one.fraction == 1 ? causeAfterPassedStep(stages, cause::kUnstable)
+                           : first == cause::kUnknown ? cause::kUnstable
+                                                      : first;
     stable.addCause(id);
   }
   return stable;
