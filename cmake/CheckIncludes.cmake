@@ -29,7 +29,7 @@ set(RULES_record_EXTERNAL "Eigen/;nlohmann/;fmt/")
 set(RULES_golden_AREAS "base;core;io;scene;trace;diff;record")
 set(RULES_golden_EXTERNAL "Eigen/;nlohmann/;fmt/;unistd.h")
 set(RULES_verify_AREAS "base;core;io;scene;solver")
-set(RULES_verify_EXTERNAL "Eigen/;nlohmann/;fmt/")
+set(RULES_verify_EXTERNAL "Eigen/;nlohmann/;fmt/;boost/numeric/odeint/")
 set(RULES_solver_AREAS "base;core")
 set(RULES_solver_EXTERNAL "Eigen/")
 set(RULES_analysis_AREAS "base;core;io;scene;trace;record;verify;solver")
@@ -90,10 +90,11 @@ set(GRADER_probes_MAY "\"grader/bridge/" "\"grader/grade/run/" "\"grader/grade/s
     "\"grader/grade/(results|rubric|text|catalogue|cause_ids)\\.h\""
     "\"clothref/(base|core|io|scene|solver|trace|diff|record|verify|formula|analysis)/" "<Eigen/"
     "<nlohmann/")
-# the writers: the top level (results, and grade.h / batch.h), the pages; never run or probes
+# the writers: results and pages only. Of the top level the plain-data results, the text helpers
+# and the generated cause ids; never the grading (grade.h), the batch (batch.h), run or probes
 set(GRADER_report_FILES "^grade/report/")
-set(GRADER_report_MAY "\"grader/grade/report/" "\"grader/grade/[^/]+$" "\"clothref/io/" "\"clothref/trace/" "\"pages/"
-    "<nlohmann/" "<fmt/" "<stdlib\\.h>")
+set(GRADER_report_MAY "\"grader/grade/report/" "\"grader/grade/(results|text|cause_ids)\\.h\""
+    "\"clothref/io/" "\"clothref/trace/" "\"pages/" "<nlohmann/" "<fmt/" "<stdlib\\.h>")
 # the top level (grade, batch, rubric, text, results): of the probes only their table, probes.h
 set(GRADER_grade_FILES "^grade/[^/]+$")
 set(GRADER_grade_MAY "\"grader/grade/[^/]+$" "\"grader/grade/run/" "\"grader/grade/submission/"

@@ -17,7 +17,8 @@ install(TARGETS clothref_grader_course_2022 clothref_grader_course_2024
 install(DIRECTORY ${PROJECT_BINARY_DIR}/grader-prebuilt/ DESTINATION ${clothref_data}/grader/prebuilt
         PATTERN stamp EXCLUDE)
 
-# Man pages: clothref.1 and clothref-<command>.1, each from that command's --help.
+# Man pages: clothref.1 and clothref-<command>.1, each from that command's --help, with the
+# sections --help has not (EXAMPLES, EXIT STATUS) from cmake/man/<page>.h2m (help2man --include).
 find_program(CLOTHREF_HELP2MAN help2man)
 if(NOT CLOTHREF_HELP2MAN)
   message(STATUS "clothref: help2man not found, no man pages (tools/setup.sh installs it)")
@@ -38,8 +39,9 @@ add_custom_command(OUTPUT ${clothref_man_dir}/clothref.1
   COMMAND ${CLOTHREF_HELP2MAN} --no-info --no-discard-stderr
           "--version-string=clothref ${PROJECT_VERSION}"
           "--name=reference and autograder for the cloth-and-spheres assignment"
+          --include=${PROJECT_SOURCE_DIR}/cmake/man/clothref.h2m
           --output=${clothref_man_dir}/clothref.1 $<TARGET_FILE:clothref-cli>
-  DEPENDS clothref-cli VERBATIM)
+  DEPENDS clothref-cli ${PROJECT_SOURCE_DIR}/cmake/man/clothref.h2m VERBATIM)
 foreach(command ${clothref_commands})
   # help2man runs PROGRAM --help: a one-line wrapper gives it the command; the page is named
   # clothref-<command> (--version-string) and lists the command's options.
@@ -51,8 +53,9 @@ foreach(command ${clothref_commands})
     COMMAND ${CLOTHREF_HELP2MAN} --no-info --no-discard-stderr
             "--version-string=clothref-${command} ${PROJECT_VERSION}"
             "--name=the clothref ${command} command (clothref(1))"
+            --include=${PROJECT_SOURCE_DIR}/cmake/man/clothref-${command}.h2m
             --output=${clothref_man_dir}/clothref-${command}.1 ${wrapper}
-    DEPENDS clothref-cli ${wrapper} VERBATIM)
+    DEPENDS clothref-cli ${wrapper} ${PROJECT_SOURCE_DIR}/cmake/man/clothref-${command}.h2m VERBATIM)
   list(APPEND clothref_man_pages ${clothref_man_dir}/clothref-${command}.1)
 endforeach()
 add_custom_target(clothref_man_pages ALL DEPENDS ${clothref_man_pages})

@@ -24,7 +24,7 @@ set(CLOTHREF_PUBLIC_HEADERS
     scene/make_world.h scene/scene.h
     solver/backward_euler.h
     trace/body_view.h trace/format.h trace/hash.h trace/reader.h trace/step_line.h
-    verify/analytic.h verify/verify.h)
+    verify/analytic.h verify/odeint_peer.h verify/verify.h)
 set(CLOTHREF_PRIVATE_HEADERS
     diff/diff_support.h fast/contact_filter_impl.h fast/spring_kernels_impl.h
     verify/check_support.h)

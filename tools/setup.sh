@@ -12,7 +12,7 @@ build_dir=${BUILD_DIR:-$root/build}
 
 # Each group's purpose is in README.md ("What tools/setup.sh installs"); keep the two in step.
 build=(cmake ninja-build g++ pkg-config libeigen3-dev libfmt-dev nlohmann-json3-dev libcli11-dev
-       libxxhash-dev zlib1g-dev)
+       libxxhash-dev zlib1g-dev libboost-dev)
 tests=(libgtest-dev libgmock-dev libbenchmark-dev)
 charts=(python3 python3-numpy python3-matplotlib)
 pages=(chromium chromium-driver python3-selenium python3-pil python3-markdown)  # the browser tests of the pages

@@ -99,6 +99,41 @@ TEST(WorkPrecision, CountsAndTimingStatisticsAreConsistent) {
   }
 }
 
+// The odeint peer's points: named after the stepper, counted as the counterpart method, and (the
+// same step map) at the counterpart's error up to round-off, on the spring and on course2022
+// (contacts included).
+TEST(WorkPrecision, PeerPointsSitOnTheirCounterparts) {
+  const Scene& scene = *findBuiltinScene("spring");
+  const SweepSettings settings = springSettings({20, 40}, 1);
+  const SweepReference reference = sweepReference(scene, settings);
+  for (PeerStepper stepper : {PeerStepper::Euler, PeerStepper::Rk4}) {
+    for (int substeps : {20, 40}) {
+      const SweepPoint ours = sweepPoint(scene, peerCounterpart(stepper), Precision::Double,
+                                         substeps, settings, reference);
+      const SweepPoint peer =
+          sweepPeerPoint(scene, stepper, Precision::Double, substeps, settings, reference);
+      EXPECT_EQ(peer.method, peerStepperName(stepper));
+      EXPECT_EQ(peer.evaluations, ours.evaluations);
+      EXPECT_EQ(peer.stable, ours.stable);
+      ASSERT_TRUE(peer.error_final && ours.error_final);
+      EXPECT_GT(*peer.error_final, 1e-9);
+      EXPECT_NEAR(*peer.error_final, *ours.error_final, 1e-12) << peer.method;
+    }
+  }
+  const Scene& course = *findBuiltinScene("course2022");
+  SweepSettings course_settings = defaultSweepSettings(course);
+  course_settings.horizon = 0.05;
+  course_settings.repeats = 1;
+  course_settings.reference_substeps = 50;
+  const SweepReference course_reference = sweepReference(course, course_settings);
+  const SweepPoint ours =
+      sweepPoint(course, method("rk4"), Precision::Double, 40, course_settings, course_reference);
+  const SweepPoint peer = sweepPeerPoint(course, PeerStepper::Rk4, Precision::Double, 40,
+                                         course_settings, course_reference);
+  ASSERT_TRUE(peer.error_final && ours.error_final);
+  EXPECT_NEAR(*peer.error_final, *ours.error_final, 1e-9);
+}
+
 TEST(WorkPrecision, FloatErrorsStopAtTheFloatFloor) {
   const Scene& scene = *findBuiltinScene("spring");
   const SweepSettings settings = springSettings({10240});

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# How long `clothref grade` takes (docs/grading.md, "Speed"): one submission end to end with an
+# How long `clothref grade` takes (docs/grading-reference.md, "Speed"): one submission end to end with an
 # empty object cache (cold) and again with the cache it left (cached), then a batch of 30
 # *distinct* submissions at --jobs 1 and --jobs 2, each batch with its own empty cache. The 30
 # are the corpus's (13 of 2024, the first 17 of 2022 in name order, mutants laid over their base)

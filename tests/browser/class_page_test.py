@@ -3,16 +3,21 @@ tools/grader/grade/report/class_page.cpp, tools/pages/assets/class.js).
 
 Usage: class_page_test.py --cli build/bin/clothref --screenshots DIR
 
-A batch of 30 graded submissions and one that could not be graded is made of markers (row.json)
-and results.json files with known scores and causes, so `clothref grade ... --out BATCHDIR`
-rebuilds grades.csv and index.html from them without grading anything (as it does after an
-interrupted batch). Checks: no console message, no network request, 30 rows, sorting by total
-(both ways) and by name, filtering by cause and by verdict, the histogram counts all 30 and labels
-its bins and axes, the not-gradable submission listed apart and left out of the statistics, the
-cause table counts and links the right reports, a check's pass rate, causes as chips (a guess
-marked), the page opens in under 2 s; at 1280 and 1920 px every column of the table is visible
-without scrolling and every row is one line. Screenshots: class-index.png, class-index-1280.png,
-class-index-1920.png.
+A batch of 30 graded submissions of both editions (20 of 2022, 10 of 2024: the collision column's
+maximum differs) and one that could not be graded is made of markers (row.json) and results.json
+files with known scores and causes, as a real class has them (points such as 11.25 and 1.875,
+seconds up to 59, the catalogue's longest cause ids, a long folder name), so `clothref grade ...
+--out BATCHDIR` rebuilds grades.csv and index.html from them without grading anything (as it does
+after an interrupted batch). Checks: no console message, no network request, 30 rows, sorting by
+total (both ways) and by name, filtering by cause and by verdict, the histogram counts all 30 and
+labels its bins and axes, the first line says how many were graded and how many need attention
+and why, the not-gradable submission listed apart and left out of the statistics, the cause table
+counts and links the right reports, a check's pass rate, causes as chips (a guess marked; two,
+then a count whose tooltip lists them all), every stub column shows its maximum, the legend is the
+table's caption, the page opens in under 2 s; at 1280 and 1920 px every column of the table is
+visible without scrolling, no cell's text is cut (every cell, header and chip shows all its text:
+its content is no wider than its box) and every row is at most two lines. Screenshots:
+class-index.png, class-index-1280.png, class-index-1920.png.
 """
 import json
 import os
@@ -27,26 +32,35 @@ import browser  # noqa: E402
 STUBS = ['Cloth::initializeSpring', 'Cloth::computeSpringForce', 'Spheres::collide(Cloth*)',
          'Spheres::collide()', 'ExplicitEuler::integrate', 'ImplicitEuler::integrate',
          'MidpointEuler::integrate', 'RungeKuttaFourth::integrate']
+# the course's points per stub (2024 has no Spheres::collide())
+POINTS = {2022: [15, 20, 10, 10, 5, 2.5, 2.5, 15], 2024: [10, 25, 20, 0, 5, 2.5, 2.5, 15]}
+LONG_CAUSES = ['rk4-stage-from-wrong-increment', 'position-uses-acceleration',
+               'restitution-full-velocity']
 
 
 def fixture(batch, subs, n=30):
     """Writes n graded folders; returns their rows as {name: (total, verdict, causes, passed)}."""
     expected = {}
     for i in range(n):
-        name = f'student{i:02d}'
+        name = f'student{i:02d}' + ('-chen-wei-ting-b10902113' if i == 5 else '')
         os.makedirs(os.path.join(subs, name))
         folder = os.path.join(batch, name)
         os.makedirs(folder)
-        scores = {stub: float((i * 7 + k * 3) % 5) for k, stub in enumerate(STUBS)}
+        edition = 2022 if i < 20 else 2024
+        maxima = {stub: p for stub, p in zip(STUBS, POINTS[edition]) if p}
+        # quarters of each stub's points: 11.25 of 15, 1.875 of 2.5, ...
+        scores = {stub: m * ((i * 7 + k * 3) % 5) / 4 for k, (stub, m) in enumerate(maxima.items())}
         causes = (['backup-aliases'] if i % 2 == 0 and i < 28 else []) + \
-                 (['spring-force-sign'] if i % 6 == 1 else [])
-        verdict = 'compile-error' if i in (3, 17) else 'graded'
+                 (['spring-force-sign'] if i % 6 == 1 else []) + \
+                 (LONG_CAUSES if i % 10 == 4 else [])
+        verdict = 'compile-error' if i in (3, 17) else 'timed-out' if i == 9 else 'graded'
         passed = i % 3 != 0  # "RungeKuttaFourth::integrate: convergence order"
         total = sum(scores.values())
-        row = {'submission': name, 'dir': os.path.join(subs, name), 'edition': 2022,
-               'stub_scores': scores, 'stub_max': {stub: 4.0 for stub in STUBS},
-               'total': total, 'max': 32.0, 'verdict': verdict, 'isolation': 'rlimits only',
-               'problem': '', 'seconds': 10.0 + i}
+        row = {'submission': name, 'dir': os.path.join(subs, name), 'edition': edition,
+               'stub_scores': scores, 'stub_max': maxima,
+               'total': total, 'max': 80.0, 'verdict': verdict, 'isolation': 'rlimits only',
+               'problem': '', 'seconds': 10.0 + i * 1.7 + (0.3 if i == 24 else 0),
+               'causes': [{'id': c, 'likely': True} for c in causes]}
         tests = [{'name': 'RungeKuttaFourth::integrate: convergence order',
                   'status': 'passed' if passed else 'failed', 'score': 1, 'max_score': 1,
                   'tags': ['RungeKuttaFourth::integrate']},
@@ -76,7 +90,8 @@ def fixture(batch, subs, n=30):
         json.dump({'submission': 'zz-typo', 'dir': os.path.join(subs, 'zz-typo'), 'edition': 0,
                    'stub_scores': {}, 'stub_max': {}, 'total': 0.0, 'max': 0.0,
                    'verdict': 'not-gradable', 'isolation': '',
-                   'problem': 'none of cloth.cpp, sphere.cpp, integrator.cpp found', 'seconds': 0.1}, f)
+                   'problem': 'none of cloth.cpp, sphere.cpp, integrator.cpp found', 'seconds': 0.1,
+                   'causes': []}, f)
     return expected
 
 
@@ -137,19 +152,44 @@ def main():
             checks.check(len(bars) == 10 and sum(bars) == 30, f'histogram of 30 totals {bars}')
             labels = b.js("return [...document.querySelectorAll('.cl-hist-label')]"
                           ".map((t) => t.textContent)")
-            checks.check(len(labels) == 10 and labels[0] == '0–3.2' and labels[-1] == '28.8–32',
+            checks.check(len(labels) == 10 and labels[0] == '0–8' and labels[-1] == '72–80',
                          f'the bins are labelled {labels}')
             axes = b.js("return [...document.querySelectorAll('.cl-hist text')]"
                         ".map((t) => t.textContent)")
-            checks.check('submissions' in axes and 'total (points of 32)' in axes,
+            checks.check('submissions' in axes and 'total (points of 80)' in axes,
                          'the axes are labelled')
             apart = b.js("return [...document.querySelectorAll('.cl-apart tr[data-name]')]"
                          ".map((tr) => [tr.dataset.name, tr.cells[1].textContent])")
             checks.check(apart == [['zz-typo', 'not-gradable']], f'not graded, apart: {apart}')
             summary = b.js("return document.querySelector('.cl-summary').textContent")
             mean = sum(expected[n][0] for n in names) / 30
-            checks.check(f'mean total {round(mean * 1000) / 1000:g} / 32' in summary and
+            checks.check(f'Mean total {round(mean * 1000) / 1000:g} / 80' in summary and
                          '1 not graded' in summary, f'the statistics leave it out: {summary}')
+            # the first line: how many graded, how many need attention and why
+            checks.check(summary.startswith('30 of 31 submissions graded; 4 need attention '
+                                            '(2 compile-error, 1 not-gradable, 1 timed-out)'),
+                         f'the first line says who needs attention and why: {summary}')
+            isolation = b.js("return document.querySelector('.cl-isolation').textContent")
+            checks.check(isolation == 'Student code ran with: rlimits only.',
+                         f'the isolation, once: {isolation}')
+            maxima = b.js("return [...document.querySelectorAll('.cl-submissions th')]"
+                          ".map((th) => th.querySelector('.cl-max') ?"
+                          " th.querySelector('.cl-max').textContent : null)")
+            checks.check(maxima[1:9] == ['/10, 15', '/20, 25', '/10, 20', '/10', '/5', '/2.5',
+                                         '/2.5', '/15'],
+                         f'every stub column shows its maximum: {maxima}')
+            cells = b.js("const tr = document.querySelector('.cl-submissions tr[data-name=\"student24\"]');"
+                         "return [...tr.cells].map((td) => td.textContent)")
+            checks.check(cells[3] == '20/20' and cells[4] == '' and cells[-1] == '51.1',
+                         f'a 2024 row: its own maximum where the editions differ, seconds whole: {cells}')
+            legend = b.js("const c = document.querySelector('.cl-submissions caption');"
+                          "return c ? c.textContent : ''")
+            checks.check('a guess' in legend and 'a likely cause' in legend,
+                         f'the legend is the table\'s caption: {legend}')
+            more = b.js("const m = document.querySelector('.cl-submissions tr[data-name=\"student04\"] .cl-more');"
+                        "return m ? [m.textContent, m.title] : null")
+            checks.check(more is not None and more[0] == '+2' and all(c in more[1] for c in LONG_CAUSES),
+                         f'two chips, then a count whose tooltip lists them all: {more}')
             chips = b.js("return [...document.querySelectorAll('.cl-submissions tr[data-name=\"student01\"] .cl-chip')]"
                          ".map((c) => c.textContent)")
             checks.check(chips == ['spring-force-sign?'], f'a guess is a marked chip: {chips}')
@@ -174,8 +214,8 @@ def main():
 
 
 def check_fits(page, width, checks, screenshots):
-    """At `width` px: no horizontal scrolling, every column of the table inside the window, every
-    row one line."""
+    """At `width` px: no horizontal scrolling, every column of the table inside the window, no
+    cell's text cut, every row at most two lines."""
     b = browser.Browser(width=width, height=900)
     try:
         b.open(page)
@@ -187,12 +227,20 @@ def check_fits(page, width, checks, screenshots):
         outside = [c for c in columns if c[1] < 0 or c[2] > width or c[3] < 20]
         checks.check(len(columns) == 13 and not outside,
                      f'{width} px: all {len(columns)} columns visible ({outside})')
+        # no text cut: every cell, header and chip is at least as wide as what it holds (an
+        # ellipsis or a hidden overflow would show as content wider than the box)
+        clipped = b.js("return [...document.querySelectorAll('.cl-submissions th,"
+                       " .cl-submissions td, .cl-submissions .cl-chip, .cl-submissions .cl-more')]"
+                       ".filter((e) => e.scrollWidth > e.clientWidth + 1"
+                       " || getComputedStyle(e).textOverflow === 'ellipsis')"
+                       ".map((e) => [e.textContent, e.scrollWidth, e.clientWidth])")
+        checks.check(not clipped, f'{width} px: no cell\'s text is cut {clipped[:5]}')
         heights = b.js("return [...document.querySelectorAll('.cl-submissions tbody tr')]"
                        ".map((tr) => tr.getBoundingClientRect().height)")
         line = b.js("return parseFloat(getComputedStyle(document.querySelector("
                     "'.cl-submissions td')).lineHeight) || 20")
-        checks.check(heights and max(heights) < 2 * line,
-                     f'{width} px: every row one line (tallest {max(heights):.0f} px, line {line:.0f} px)')
+        checks.check(heights and max(heights) < 3 * line,
+                     f'{width} px: every row at most two lines (tallest {max(heights):.0f} px, line {line:.0f} px)')
         b.save_screenshot(os.path.join(screenshots, f'class-index-{width}.png'))
     finally:
         b.close()

@@ -9,11 +9,9 @@ import sys
 
 from PIL import Image
 
-NAMES = ['view-pair-overlay.png', 'view-pair-side.png', 'report.png', 'report-sketch.png',
-         'report-whole-run.png', 'class-index.png', 'gradescope-results.png',
-         'gradescope-picture.png']
-# class-index-1280.png and class-index-1920.png in docs/pictures are of the corpus batch (80
-# submissions), taken by hand as docs/pictures.md says; the test's own are of its fixture.
+NAMES = ['view-pair-overlay.png', 'view-pair-side.png', 'report.png', 'report-stub.png',
+         'report-sketch.png', 'report-whole-run.png', 'class-index.png', 'class-index-1280.png',
+         'class-index-1920.png', 'gradescope-results.png', 'gradescope-picture.png']
 
 
 def main(source, target):

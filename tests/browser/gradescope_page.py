@@ -1,5 +1,5 @@
 """A page shaped like Gradescope's autograder results, rendered from a results.json clothref wrote,
-so a browser test can check and picture what a student sees there (docs/grading.md, Gradescope).
+so a browser test can check and picture what a student sees there (docs/grading-reference.md, Gradescope).
 
 Gradescope's layout, as its documentation shows it: the total (the sum of the tests' scores over
 the sum of their max_score when the file's `score` is absent, else `score`) at the top right, the

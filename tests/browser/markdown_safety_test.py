@@ -1,7 +1,7 @@
 """No element a student wrote: a hostile submission's results.json and report.md rendered as
 Gradescope renders them (tests/browser/gradescope_page.py: Markdown through python3-markdown, HTML
 as it is) hold no element or attribute the submission put in its text (ctest markdown_safety;
-docs/grading.md, "Gradescope").
+docs/grading-reference.md, "Gradescope").
 
 Usage: markdown_safety_test.py --cli build/bin/clothref --source SOURCE_DIR --cache DIR
 

@@ -5,14 +5,16 @@ Usage: report_page_test.py --cli build/bin/clothref --source SOURCE_DIR --cache 
 
 Grades the corpus's 2022 reference with the mutant cloth-normal-reversed's sphere.cpp (collision
 normal reversed: Spheres::collide(Cloth*) loses points, cause collision-normal-sign) and checks:
-no console message, no network request, the stub table, the failed checks open with the named
-cause and a picture of the state it tried, the whole run's viewer mounted side by side with four
-stills that are not blank, and results.json's top-level output is HTML, as are the failed checks
-with a picture (the others stay Markdown). Then the same results.json as Gradescope shows it
+no console message, no network request, the stub table; the stub as a student reads it: its points
+and the rule that gave them, what is wrong (the cause named once), the failed checks as a table
+(check, expected, yours, by how much) and a picture of the state each tried, each check folded
+below with its badge, the passed checks folded; the whole run's viewer mounted side by side with
+four stills that are not blank, and results.json's top-level output is HTML, as are the failed
+checks with a picture (the others stay Markdown). Then the same results.json as Gradescope shows it
 (gradescope_page.py): the total, one block per test, the failed ones red with their Markdown
 rendered, a visible picture in each HTML test, and nothing on the page that could run.
-Screenshots: report.png, report-sketch.png, report-whole-run.png, gradescope-results.png,
-gradescope-picture.png.
+Screenshots: report.png, report-stub.png (one stub's feedback at 1280 px), report-sketch.png,
+report-whole-run.png, gradescope-results.png, gradescope-picture.png.
 """
 import glob
 import json
@@ -66,24 +68,50 @@ def main():
             collide = [r for r in rows if r and r[0] == 'Spheres::collide(Cloth*)']
             checks.check(len(rows) == 9 and collide and collide[0][2] != '8 of 8',
                          f'stub table: {len(rows) - 1} stubs, collide(Cloth*) {collide}')
-            failed = b.js("return [...document.querySelectorAll('details.gr-check[open]')].map("
-                          "(d) => d.querySelector('summary').textContent)")
-            checks.check(len(failed) > 0 and all('collision-normal-sign' in f for f in failed),
-                         f'{len(failed)} failed checks open, each naming collision-normal-sign')
+            # the stub a student reads in a minute: its points and the rule, what is wrong once,
+            # the failed checks as a table, the pictures, then each check folded
+            section = "const h = document.getElementById('Spheres::collide(Cloth*)'); const out = [];" \
+                      "for (let e = h.nextElementSibling; e && e.tagName !== 'H2'; e = e.nextElementSibling)" \
+                      " out.push(e); return out"
+            points = b.js(section + ".filter((e) => e.classList.contains('gr-points'))"
+                          ".map((e) => e.textContent)")
+            checks.check(len(points) == 1 and ' checks passed' in points[0] and
+                         ('rubric: per-mistake' in points[0] or 'scored per check' in points[0]),
+                         f'the stub says its points and the rule that gave them: {points}')
+            likely = b.js(section + ".filter((e) => e.classList.contains('gr-likely'))"
+                          ".map((e) => e.textContent)")
+            said = likely[0].count('collision-normal-sign') if likely else 0
+            checks.check(len(likely) == 1 and said == 1,
+                         f'what is wrong, once: collision-normal-sign named {said} time(s)')
+            rows = b.js(section + ".flatMap((e) => [...e.querySelectorAll('.gr-failed tr')])"
+                        ".map((tr) => [...tr.cells].map((c) => c.textContent))")
+            failed = b.js(section + ".filter((e) => e.matches('details.gr-check'))"
+                          ".map((d) => d.querySelector('summary').textContent)")
+            checks.check(len(rows) == len(failed) + 1 and len(failed) > 0 and
+                         rows[0] == ['failed check', 'expected', 'yours', 'by how much'] and
+                         all(r[1] and r[2] and r[3] for r in rows[1:]),
+                         f'the failed checks as a table: {len(rows) - 1} rows for {len(failed)} '
+                         f'failed checks, each with expected, yours and by how much')
+            checks.check(all('collision-normal-sign' in f for f in failed),
+                         f'{len(failed)} failed checks folded below, each with its badge')
             # each failed collision check pictures the state it tried: one static SVG, drawn
-            sketches = b.js("return [...document.querySelectorAll('details.gr-check[open]')].map("
-                            "(d) => d.querySelectorAll('svg.gr-sketch').length)")
-            checks.check(sketches and all(n == 1 for n in sketches),
-                         f'a picture of the state tried in each failed check ({sketches})')
+            sketches = b.js(section + ".flatMap((e) => [...e.querySelectorAll('.gr-picture svg.gr-sketch')])"
+                            ".length")
+            checks.check(sketches == len(failed),
+                         f'a picture of the state tried for each failed check ({sketches})')
             if sketches:
-                b.js("document.querySelector('details.gr-check[open] svg.gr-sketch')"
-                     ".scrollIntoView()")
+                b.js("document.querySelector('.gr-picture svg.gr-sketch').scrollIntoView()")
                 sketch = browser.non_background_fraction(
-                    b.element_image('details.gr-check[open] svg.gr-sketch'))
+                    b.element_image('.gr-picture svg.gr-sketch'))
                 checks.check(sketch > 0.02, f'the first picture is drawn ({sketch:.0%})')
                 b.save_screenshot(os.path.join(options.screenshots, 'report-sketch.png'))
-                b.js("window.scrollTo(0, 0)")
-            passed = b.js("return document.querySelectorAll('details.gr-check:not([open])').length")
+            # one stub's feedback, as a student sees it at 1280 px
+            b.driver.set_window_size(1280, 1100)
+            b.js("document.getElementById('Spheres::collide(Cloth*)').scrollIntoView()")
+            b.save_screenshot(os.path.join(options.screenshots, 'report-stub.png'))
+            b.driver.set_window_size(1200, 1400)
+            b.js("window.scrollTo(0, 0)")
+            passed = b.js("return document.querySelectorAll('details.gr-passed details.gr-check').length")
             checks.check(passed > 20, f'{passed} passed checks, folded')
             b.save_screenshot(os.path.join(options.screenshots, 'report.png'))
             ready = b.js("const v = document.getElementById('whole-run');"
@@ -132,12 +160,17 @@ def check_gradescope_page(b, checks, data, page, screenshot):
     markup = b.js("return document.querySelectorAll('.gs-test table, .gs-test code, "
                   ".gs-test strong').length")
     checks.check(markup > 0, f'Gradescope page: the tests\' Markdown is rendered ({markup} elements)')
-    table = b.js("return document.querySelectorAll('.gs-output table tr').length")
+    # one row per stub that lost points (here one) under the head, the others on one line
+    table = b.js("return [...document.querySelectorAll('.gs-output table tr')]"
+                 ".map((tr) => tr.cells[0].textContent)")
     files = b.js("return document.querySelectorAll('.gs-output table').length")
     listed = b.js("return document.querySelectorAll('.gs-output li code').length")
-    checks.check(table == 9 and files == 1 and listed >= 3,
-                 f'Gradescope page: the HTML output shows the stub table ({files} tables, '
-                 f'{table} rows) and the files, each path in code ({listed})')
+    passed = b.js("return [...document.querySelectorAll('.gs-output p')].map((p) => p.textContent)"
+                  ".filter((t) => t.startsWith('Every check passed: '))")
+    checks.check(table == ['stub', 'Spheres::collide(Cloth*)'] and files == 1 and listed >= 3 and
+                 len(passed) == 1 and passed[0].count(' / ') == 7,
+                 f'Gradescope page: the HTML output has a row per stub that lost points ({table}), '
+                 f'the others on one line ({passed}), and the files, each path in code ({listed})')
     raw = b.js("return document.body.textContent.includes('|---')")
     checks.check(not raw, 'Gradescope page: no Markdown table left unrendered')
     # the pictures: one per HTML test, drawn, and nothing on the page can run

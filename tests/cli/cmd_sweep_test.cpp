@@ -35,6 +35,30 @@ TEST(SweepCli, WritesCsvAndJson) {
   EXPECT_TRUE(data.contains("compiler"));
 }
 
+// --peer adds Boost.Odeint's stepper beside each chosen method that has one (rk4 here, not
+// backward-euler), on the same ladder
+TEST(SweepCli, PeerAddsOdeintBesideItsCounterpart) {
+  test::TempDir dir;
+  const std::string json = dir.file("sweep.json");
+  const test::CommandResult result = test::runCli(
+      "sweep --scene spring --method rk4 --method backward-euler --precision double "
+      "--repeats 1 --substeps 10 --substeps 20 --peer --quiet --json " +
+      json);
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  std::ifstream json_in(json);
+  const auto data = nlohmann::json::parse(json_in);
+  ASSERT_EQ(data["points"].size(), 6u);  // (2 methods + 1 peer) x 2 dts
+  for (int k = 0; k < 2; ++k) {
+    const auto& ours = data["points"][k];
+    const auto& peer = data["points"][4 + k];
+    EXPECT_EQ(ours["method"], "rk4");
+    EXPECT_EQ(peer["method"], "odeint-rk4");
+    EXPECT_EQ(peer["dt"], ours["dt"]);
+    EXPECT_EQ(peer["evaluations"], ours["evaluations"]);
+    EXPECT_NEAR(peer["error_final"].get<double>(), ours["error_final"].get<double>(), 1e-12);
+  }
+}
+
 TEST(SweepCli, BadInputLeavesNoOutput) {
   test::TempDir dir;
   const std::string csv = dir.file("sweep.csv");

@@ -6,7 +6,9 @@
 // extension (`core/cloth` for cloth.h and cloth.cpp). Not checked: paths under build*/, the path
 // after `-o`/`--out` (a command's output), and paths a document lists in a comment
 // `<!-- not-in-repo: PATH... -->` (examples and generated files; a marked folder covers what is
-// under it).
+// under it). And no document of the repository (every *.md below it, README.md and docs/ and the
+// tests' and tools' own) cites a path of a machine (/work/, /home/, /root/, ...) or a file outside
+// the repository (../shared, course-api.md): what the code relies on is written in docs/.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -144,6 +146,75 @@ std::vector<fs::path> documents(const fs::path& root) {
     if (entry.path().extension() == ".md") out.push_back(entry.path());
   std::sort(out.begin(), out.end());
   return out;
+}
+
+// Every Markdown document of the repository: README.md, docs/, and the READMEs of tests/ and
+// tools/ (build folders and hidden ones left out).
+std::vector<fs::path> allDocuments(const fs::path& root) {
+  std::vector<fs::path> out;
+  for (auto it = fs::recursive_directory_iterator(root); it != fs::recursive_directory_iterator();
+       ++it) {
+    const std::string name = it->path().filename().string();
+    if (it->is_directory() && (name.rfind("build", 0) == 0 || name.rfind(".", 0) == 0)) {
+      it.disable_recursion_pending();
+      continue;
+    }
+    if (it->path().extension() == ".md") out.push_back(it->path());
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// The lines of `document` that cite a machine's path or a file outside the repository, as
+// "LINE: what".
+std::vector<std::string> outsideCitations(const fs::path& document) {
+  // an absolute path into a user's or a build machine's folders, wherever it starts a word
+  static const std::regex kMachine(
+      R"((^|[\s`'"(\[=:])(/(work|home|root|Users|mnt|srv)/[^\s`'")\]]*))");
+  // the shared folder of the sessions that write the project, and the course's notes kept there
+  static const std::regex kOutside(R"((\.\./shared|\bshared/product\.md|course-api(\.md)?))");
+  std::ifstream in(document);
+  std::vector<std::string> found;
+  std::size_t n = 0;
+  for (std::string line; std::getline(in, line);) {
+    ++n;
+    std::smatch m;
+    if (std::regex_search(line, m, kMachine))
+      found.push_back(std::to_string(n) + ": " + m[2].str());
+    else if (std::regex_search(line, m, kOutside))
+      found.push_back(std::to_string(n) + ": " + m[1].str());
+  }
+  return found;
+}
+
+TEST(DocPaths, NoDocumentCitesAMachinePathOrAFileOutsideTheRepository) {
+  const fs::path root = CLOTHREF_SOURCE_DIR;
+  const std::vector<fs::path> docs = allDocuments(root);
+  ASSERT_GE(docs.size(), 15u);  // README.md, docs/ and the tests' READMEs were found
+  for (const fs::path& doc : docs)
+    for (const std::string& cited : outsideCitations(doc))
+      ADD_FAILURE() << fs::relative(doc, root).string() << ":" << cited
+                    << ": cites a machine's path or a file outside the repository (say it in "
+                       "docs/ in the project's own words)";
+}
+
+// The checker finds each kind of citation, and a scratch path of an example or a repository path
+// is not one.
+TEST(DocPaths, TheOutsideCheckerCatchesEachKindAndOnlyThose) {
+  const test::TempDir dir;
+  const fs::path doc = dir.path() / "page.md";
+  test::writeText(doc,
+                  "written from `/work/shared/notes.md`\n"
+                  "see ../shared/product.md\n"
+                  "the course's facts (course-api.md section 3)\n"
+                  "a clone in /root/clothref there\n"
+                  "(/home/ta/submissions)\n"
+                  "cp -r golden /tmp/golden-old; tools/grader/course/ and docs/course.md\n"
+                  "a network at work/ and a home/ folder, https://example.org/home/x\n");
+  EXPECT_EQ(
+      outsideCitations(doc),
+      (std::vector<std::string>{"1: /work/shared/notes.md", "2: ../shared", "3: course-api.md",
+                                "4: /root/clothref", "5: /home/ta/submissions"}));
 }
 
 TEST(DocPaths, EveryPathNamedInTheDocsExists) {

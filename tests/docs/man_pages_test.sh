@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # A man page for clothref and for every subcommand `clothref --help` lists, each rendered with
-# `man -l` as a reader would see it: it renders without error, has a NAME section, and its footer
-# shows its three fields apart ("clothref-grade 0.1.0   November 2026   CLOTHREF-GRADE(1)"): the
-# source (program and version, nothing else), the month, and the title.
+# `man -l` as a reader would see it: it renders without error, has a NAME section, an EXAMPLES
+# section whose first example runs the page's own command, and an EXIT STATUS section that gives
+# 0 and 2 (every command's "done" and "bad input"), and its footer shows its three fields apart
+# ("clothref-grade 0.1.0   November 2026   CLOTHREF-GRADE(1)"): the source (program and version,
+# nothing else), the month, and the title.
 # Usage: tests/docs/man_pages_test.sh CLI MANDIR VERSION
 # Exit: 0 all good; 1 a page missing or wrong (each named); 77 `man` is not installed.
 set -uo pipefail
@@ -41,6 +43,19 @@ check_page() {
     return
   fi
   grep -q '^NAME' <<<"$text" || fail "$name: no NAME section"
+  # the lines of a section: from its heading to the next heading (a line that starts with a
+  # capital)
+  section() { awk -v s="$1" '$0 == s { on = 1; next } on && /^[A-Z]/ { on = 0 } on' <<<"$text"; }
+  local examples status command=${name/-/ }
+  examples=$(section EXAMPLES)
+  status=$(section 'EXIT STATUS')
+  [ -n "$examples" ] || fail "$name: no EXAMPLES section (cmake/man/$name.h2m)"
+  [ -n "$examples" ] && ! grep -m1 '[a-z]' <<<"$examples" | grep -q "^ *$command\b" &&
+    fail "$name: the first example does not run '$command'"
+  [ -n "$status" ] || fail "$name: no EXIT STATUS section (cmake/man/$name.h2m)"
+  for code in 0 2; do
+    grep -q "^ *$code\b" <<<"$status" || fail "$name: EXIT STATUS does not give $code"
+  done
   grep -q "^ *$name " <<<"$text" || fail "$name: no line of the page starts with '$name '"
   footer=$(grep -v '^[[:space:]]*$' <<<"$text" | tail -n 1)
   # three fields, at least two spaces apart: source, "Month YYYY", TITLE(1)

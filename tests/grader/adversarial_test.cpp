@@ -129,7 +129,10 @@ TEST_P(Adversarial, GetsItsVerdictAndTheAttackFails) {
   // saw nan-results, output-flood and read-reference time out at 3 s while the suite ran).
   const bool ends_by_time = expected.value("verdict", "") == "timed-out" ||
                             expected.value("verdict_rlimits", "") == "timed-out";
-  const std::string timeout = ends_by_time ? "3" : "30";
+  const std::string timeout = expected.contains("timeout")
+                                  ? std::to_string(expected["timeout"].get<int>())
+                              : ends_by_time ? "3"
+                                             : "30";
   const CommandResult run =
       runCli("grade '" + submission.parent_path().string() + "' --no-whole-run --timeout " +
              timeout + " --cache-dir '" + std::string(CLOTHREF_GRADER_CACHE) + "' --results '" +
@@ -206,17 +209,25 @@ TEST_P(Adversarial, GetsItsVerdictAndTheAttackFails) {
         EXPECT_EQ(readText(it->path()).find(secret), std::string::npos) << it->path();
       }
       if (expected.value("keep_work", false)) {
-        EXPECT_TRUE(fs::exists(keep / "skipped.txt"));
+        // Where the probe's folder is a bounded filesystem of its own (bubblewrap, a private mount
+        // namespace) the links go with it; where it is a host folder they are listed, not copied.
+        EXPECT_TRUE(fs::exists(keep / "skipped.txt") ||
+                    !fs::exists(keep / "probes" / "integrate-0" / "sandbox" / "leak"));
         EXPECT_LT(kept_bytes, 64u << 20) << "a linked host folder was copied";
         EXPECT_EQ(report.find("could not copy"), std::string::npos);
       }
     }
   }
+  if (expected.contains("quoted")) {
+    // The student's own words (a compile error), in the output the student reads.
+    EXPECT_NE(results.dump().find(expected["quoted"].get<std::string>()), std::string::npos)
+        << results.dump(1).substr(0, 3000);
+  }
   if (expected.contains("score")) {
     EXPECT_DOUBLE_EQ(results["score"].get<double>(), expected["score"].get<double>());
   }
   if (expected.value("no_files_left", false)) {
-    for (const char* shared : {"/tmp", "/var/tmp", "/dev/shm"}) {
+    for (const char* shared : {"/tmp", "/var/tmp", "/dev/shm", "/run/lock"}) {
       std::error_code error;
       for (const auto& entry : fs::directory_iterator(shared, error)) {
         EXPECT_NE(entry.path().filename().string().rfind(marker, 0), 0u)
@@ -225,6 +236,123 @@ TEST_P(Adversarial, GetsItsVerdictAndTheAttackFails) {
     }
   }
 }
+
+// NaN and garbage never earn a mistake's points (issue 36): every stub of an edition written as a
+// body that only writes NaN into what the stub may change earns no more than the same stub left
+// as the course hands it out (empty, or for Cloth::initializeSpring the template's one example
+// loop). Before the fix a NaN computeSpringForce got 15 / 20 in 2022 (its corners "moved"), and
+// a NaN RK4 7.5 where an empty one got 6.375.
+struct StubBody {
+  const char* file;
+  const char* head;  // the definition's first characters: the body follows its first '{'
+  const char* empty;
+  const char* nan;
+};
+
+const std::vector<StubBody>& stubBodies() {
+  static const std::string template_loop =
+      "  float length = (_particles.position(0) - _particles.position(1)).norm();\n"
+      "  for (int i = 0; i < particlesPerEdge; ++i)\n"
+      "    for (int j = 0; j < particlesPerEdge - 1; ++j)\n"
+      "      _springs.emplace_back(i * particlesPerEdge + j, i * particlesPerEdge + j + 1, "
+      "LENGTH,\n"
+      "                            Spring::Type::STRUCTURAL);\n";
+  static const std::string empty_springs = [] {
+    std::string text = template_loop;
+    replaceAll(text, "LENGTH", "length");
+    return text;
+  }();
+  static const std::string nan_springs = [] {
+    std::string text = template_loop;
+    replaceAll(text, "LENGTH", "std::numeric_limits<float>::quiet_NaN() + 0 * length");
+    return text;
+  }();
+  static const char* const integrate_nan =
+      "  for (Particles *p : particles) {\n"
+      "    p->position().setConstant(std::numeric_limits<float>::quiet_NaN());\n"
+      "    p->velocity().setConstant(std::numeric_limits<float>::quiet_NaN());\n"
+      "  }\n";
+  static const std::vector<StubBody> bodies = {
+      {"cloth.cpp", "void Cloth::initializeSpring()", empty_springs.c_str(), nan_springs.c_str()},
+      {"cloth.cpp", "void Cloth::computeSpringForce()", "",
+       "  _particles.acceleration().setConstant(std::numeric_limits<float>::quiet_NaN());\n"},
+      {"sphere.cpp", "void Spheres::collide(Cloth*", "",
+       "  cloth->particles().position().setConstant(std::numeric_limits<float>::quiet_NaN());\n"
+       "  cloth->particles().velocity().setConstant(std::numeric_limits<float>::quiet_NaN());\n"
+       "  _particles.position().setConstant(std::numeric_limits<float>::quiet_NaN());\n"
+       "  _particles.velocity().setConstant(std::numeric_limits<float>::quiet_NaN());\n"},
+      {"sphere.cpp", "void Spheres::collide() {", "",
+       "  _particles.position().setConstant(std::numeric_limits<float>::quiet_NaN());\n"
+       "  _particles.velocity().setConstant(std::numeric_limits<float>::quiet_NaN());\n"},
+      {"integrator.cpp", "void ExplicitEuler::integrate(", "", integrate_nan},
+      {"integrator.cpp", "void ImplicitEuler::integrate(", "", integrate_nan},
+      {"integrator.cpp", "void MidpointEuler::integrate(", "", integrate_nan},
+      {"integrator.cpp", "void RungeKuttaFourth::integrate(", "", integrate_nan}};
+  return bodies;
+}
+
+// `source` with the body of the definition starting at `head` replaced (it must be there once;
+// absent is fine: 2024 has no Spheres::collide()).
+std::string withBody(std::string source, const std::string& head, const std::string& body) {
+  const std::size_t at = source.find(head);
+  if (at == std::string::npos) return source;
+  EXPECT_EQ(source.find(head, at + 1), std::string::npos) << head;
+  const std::size_t open = source.find('{', at);
+  const std::size_t close = source.find("\n}\n", open);
+  if (open == std::string::npos || close == std::string::npos) {
+    ADD_FAILURE() << "no body after " << head;
+    return source;
+  }
+  return source.substr(0, open + 1) + "\n" + body + source.substr(close + 1);
+}
+
+// Grades the edition's reference with every stub's body replaced (`nan` or empty), and returns
+// results.json.
+nlohmann::json gradeWithBodies(const fs::path& where, const std::string& edition, bool nan) {
+  const fs::path submission = where / (nan ? "nan" : "empty");
+  fs::create_directories(submission);
+  for (const char* name : kFiles) {
+    std::string text = readText(kCorpus / edition / "reference" / "src" / name);
+    text = "#include <limits>\n" + text;
+    for (const StubBody& stub : stubBodies())
+      if (std::string(stub.file) == name)
+        text = withBody(text, stub.head, nan ? stub.nan : stub.empty);
+    writeText(submission / name, text);
+  }
+  const fs::path results = where / (std::string(nan ? "nan" : "empty") + ".json");
+  const CommandResult run =
+      runCli("grade '" + submission.string() + "' --edition " + edition +
+             " --no-whole-run --timeout 30 --cache-dir '" + std::string(CLOTHREF_GRADER_CACHE) +
+             "' --results '" + results.string() + "'");
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  if (run.exit_code != 0) return nlohmann::json::object();
+  return nlohmann::json::parse(readText(results));
+}
+
+class NanStubs : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(NanStubs, EarnNoMoreThanEmptyBodies) {
+  const std::string edition = GetParam();
+  TempDir temp;
+  const nlohmann::json nan = gradeWithBodies(temp.path(), edition, true);
+  const nlohmann::json empty = gradeWithBodies(temp.path(), edition, false);
+  ASSERT_TRUE(nan.contains("extra_data") && empty.contains("extra_data"));
+  const nlohmann::json& nan_scores = nan["extra_data"]["stub_scores"];
+  const nlohmann::json& empty_scores = empty["extra_data"]["stub_scores"];
+  ASSERT_EQ(nan_scores.size(), edition == "2022" ? 8u : 7u) << nan_scores.dump();
+  ASSERT_EQ(empty_scores.size(), nan_scores.size());
+  for (const auto& [stub, points] : nan_scores.items()) {
+    ASSERT_TRUE(empty_scores.contains(stub)) << stub;
+    const double of_nan = points.get<double>(), of_empty = empty_scores[stub].get<double>();
+    std::cout << "[ info     ] " << edition << " " << stub << ": NaN " << of_nan << ", empty "
+              << of_empty << " of " << nan["extra_data"]["stub_max"][stub] << "\n";
+    RecordProperty(edition + " " + stub,
+                   std::to_string(of_nan) + " (NaN) vs " + std::to_string(of_empty) + " (empty)");
+    EXPECT_LE(of_nan, of_empty) << stub << " written as NaN earns more than an empty body";
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Editions, NanStubs, ::testing::Values("2022", "2024"));
 
 INSTANTIATE_TEST_SUITE_P(Suite, Adversarial, ::testing::ValuesIn(suiteCases()),
                          [](const auto& info) {

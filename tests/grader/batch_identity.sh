@@ -14,7 +14,7 @@
 #
 # OUT must be outside the repository (e.g. /tmp/house-before); --jobs 2. BATCH_IDENTITY_CACHE:
 # a compile cache the runs share (the student objects do not depend on the grader's code). Used
-# for the refactors of issue 37 (docs/grading.md, "Adding a probe"): "byte-identical" in a
+# for the refactors of issue 37 (docs/grading-reference.md, "Adding a probe"): "byte-identical" in a
 # commit message means `compare` printed nothing.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)

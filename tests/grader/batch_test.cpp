@@ -169,6 +169,7 @@ TEST(Csv, HeaderHasEveryStubRowsQuoteAndMissingStubsAreEmpty) {
   row.verdict = grader::Verdict::Graded;
   row.isolation = "bubblewrap (net, pid), rlimits";
   row.seconds = 12.34;
+  row.causes = {{"missing-springs", true}, {"rk4-wrong-weights", false}, {"damper-sign", true}};
   BatchRow refused;
   refused.name = "bob";
   refused.verdict = grader::Verdict::NotGradable;
@@ -178,10 +179,14 @@ TEST(Csv, HeaderHasEveryStubRowsQuoteAndMissingStubsAreEmpty) {
   ASSERT_EQ(written.size(), 3u) << csv;
   std::string header = "submission,edition";
   for (const std::string& stub : stubNames()) header += "," + stub;
-  EXPECT_EQ(written[0], header + ",total,max,verdict,isolation,seconds");
+  // one fact per column: the likely causes and the guesses apart, the isolation in none (the
+  // batch's summary says it once)
+  EXPECT_EQ(written[0], header + ",total,max,verdict,causes,guesses,seconds");
   EXPECT_EQ(written[1],
-            "alice,2024,7.5,,,,,,,15,22.5,25,graded,\"bubblewrap (net, pid), rlimits\",12.3");
-  EXPECT_EQ(written[2], "bob,,,,,,,,,,0,0,not-gradable,,0.0");
+            "alice,2024,7.5,,,,,,,15,22.5,25,graded,missing-springs damper-sign,rk4-wrong-weights,"
+            "12.3");
+  EXPECT_EQ(written[2], "bob,,,,,,,,,,0,0,not-gradable,,,0.0");
+  EXPECT_EQ(csv.find("bubblewrap"), std::string::npos);
   EXPECT_EQ(batchCsv({row}, false), written[1] + "\n");
 }
 
@@ -197,8 +202,11 @@ TEST(Csv, RowJsonRoundTripsAndRefusesAStranger) {
   row.verdict = grader::Verdict::Crashed;
   row.isolation = "rlimits only";
   row.seconds = 3.5;
+  row.causes = {{"wrong-mass-split", true}, {"crashed", false}};
   const BatchRow back = rowFromJson(nlohmann::json::parse(rowJson(row).dump()), "row.json");
   EXPECT_EQ(batchCsv({back}, true), batchCsv({row}, true));
+  EXPECT_EQ(back.causes, row.causes);
+  EXPECT_EQ(back.isolation, row.isolation);
   EXPECT_THROW(rowFromJson(nlohmann::json{{"submission", "x"}}, "row.json"), InputError);
 }
 
@@ -381,13 +389,26 @@ TEST_F(Batch, RowPerSubmissionRightVerdictsResumeSkipsGradedAndRegradesHalfGrade
       EXPECT_TRUE(fs::exists(out / name / file)) << name << "/" << file;
   EXPECT_NE(readText(out / "nothing-here" / "report.md").find("none of cloth.cpp"),
             std::string::npos);
-  // the last lines: the submission whose verdict is not `graded`, then where the CSV and the
-  // class overview are
+  // the last lines: the submission whose verdict is not `graded`, how student code ran (once for
+  // the batch: the CSV has no column for it), then where the CSV and the class overview are
   const std::vector<std::string> said = lines(first.output);
-  ASSERT_GE(said.size(), 3u) << first.output;
-  EXPECT_NE(said[said.size() - 3].find("1 with a verdict other than 'graded':"), std::string::npos)
+  ASSERT_GE(said.size(), 4u) << first.output;
+  // before them, where the batch's time went: the graded submissions, slowest first, with their
+  // compile and probe seconds (issue 39); the refused folder is not among them
+  const std::size_t slowest = first.output.find("clothref grade: the slowest:\n");
+  ASSERT_NE(slowest, std::string::npos) << first.output;
+  EXPECT_LT(slowest, first.output.find(" with a verdict other than")) << first.output;
+  const std::string slow_lines = first.output.substr(slowest);
+  EXPECT_NE(slow_lines.find("  reference: "), std::string::npos) << first.output;
+  EXPECT_NE(slow_lines.find("compile "), std::string::npos) << first.output;
+  EXPECT_EQ(slow_lines.find("  nothing-here: 0"), std::string::npos) << first.output;
+  EXPECT_NE(said[said.size() - 4].find("1 with a verdict other than 'graded':"), std::string::npos)
       << first.output;
-  EXPECT_EQ(said[said.size() - 2], "  nothing-here: not-gradable") << first.output;
+  EXPECT_EQ(said[said.size() - 3], "  nothing-here: not-gradable") << first.output;
+  const std::string ran = "clothref grade: student code ran with: ";
+  EXPECT_EQ(said[said.size() - 2].rfind(ran, 0), 0u) << first.output;
+  EXPECT_EQ(first.output.find(ran), first.output.rfind(ran)) << first.output;
+  EXPECT_EQ(csv.find(said[said.size() - 2].substr(ran.size())), std::string::npos) << csv;
   EXPECT_EQ(said.back(), "clothref grade: CSV " + (out / "grades.csv").string() +
                              "; class overview " + (out / "index.html").string())
       << first.output;

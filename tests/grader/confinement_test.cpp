@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <set>
+#include <sstream>
 #include <string>
 #include <thread>
 
@@ -73,6 +74,12 @@ const char* kSpy = R"spy(
   }
 )spy";
 
+// The submissions' folder names, unique to this test process: a spy aborts on any command line
+// naming the other submission, and the suite runs these tests side by side (ctest -j), so with
+// shared names one test's grader, before it blanks its arguments, could stop another's spy.
+const std::string kAlice = "alice-subm-" + std::to_string(getpid());
+const std::string kBobby = "bobby-subm-" + std::to_string(getpid());
+
 // SPY-OF-<name> marks each spy's own source, so reading the other's is visible.
 std::string spySubmission(const fs::path& dir, const std::string& name, const std::string& other,
                           const std::string& other_files, const std::string& other_results) {
@@ -115,7 +122,14 @@ struct SpyReport {
 
 SpyReport spyReport(const fs::path& keep) {
   SpyReport report;
-  const std::string text = readText(keep / "probes" / "integrate-0" / "child.stderr");
+  // Every run of the explicit probe (integrate-0 is the first; a second run, a retry or the
+  // sanitizer run keep theirs beside it), so a spy that got something in any of them is seen.
+  std::string text;
+  std::error_code error;
+  for (const auto& entry : fs::directory_iterator(keep / "probes", error))
+    if (entry.path().filename().string().rfind("integrate-0", 0) == 0 &&
+        fs::exists(entry.path() / "child.stderr"))
+      text += readText(entry.path() / "child.stderr");
   std::istringstream in(text);
   for (std::string line; std::getline(in, line);) {
     if (line.rfind("SPY-UID ", 0) == 0)
@@ -141,15 +155,15 @@ CommandResult gradeDirect(const std::vector<std::string>& args, const fs::path& 
 TEST(Confinement, TwoGradersSideBySideInTheFallbackRunAsDistinctUidsAndReachNothing) {
   if (geteuid() != 0) GTEST_SKIP() << "the fallback's uids need a grader running as root";
   TempDir temp;
-  const fs::path a = temp.path() / "alice-subm", b = temp.path() / "bobby-subm";
+  const fs::path a = temp.path() / kAlice, b = temp.path() / kBobby;
   const fs::path a_results = temp.path() / "alice-out" / "results.json";
   const fs::path b_results = temp.path() / "bobby-out" / "results.json";
   fs::create_directories(a_results.parent_path());
   fs::create_directories(b_results.parent_path());
   // Two graders know nothing of each other's submission folders (what a TA leaves readable is
   // the TA's to close): the spies go for what the graders hold, the probes and scratch folders.
-  spySubmission(a, "alice", "bobby-subm", "/nonexistent", "/nonexistent");
-  spySubmission(b, "bobby", "alice-subm", "/nonexistent", "/nonexistent");
+  spySubmission(a, "alice", kBobby, "/nonexistent", "/nonexistent");
+  spySubmission(b, "bobby", kAlice, "/nonexistent", "/nonexistent");
   setenv("CLOTHREF_GRADER_ISOLATION", "rlimits", 1);
   const auto grade = [&](const fs::path& dir, const fs::path& results, const fs::path& keep,
                          CommandResult& out) {
@@ -167,7 +181,13 @@ TEST(Confinement, TwoGradersSideBySideInTheFallbackRunAsDistinctUidsAndReachNoth
   ASSERT_EQ(b_run.exit_code, 0) << b_run.output;
   for (const fs::path& results : {a_results, b_results}) {
     const nlohmann::json json = nlohmann::json::parse(readText(results));
-    EXPECT_DOUBLE_EQ(json["score"].get<double>(), 80.0) << results;
+    // On a failure, why: each failed test's name and the start of its output.
+    std::string failed;
+    if (json.contains("tests") && json["tests"].is_array())
+      for (const auto& t : json["tests"])
+        if (t.value("status", "") != "passed")
+          failed += t.value("name", "?") + ": " + t.value("output", "").substr(0, 400) + "\n";
+    EXPECT_DOUBLE_EQ(json["score"].get<double>(), 80.0) << results << "\n" << failed;
   }
   const SpyReport alice = spyReport(temp.path() / "alice-keep");
   const SpyReport bobby = spyReport(temp.path() / "bobby-keep");
@@ -190,13 +210,18 @@ TEST(Confinement, TwoGradersSideBySideInTheFallbackRunAsDistinctUidsAndReachNoth
 // submission folder), its results in the batch folder, or the grader's command line.
 TEST(Confinement, TwoSubmissionsOfABatchReachNothingOfEachOther) {
   if (geteuid() != 0) GTEST_SKIP() << "the fallback's uids need a grader running as root";
-  TempDir temp;
+  // In /srv, as ASingleGradeReachesNoNeighbour: under /tmp the probes' private /tmp hid the other
+  // submission and the batch folder whatever the batch covered.
+  const fs::path base = "/srv";
+  if (!fs::is_directory(base) || access(base.c_str(), W_OK) != 0)
+    GTEST_SKIP() << base << " is not a folder this test may make its own folder in";
+  TempDir temp(base);
   const fs::path subs = temp.path() / "subs", out = temp.path() / "batch";
-  const fs::path a = subs / "alice-subm", b = subs / "bobby-subm";
-  spySubmission(a, "alice", "bobby-subm", (b / "src" / "cloth.cpp").string(),
-                (out / "bobby-subm" / "report.md").string());
-  spySubmission(b, "bobby", "alice-subm", (a / "src" / "cloth.cpp").string(),
-                (out / "alice-subm" / "report.md").string());
+  const fs::path a = subs / kAlice, b = subs / kBobby;
+  spySubmission(a, "alice", kBobby, (b / "src" / "cloth.cpp").string(),
+                (out / kBobby / "report.md").string());
+  spySubmission(b, "bobby", kAlice, (a / "src" / "cloth.cpp").string(),
+                (out / kAlice / "report.md").string());
   fs::permissions(temp.path(), fs::perms::owner_all | fs::perms::others_exec |
                                    fs::perms::group_exec | fs::perms::others_read);
   setenv("CLOTHREF_GRADER_ISOLATION", "rlimits", 1);
@@ -207,13 +232,63 @@ TEST(Confinement, TwoSubmissionsOfABatchReachNothingOfEachOther) {
   const std::string csv = readText(out / "grades.csv");
   // The folders are readable on purpose: the batch must cover them. Where no private mount
   // namespace can be made (a chroot) it refuses them instead, which is the rule, not this test's.
-  const std::string problem = readText(out / "alice-subm" / "row.json");
+  const std::string problem = readText(out / kAlice / "row.json");
   if (problem.find("allows no private mount namespace") != std::string::npos)
     GTEST_SKIP() << "no private mount namespace here: the batch refuses readable folders";
-  EXPECT_NE(csv.find("alice-subm,2022,15,20,10,10,5,2.5,2.5,15,80,80,graded"), std::string::npos)
-      << csv;
-  EXPECT_NE(csv.find("bobby-subm,2022,15,20,10,10,5,2.5,2.5,15,80,80,graded"), std::string::npos)
-      << csv;
+  // On a failure, why: each report's lines on how its probes ended (a spy that got something
+  // aborts, and its two runs then differ).
+  const auto why = [&](const std::string& name) {
+    std::string lines;
+    std::istringstream report(readText(out / name / "report.md"));
+    for (std::string line; std::getline(report, line);)
+      if (line.find("run") != std::string::npos && line.find("first") != std::string::npos)
+        lines += line + "\n";
+    return std::string(name) + ": " + (lines.empty() ? "(no run lines)\n" : lines);
+  };
+  EXPECT_NE(csv.find(kAlice + ",2022,15,20,10,10,5,2.5,2.5,15,80,80,graded"), std::string::npos)
+      << csv << why(kAlice);
+  EXPECT_NE(csv.find(kBobby + ",2022,15,20,10,10,5,2.5,2.5,15,80,80,graded"), std::string::npos)
+      << csv << why(kBobby);
+}
+
+// A single grade covers its neighbours as a batch does (issue 36): `clothref grade subs/alice`
+// beside subs/bobby (a TA's usual layout, folders readable): alice's probe cannot read bobby's
+// files. Before, in the fallback, it read them (alice's results quoted a line of bobby's code).
+TEST(Confinement, ASingleGradeReachesNoNeighbour) {
+  if (geteuid() != 0) GTEST_SKIP() << "the fallback's uids need a grader running as root";
+  // In /srv, as a TA's folder of hand-ins lies outside every folder the grader hides anyway: a
+  // probe gets a private /tmp (and /var/tmp, /dev/shm), and the checkout with the build is ours,
+  // so under either this test passed with the cover taken out.
+  const fs::path base = "/srv";
+  if (!fs::is_directory(base) || access(base.c_str(), W_OK) != 0)
+    GTEST_SKIP() << base << " is not a folder this test may make its own folder in";
+  TempDir temp(base);
+  // Every folder above must let other uids through, or the probe could not reach the
+  // neighbour anyway and the test would prove nothing.
+  for (fs::path up = base; !up.empty(); up = up.parent_path()) {
+    if ((fs::status(up).permissions() & fs::perms::others_exec) == fs::perms::none)
+      GTEST_SKIP() << up << " is closed to other uids: no neighbour is reachable to test";
+    if (up == up.root_path()) break;
+  }
+  const fs::path subs = temp.path() / "subs";
+  const fs::path a = subs / kAlice, b = subs / kBobby;
+  spySubmission(a, "alice", kBobby, (b / "src" / "cloth.cpp").string(), "/nonexistent");
+  spySubmission(b, "bobby", kAlice, (a / "src" / "cloth.cpp").string(), "/nonexistent");
+  fs::permissions(temp.path(), fs::perms::owner_all | fs::perms::others_exec |
+                                   fs::perms::group_exec | fs::perms::others_read);
+  setenv("CLOTHREF_GRADER_ISOLATION", "rlimits", 1);
+  const fs::path results = temp.path() / "alice-results.json";
+  const CommandResult run =
+      gradeDirect({"grade", a.string(), "--no-whole-run", "--timeout", "20", "--results",
+                   results.string(), "--cache-dir", CLOTHREF_GRADER_CACHE},
+                  temp.path() / "run");
+  if (run.exit_code == 2 &&
+      run.output.find("allows no private mount namespace") != std::string::npos)
+    GTEST_SKIP() << "no private mount namespace here: the grade refuses readable neighbours";
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::string text = readText(results);
+  EXPECT_EQ(text.find("SPY-READ"), std::string::npos) << text.substr(0, 3000);
+  EXPECT_DOUBLE_EQ(nlohmann::json::parse(text)["score"].get<double>(), 80.0);
 }
 
 }  // namespace

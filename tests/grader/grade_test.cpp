@@ -317,6 +317,11 @@ TEST(CourseCloth, CourseOnlyCodeIsGradedOnTheCourseCloth) {
     EXPECT_TRUE(known.count(folder)) << folder << " is not in probeFolders()";
   }
   EXPECT_EQ(known[grader::integratorFolder(0, true)], "ExplicitEuler::integrate");
+  // The retry answered: the crash on the probe cloth was never explained, so no sanitizer build
+  // was made (issue 39: it was, and its text was thrown away).
+  for (const auto& entry : fs::directory_iterator(temp.path() / "work", error))
+    EXPECT_NE(entry.path().filename().string().rfind("sanitize", 0), 0u)
+        << entry.path() << ": a sanitizer build for a crash the retry replaced";
   for (const auto& test : results["tests"]) {
     if (test["tags"][0] == "ExplicitEuler::integrate") {
       EXPECT_NE(test["output"].get<std::string>().find("graded on the course's cloth"),

@@ -63,6 +63,8 @@ TEST(GraderIncludeRules, EachBrokenRuleIsNamedWithItsFileAndLine) {
       {"grade/explain/stages/stages.h", "\"grader/grade/batch.h\""},  // explain includes the batch
       {"grade/report/outputs.h", "\"grader/grade/run/build.h\""},     // report includes run
       {"grade/report/html_report.h", "\"grader/grade/probes/util.h\""},  // ... or probes
+      {"grade/report/class_page.h", "\"grader/grade/batch.h\""},         // ... or the batch
+      {"grade/report/outputs.cpp", "\"grader/grade/grade.h\""},          // ... or the grading
       {"grade/grade.h", "\"grader/grade/probes/util.h\""},        // the top level: probes.h only
       {"bridge/probe_protocol.h", "\"grader/grade/results.h\""},  // the bridge is std only
       {"driver/probe_driver.cpp", "\"../bridge/probe_keys.h\""},  // never relative
@@ -173,19 +175,21 @@ std::set<std::string> onCycles(const std::map<std::string, std::set<std::string>
 }
 
 // Cycles that are known and owned elsewhere: run/'s (its build and cache, its child process,
-// sandbox, spawn and tools include each other) and report/'s with the batch (html_report grades
-// a submission and reads a batch's rows). A module leaves this list when its cycle is gone.
-const std::set<std::string> kKnownOnCycles = {
-    "grade/batch",       "grade/report/class_page", "grade/report/html_report",
-    "grade/run/build",   "grade/run/child_process", "grade/run/compile_cache",
-    "grade/run/sandbox", "grade/run/spawn",         "grade/run/tools"};
+// sandbox, spawn and tools include each other). A module leaves this list when its cycle is gone
+// (the test fails on a listed module that is on no cycle, so the list only shrinks).
+const std::set<std::string> kKnownOnCycles = {"grade/run/build",         "grade/run/child_process",
+                                              "grade/run/compile_cache", "grade/run/sandbox",
+                                              "grade/run/spawn",         "grade/run/tools"};
 
 // docs/layout.md: no two files of grade/ include each other, directly or through others.
 TEST(GraderRooms, NoTwoFilesIncludeEachOther) {
   const auto graph = gradeModules();
   ASSERT_GT(graph.size(), 40u);  // the tree was read
-  for (const std::string& module : onCycles(graph))
+  const std::set<std::string> on_cycles = onCycles(graph);
+  for (const std::string& module : on_cycles)
     EXPECT_TRUE(kKnownOnCycles.count(module)) << module << " is on an include cycle";
+  for (const std::string& module : kKnownOnCycles)
+    EXPECT_TRUE(on_cycles.count(module)) << module << " is on no cycle: take it off the known list";
   // The check finds one: two modules of the mistakes room including each other.
   auto broken = graph;
   broken["grade/mistakes/models"].insert("grade/mistakes/integrator");

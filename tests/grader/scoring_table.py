@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Old (per-check) and new (per-mistake) scores side by side, per submission, for the Markdown
-table in docs/grading.md ("Points follow mistakes").
+table in docs/grading-reference.md ("Points follow mistakes").
 
 Grades each set of submissions twice as a batch (`clothref grade DIR... --out BATCH`): once with
 a rubric {"scoring": "per-check"}, once with the default rubric (per-mistake), then reads the
@@ -14,7 +14,8 @@ under load, and the row says so).
 Usage: scoring_table.py [--clothref build/bin/clothref] [--work build/scoring-table]
                         [--jobs 1] [--timeout 60] [--regrade] [SET ...]
   SET       a name and a glob of submission folders below the repository, as NAME=GLOB
-            (default: corpus=tests/grader/corpus/20*/* handwritten=tests/grader/handwritten/20*/*)
+            (default: corpus=tests/grader/corpus/20*/* handwritten=tests/grader/handwritten/20*/*
+            blind=tests/grader/blind/20*/*)
   --work    where the batches go (WORK/<set>-per-check, WORK/<set>-per-mistake); a batch skips
             the submissions it already graded, so pass --regrade (or a new folder) after the
             grader changed
@@ -30,10 +31,14 @@ import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
-DEFAULT_SETS = ["corpus=tests/grader/corpus/20*/*", "handwritten=tests/grader/handwritten/20*/*"]
+DEFAULT_SETS = ["corpus=tests/grader/corpus/20*/*", "handwritten=tests/grader/handwritten/20*/*",
+                "blind=tests/grader/blind/20*/*"]
 MODES = ["per-check", "per-mistake"]
-NOTE = re.compile(r"One mistake \(`([^`]+)`\) explains every failed check of this stub: "
-                  r"it loses ([0-9.]+) % of its points once")
+# The rubric's line on a stub scored per mistake: one proven mistake, or several whose deductions
+# add up ("2 proven mistakes (`a`, `b`) explain ...: together they lose 25 + 50 = 75 % ...").
+NOTE = re.compile(r"(?:One mistake|[0-9]+ proven mistakes) \(([^)]+)\) explains? every failed "
+                  r"check of this stub: (?:it loses|together they lose) ([0-9.]+(?: \+ [0-9.]+)*"
+                  r"(?: = [0-9.]+)?) % of its points once")
 
 
 def points(value):
@@ -120,7 +125,7 @@ def table(name, old, new, problems):
                 continue
             stubs_changed += 1
             note = b["notes"].get(stub)
-            cause = f"`{note[0]}`, {note[1]} %" if note else "no one-mistake line"
+            cause = f"{note[0]}, {note[1]} %" if note else "no per-mistake line"
             why.append(f"`{stub}` {points(before)} → {points(after)} ({cause})")
         if a["failed"] != b["failed"]:
             why.append("**the two gradings found different checks failing** (a timeout?)")

@@ -142,7 +142,7 @@ TEST_F(PythonTest, PlotsATraceAndTwoOverlaidTraces) {
 TEST_F(PythonTest, PlotsASweepAndAStabilityTable) {
   const std::string sweep = dir.file("sweep.json");
   ASSERT_EQ(test::runCli("sweep --scene spring --method explicit --method rk4 --repeats 1 "
-                         "--substeps 1 --substeps 10 --substeps 40 --substeps 160 --quiet "
+                         "--substeps 1 --substeps 10 --substeps 40 --substeps 160 --peer --quiet "
                          "--json " +
                          sweep)
                 .exit_code,
@@ -179,6 +179,8 @@ TEST_F(PythonTest, PlotsASweepAndAStabilityTable) {
   };
   EXPECT_NEAR(order("rk4"), 4.0, 0.2) << markdown;
   EXPECT_NEAR(order("explicit"), 1.0, 0.2) << markdown;
+  // the odeint peer's points (--peer) are charted, not tabled
+  EXPECT_EQ(markdown.find("odeint"), std::string::npos) << markdown;
 }
 
 // Runs `python3 -B -c SCRIPT ARGS` with the project's package importable; stdout and the status.

@@ -209,5 +209,50 @@ TEST(ImpactVelocities, SeparatingBodiesKeepTheirVelocities) {
   EXPECT_EQ(out.b, c.vb);
 }
 
+// The contact's closed form: the positions move apart along the normal by 2 * 0.15 * p in total,
+// each body by 0.15 p whatever its mass (a fixed particle too); the velocities are the impact's.
+TEST(ContactOutcome, CorrectsBothBodiesAndAppliesTheImpactOnlyWhenApproaching) {
+  const Eigen::Vector3d xa(0.1, 0.2, -0.05), xb(0.8, 0.5, 0.1);
+  const double distance = 0.9;
+  const double gap = (xa - xb).norm();
+  const Eigen::Vector3d n = (xa - xb) / gap;
+  const Eigen::Vector3d va(1, 0.2, 0), vb(-0.5, 0.3, 0.4);
+  ASSERT_LT((va - vb).dot(n), 0);  // approaching
+  for (double mb : {3.0, 0.0}) {
+    for (double e : {0.0, 0.8}) {
+      const ContactOutcome out = contactOutcome(8, xa, va, mb, xb, vb, distance, e, 0.15);
+      ASSERT_TRUE(out.contact);
+      EXPECT_NEAR(out.penetration, distance - gap, 1e-15);
+      EXPECT_LT((out.normal - n).norm(), 1e-15);
+      // separation grows by 0.3 p along n; each body moved by 0.15 p, the unweighted midpoint stays
+      EXPECT_NEAR((out.position_a - out.position_b).dot(n), gap + 0.3 * (distance - gap), 1e-15);
+      EXPECT_NEAR((out.position_a - xa).norm(), 0.15 * (distance - gap), 1e-15);
+      EXPECT_NEAR((out.position_b - xb).norm(), 0.15 * (distance - gap), 1e-15);
+      EXPECT_LT((out.position_a + out.position_b - xa - xb).norm(), 1e-15);
+      const ImpactVelocities impact = impactVelocities(8, va, mb, vb, n, e);
+      EXPECT_LT((out.velocity_a - impact.a).norm(), 1e-15);
+      EXPECT_LT((out.velocity_b - impact.b).norm(), 1e-15);
+      EXPECT_NEAR((out.velocity_a - out.velocity_b).dot(n), -e * (va - vb).dot(n), 1e-12);
+      if (mb == 0) {
+        EXPECT_EQ(out.velocity_b, vb);  // immovable in the impulse, not in position
+      }
+    }
+  }
+  // separating: velocities untouched, positions corrected all the same
+  const ContactOutcome apart = contactOutcome(8, xa, -va, 3, xb, -vb, distance, 0.8, 0.15);
+  ASSERT_TRUE(apart.contact);
+  EXPECT_EQ(apart.velocity_a, -va);
+  EXPECT_EQ(apart.velocity_b, -vb);
+  EXPECT_NEAR((apart.position_a - xa).norm(), 0.15 * (distance - gap), 1e-15);
+  // out of reach: nothing moves; touching (p = 0) counts as a contact
+  const ContactOutcome far = contactOutcome(8, xa, va, 3, xb, vb, 0.5, 0.8, 0.15);
+  EXPECT_FALSE(far.contact);
+  EXPECT_EQ(far.position_a, xa);
+  EXPECT_EQ(far.velocity_b, vb);
+  EXPECT_TRUE(
+      contactOutcome(1, Eigen::Vector3d(1, 0, 0), va, 1, Eigen::Vector3d(0, 0, 0), vb, 1, 0, 0.15)
+          .contact);
+}
+
 }  // namespace
 }  // namespace clothref

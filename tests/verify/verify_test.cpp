@@ -91,6 +91,38 @@ TEST(Convergence, DoubleOrdersMatchTheMethods) {
   expectAllPass(convergenceChecks(studies));
 }
 
+// Where contacts put the bodies: every row passes, each case has a position and a velocity row
+// in both precisions, and a separating pair's velocity row is exact.
+TEST(Contact, PositionsAndVelocitiesAreTheCoursesEquations) {
+  const std::vector<CheckRow> rows = contactChecks();
+  expectAllPass(rows);
+  // 9 cases (4 particle-sphere, 4 sphere-pair, 1 fixed particle) x 2 rows x 2 precisions
+  EXPECT_EQ(rows.size(), 9u * 2 * 2);
+  int separating = 0;
+  for (const CheckRow& row : rows) {
+    if (row.check.find("separating") != std::string::npos &&
+        row.check.find("v_before") != std::string::npos) {
+      EXPECT_EQ(row.tolerance, 0.0) << row.check;
+      ++separating;
+    }
+    EXPECT_LT(row.tolerance, row.precision == Precision::Float ? 1e-5 : 1e-13) << row.check;
+  }
+  EXPECT_EQ(separating, 4 * 2);
+}
+
+// The odeint peer agrees with the library's explicit, RK4 and symplectic Euler, and the bounds are
+// round-off sized: far below what a changed stage would move (docs/verification.md).
+TEST(Peer, LibraryMethodsAgreeWithOdeint) {
+  const std::vector<CheckRow> rows = peerChecks();
+  expectAllPass(rows);
+  // cloth: 3 steppers x 2 precisions; sphere: 2 steppers x double
+  EXPECT_EQ(rows.size(), 3u * 2 + 2);
+  for (const CheckRow& row : rows) {
+    EXPECT_NE(row.check.find("1000 steps"), std::string::npos) << row.check;
+    EXPECT_LT(row.tolerance, row.precision == Precision::Float ? 1e-3 : 1e-11) << row.check;
+  }
+}
+
 TEST(FreeCloth, EveryMethodKeepsMomentum) { expectAllPass(freeClothMomentumChecks()); }
 
 TEST(Energy, EveryMethodBehavesAsItsAmplificationFactorSays) { expectAllPass(energyChecks()); }

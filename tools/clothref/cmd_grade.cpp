@@ -1,12 +1,13 @@
 // clothref grade DIR...: compile a student's cloth.cpp, sphere.cpp and integrator.cpp against the
-// course stand-in and grade each stub (docs/grading.md). With --out BATCHDIR: a batch (many
-// submissions in parallel, resume, shards, a CSV summary; grader/grade/batch.h).
+// course stand-in and grade each stub (docs/grading-reference.md). With --out BATCHDIR: a batch
+// (many submissions in parallel, resume, shards, a CSV summary; grader/grade/batch.h).
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <iomanip>
 #include <iostream>
 #include <string>
 #include <utility>
@@ -74,9 +75,17 @@ void checkOutputPath(const std::string& option, const std::string& path) {
                      std::strerror(errno));
 }
 
-// The batch's last lines: what it did, the submissions whose verdict is not `graded` (at most 20
-// by name), and where the CSV and the class overview are.
+// The batch's last lines: the slowest submissions and why, what it did, the submissions whose
+// verdict is not `graded` (at most 20 by name), and where the CSV and the class overview are.
 void printBatchEnd(const grader::BatchSummary& summary) {
+  // where the time went first: the lines after the summary stay the last ones
+  if (!summary.slowest.empty()) {
+    std::cerr << "clothref grade: the slowest:\n";
+    for (const auto& slow : summary.slowest)
+      std::cerr << "  " << grader::safeName(slow.name) << ": " << std::fixed << std::setprecision(1)
+                << slow.seconds << " s (" << slow.why << ")\n";
+    std::cerr.unsetf(std::ios::floatfield);
+  }
   std::cerr << "clothref grade: " << summary.rows.size() << " submissions (" << summary.graded
             << " graded now, " << summary.skipped << " already graded), " << summary.failed
             << " with a verdict other than 'graded'" << (summary.not_graded.empty() ? "" : ":")
@@ -86,6 +95,8 @@ void printBatchEnd(const grader::BatchSummary& summary) {
               << grader::verdictId(summary.not_graded[k].second) << '\n';
   if (summary.not_graded.size() > 20)
     std::cerr << "  ... and " << summary.not_graded.size() - 20 << " more (the CSV has them all)\n";
+  for (const std::string& isolation : summary.isolation)
+    std::cerr << "clothref grade: student code ran with: " << grader::safeName(isolation) << '\n';
   std::cerr << "clothref grade: CSV " << grader::safeName(summary.csv.string())
             << "; class overview " << grader::safeName(summary.index.string()) << '\n';
 }
@@ -162,114 +173,113 @@ Command addGradeCommand(CLI::App& root) {
   app->add_flag("--csv-no-header", options->csv_no_header,
                 "batch: no header line in the CSV (for shards 2..n before concatenating)");
   app->add_flag("--quiet", options->quiet, "batch: no progress or summary on stderr");
-  return {
-      app, [options, shard] {
-        const bool batch = !options->out.empty();
-        const bool single = options->dirs.size() == 1 && !batch;
-        if (!single && (!options->results.empty() || !options->junit.empty() ||
-                        !options->report.empty() || !options->html.empty()))
-          throw InputError(
-              batch ? "--results, --junit, --report and --html are per submission; a batch "
-                      "(--out) writes them into BATCHDIR/<name>/"
-                    : "--results, --junit, --report and --html take one submission DIR; got " +
-                          std::to_string(options->dirs.size()));
-        const bool sharded = shard->count() > 0;  // --shard "" is a shard, and a bad one
-        if (!batch && (options->jobs != 1 || sharded || options->regrade || !options->csv.empty() ||
-                       options->csv_no_header))
-          throw InputError(
-              "--jobs, --shard, --regrade, --csv and --csv-no-header need --out "
-              "BATCHDIR (batch grading)");
-        for (const auto& [option, path] :
-             {std::pair<const char*, std::string>{"--results", options->results},
-              {"--junit", options->junit},
-              {"--report", options->report},
-              {"--html", options->html},
-              {"--csv", options->csv}})
-          checkOutputPath(option, path);
-        grader::GradeOptions grade;
-        grade.edition = options->edition;
-        if (!options->rubric.empty()) grade.rubric_path = options->rubric;
-        grade.keep_work = options->keep_work;
-        grade.whole_run = !options->no_whole_run;
-        grade.limits.wall_seconds = options->timeout;
-        grade.limits.cpu_seconds = static_cast<std::uint64_t>(options->timeout) + 1;
-        grade.max_file_bytes = options->max_file_bytes;
-        grade.toolchain.optimisation = options->optimisation;
-        grade.toolchain.cache_dir = options->cache_dir;
-        if (batch) {
-          grader::BatchOptions batch_options;
-          batch_options.out_dir = options->out;
-          batch_options.csv = options->csv;
-          batch_options.csv_header = !options->csv_no_header;
-          batch_options.jobs = options->jobs;
-          if (sharded) batch_options.shard = grader::parseShard(options->shard);
-          batch_options.regrade = options->regrade;
-          batch_options.quiet = options->quiet;
-          batch_options.one_submission = options->one_submission;
-          batch_options.grade = grade;
-          std::vector<std::filesystem::path> dirs(options->dirs.begin(), options->dirs.end());
-          const grader::BatchSummary summary = grader::runBatch(dirs, batch_options, std::cerr);
-          if (!options->quiet) printBatchEnd(summary);
-          return kExitOk;  // every submission has a row, whatever its verdict
-        }
-        int exit_code = kExitOk;
-        for (const std::string& dir : options->dirs) {
-          grader::GradeReport report;
-          nlohmann::ordered_json whole_run_view;  // --html's pictures
-          try {
-            if (!options->one_submission) {
-              const std::vector<std::string> several = grader::submissionsBelow(dir);
-              if (!several.empty())
-                throw InputError(grader::severalSubmissionsProblem(dir, several));
+  return {app, [options, shard] {
+            const bool batch = !options->out.empty();
+            const bool single = options->dirs.size() == 1 && !batch;
+            if (!single && (!options->results.empty() || !options->junit.empty() ||
+                            !options->report.empty() || !options->html.empty()))
+              throw InputError(
+                  batch ? "--results, --junit, --report and --html are per submission; a batch "
+                          "(--out) writes them into BATCHDIR/<name>/"
+                        : "--results, --junit, --report and --html take one submission DIR; got " +
+                              std::to_string(options->dirs.size()));
+            const bool sharded = shard->count() > 0;  // --shard "" is a shard, and a bad one
+            if (!batch && (options->jobs != 1 || sharded || options->regrade ||
+                           !options->csv.empty() || options->csv_no_header))
+              throw InputError(
+                  "--jobs, --shard, --regrade, --csv and --csv-no-header need --out "
+                  "BATCHDIR (batch grading)");
+            for (const auto& [option, path] :
+                 {std::pair<const char*, std::string>{"--results", options->results},
+                  {"--junit", options->junit},
+                  {"--report", options->report},
+                  {"--html", options->html},
+                  {"--csv", options->csv}})
+              checkOutputPath(option, path);
+            grader::GradeOptions grade;
+            grade.edition = options->edition;
+            if (!options->rubric.empty()) grade.rubric_path = options->rubric;
+            grade.keep_work = options->keep_work;
+            grade.whole_run = !options->no_whole_run;
+            grade.limits = grader::limitsForTimeout(options->timeout);
+            grade.max_file_bytes = options->max_file_bytes;
+            grade.toolchain.optimisation = options->optimisation;
+            grade.toolchain.cache_dir = options->cache_dir;
+            if (batch) {
+              grader::BatchOptions batch_options;
+              batch_options.out_dir = options->out;
+              batch_options.csv = options->csv;
+              batch_options.csv_header = !options->csv_no_header;
+              batch_options.jobs = options->jobs;
+              if (sharded) batch_options.shard = grader::parseShard(options->shard);
+              batch_options.regrade = options->regrade;
+              batch_options.quiet = options->quiet;
+              batch_options.one_submission = options->one_submission;
+              batch_options.grade = grade;
+              std::vector<std::filesystem::path> dirs(options->dirs.begin(), options->dirs.end());
+              const grader::BatchSummary summary = grader::runBatch(dirs, batch_options, std::cerr);
+              if (!options->quiet) printBatchEnd(summary);
+              return kExitOk;  // every submission has a row, whatever its verdict
             }
-            report = options->html.empty() ? grader::gradeSubmission(dir, grade)
-                                           : grader::gradeWithWholeRun(dir, grade, whole_run_view);
-          } catch (const InputError& error) {
-            std::cerr << "clothref grade: " << grader::safeName(error.what()) << '\n';
-            exit_code = kExitBadInput;
-            continue;
-          }
-          // Every output is rendered first, then written; when one cannot be written (a full
-          // disk) those already written by this run are removed again and no "graded" line
-          // claims success: all of the outputs or none of them.
-          std::vector<std::pair<std::string, std::string>> outputs;  // path, bytes
-          if (!options->results.empty())
-            outputs.emplace_back(
-                options->results,
-                grader::withHtmlSummary(grader::resultsJson(report), report)
-                        .dump(2, ' ', false, nlohmann::json::error_handler_t::replace) +
-                    "\n");
-          if (!options->html.empty())
-            outputs.emplace_back(options->html, grader::studentReportHtml(report, whole_run_view));
-          if (!options->junit.empty())
-            outputs.emplace_back(options->junit, grader::junitXml(report));
-          if (!options->report.empty())
-            outputs.emplace_back(options->report, grader::markdownReport(report));
-          std::vector<std::string> written;
-          try {
-            for (const auto& [path, bytes] : outputs) {
-              OutputFile out(path);
-              out.stream() << bytes;
-              out.commit();
-              written.push_back(path);
+            int exit_code = kExitOk;
+            for (const std::string& dir : options->dirs) {
+              grader::GradeReport report;
+              nlohmann::ordered_json whole_run_view;  // --html's pictures
+              try {
+                if (!options->one_submission) {
+                  const std::vector<std::string> several = grader::submissionsBelow(dir);
+                  if (!several.empty())
+                    throw InputError(grader::severalSubmissionsProblem(dir, several));
+                }
+                report = grader::gradeSubmission(dir, grade);
+                if (!options->html.empty()) whole_run_view = grader::wholeRunView(report);
+              } catch (const InputError& error) {
+                std::cerr << "clothref grade: " << grader::safeName(error.what()) << '\n';
+                exit_code = kExitBadInput;
+                continue;
+              }
+              // Every output is rendered first, then written; when one cannot be written (a full
+              // disk) those already written by this run are removed again and no "graded" line
+              // claims success: all of the outputs or none of them.
+              std::vector<std::pair<std::string, std::string>> outputs;  // path, bytes
+              if (!options->results.empty())
+                outputs.emplace_back(
+                    options->results,
+                    grader::withHtmlSummary(grader::resultsJson(report), report)
+                            .dump(2, ' ', false, nlohmann::json::error_handler_t::replace) +
+                        "\n");
+              if (!options->html.empty())
+                outputs.emplace_back(options->html,
+                                     grader::studentReportHtml(report, whole_run_view));
+              if (!options->junit.empty())
+                outputs.emplace_back(options->junit, grader::junitXml(report));
+              if (!options->report.empty())
+                outputs.emplace_back(options->report, grader::markdownReport(report));
+              std::vector<std::string> written;
+              try {
+                for (const auto& [path, bytes] : outputs) {
+                  OutputFile out(path);
+                  out.stream() << bytes;
+                  out.commit();
+                  written.push_back(path);
+                }
+              } catch (const InputError&) {
+                for (const std::string& path : written) {
+                  std::error_code ignored;
+                  if (std::filesystem::is_regular_file(path, ignored))
+                    std::filesystem::remove(path, ignored);
+                }
+                throw;
+              }
+              if (single && outputs.empty()) std::cout << grader::markdownReport(report);
+              if (!options->quiet) {
+                for (const std::string& line : grader::choiceLines(report))
+                  std::cerr << "clothref grade: " << line << '\n';
+                std::cerr << grader::summaryLine(report) << '\n';
+              }
             }
-          } catch (const InputError&) {
-            for (const std::string& path : written) {
-              std::error_code ignored;
-              if (std::filesystem::is_regular_file(path, ignored))
-                std::filesystem::remove(path, ignored);
-            }
-            throw;
-          }
-          if (single && outputs.empty()) std::cout << grader::markdownReport(report);
-          if (!options->quiet) {
-            for (const std::string& line : grader::choiceLines(report))
-              std::cerr << "clothref grade: " << line << '\n';
-            std::cerr << grader::summaryLine(report) << '\n';
-          }
-        }
-        return exit_code;
-      }};
+            return exit_code;
+          }};
 }
 
 }  // namespace clothref::cli

@@ -1,7 +1,7 @@
 // clothref gradescope: writes the Gradescope autograder archive (setup.sh and run_autograder at
 // the zip root, this checkout's sources, the rubric) with tools/grader/gradescope/make_archive.py.
 // The archive holds the sources of a commit, so it is made from the source checkout this binary
-// was built from; docs/grading.md, "Gradescope".
+// was built from; docs/grading-reference.md, "Gradescope".
 #include <unistd.h>
 
 #include <memory>
@@ -52,7 +52,7 @@ Command addGradescopeCommand(CLI::App& root) {
   CLI::App* app = root.add_subcommand(
       "gradescope",
       "Write the Gradescope autograder archive: setup.sh, run_autograder, this checkout's sources "
-      "and the rubric (docs/grading.md, \"Gradescope\")");
+      "and the rubric (docs/grading-reference.md, \"Gradescope\")");
   auto options = std::make_shared<GradescopeOptions>();
   app->add_option("-o,--output", options->output, "The archive to write (autograder.zip)")
       ->required();

@@ -3,6 +3,7 @@
 // CSV and JSON (lib/clothref/analysis/work_precision.h, docs/methods.md). Progress on stderr.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -23,6 +24,7 @@ struct SweepOptions {
   std::vector<int> substeps;
   std::string csv;
   std::string json = "-";
+  bool peer = false;
   bool quiet = false;
 };
 
@@ -54,7 +56,13 @@ int runSweep(const SweepOptions& options) {
   const auto progress = [&options](const std::string& line) {
     if (!options.quiet) std::cerr << line << '\n';
   };
-  const SweepResult result = sweep(scenes, methods, precisions, settings_for, progress);
+  // Boost.Odeint beside each chosen method it has a stepper for (docs/methods.md)
+  std::vector<PeerStepper> peers;
+  if (options.peer)
+    for (PeerStepper stepper : {PeerStepper::Euler, PeerStepper::Rk4})
+      if (std::find(methods.begin(), methods.end(), peerCounterpart(stepper)) != methods.end())
+        peers.push_back(stepper);
+  const SweepResult result = sweep(scenes, methods, precisions, settings_for, progress, peers);
   if (csv) {
     csv->stream() << sweepToCsv(result);
     csv->commit();
@@ -84,6 +92,9 @@ Command addSweepCommand(CLI::App& root) {
   app->add_option("--csv", options->csv, "Write the points as CSV to this file ('-' = stdout)");
   app->add_option("--json", options->json, "Write the JSON to this file ('-' = stdout, default)")
       ->capture_default_str();
+  app->add_flag("--peer", options->peer,
+                "Also step the scene with Boost.Odeint's euler and runge_kutta4 from the library's "
+                "evaluation, beside explicit and rk4 (points odeint-euler, odeint-rk4)");
   app->add_flag("-q,--quiet", options->quiet, "No progress lines on stderr");
   return {app, [options] { return runSweep(*options); }};
 }

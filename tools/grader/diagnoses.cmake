@@ -4,11 +4,10 @@
 #
 #   cmake -DMODE=ids -DJSON=<diagnoses.json> -DOUTPUT=<.../grader/grade/cause_ids.h> -P diagnoses.cmake
 #       the C++ header of the catalogue's ids and data (namespace clothref::grader::cause: one
-#       `kCamelCase` per id, and entries(): per id its kind, default deduction and model;
-#       namespace clothref::grader::model: one `kCamelCase` per model name), written by the build
-#       whenever the JSON changes (rewritten only when its bytes change, so a new text does not
+#       `kCamelCase` per id, and entries(): per id its kind and default deduction), written by
+#       the build whenever the JSON changes (rewritten only when its bytes change, so a new text does not
 #       rebuild the grader);
-#   cmake -DMODE=docs -DJSON=<diagnoses.json> -DDOC=<docs/grading.md> [-DOUTPUT=<file>] -P ...
+#   cmake -DMODE=docs -DJSON=<diagnoses.json> -DDOC=<docs/grading-reference.md> [-DOUTPUT=<file>] -P ...
 #       DOC with the parts between its marker comments replaced: the catalogue's table and the why
 #       and example of every cause, and the table of default deductions, in the JSON's order,
 #       written to OUTPUT (default DOC: the `grader_diagnoses_docs` target regenerates the docs in
@@ -17,9 +16,8 @@
 #       the same into OUTPUT, then fails with a unified diff when DOC differs (the ctest).
 #
 # A malformed catalogue fails here too: an id that is not lower-case words joined by '-', an id
-# given twice, two ids (or two model names) with the same constant name, a kind not in the list,
-# a deduction outside 0..1 or given for the kind "never" (or missing for another kind), a model
-# name that is not lower-case words joined by '-' and '.'.
+# given twice, two ids with the same constant name, a kind not in the list, a deduction outside
+# 0..1 or given for the kind "never" (or missing for another kind).
 
 cmake_minimum_required(VERSION 3.19)
 
@@ -28,7 +26,7 @@ set(end_marker "<!-- end of the generated diagnoses table -->")
 set(deductions_begin "<!-- deductions table: generated from tools/grader/diagnoses.json by tools/grader/diagnoses.cmake; do not edit by hand -->")
 set(deductions_end "<!-- end of the generated deductions table -->")
 set(kinds "never" "a wrong constant" "a missed special case" "a wrong sign" "a missing term"
-    "a wrong method")
+    "a wrong method" "undefined behaviour (repaired)")
 
 if(NOT JSON OR NOT MODE)
   message(FATAL_ERROR "diagnoses.cmake: pass -DMODE=ids|docs|check-docs and -DJSON=<diagnoses.json>")
@@ -86,10 +84,7 @@ endfunction()
 
 set(seen_ids "")
 set(seen_names "")
-set(seen_models "")
-set(seen_model_names "")
 set(constants "")
-set(model_constants "")
 set(named "")
 set(entries "")
 set(deductions "| cause | kind | deduction |\n|---|---|---|\n")
@@ -111,7 +106,7 @@ foreach(k RANGE ${last})
   list(APPEND seen_names "${name}")
   string(APPEND constants "inline constexpr const char* ${name} = \"${id}\";\n")
   string(APPEND named "    NamedId{\"${name}\", ${name}},\n")
-  # kind, default deduction (a share of the stub's points, or null: never) and model (or null)
+  # kind and default deduction (a share of the stub's points, or null: never)
   string(JSON kind GET "${catalogue}" diagnoses ${k} kind)
   if(NOT kind IN_LIST kinds)
     message(FATAL_ERROR "${JSON}: /diagnoses/${k}/kind: \"${kind}\" is none of: ${kinds}")
@@ -131,24 +126,7 @@ foreach(k RANGE ${last})
     set(deduction_cpp "${deduction}")
     percent("${deduction}" deduction_cell)
   endif()
-  string(JSON model_type TYPE "${catalogue}" diagnoses ${k} model)
-  set(model "")
-  if(NOT model_type STREQUAL "NULL")
-    string(JSON model GET "${catalogue}" diagnoses ${k} model)
-    if(NOT model MATCHES "^[a-z0-9]+([-.][a-z0-9]+)*$")
-      message(FATAL_ERROR "${JSON}: /diagnoses/${k}/model: \"${model}\" is not lower-case words joined by '-' and '.'")
-    endif()
-    if(NOT model IN_LIST seen_models)
-      constant_name("${model}" model_name)
-      if(model_name IN_LIST seen_model_names)
-        message(FATAL_ERROR "${JSON}: /diagnoses/${k}/model: \"${model}\" gives the constant ${model_name} of an earlier model")
-      endif()
-      list(APPEND seen_models "${model}")
-      list(APPEND seen_model_names "${model_name}")
-      string(APPEND model_constants "inline constexpr const char* ${model_name} = \"${model}\";\n")
-    endif()
-  endif()
-  string(APPEND entries "    Entry{${name}, \"${kind}\", ${deduction_cpp}, \"${model}\"},\n")
+  string(APPEND entries "    Entry{${name}, \"${kind}\", ${deduction_cpp}},\n")
   string(APPEND deductions "| `${id}` | ${kind} | ${deduction_cell} |\n")
   if(MODE STREQUAL "ids")
     continue()
@@ -194,13 +172,10 @@ if(MODE STREQUAL "ids")
   string(APPEND header "constexpr std::array<NamedId, ${count}> namedIds() {\n  return {\n${named}  };\n}\n\n")
   string(APPEND header "// Every entry's data, in the catalogue's order: its kind of mistake, its default deduction\n")
   string(APPEND header "// (the share of its stub's points it costs once; < 0: never, a cause that never explains a\n")
-  string(APPEND header "// stub's failures alone) and its mistake model (grade/mistakes/models.h; \"\": none).\n")
-  string(APPEND header "struct Entry {\n  const char* id;\n  const char* kind;\n  double deduction;\n  const char* model;\n};\n")
+  string(APPEND header "// stub's failures alone).\n")
+  string(APPEND header "struct Entry {\n  const char* id;\n  const char* kind;\n  double deduction;\n};\n")
   string(APPEND header "constexpr std::array<Entry, ${count}> entries() {\n  return {\n${entries}  };\n}\n\n")
-  string(APPEND header "}  // namespace clothref::grader::cause\n\n")
-  string(APPEND header "// One constant per model name of the catalogue (its entries' \"model\"), in its order: a mistake\n")
-  string(APPEND header "// model's row names its model by its constant, so a row without an entry does not build.\n")
-  string(APPEND header "namespace clothref::grader::model {\n\n${model_constants}\n}  // namespace clothref::grader::model\n")
+  string(APPEND header "}  // namespace clothref::grader::cause\n")
   write_if_changed("${OUTPUT}" "${header}")
   return()
 endif()
@@ -209,7 +184,7 @@ if(NOT MODE STREQUAL "docs" AND NOT MODE STREQUAL "check-docs")
   message(FATAL_ERROR "diagnoses.cmake: unknown MODE \"${MODE}\" (ids, docs or check-docs)")
 endif()
 if(NOT DOC)
-  message(FATAL_ERROR "diagnoses.cmake: MODE=${MODE} needs -DDOC=<docs/grading.md>")
+  message(FATAL_ERROR "diagnoses.cmake: MODE=${MODE} needs -DDOC=<docs/grading-reference.md>")
 endif()
 if(NOT OUTPUT)
   if(MODE STREQUAL "check-docs")

@@ -7,7 +7,9 @@
 #include <cmath>
 #include <ctime>
 #include <fstream>
+#include <optional>
 #include <thread>
+#include <utility>
 
 #include "clothref/analysis/stability.h"
 #include "clothref/io/error.h"
@@ -85,10 +87,14 @@ struct RunOutcome {
   std::optional<double> cg_iterations;
 };
 
+// One run of `method`, or of the odeint peer when `peer` is given (the world's method is then
+// not used: the peer steps it).
 template <typename T>
-RunOutcome runOnce(const Scene& scene, Method method, double dt, int substeps,
-                   const SweepSettings& settings, const SweepReference* reference) {
+RunOutcome runOnce(const Scene& scene, Method method, std::optional<PeerStepper> peer, double dt,
+                   int substeps, const SweepSettings& settings, const SweepReference* reference) {
   World<T> simulation = makeWorld<T>(scene, method, dt);
+  std::optional<OdeintPeer<T>> odeint;
+  if (peer) odeint.emplace(simulation, *peer);
   const int count = samples(settings);
   RunOutcome outcome;
   double sum_squares = 0;
@@ -97,7 +103,10 @@ RunOutcome runOnce(const Scene& scene, Method method, double dt, int substeps,
   std::int64_t steps = 0;
   for (int m = 1; m <= count && outcome.stable; ++m) {
     for (int s = 0; s < substeps; ++s) {
-      step(simulation);
+      if (odeint)
+        odeint->step();
+      else
+        step(simulation);
       ++steps;
     }
     if (!withinBounds(simulation)) {
@@ -191,19 +200,23 @@ SweepReference sweepReference(const Scene& scene, const SweepSettings& settings)
   return reference;
 }
 
-SweepPoint sweepPoint(const Scene& scene, Method method, Precision precision, int substeps,
-                      const SweepSettings& settings, const SweepReference& reference) {
+namespace {
+
+// A point of `method`, stepped by the library or, when `peer` is given, by odeint.
+SweepPoint measurePoint(const Scene& scene, Method method, std::optional<PeerStepper> peer,
+                        Precision precision, int substeps, const SweepSettings& settings,
+                        const SweepReference& reference) {
   SweepPoint point;
   point.scene = scene.name;
-  point.method = std::string(methodName(method));
+  point.method = std::string(peer ? peerStepperName(*peer) : methodName(method));
   point.precision = precision;
   point.dt = settings.sample_interval / substeps;
   point.steps = std::int64_t(samples(settings)) * substeps;
   point.evaluations = point.steps * methodInfo(method).evaluations;
   const auto run = [&](const SweepReference* ref) {
     return precision == Precision::Float
-               ? runOnce<float>(scene, method, point.dt, substeps, settings, ref)
-               : runOnce<double>(scene, method, point.dt, substeps, settings, ref);
+               ? runOnce<float>(scene, method, peer, point.dt, substeps, settings, ref)
+               : runOnce<double>(scene, method, peer, point.dt, substeps, settings, ref);
   };
   const RunOutcome first = run(&reference);
   std::vector<double> times = {first.seconds / first.simulated};
@@ -233,10 +246,25 @@ SweepPoint sweepPoint(const Scene& scene, Method method, Precision precision, in
   return point;
 }
 
+}  // namespace
+
+SweepPoint sweepPoint(const Scene& scene, Method method, Precision precision, int substeps,
+                      const SweepSettings& settings, const SweepReference& reference) {
+  return measurePoint(scene, method, std::nullopt, precision, substeps, settings, reference);
+}
+
+SweepPoint sweepPeerPoint(const Scene& scene, PeerStepper stepper, Precision precision,
+                          int substeps, const SweepSettings& settings,
+                          const SweepReference& reference) {
+  return measurePoint(scene, peerCounterpart(stepper), stepper, precision, substeps, settings,
+                      reference);
+}
+
 SweepResult sweep(const std::vector<Scene>& scenes, const std::vector<Method>& methods,
                   const std::vector<Precision>& precisions,
                   const std::function<SweepSettings(const Scene&)>& settings_for,
-                  const std::function<void(const std::string&)>& progress) {
+                  const std::function<void(const std::string&)>& progress,
+                  const std::vector<PeerStepper>& peers) {
   SweepResult result;
   for (const Scene& scene : scenes) {
     const SweepSettings settings = settings_for(scene);
@@ -248,13 +276,17 @@ SweepResult sweep(const std::vector<Scene>& scenes, const std::vector<Method>& m
                  ? settings.backward_euler_substeps
                  : settings.substeps;
     };
+    // the library's methods, then the peers (each on its counterpart's ladder)
+    std::vector<std::pair<Method, std::optional<PeerStepper>>> runs;
+    for (Method method : methods) runs.emplace_back(method, std::nullopt);
+    for (PeerStepper peer : peers) runs.emplace_back(peerCounterpart(peer), peer);
     std::size_t total = 0, done = 0;
-    for (Method method : methods) total += precisions.size() * ladder(method).size();
-    for (Method method : methods) {
+    for (const auto& [method, peer] : runs) total += precisions.size() * ladder(method).size();
+    for (const auto& [method, peer] : runs) {
       for (Precision precision : precisions) {
         for (int substeps : ladder(method)) {
           const SweepPoint point =
-              sweepPoint(scene, method, precision, substeps, settings, reference);
+              measurePoint(scene, method, peer, precision, substeps, settings, reference);
           result.points.push_back(point);
           ++done;
           if (progress)

@@ -12,6 +12,9 @@
 // simulated second, median, min and max over the runs, both as wall time (steady_clock) and as
 // the thread's CPU time (CLOCK_THREAD_CPUTIME_ID), which time slices lost to other processes
 // on a shared machine do not inflate.
+// The peer. A point can also be stepped by Boost.Odeint's euler or runge_kutta4 from the library's
+// evaluation (verify/odeint_peer.h): the same scene, reference and norms, `method` named
+// "odeint-euler" or "odeint-rk4", its evaluations counted as the counterpart method's.
 // Stability. A run that turns non-finite or exceeds 100 m or 100 m/s stops there: the point is
 // unstable, timed once over the part simulated, and its errors are null. On the spring scenes a
 // point is also unstable when clothref stability's criterion fires at its dt (the amplitude can
@@ -29,6 +32,7 @@
 #include "clothref/scene/make_world.h"
 #include "clothref/scene/scene.h"
 #include "clothref/solver/backward_euler.h"
+#include "clothref/verify/odeint_peer.h"
 
 namespace clothref {
 
@@ -79,16 +83,24 @@ SweepReference sweepReference(const Scene& scene, const SweepSettings& settings)
 SweepPoint sweepPoint(const Scene& scene, Method method, Precision precision, int substeps,
                       const SweepSettings& settings, const SweepReference& reference);
 
+// One point stepped by the odeint peer (on spring scenes judged unstable by the stability
+// criterion of its counterpart method, which makes the same step).
+SweepPoint sweepPeerPoint(const Scene& scene, PeerStepper stepper, Precision precision,
+                          int substeps, const SweepSettings& settings,
+                          const SweepReference& reference);
+
 struct SweepResult {
   std::vector<SweepPoint> points;
   std::vector<std::string> references;  // one description per scene
 };
 
-// Every scene x method x precision x dt; `progress` (may be empty) gets one line per point.
+// Every scene x method x precision x dt, then every peer stepper likewise (on the ladder of its
+// counterpart method); `progress` (may be empty) gets one line per point.
 SweepResult sweep(const std::vector<Scene>& scenes, const std::vector<Method>& methods,
                   const std::vector<Precision>& precisions,
                   const std::function<SweepSettings(const Scene&)>& settings_for,
-                  const std::function<void(const std::string&)>& progress);
+                  const std::function<void(const std::string&)>& progress,
+                  const std::vector<PeerStepper>& peers = {});
 
 // CSV, one header line then one line per point (columns as SweepPoint; empty for null).
 std::string sweepToCsv(const SweepResult& result);

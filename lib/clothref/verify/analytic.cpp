@@ -190,4 +190,25 @@ ImpactVelocities impactVelocities(double mass_a, const Eigen::Vector3d& velocity
   return result;
 }
 
+ContactOutcome contactOutcome(double mass_a, const Eigen::Vector3d& position_a,
+                              const Eigen::Vector3d& velocity_a, double mass_b,
+                              const Eigen::Vector3d& position_b, const Eigen::Vector3d& velocity_b,
+                              double contact_distance, double restitution, double correction) {
+  ContactOutcome outcome{false,      0,         Eigen::Vector3d::Zero(), position_a, velocity_a,
+                         position_b, velocity_b};
+  const Eigen::Vector3d d = position_a - position_b;
+  outcome.penetration = contact_distance - d.norm();
+  outcome.normal = d / d.norm();
+  outcome.contact = outcome.penetration >= 0;
+  if (!outcome.contact) return outcome;
+  const ImpactVelocities after =
+      impactVelocities(mass_a, velocity_a, mass_b, velocity_b, outcome.normal, restitution);
+  outcome.velocity_a = after.a;
+  outcome.velocity_b = after.b;
+  const Eigen::Vector3d shift = correction * outcome.penetration * outcome.normal;
+  outcome.position_a += shift;
+  outcome.position_b -= shift;
+  return outcome;
+}
+
 }  // namespace clothref

@@ -6,6 +6,8 @@
 //   impact             post-impact velocities of two bodies meeting along a unit normal with
 //                      restitution e; the textbook mass-weighted formula (docs/course.md §1),
 //                      with mass 0 meaning immovable (a fixed cloth particle, §3.3)
+//   contact            where one contact of the course puts two overlapping bodies: the impact
+//                      above while they approach, and always the position correction (§3.3)
 //
 // Everything here is double: the closed forms are the reference a float or double run is
 // measured against.
@@ -104,5 +106,23 @@ struct ImpactVelocities {
 ImpactVelocities impactVelocities(double mass_a, const Eigen::Vector3d& velocity_a, double mass_b,
                                   const Eigen::Vector3d& velocity_b, const Eigen::Vector3d& normal,
                                   double restitution);
+
+// One contact of the course between body a (a sphere) and body b (a cloth particle or another
+// sphere), written from the course's equations (docs/course.md §3.3), not from the library's
+// formula: with d = x_a - x_b, penetration p = contact_distance - |d| and n = d / |d|, when
+// p >= 0 the velocities become impactVelocities(m_a, v_a, m_b, v_b, n, e) (unchanged when the
+// bodies separate) and the positions x_a + correction p n, x_b - correction p n (both bodies,
+// whatever their masses). Masses in kg, 0 = immovable; |d| > 0.
+struct ContactOutcome {
+  bool contact = false;  // p >= 0
+  double penetration = 0;
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  Eigen::Vector3d position_a, velocity_a, position_b, velocity_b;
+};
+
+ContactOutcome contactOutcome(double mass_a, const Eigen::Vector3d& position_a,
+                              const Eigen::Vector3d& velocity_a, double mass_b,
+                              const Eigen::Vector3d& position_b, const Eigen::Vector3d& velocity_b,
+                              double contact_distance, double restitution, double correction);
 
 }  // namespace clothref

@@ -1,6 +1,6 @@
 // clothref verify: a row and its rule, and running every check family (the families are one file
 // each: closed_form_checks, order_checks, collision_checks, conservation_checks,
-// stability_checks, course_form_checks; verify_report renders).
+// stability_checks, course_form_checks, contact_checks, peer_checks; verify_report renders).
 #include "clothref/verify/verify.h"
 
 #include <algorithm>
@@ -38,10 +38,12 @@ VerifyReport runVerification() {
   append(convergenceChecks(report.studies));
   append(sphereSphereChecks());
   append(sphereClothChecks());
+  append(contactChecks());
   append(freeClothMomentumChecks());
   append(energyChecks());
   append(courseFactChecks());
   append(courseFormChecks());
+  append(peerChecks());
   return report;
 }
 

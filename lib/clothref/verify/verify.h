@@ -73,6 +73,14 @@ std::vector<CheckRow> sphereSphereChecks();
 // act as immovable in the impulse.
 std::vector<CheckRow> sphereClothChecks();
 
+// Where one evaluation's contacts put the bodies (simulateOneStep on a world of two bodies): a
+// cloth particle pressed into a sphere (the fast kernel and the course-form stub) and an
+// overlapping sphere pair, approaching and separating, restitution 0 and not, and a fixed
+// particle, against the course's equations in double (analytic.h contactOutcome): positions
+// after the correction, velocities after the impulse, and a separating pair's velocities exactly
+// unchanged.
+std::vector<CheckRow> contactChecks();
+
 // A free 9x9 cloth (no fixed particles, gravity or drag, random velocities) keeps its total
 // momentum under every method: the spring forces sum to zero.
 std::vector<CheckRow> freeClothMomentumChecks();
@@ -97,6 +105,14 @@ std::vector<CheckRow> courseFactChecks();
 // verify see a bug in the course-form stubs, which the fast paths otherwise shadow.
 inline constexpr int kCourseFormSteps = 300;
 std::vector<CheckRow> courseFormChecks();
+
+// The library's explicit, RK4 and symplectic Euler against Boost.Odeint's euler, runge_kutta4 and
+// symplectic_euler stepping the same world from the library's evaluation (odeint_peer.h), step by
+// step over kPeerSteps steps: the course cloth without spheres (double and float; the peer in
+// double) and the course cloth on a fixed sphere (euler and rk4, double). Rows: the largest
+// position difference over every step and particle, against a round-off estimate.
+inline constexpr int kPeerSteps = 1000;
+std::vector<CheckRow> peerChecks();
 
 struct VerifyReport {
   std::vector<ConvergenceStudy> studies;

@@ -22,7 +22,8 @@ which that text must not appear either (and which stays small: links are not fol
 score must be exactly this; "reports_readable": the test says whether uid 65534 could read that file
 (the outcome varies with the host and must not change the score); "full_marks": the score must be the
 maximum (the attack failed and the code then did the right thing); "loses": stubs that must lose
-points.
+points; "quoted": text results.json must quote (the student's own compile error); "timeout": the
+grade's --timeout in seconds (default: 3 for a case that ends by time, else 30).
 """
 import json
 import shutil
@@ -198,12 +199,14 @@ CASES = {
         expected={"verdict": "link-error", "loses": ["Cloth::computeSpringForce"]}),
     "disk-filler": dict(
         file="integrator.cpp",
-        description="writes 8 MiB files without end into its folder and the shared temporary "
-                    "folders: stopped at the disk limit, nothing left behind",
+        description="writes 8 MiB files without end into its folder and every world-writable folder "
+                    "(/tmp, /var/tmp, /dev/shm, /run/lock): each is a bounded filesystem of its "
+                    "own (the writes fail once it is full, so the loop runs into the time limit), "
+                    "nothing left behind",
         edits=explicit_prefix(
             "  std::vector<char> block(8 << 20, 'x');\n"
             "  for (unsigned k = 0;; ++k)\n"
-            "    for (const char *where : {\".\", \"/tmp\", \"/var/tmp\", \"/dev/shm\"}) {\n"
+            "    for (const char *where : {\".\", \"/tmp\", \"/var/tmp\", \"/dev/shm\", \"/run/lock\"}) {\n"
             "      char name[256];\n"
             "      std::snprintf(name, sizeof name, \"%s/@MARKER@-%u\", where, k);\n"
             "      if (std::FILE *file = std::fopen(name, \"wb\")) {\n"
@@ -211,7 +214,63 @@ CASES = {
             "        std::fclose(file);\n"
             "      }\n"
             "    }\n"),
-        expected={"verdict": "output-limit", "no_files_left": True,
+        expected={"verdict": "timed-out", "no_files_left": True,
+                  "loses": ["ExplicitEuler::integrate"]}),
+    # Fourth round (issue 36).
+    "disk-burst": dict(
+        file="integrator.cpp",
+        description="holds 5 x 30 MiB in its folder at once (each file under the file-size "
+                    "limit), allocated in one burst (fallocate: faster than any poll): a bounded "
+                    "filesystem refuses the part past the limit at write time; had it held more "
+                    "than 128 MiB, it would abort. It then removes its files and integrates "
+                    "correctly",
+        edits=[(INCLUDES, ATTACK_INCLUDES + "#include <fcntl.h>\n#include <sys/stat.h>\n"),
+               (EXPLICIT_BODY,
+                "  static bool tried = false;  // once per process: the probe calls this every step\n"
+                "  if (!tried) {\n"
+                "    tried = true;\n"
+                "    long long held = 0;\n"
+                "    for (int k = 0; k < 5; ++k) {\n"
+                "      char name[64];\n"
+                "      std::snprintf(name, sizeof name, \"@MARKER@-%d\", k);\n"
+                "      const int fd = open(name, O_WRONLY | O_CREAT | O_TRUNC, 0600);\n"
+                "      if (fd < 0) continue;\n"
+                "      (void)posix_fallocate(fd, 0, 30ll << 20);\n"
+                "      struct stat info {};\n"
+                "      if (fstat(fd, &info) == 0) held += static_cast<long long>(info.st_blocks) * 512;\n"
+                "      close(fd);\n"
+                "    }\n"
+                "    if (held > (128ll << 20)) std::abort();\n"
+                "    for (int k = 0; k < 5; ++k) {\n"
+                "      char name[64];\n"
+                "      std::snprintf(name, sizeof name, \"@MARKER@-%d\", k);\n"
+                "      unlink(name);\n"
+                "    }\n"
+                "  }\n" + EXPLICIT_BODY)],
+        expected={"verdict": "graded", "full_marks": True}),
+    "line-rename": dict(
+        file="integrator.cpp",
+        description="a #line directive renames the file to 5000 newlines then 'cloth.cpp' above a "
+                    "real error (a missing semicolon): the log looks empty for its first 5000 "
+                    "lines, and is still the student's compile error, quoted",
+        edits=[(INCLUDES, INCLUDES + '#line 1 "' + "\\n" * 5000 + 'cloth.cpp"\n'),
+               (EXPLICIT_BODY, EXPLICIT_BODY[:-1])],
+        expected={"verdict": "compile-error", "quoted": "error: expected ';'",
+                  "loses": ["ExplicitEuler::integrate"]}),
+    "sanitizer-fork-bomb": dict(
+        file="integrator.cpp",
+        description="crashes at -O2 (null pointer) and, rebuilt with the sanitizers, forks without "
+                    "end: the sanitizer run holds the uid's process slots for its whole time "
+                    "limit, which the other probes of the grade wait out instead of failing as "
+                    "the grader's error",
+        edits=explicit_prefix("#if defined(__SANITIZE_ADDRESS__)\n"
+                              '  prctl(PR_SET_NAME, "@MARKER@");\n'
+                              "  for (;;) fork();\n"
+                              "#else\n"
+                              "  volatile int *nowhere = nullptr;\n"
+                              "  *nowhere = 1;\n"
+                              "#endif\n"),
+        expected={"verdict": "crashed", "marker": True, "timeout": 3,
                   "loses": ["ExplicitEuler::integrate"]}),
     "link-out": dict(
         file="integrator.cpp",

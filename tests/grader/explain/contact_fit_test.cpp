@@ -197,5 +197,20 @@ TEST(ContactFit, ImpulseMistakesAreNamedNotTakenForConstants) {
   }
 }
 
+// A contact distance of r + 0.1 (the course's reach and penetration 0.1 larger): read back from
+// every pair's correction; the course's own contact has no offset.
+TEST(ContactFit, AContactDistanceIsReadFromTheCorrections) {
+  const Contact wider = [](Pair& p) {
+    formula::resolveContact(p.xa.data(), p.va.data(), p.inverse_mass_a, p.xb.data(), p.vb.data(),
+                            p.inverse_mass_b, p.reach + 0.1f, 0.0f, 0.15f);
+  };
+  const std::optional<double> d = contactDistanceOffset(readAll(wider), 0.15);
+  ASSERT_TRUE(d.has_value());
+  EXPECT_NEAR(*d, 0.1, 1e-4);
+  EXPECT_FALSE(contactDistanceOffset(readAll(course(0.0f, 0.15f)), 0.15).has_value());
+  // another correction factor is no offset: the readings disagree on one
+  EXPECT_FALSE(contactDistanceOffset(readAll(course(0.0f, 0.5f)), 0.15).has_value());
+}
+
 }  // namespace
 }  // namespace clothref::grader

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <random>
 
@@ -55,7 +56,8 @@ TEST(FormulaVariants, EverySpringMistakeChangesARandomState) {
        {ForceMistake::Assign, ForceMistake::SpringSign, ForceMistake::DamperSign,
         ForceMistake::NoDamper, ForceMistake::DamperUnnormalised, ForceMistake::OneEnd,
         ForceMistake::MassNotInverse, ForceMistake::DivideByMass, ForceMistake::OtherEndOnly,
-        ForceMistake::AssignTotal, ForceMistake::AssignTotalGravity})
+        ForceMistake::AssignTotal, ForceMistake::AssignTotalGravity,
+        ForceMistake::DirectionUnnormalised})
     EXPECT_FALSE(sameBits(springAccelerations(cloth, acc0, m), course)) << int(m);
 }
 
@@ -132,6 +134,84 @@ TEST(FormulaVariants, EveryContactMistakeChangesSomething) {
     }
     EXPECT_TRUE(changed) << "mistake " << m;
   }
+}
+
+// `d.normalized();` discarded: the force along the unnormalised d = x_s - x_e, both terms (k_s
+// (|d| - rest) d, k_d ((v_s - v_e) . d) d), written here for one spring as the student's code is.
+TEST(FormulaVariants, DirectionUnnormalisedIsTheForceAlongD) {
+  std::mt19937 rng(11);
+  const Cloth<float> cloth = randomCloth(rng);
+  const Mat4X<float>& acc0 = cloth.particles.acceleration;
+  const Mat4X<float> model = springAccelerations(cloth, acc0, ForceMistake::DirectionUnnormalised);
+  Mat4X<float> by_hand = acc0;
+  const auto& p = cloth.particles;
+  for (const auto& s : cloth.springs) {
+    const Vec4<float> d = p.position.col(int(s.start)) - p.position.col(int(s.end));
+    const Vec4<float> dv = p.velocity.col(int(s.start)) - p.velocity.col(int(s.end));
+    const Vec4<float> f =
+        d * (cloth.damper_coef * dv.dot(d) + cloth.spring_coef * (d.norm() - s.rest_length));
+    by_hand.col(int(s.start)) -= f * p.inverse_mass[int(s.start)];
+    by_hand.col(int(s.end)) += f * p.inverse_mass[int(s.end)];
+  }
+  for (int i = 0; i < model.cols(); ++i)
+    EXPECT_LE((model.col(i) - by_hand.col(i)).norm(), 1e-4f * (1 + by_hand.col(i).norm())) << i;
+}
+
+// The contact models: switches and constants combine; a contact distance is a larger reach; a
+// normal speed formed as |v| cos gives NaN only to a pair that approaches with a body at rest.
+TEST(FormulaVariants, ContactModelsCombineSwitchesAndConstants) {
+  std::mt19937 rng(12);
+  const ContactModel course = courseContact(0.0f, 0.15f);
+  for (int trial = 0; trial < 20; ++trial) {
+    Spheres<float> spheres;
+    Cloth<float> cloth;
+    randomScene(rng, spheres, cloth);
+    // two mistakes at once: for sphere 0 only, with restitution 1
+    const ContactModel both = combined(withMistake(course, ContactMistake::FirstSphereOnly),
+                                       withMistake(course, ContactMistake::RestitutionOne), course);
+    EXPECT_EQ(contactModelText(both),
+              "the course's collide for sphere 0 only and with restitution 1");
+    Spheres<float> a = spheres;
+    Cloth<float> ca = cloth, cb = cloth;
+    collideModel(a, ca, false, both);
+    Spheres<float> one_sphere;  // sphere 0 alone
+    addSphere(one_sphere, Vec4<float>(spheres.particles.position.col(0)), spheres.radius[0],
+              1000.0f);
+    one_sphere.particles.velocity.col(0) = spheres.particles.velocity.col(0);
+    collide(one_sphere, cb, 1.0f, 0.15f);
+    EXPECT_TRUE(sameBits(ca.particles.position, cb.particles.position)) << trial;
+    EXPECT_TRUE(sameBits(ca.particles.velocity, cb.particles.velocity)) << trial;
+    // a contact distance of r + 0.1 is the course's contact with radii 0.1 larger
+    ContactModel reach = course;
+    reach.reach_offset = 0.1f;
+    Spheres<float> c = spheres, d = spheres;
+    Cloth<float> cc = cloth, cd = cloth;
+    collideModel(c, cc, false, reach);
+    for (float& r : d.radius) r += 0.1f;
+    collide(d, cd, 0.0f, 0.15f);
+    EXPECT_TRUE(sameBits(cc.particles.position, cd.particles.position)) << trial;
+    EXPECT_TRUE(sameBits(cc.particles.velocity, cd.particles.velocity)) << trial;
+  }
+  // A sphere falling onto a particle at rest: NaN for both; moving bodies: the course's numbers.
+  Spheres<float> spheres;
+  addSphere(spheres, Vec4<float>(0, 0.4f, 0, 1), 0.5f, 125.0f);
+  Cloth<float> cloth;
+  cloth.particles = makeParticles<float>(1, 1.0f);
+  spheres.particles.velocity.col(0) = Vec4<float>(0, -1, 0, 0);
+  ContactModel speed = course;
+  speed.divides_by_speed = true;
+  Spheres<float> s1 = spheres;
+  Cloth<float> c1 = cloth;
+  collideModel(s1, c1, false, speed);
+  EXPECT_TRUE(std::isnan(s1.particles.velocity(1, 0)));
+  EXPECT_TRUE(std::isnan(c1.particles.velocity(1, 0)));
+  cloth.particles.velocity.col(0) = Vec4<float>(0.1f, 0, 0, 0);
+  Spheres<float> s2 = spheres, s3 = spheres;
+  Cloth<float> c2 = cloth, c3 = cloth;
+  collideModel(s2, c2, false, speed);
+  collideModel(s3, c3, false, course);
+  EXPECT_TRUE(sameBits(s2.particles.velocity, s3.particles.velocity));
+  EXPECT_TRUE(sameBits(c2.particles.velocity, c3.particles.velocity));
 }
 
 }  // namespace

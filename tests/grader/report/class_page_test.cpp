@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <string>
 
+#include "grader/grade/batch.h"
 #include "test_util.h"
 
 namespace clothref::grader {
@@ -27,7 +28,7 @@ TEST(ClassPage, ClassPageFromTheBatchFolders) {
                   R"({"tests": [{"name": "Cloth::initializeSpring: count", "status": "failed",
                       "tags": ["Cloth::initializeSpring", "backup-</script>-aliases"]}]})");
   test::writeText(dir.path() / "alice" / "report.html", "x");
-  const std::string page = batchIndexHtml(dir.path(), {a, b});
+  const std::string page = batchIndexHtml(classRows(dir.path(), {a, b}));
   const std::string open = "<script type=\"application/json\" id=\"class-data\">";
   const std::size_t begin = page.find(open);
   ASSERT_NE(begin, std::string::npos);

@@ -62,24 +62,29 @@ TEST(GradescopeHtml, SummaryIsStaticHtml) {
   EXPECT_EQ(html["output_format"], "html");
   EXPECT_EQ(html["tests"][0]["output_format"], "md");  // not one test per check: left alone
   const std::string output = html["output"].get<std::string>();
-  EXPECT_NE(output.find("<td>Spheres::collide(Cloth*)</td><td>0 / 1.25</td><td>0 of 1</td>"),
+  // one line per stub that lost points: points, checks passed, what is wrong; never a line per
+  // failed check; the stubs whose every check passed on one line
+  EXPECT_NE(output.find("<tr><td>Spheres::collide(Cloth*)</td><td>0 / 1.25</td><td>0 of 1</td>"
+                        "<td><em>collision-normal-sign</em></td></tr>"),
             std::string::npos)
       << output;
-  EXPECT_NE(output.find("<li>Spheres::collide(Cloth*): approaching pair<br>likely cause: "
-                        "<em>collision-normal-sign</em></li>"),
+  EXPECT_EQ(output.find("approaching pair"), std::string::npos) << output;
+  EXPECT_NE(output.find("<p>Every check passed: Cloth::initializeSpring 6 / 6.</p>"),
             std::string::npos)
       << output;
+  EXPECT_EQ(countOf(output, "<tr>"), 2u) << output;  // the head and the one stub that lost points
+  EXPECT_EQ(output.find("<li>"), output.find("<li>cloth.cpp")) << output;  // the files only
   EXPECT_NE(output.find("<strong>Verdict</strong> &lt;graded&gt;."), std::string::npos);
   expectInert(output);
 }
 
-// In the summary, a check's likely causes and its guesses are on lines of their own.
+// In the summary, a stub's likely causes come first, its guesses after them, marked "?".
 TEST(GradescopeHtml, SummaryKeepsLikelyCausesAndGuessesApart) {
   GradeReport report = sampleReport();
-  report.tests[1].causes.push_back(Cause{"unknown", false, {}, {}, {}, {}, {}});
+  report.tests[1].causes.insert(report.tests[1].causes.begin(),
+                                Cause{"unknown", false, {}, {}, {}, {}, {}, {}});
   const std::string output = withHtmlSummary(resultsJson(report), report)["output"];
-  EXPECT_NE(output.find("<br>likely cause: <em>collision-normal-sign</em><br>possible cause (a "
-                        "guess): <em>unknown</em></li>"),
+  EXPECT_NE(output.find("<td><em>collision-normal-sign</em>, <em>unknown</em>?</td>"),
             std::string::npos)
       << output;
 }
@@ -155,6 +160,72 @@ TEST(GradescopeHtml, AWholeRunThatDiffersIsPictured) {
   run.fraction = 0;
   traces->student = traces->student.substr(0, traces->student.size() / 2);
   EXPECT_EQ(wholeRunSvg(*traces, "w"), "");
+}
+
+// A rubric that shows a stub's tests later (or never) hides that stub everywhere a student looks
+// before its release: the summary (Markdown and HTML) names neither its points nor its checks
+// passed nor its causes, and says no total or verdict (both count it); a visible check of a stub
+// whose other checks are shown later does not carry the per-mistake line (it tells how every
+// check of the stub went). The hidden checks keep their own text, shown with them.
+TEST(GradescopeHtml, AHiddenStubAppearsNowhereAStudentSeesBeforeItsRelease) {
+  for (const std::string visibility : {"hidden", "after_due_date", "after_published"}) {
+    SCOPED_TRACE(visibility);
+    GradeReport report = sampleReport();
+    report.tests[1].visibility = visibility;  // Spheres::collide(Cloth*): all its checks
+    report.tests[1].sketch = collisionSketch();
+    // Cloth::computeSpringForce: one check visible (with the per-mistake line), one shown later
+    TestResult shown = makeTest("Cloth::computeSpringForce", "random perturbed state", 1);
+    shown.max_score = 10;
+    shown.score = 6;
+    shown.output = "acceleration after the call differs";
+    shown.rubric_note = "One mistake (`damper-sign`) explains every failed check of this stub.";
+    TestResult later = makeTest("Cloth::computeSpringForce", "moving state (damper)", 1);
+    later.max_score = 10;
+    later.output = "the damper term differs";
+    later.visibility = visibility;
+    report.tests.push_back(shown);
+    report.tests.push_back(later);
+    report.stub_score["Cloth::computeSpringForce"] = 6;
+    report.stub_max["Cloth::computeSpringForce"] = 20;
+    report.score = 12;
+    report.max_score = 27.25;
+    const nlohmann::ordered_json md = resultsJson(report);
+    const nlohmann::ordered_json html = withHtmlSummary(md, report);
+    for (const std::string& summary :
+         {md["output"].get<std::string>(), html["output"].get<std::string>()}) {
+      for (const char* hidden :
+           {"Spheres::collide(Cloth*)", "Cloth::computeSpringForce", "1.25", "0 of 1", "6 / 20",
+            "0 of 2", "collision-normal-sign", "12 / 27.25", "27.25", "graded"})
+        EXPECT_EQ(summary.find(hidden), std::string::npos) << hidden << " in\n" << summary;
+      EXPECT_NE(summary.find("shown later"), std::string::npos) << summary;
+    }
+    // the visible stub keeps its line
+    EXPECT_NE(html["output"].get<std::string>().find(
+                  "<p>Every check passed: Cloth::initializeSpring 6 / 6.</p>"),
+              std::string::npos)
+        << html["output"];
+    ASSERT_EQ(html["tests"].size(), 4u);
+    for (const auto& results : {md, html}) {
+      const std::string visible = results["tests"][2]["output"].get<std::string>();
+      EXPECT_EQ(results["tests"][2]["visibility"], "visible");
+      EXPECT_EQ(visible.find("One mistake"), std::string::npos) << visible;
+      EXPECT_NE(visible.find("acceleration after the call differs"), std::string::npos);
+      EXPECT_EQ(results["tests"][3]["visibility"], visibility);
+      EXPECT_NE(results["tests"][3]["output"].get<std::string>().find("the damper term differs"),
+                std::string::npos);
+      // the hidden stub's picture and causes are in its own check only, hidden with it
+      EXPECT_EQ(results["tests"][1]["visibility"], visibility);
+    }
+    EXPECT_NE(html["tests"][1]["output"].get<std::string>().find("<svg"), std::string::npos);
+    // every check visible again: the summary says the total, the verdict and every stub
+    for (TestResult& t : report.tests) t.visibility = "visible";
+    const std::string all = withHtmlSummary(resultsJson(report), report)["output"];
+    EXPECT_NE(all.find("12 / 27.25"), std::string::npos) << all;
+    EXPECT_NE(all.find("<td>Spheres::collide(Cloth*)</td><td>0 / 1.25</td><td>0 of 1</td>"),
+              std::string::npos)
+        << all;
+    EXPECT_NE(all.find("graded"), std::string::npos) << all;
+  }
 }
 
 }  // namespace

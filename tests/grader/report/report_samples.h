@@ -32,7 +32,8 @@ inline GradeReport sampleReport() {
                        {},
                        "<the normal>",
                        "<why> it points inwards",
-                       "n = -n;  // mistake <b>\nn = xs - xc;  // fix"}};
+                       "n = -n;  // mistake <b>\nn = xs - xc;  // fix",
+                       {}}};
   report.tests = {pass, fail};
   report.stub_score = {{"Cloth::initializeSpring", 6}, {"Spheres::collide(Cloth*)", 0}};
   report.stub_max = {{"Cloth::initializeSpring", 6}, {"Spheres::collide(Cloth*)", 1.25}};

@@ -7,6 +7,7 @@
 
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <utility>
 
 #include "test_util.h"
 
@@ -82,6 +83,61 @@ TEST(RunChild, PrintingAFrameOnStdoutIsNotAnAnswer) {
   std::ofstream(temp.file("frame"), std::ios::binary | std::ios::trunc)
       << probe::encodeMessage(fake);
   EXPECT_EQ(runShell(temp, "cat frame >&3").status, ChildStatus::NoAnswer);
+}
+
+// A shell program that marks each of its runs in a folder of `temp` (run-0, run-1, ...; `$n` is
+// the run's number) and then runs `body`, run by runProbeTwice with a 3 s wall limit (the quick
+// runs finish well within it, even on a loaded machine): the pair's result and how many runs.
+std::pair<ChildRun, std::size_t> runMarked(const test::TempDir& temp, const std::string& body) {
+  const fs::path marks = temp.path() / "marks", work = temp.path() / "work";
+  const fs::path program = temp.path() / "program";
+  fs::remove_all(marks);
+  fs::create_directories(marks);
+  fs::create_directories(work);
+  std::ofstream(program, std::ios::trunc)
+      << "#!/bin/sh\ncd '" << marks.string() << "'\nn=$(ls | wc -l); touch run-$n\n"
+      << body;
+  fs::permissions(program, fs::perms::owner_all);
+  ChildLimits limits;
+  limits.wall_seconds = 3;
+  const ChildRun run = runProbeTwice(program, probe::ProbeMessage{}, work, limits);
+  std::size_t runs = 0;
+  for ([[maybe_unused]] const auto& entry : fs::directory_iterator(marks)) ++runs;
+  return {run, runs};
+}
+
+// A scored probe runs twice; a second run stopped at the wall-clock limit after a first that
+// finished is tried once more and the retry stands (a loaded machine can hold a run back for its
+// whole wall time). The program here exits 3, then sleeps past the limit, then exits 3 again:
+// without the retry the pair read as "results vary" (undefined behaviour, the student's).
+TEST(RunProbeTwice, ASecondRunHeldBackToTheWallLimitIsTriedOnceMore) {
+  test::TempDir temp;
+  const auto [run, runs] = runMarked(temp, "[ \"$n\" = 1 ] && exec sleep 30\nexit 3\n");
+  EXPECT_EQ(run.status, ChildStatus::ExitedNonZero) << run.describe() << "\n" << run.stderr_head;
+  EXPECT_EQ(run.exit_code, 3);
+  EXPECT_EQ(runs, 3u);  // first, second (held back), the second's retry
+  // An endless first run (it computes) is not repeated: one wall limit, not two or three. (On a
+  // machine so loaded that the loop got under half a CPU, it is held back too: one retry.)
+  const auto [busy, busy_runs] = runMarked(temp, "while :; do :; done\n");
+  EXPECT_EQ(busy.status, ChildStatus::TimedOut);
+  EXPECT_GT(busy.cpu_seconds, 0.3) << "the loop's CPU time was not read";
+  EXPECT_EQ(busy_runs, busy.cpu_seconds >= 1.5 ? 1u : 2u);
+}
+
+// A first run stopped at the wall-clock limit that used little CPU time waited (a loaded
+// machine holds a run back; here it sleeps): it is tried once more and the retry stands, so a
+// program held back once is graded on its retry, and one that always waits still times out,
+// after two limits.
+TEST(RunProbeTwice, AFirstRunThatWaitedToTheWallLimitIsTriedOnceMore) {
+  test::TempDir temp;
+  const auto [run, runs] = runMarked(temp, "[ \"$n\" = 0 ] && exec sleep 30\nexit 3\n");
+  EXPECT_EQ(run.status, ChildStatus::ExitedNonZero) << run.describe() << "\n" << run.stderr_head;
+  EXPECT_EQ(runs, 3u);  // the held-back first, its retry, the second
+  const auto [waits, waits_runs] = runMarked(temp, "exec sleep 30\n");
+  EXPECT_EQ(waits.status, ChildStatus::TimedOut);
+  EXPECT_GE(waits.cpu_seconds, 0);
+  EXPECT_LT(waits.cpu_seconds, 1);
+  EXPECT_EQ(waits_runs, 2u);  // the first and its retry; a run that timed out is not repeated
 }
 
 // Faults of ours, injected (CLOTHREF_GRADER_FAULT, read by the grader process only): each is

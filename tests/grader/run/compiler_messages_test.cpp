@@ -37,6 +37,32 @@ TEST(FirstCompilerError, QuotesTheFirstErrorWithoutScratchPaths) {
   EXPECT_EQ(quote.find("second"), std::string::npos) << quote;
 }
 
+// `#line 1 "<5000 newlines>cloth.cpp"` renames the student's own file: gcc prints 5000 empty lines
+// before each message, and the message is located in a file that does not exist. It is still the
+// student's compile error, quoted with its real message (issue 36; before: "error in cloth.cpp,
+// which is not a course header (not quoted)", and the compile taken for a silent failure of ours).
+TEST(FirstCompilerError, ALineDirectiveThatRenamesTheFileIsTheStudentsErrorWithItsMessage) {
+  test::TempDir temp;
+  const fs::path work = temp.path() / "scratch";
+  fs::create_directories(work / "src-cloth");
+  std::string name;
+  for (int k = 0; k < 5000; ++k) name += "\\n";
+  test::writeText(work / "src-cloth" / "cloth.cpp",
+                  "#line 1 \"" + name + "cloth.cpp\"\nvoid f() { int x = 1 int y; }\n");
+  const std::string blank(5000, '\n');
+  const std::string log = blank + "cloth.cpp: In function 'void f()':\n" + blank +
+                          "cloth.cpp:1:22: error: expected ',' or ';' before 'int'\n";
+  const std::string quote = firstCompilerError(log, site(work.string()));
+  EXPECT_NE(quote.find("error: expected ',' or ';' before 'int'"), std::string::npos) << quote;
+  EXPECT_EQ(quote.find("not quoted"), std::string::npos) << quote;
+  EXPECT_LT(quote.size(), 200u);
+  // An existing file by that name stays named and unquoted: the excerpt would be its text.
+  const std::string host = firstCompilerError(
+      "/etc/passwd:1:1: error: 'root' does not name a type\n    1 | root:x:0:0\n",
+      site(work.string()));
+  EXPECT_EQ(host.find("root:x"), std::string::npos) << host;
+}
+
 TEST(FirstCompilerError, LinkErrors) {
   const std::string quote = firstCompilerError(
       "/usr/bin/ld: /tmp/g/cloth.o: in function `main':\n"

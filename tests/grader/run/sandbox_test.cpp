@@ -34,21 +34,30 @@ TEST(BubblewrapArgv, ShowsOnlyUsrTheProgramAndItsFolder) {
   isolation.kind = IsolationKind::Bubblewrap;
   isolation.bwrap = "/usr/bin/bwrap";
   isolation.ours = {"/usr/share/clothref", "/work/clothref"};
-  const auto argv =
-      bubblewrapArgv(isolation, {"/tmp/x/probe", "--flag"}, "/tmp/x/probes/g/sandbox", 4);
+  const auto argv = bubblewrapArgv(isolation, {"/tmp/x/probe", "--flag"}, 4);
   EXPECT_EQ(argv.front(), "/usr/bin/bwrap");
   EXPECT_TRUE(contains(argv, {"--unshare-all"}));
   EXPECT_TRUE(contains(argv, {"--die-with-parent"}));
   EXPECT_TRUE(contains(argv, {"--ro-bind", "/usr", "/usr"}));
   EXPECT_FALSE(contains(argv, {"--ro-bind", "/", "/"}));  // an allow-list, not the whole disk
   EXPECT_TRUE(contains(argv, {"--ro-bind", "/tmp/x/probe", "/sandbox/bin/probe"}));
-  EXPECT_TRUE(contains(argv, {"--bind", "/tmp/x/probes/g/sandbox", "/sandbox/work"}));
+  // its folder, /tmp and /dev/shm are bounded filesystems of its own; / and /dev read-only; no
+  // folder of the host is writable
+  EXPECT_TRUE(
+      contains(argv, {"--size", std::to_string(kRunFolderBytes), "--tmpfs", "/sandbox/work"}));
+  EXPECT_TRUE(contains(argv, {"--size", std::to_string(kPrivateTmpBytes), "--tmpfs", "/dev/shm"}));
+  EXPECT_TRUE(contains(argv, {"--remount-ro", "/dev", "--remount-ro", "/"}));
+  EXPECT_FALSE(contains(argv, {"--bind"}));
+  EXPECT_FALSE(contains(argv, {"--symlink", "/proc/self/fd/6"}));
+  // the sanitizer run's channel: a link the sanitizers open as their log (the program is pid 2)
+  EXPECT_TRUE(contains(bubblewrapArgv(isolation, {"/tmp/x/probe"}, 4, true),
+                       {"--symlink", "/proc/self/fd/6", "/sandbox/work/.sanitizer-report.2"}));
   EXPECT_TRUE(contains(argv, {"--tmpfs", "/usr/share/clothref"}) ||
               !fs::is_directory("/usr/share/clothref"));
   EXPECT_FALSE(contains(argv, {"--tmpfs", "/work/clothref"}));  // not visible anyway
   EXPECT_TRUE(contains(argv, {"--json-status-fd", "4"}));
   // its /tmp is its own, and bounded
-  EXPECT_TRUE(contains(argv, {"--size", std::to_string(kBoxTmpBytes), "--tmpfs", "/tmp"}));
+  EXPECT_TRUE(contains(argv, {"--size", std::to_string(kPrivateTmpBytes), "--tmpfs", "/tmp"}));
   EXPECT_TRUE(contains(argv, {"--", "/sandbox/bin/probe", "--flag"}));
   EXPECT_EQ(argv.back(), "--flag");
 }

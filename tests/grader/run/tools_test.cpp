@@ -39,6 +39,31 @@ TEST(RunTools, CompilesHaveTimeAndMemoryLimits) {
   EXPECT_NE(slow[0].output.find("stopped after"), std::string::npos);
 }
 
+// A failed compile whose log looks empty at its start (a #line that renames the file to thousands
+// of newlines) is the compiler's verdict on the student's code, judged by its exit status and the
+// raw bytes of its log, never a silent failure of ours (issue 36: the grade stopped with
+// "unexpected error"). A tool that fails without writing a byte is ours, tried again, then ours.
+TEST(RunTools, AFailedCompileWithALogOfBlankLinesIsTheStudents) {
+  test::TempDir temp;
+  test::writeText(temp.path() / "renamed.cpp",
+                  "#line 1 \"" + std::string(6000, 'N') + "cloth.cpp\"\nint x = 1 int y;\n");
+  std::string renamed = test::readText(temp.path() / "renamed.cpp");
+  for (std::size_t at = 0; (at = renamed.find('N', at)) != std::string::npos;)
+    renamed.replace(at, 1, "\\n");
+  test::writeText(temp.path() / "renamed.cpp", renamed);
+  const auto runs = runTools({{"g++", "-c", (temp.path() / "renamed.cpp").string(), "-o",
+                               (temp.path() / "renamed.o").string()},
+                              {"/bin/sh", "-c", "exit 1"}},
+                             temp.path(), 1, 60);
+  ASSERT_EQ(runs.size(), 2u);
+  EXPECT_FALSE(runs[0].ok);
+  EXPECT_FALSE(runs[0].ours) << runs[0].output.substr(0, 300);
+  EXPECT_NE(runs[0].output.find("error: expected"), std::string::npos)
+      << runs[0].output.substr(0, 300);
+  EXPECT_FALSE(runs[1].ok);
+  EXPECT_TRUE(runs[1].ours);
+}
+
 // In the fallback (no bubblewrap) a compile runs as the tool uid in a private mount namespace:
 // `.incbin` of a host file only root may read fails, and so does an #include from one of the
 // grader's hidden folders (our reference) the command does not name. Without the confinement the

@@ -67,7 +67,7 @@
   /* float[4 n x records]: cloth positions (m) every stride steps, concatenated */                 \
   X(kTrajectory, "trajectory")                                                                     \
   /* ---- integrate, the stage record */                                                           \
-  /* (docs/grading.md, "Integrators explained by their stages") */                                 \
+  /* (docs/grading-reference.md, "Integrators explained by their stages") */                                 \
   /* int[1] (request, per case): 1 = record this case's stages */                                  \
   /* (a contact-free case of one step) */                                                          \
   X(kRecordStages, "record_stages")                                                                \

@@ -97,6 +97,7 @@ struct Outputs {
   BatchRow row;
   std::string results_json, report_md;
   std::string report_html;  // empty when not graded
+  std::string time_note;    // GradeReport::time_note
 };
 
 Outputs notGradable(const BatchEntry& entry, Verdict verdict, const std::string& problem) {
@@ -123,6 +124,14 @@ Outputs notGradable(const BatchEntry& entry, Verdict verdict, const std::string&
   return out;
 }
 
+// Keeps the kSlowestShown slowest submissions, slowest first.
+void noteIfSlow(std::vector<BatchSummary::Slow>& slowest, BatchSummary::Slow row) {
+  slowest.push_back(std::move(row));
+  std::stable_sort(slowest.begin(), slowest.end(),
+                   [](const auto& a, const auto& b) { return a.seconds > b.seconds; });
+  if (slowest.size() > kSlowestShown) slowest.pop_back();
+}
+
 Outputs gradeOne(const BatchEntry& entry, const BatchOptions& options, const GradeOptions& grade) {
   try {
     if (!options.one_submission) {
@@ -131,14 +140,16 @@ Outputs gradeOne(const BatchEntry& entry, const BatchOptions& options, const Gra
         return notGradable(entry, Verdict::NotGradable,
                            severalSubmissionsProblem(entry.dir, several));
     }
-    nlohmann::ordered_json whole_run_view;  // the pictures of report.html (html_report.h)
-    GradeReport report = gradeWithWholeRun(entry.dir, grade, whole_run_view);
+    GradeReport report = gradeSubmission(entry.dir, grade);
+    // the pictures of report.html (html_report.h)
+    const nlohmann::ordered_json whole_run_view = wholeRunView(report);
     Outputs out;
     out.row = rowOf(entry, report);
     out.results_json =
         withHtmlSummary(resultsJson(report), report).dump(2, ' ', false, kReplace) + "\n";
     out.report_md = markdownReport(report);
     out.report_html = studentReportHtml(report, whole_run_view);
+    out.time_note = report.time_note;
     return out;
   } catch (const InputError& error) {
     return notGradable(entry, Verdict::NotGradable, error.what());
@@ -335,6 +346,8 @@ BatchSummary runBatch(const std::vector<fs::path>& dirs, const BatchOptions& opt
       }
       ++done;
       if (out.row.verdict != Verdict::Graded) ++failed;
+      if (!out.time_note.empty())  // graded: a refused folder costs nothing to speak of
+        noteIfSlow(summary.slowest, {entry.name, out.row.seconds, out.time_note});
       const double eta = since(start) / done * static_cast<double>(pending.size() - done);
       progress.update(done, std::to_string(failed) + " failed, ETA " + formatDuration(eta));
     }
@@ -358,6 +371,9 @@ BatchSummary runBatch(const std::vector<fs::path>& dirs, const BatchOptions& opt
       ++summary.failed;
       summary.not_graded.push_back({row->name, row->verdict});
     }
+    if (!row->isolation.empty() && std::find(summary.isolation.begin(), summary.isolation.end(),
+                                             row->isolation) == summary.isolation.end())
+      summary.isolation.push_back(row->isolation);
     summary.rows.push_back(std::move(*row));
   }
   // The CSV where --csv says (the user named it: written as any named output), else beside the
@@ -372,7 +388,7 @@ BatchSummary runBatch(const std::vector<fs::path>& dirs, const BatchOptions& opt
   }
   // the class overview, from the same markers (html_report.h)
   writeNoFollow(batch.fd, options.out_dir, summary.index.filename().string(),
-                batchIndexHtml(options.out_dir, summary.rows));
+                batchIndexHtml(classRows(options.out_dir, summary.rows)));
   return summary;
 }
 

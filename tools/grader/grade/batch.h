@@ -1,7 +1,7 @@
-// Grading many submissions in one run (`clothref grade DIR... --out BATCHDIR`, docs/grading.md,
-// "Batch"): submissions in parallel, progress on stderr, one folder of results per submission and
-// a CSV summary rebuilt from those folders, resume after an interruption, and shards so a large
-// batch splits across machines.
+// Grading many submissions in one run (`clothref grade DIR... --out BATCHDIR`,
+// docs/grading-reference.md, "Batch"): submissions in parallel, progress on stderr, one folder of
+// results per submission and a CSV summary rebuilt from those folders, resume after an
+// interruption, and shards so a large batch splits across machines.
 //
 // BATCHDIR/<name>/ holds results.json, report.md and, written last and atomically, row.json: the
 // submission's CSV row. row.json is the "graded" marker a rerun skips on. BATCHDIR/.cache holds
@@ -12,9 +12,11 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "grader/grade/grade.h"
+#include "grader/grade/report/class_page.h"
 
 namespace clothref::grader {
 
@@ -57,17 +59,28 @@ struct BatchRow {
   std::string isolation;
   std::string problem;  // why it is not gradable, else empty
   double seconds = 0;   // wall time of grading this submission
+  // the causes its failed checks name, each once, in order: id, likely on some check
+  std::vector<std::pair<std::string, bool>> causes;
 };
 BatchRow rowOf(const BatchEntry& entry, const GradeReport& report);
 nlohmann::ordered_json rowJson(const BatchRow& row);
 // Throws InputError naming `where` when a field is missing or has the wrong type.
 BatchRow rowFromJson(const nlohmann::json& json, const std::string& where);
 
+// The overview's rows for `rows` (the batch's, sorted by name) of the batch in `batch_dir`: each
+// folder's results.json read for its checks and causes (extra_data's causes with whether each is
+// likely; else a test's tags after its stub). A folder whose results.json is missing or unreadable
+// still gets its row, without checks.
+std::vector<ClassRow> classRows(const std::filesystem::path& batch_dir,
+                                const std::vector<BatchRow>& rows);
+
 // The CSV (RFC 4180; fields with a comma or quote are quoted; every field is valid UTF-8 on one
 // line, control characters and line breaks escaped as in text.h): a header line
-//   submission,edition,<the eight stubs of stubNames()>,total,max,verdict,isolation,seconds
-// when `header`, then one line per row in the order given. A stub the edition does not have
-// (Spheres::collide() in 2024) is an empty cell; numbers are rounded to 0.001.
+//   submission,edition,<the eight stubs of stubNames()>,total,max,verdict,causes,guesses,seconds
+// when `header`, then one line per row in the order given: one fact per column. A stub the
+// edition does not have (Spheres::collide() in 2024) is an empty cell; numbers are rounded to
+// 0.001; `causes` and `guesses` are cause ids separated by spaces; seconds to 0.1. How student
+// code was isolated is said once, in the batch's summary (BatchSummary::isolation).
 std::string batchCsv(const std::vector<BatchRow>& rows, bool header);
 
 struct BatchOptions {
@@ -85,14 +98,26 @@ struct BatchOptions {
   GradeOptions grade;  // per submission (probe_jobs and toolchain.jobs are set from cores/jobs)
 };
 
+inline constexpr std::size_t kSlowestShown = 3;
+
 struct BatchSummary {
   std::vector<BatchRow> rows;  // the shard's submissions, sorted by name
   int graded = 0;              // graded by this run
   int skipped = 0;             // already graded (row.json found)
   int failed = 0;              // rows whose verdict is not Graded
   std::vector<std::pair<std::string, Verdict>> not_graded;  // those rows: name, verdict
+  // The slowest submissions graded by this run (at most kSlowestShown, slowest first): where the
+  // batch's time went, with why (GradeReport::time_note).
+  struct Slow {
+    std::string name;
+    double seconds = 0;  // wall time of grading it
+    std::string why;
+  };
+  std::vector<Slow> slowest;
   std::filesystem::path csv;
   std::filesystem::path index;  // the class overview
+  // how the student processes were isolated, each description once (one on a machine)
+  std::vector<std::string> isolation;
 };
 
 // Each submission's share of the cores: max(1, cores / jobs), used for its compiles and its probe

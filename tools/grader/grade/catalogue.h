@@ -13,13 +13,18 @@
 
 namespace clothref::grader {
 
-// One entry of the catalogue. The JSON's "stub" is for the docs table only (docs/grading.md).
+// One entry of the catalogue. The JSON's "stub" is for the docs table only
+// (docs/grading-reference.md).
 struct Diagnosis {
   std::string id;
   std::string recognised_by;  // "signature", "property", "guess", "signature + pattern", ...
   std::string text;           // what the mistake is, in one or two sentences
   std::string why;            // why it gives the numbers the student sees (a paragraph)
   std::string example;        // the mistaken line and its fix, two lines of C++; may be empty
+  // "non_finite" (optional, default false): the mistake's model can make NaN or infinity from the
+  // probe's finite inputs (a division by a zero mass or speed, a method that blows up); a cause
+  // without it is never likely on a check whose answers are non-finite (rubric.h, markNonFinite).
+  bool non_finite = false;
 };
 
 struct Catalogue {

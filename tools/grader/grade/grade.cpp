@@ -7,6 +7,9 @@
 #include <chrono>
 #include <exception>
 #include <fstream>
+#include <iomanip>
+#include <map>
+#include <mutex>
 #include <random>
 #include <set>
 #include <thread>
@@ -14,6 +17,7 @@
 #include "clothref/io/error.h"
 #include "clothref/io/files.h"
 #include "grader/grade/cause_ids.h"
+#include "grader/grade/confinement.h"
 #include "grader/grade/probes/probes.h"
 #include "grader/grade/run/folders.h"
 #include "grader/grade/submission/source_patterns.h"
@@ -27,6 +31,38 @@ namespace {
 
 double since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::string oneDecimal(double seconds) {
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(1) << seconds;
+  return out.str();
+}
+
+// Where a grade's time went (GradeReport::time_note): probes stopped at their time limit, the
+// sanitizer's rebuild and rerun, then the compile and probe seconds.
+std::string timeNote(const GradeReport& report, const ChildLimits& limits, double sanitizer) {
+  std::vector<std::string> parts;
+  std::size_t timed_out = 0;
+  {
+    std::lock_guard<std::mutex> lock(limits.log->mutex);
+    timed_out = static_cast<std::size_t>(
+        std::count(limits.log->verdicts.begin(), limits.log->verdicts.end(), Verdict::TimedOut));
+  }
+  if (timed_out)
+    parts.push_back("endless loop: " + std::to_string(timed_out) +
+                    (timed_out == 1 ? " probe" : " probes") + " stopped at the " +
+                    (std::ostringstream() << limits.wall_seconds).str() + " s limit");
+  if (sanitizer > 0) parts.push_back("sanitizer rebuild and rerun " + oneDecimal(sanitizer) + " s");
+  const auto seconds = [&](const char* key) {
+    const auto found = report.seconds.find(key);
+    return found == report.seconds.end() ? 0.0 : found->second;
+  };
+  parts.push_back("compile " + oneDecimal(seconds("compile") + seconds("link")) + " s, probes " +
+                  oneDecimal(seconds("probes")) + " s");
+  std::string note;
+  for (const std::string& part : parts) note += (note.empty() ? "" : "; ") + part;
+  return note;
 }
 
 }  // namespace
@@ -61,62 +97,6 @@ void chooseEdition(const SubmissionFiles& files, int forced, GradeReport& report
   }
 }
 
-// This grade's own uids (leased host-wide when root), and the folders of ours its student's
-// processes must never read: the grader's (sources, build, install data, reference, cache) and
-// the ones the caller names (other submissions, the batch folder).
-Isolation isolationFor(const CourseToolchain& toolchain, const GradeOptions& options) {
-  Isolation isolation = detectIsolation();
-  if (isolation.uid >= 0) {
-    const UidLease lease = leaseUids();
-    isolation.uid = lease.uid;
-    isolation.tool_uid = lease.tool_uid;
-    isolation.uid_lease = lease.hold;
-  }
-  isolation.ours = ourFolders(toolchain);
-  for (const fs::path& path : options.private_paths)
-    isolation.ours.push_back(fs::absolute(path).lexically_normal());
-  return isolation;
-}
-
-bool isUnder(const fs::path& path, const fs::path& root) {
-  const std::string p = path.lexically_normal().string(), r = root.lexically_normal().string();
-  return p == r || (p.size() > r.size() && p.compare(0, r.size(), r) == 0 && p[r.size()] == '/');
-}
-
-// Refuses to grade (InputError, one line) where student code could read a folder of ours: the
-// scratch folder or the course kit inside one (TMPDIR in our tree), a student uid that cannot
-// reach its own folder (TMPDIR inside a closed folder), or, without bubblewrap and without a
-// private mount namespace to cover them, a folder of ours that a student uid can reach by its
-// permissions (docs/grading.md, "Installing the grader where students' code runs").
-void checkConfinement(const Isolation& isolation, const GradeScratch& scratch,
-                      const CourseKit* kit) {
-  if (isolation.uid < 0) return;
-  std::error_code error;
-  const fs::path temp = fs::temp_directory_path(error);
-  for (const fs::path& folder : isolation.ours)
-    for (const fs::path& ours : {scratch.root(), kit ? kit->root : fs::path()})
-      if (!ours.empty() && isUnder(fs::weakly_canonical(ours, error), folder))
-        throw InputError("TMPDIR (" + safeName(temp.string()) + ") is inside " +
-                         safeName(folder.string()) +
-                         ", which student code must not see: set TMPDIR to another folder");
-  for (const int uid : {isolation.uid, isolation.tool_uid})
-    if (!readableAs(uid, {scratch.root()}, nullptr) &&
-        firstReachableAs(uid, {scratch.root()}).empty())
-      throw InputError("TMPDIR (" + safeName(temp.string()) + ") cannot be reached by uid " +
-                       std::to_string(uid) +
-                       " (a folder on its path is closed to other users): set TMPDIR to a "
-                       "folder every user may pass through, such as /tmp");
-  if (isolation.kind == IsolationKind::Bubblewrap || isolation.private_mounts) return;
-  for (const int uid : {isolation.uid, isolation.tool_uid}) {
-    const std::string open = firstReachableAs(uid, isolation.ours);
-    if (!open.empty())
-      throw InputError(safeName(open) + " can be read by uid " + std::to_string(uid) +
-                       ", which runs student code, and this machine allows no private mount "
-                       "namespace to cover it: make it unreadable to other users (chmod o-rwx), "
-                       "as the Gradescope set-up does");
-  }
-}
-
 // What every probe needs: the edition, rubric, catalogue, the linked probes, the limits and the
 // student's compiled sources (patterns in them refine a measured finding).
 ProbeContext probeContext(const GradeReport& report, const Rubric& rubric,
@@ -136,6 +116,7 @@ ProbeContext probeContext(const GradeReport& report, const Rubric& rubric,
   context.limits.isolation = isolation;
   context.limits.keep_files = !options.keep_work.empty();
   context.limits.log = std::make_shared<RunLog>();
+  context.limits.answers = context.limits.log;
   context.seed = options.seed;
   // the bytes the finder read: the student's path is never opened again
   for (const UsedFile& used : build.files)
@@ -214,6 +195,25 @@ void addDanglingAutoCauses(const std::vector<UsedFile>& files, const fs::path& s
   }
 }
 
+// The stubs whose probe answered with NaN or infinity (a scored run's verdict, by its folder).
+std::set<std::string> nonFiniteStubs(RunLog& log) {
+  std::map<std::string, std::string> stub_of;
+  for (const auto& [folder, stub] : probeFolders()) stub_of[folder] = stub;
+  std::set<std::string> stubs;
+  std::lock_guard<std::mutex> lock(log.mutex);
+  for (const std::string& folder : log.non_finite)
+    if (stub_of.count(folder) && !stub_of[folder].empty()) stubs.insert(stub_of[folder]);
+  return stubs;
+}
+
+// The causes whose model can make non-finite numbers (the catalogue's "non_finite").
+std::set<std::string> nonFiniteCauses(const Catalogue& catalogue) {
+  std::set<std::string> ids;
+  for (const auto& [id, entry] : catalogue.entries)
+    if (entry.non_finite) ids.insert(id);
+  return ids;
+}
+
 // Course order of stubs, then the order the probes produced.
 void sortInCourseOrder(std::vector<TestResult>& tests) {
   std::stable_sort(tests.begin(), tests.end(), [](const TestResult& a, const TestResult& b) {
@@ -280,12 +280,14 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
   const Catalogue catalogue =
       loadCatalogue(options.toolchain.course_dir.parent_path() / "diagnoses.json");
 
-  const Isolation isolation = isolationFor(options.toolchain, options);
+  const Isolation isolation = isolationFor(options.toolchain, options.private_paths, dir);
   report.isolation = isolation.describe();
   // What the grade's uids left in the shared temporary folders goes with the grade.
+  // What the grade's uids left running (a compile's child) goes too, before the lease is freed.
   struct Sweep {
     const Isolation& isolation;
     ~Sweep() {
+      if (isolation.uid >= 0) killProcessesOf({isolation.uid, isolation.tool_uid});
       for (const int uid : {isolation.uid, isolation.tool_uid})
         if (uid >= 0) removeOwnedBy(uid, sharedTemporaryFolders());
     }
@@ -310,8 +312,18 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
 
   ProbeContext context =
       probeContext(report, rubric, catalogue, build, files, isolation, scratch, options);
-  SanitizedProbes sanitizer(files, report.edition, toolchain, scratch, context.limits);
+  SanitizedProbes sanitizer(files, report.edition, toolchain, scratch, context.limits, build);
   if (!options.toolchain.sanitize) context.sanitizer = &sanitizer;
+  // Repairs rebuild one student file beside the grade's objects (probes.h, proveByRepair).
+  int repair_builds = 0;
+  if (!options.toolchain.sanitize)
+    context.rebuild = [&](const std::string& file, const std::string& bytes) {
+      const std::string name = "repair-" + std::to_string(++repair_builds);
+      ProbeBuild repaired =
+          rebuildWithFile(build, file, bytes, report.edition, toolchain, scratch.extraBuild(name));
+      if (repaired.ok) repaired.probe = scratch.publish(repaired.probe, "probe-" + name);
+      return repaired;
+    };
   const std::map<std::string, TestResult> unavailable = unavailableStubs(build.files);
   std::map<std::string, std::string> skipped;  // the groups of those stubs do not run
   for (const auto& [stub, test] : unavailable) skipped[stub] = test.output;
@@ -319,11 +331,16 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
   auto results = runProbeGroups(probeGroups(report.edition, options.whole_run), context, skipped,
                                 options.probe_jobs);
   report.seconds["probes"] = since(probe_start);
+  report.time_note = timeNote(report, context.limits, sanitizer.seconds());
 
   report.tests = unavailableTests(report.edition, unavailable);
   for (auto& group : results)
     for (auto& t : group) report.tests.push_back(std::move(t));
   addDanglingAutoCauses(build.files, scratch.build(), report.tests);
+  const auto repair_start = std::chrono::steady_clock::now();
+  proveByRepair(context, report.tests);
+  report.seconds["repairs"] = since(repair_start);
+  markNonFinite(nonFiniteStubs(*context.limits.log), nonFiniteCauses(catalogue), report.tests);
   fillCauseTexts(catalogue, report.tests);
   sortInCourseOrder(report.tests);
   applyRubric(rubric, report);

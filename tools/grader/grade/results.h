@@ -11,9 +11,9 @@
 namespace clothref::grader {
 
 // What happened to a submission, or to one probe run: one word each (CSV, results.json, JUnit),
-// in the order a submission's verdict is chosen (the first that happened wins; docs/grading.md,
-// "Verdicts"). Verdicts travel as this enum; the words are written only from the table below and
-// read back only through it (a batch's row.json).
+// in the order a submission's verdict is chosen (the first that happened wins;
+// docs/grading-reference.md, "Verdicts"). Verdicts travel as this enum; the words are written only
+// from the table below and read back only through it (a batch's row.json).
 enum class Verdict {
   GraderError,    // our failure (a sandbox, fork, pipe or file of ours): never the student's
   NotGradable,    // batch only: the grader refused the folder (no student file, ...)
@@ -182,6 +182,14 @@ struct Cause {
   // The catalogue's why (a paragraph: why the mistake gives these numbers) and example (the
   // mistaken line and its fix, two lines of C++), shown under a likely cause only.
   std::string why, example;
+  // One line under the cause: how it was proven on this submission's numbers (docs/grading-
+  // reference.md, "Likely means proven"): a replay ("Proven: the course's collide without the
+  // position correction gives your numbers on 8 of 8 checks.") or a repair ("With line 129 ...:
+  // 6 of 8 checks pass; ..."); for a guess, where its model and the student's numbers part.
+  // Empty: nothing was tried (a property read directly, a crash, a guess).
+  std::string proof;
+  // Named as likely with a proof: only such a cause earns per-mistake points (rubric.h).
+  bool proven() const { return likely && !proof.empty(); }
   bool operator==(const Cause&) const = default;
 };
 
@@ -230,7 +238,7 @@ struct TestResult {
         cause.likely = cause.likely || likely;
         return cause;
       }
-    causes.push_back(Cause{id, likely, {}, {}, {}, {}, {}});
+    causes.push_back(Cause{id, likely, {}, {}, {}, {}, {}, {}});
     return causes.back();
   }
 };
@@ -290,11 +298,15 @@ struct GradeReport {
   double score = 0, max_score = 0;
   std::map<std::string, double> stub_score, stub_max;  // per course stub
   std::map<std::string, double> seconds;               // "compile", "link", "probes", "total"
+  // Where the time went, for the batch's closing lines: what made it slow ("sanitizer rebuild and
+  // rerun 6.1 s", "endless loop: 2 probes stopped at the 20 s limit"), then the compile and probe
+  // seconds. Never written to the student's outputs.
+  std::string time_note;
   // The outcome for batch summaries (CSV): Graded when every probe group answered, else the
   // worst thing that happened (the first of verdictTable() that happened).
   Verdict verdict = Verdict::Graded;
   // Which isolation the student processes had, e.g. "bubblewrap (net, pid, mount namespaces),
-  // uid 65534, rlimits" or "rlimits only" (docs/grading.md, "Sandbox").
+  // uid 65534, rlimits" or "rlimits only" (docs/grading-reference.md, "Sandbox").
   std::string isolation;
 };
 

@@ -10,10 +10,12 @@
 //    "visibility": {"RungeKuttaFourth::integrate": "after_due_date",    Gradescope's visibility
 //                   "Cloth::computeSpringForce: moving state (damper)": "hidden"},  of a stub's
 //                                                                     tests, or of one test
-//    "scoring": "per-mistake",                 or "per-check" (docs/grading.md, "Points follow
-//    "deductions": {"correction-factor": 0.25}}  mistakes"): a cause's cost, of its stub's points
+//    "scoring": "per-mistake",                 or "per-check" (docs/grading-reference.md,
+//    "deductions": {"correction-factor": 0.25}}  "Points follow mistakes"): a cause's cost, of its
+//                                                stub's points
 #pragma once
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -31,7 +33,8 @@ struct Tolerances {
   double order = 0.35;            // |observed - expected| convergence order
 };
 
-// The accepted variants a rubric can switch (docs/grading.md lists each with its formula):
+// The accepted variants a rubric can switch (docs/grading-reference.md lists each with its
+// formula):
 //   explicit-as-symplectic    ExplicitEuler: v += a dt, then x += v dt
 //   implicit-corrector-v-new  ImplicitEuler's corrector: v = v0 + a dt, then x = x0 + v dt
 //   symplectic-predictor      Implicit and Midpoint: the predictor v += a h dt, then x += v h dt
@@ -49,8 +52,8 @@ inline const std::vector<std::string>& visibilityNames() {
 }
 
 // How a stub's failed checks cost points. PerCheck: each check loses its own points. PerMistake
-// (the default): a stub whose failed checks one recognised mistake explains loses that mistake's
-// deduction once, never more than per check would take.
+// (the default): a stub whose failed checks proven mistakes explain loses their deductions once,
+// never more than per check would take.
 enum class Scoring { PerMistake, PerCheck };
 
 inline const char* scoringName(Scoring scoring) {
@@ -62,7 +65,7 @@ inline const char* scoringName(Scoring scoring) {
 // on its own (a crash, a timeout, a guess, a symptom such as a wrong convergence order).
 struct CauseDeduction {
   const char* id;
-  const char* kind;  // "a wrong constant", ... (docs/grading.md's table says it)
+  const char* kind;  // "a wrong constant", ... (docs/grading-reference.md's table says it)
   double deduction;  // 0..1 of the stub's points, or < 0: never
 };
 
@@ -110,11 +113,22 @@ Rubric loadRubric(const std::string& path, Rubric base);
 // The same from a parsed document; `source` names it in messages.
 Rubric rubricFromJson(const nlohmann::json& document, const std::string& source, Rubric base);
 
+// NaN and garbage never earn a mistake's points (docs/grading-reference.md, "Points follow
+// mistakes"): the post-pass over a grade's results before applyRubric. A check's answers are
+// non-finite when it names `non-finite` itself, or when its stub's probe answered with NaN or
+// infinity (a stub of `non_finite_stubs`) and no failed check of that stub names `non-finite` (the
+// probe does not say which checks: each failed one is taken as non-finite). On each such failed
+// check `non-finite` is named (likely) and a likely cause whose model cannot make non-finite
+// numbers from the probe's finite inputs (not in `can_be_non_finite`, the catalogue's "non_finite"
+// entries) becomes a guess: it does not explain those numbers, so it earns no mistake's points.
+void markNonFinite(const std::set<std::string>& non_finite_stubs,
+                   const std::set<std::string>& can_be_non_finite, std::vector<TestResult>& tests);
+
 // Splits each stub's points over its scored tests by weight and fills score / max_score; fills
-// the report's totals. Per-mistake scoring: a stub whose failed checks all name one likely cause
-// with a deduction totals max(per-check score, its points x (1 - deduction)); the points given
-// back go to its failed checks in proportion to what each lost, and the first failed check's
-// rubric_note says so.
+// the report's totals. Per-mistake scoring: a stub each of whose failed checks names a proven
+// mistake with a deduction (Cause::proven) totals max(per-check score, its points x (1 - the sum
+// of those mistakes' deductions, at most 1)); the points given back go to its failed checks in
+// proportion to what each lost, and the first failed check's rubric_note says so.
 void applyRubric(const Rubric& rubric, GradeReport& report);
 
 }  // namespace clothref::grader

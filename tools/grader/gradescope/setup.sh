@@ -2,11 +2,11 @@
 # Gradescope runs this once when it builds the autograder image (Ubuntu 22.04 or 24.04, or
 # Debian 12, as root): it installs the Debian packages the grader needs and builds only the CLI
 # and the grader (no tests, no benchmarks) in /autograder/source/clothref/build.
-# Written by `clothref gradescope`; see clothref/docs/grading.md, "Gradescope".
+# Written by `clothref gradescope`; see clothref/docs/grading-reference.md, "Gradescope".
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/clothref"
 packages=(cmake ninja-build g++ pkg-config libeigen3-dev libfmt-dev nlohmann-json3-dev
-          libcli11-dev libxxhash-dev zlib1g-dev)
+          libcli11-dev libxxhash-dev zlib1g-dev libboost-dev)
 export DEBIAN_FRONTEND=noninteractive
 apt-get update -qq
 apt-get install -y -qq --no-install-recommends "${packages[@]}" >/dev/null

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# A Slurm array that grades a batch in shards (docs/grading.md, "Splitting a batch over machines"):
+# A Slurm array that grades a batch in shards (docs/grading-reference.md, "Splitting a batch over machines"):
 # task k of n grades the k-th slice of the sorted submissions into one shared BATCHDIR, whose
 # per-submission folders never overlap between shards. After the array:
 #   cat $(for k in $(seq 1 8); do echo "$BATCHDIR/grades-$k-of-8.csv"; done) > grades.csv

@@ -1,9 +1,11 @@
 'use strict';
-// The class overview (BATCHDIR/index.html, docs/pictures.md): a sortable, filterable table of
-// submissions that fits the window (every column visible at 1280 px, one line per row, causes as
-// chips), a labelled histogram of totals, pass rates per stub and per check, and the named causes
-// with links to the reports that show them. Submissions the grader could not grade are listed
-// apart and left out of every statistic. Text from submissions is set with textContent only.
+// The class overview (BATCHDIR/index.html, docs/pictures.md): a first line saying how many were
+// graded and how many need attention and why; a sortable, filterable table of submissions that
+// fits the window with nothing cut (at 1280 px every column is in the window, every number whole,
+// cause chips whole: two, then a count, the full list on hover), its legend in its caption; a
+// labelled histogram of totals, pass rates per stub and per check, and the named causes with links
+// to the reports that show them. Submissions the grader could not grade are listed apart and left
+// out of every statistic. Text from submissions is set with textContent only.
 
 function mountClass(root, data) {
   const all = data.submissions;
@@ -40,16 +42,25 @@ function mountClass(root, data) {
   }
 
   // ---- summary and histogram (graded submissions only)
-  const clean = subs.filter((s) => s.verdict === 'graded');
   const totals = subs.map((s) => s.total).sort((a, b) => a - b);
   const mean = totals.length ? totals.reduce((sum, t) => sum + t, 0) / totals.length : 0;
   const median = totals.length ? (totals[(totals.length - 1) >> 1] + totals[totals.length >> 1]) / 2 : 0;
   const maxTotal = Math.max(1, ...subs.map((s) => s.max || 0));
+  // the first line: how many were graded, how many need attention and why (their verdicts)
+  const attention = all.filter((s) => s.verdict !== 'graded');
+  const verdicts = new Map();
+  for (const s of attention) verdicts.set(s.verdict, (verdicts.get(s.verdict) || 0) + 1);
+  const why = [...verdicts].sort((a, b) => b[1] - a[1] || a[0].localeCompare(b[0]))
+      .map(([verdict, count]) => `${count} ${verdict}`).join(', ');
   root.appendChild(element('p', 'cl-summary',
-      `${all.length} submissions: ${subs.length} graded (${clean.length} with the verdict ` +
-      `'graded'), mean total ${fmt(mean)} / ${fmt(maxTotal)}, median ${fmt(median)}` +
+      `${subs.length} of ${all.length} submissions graded; ` +
+      (attention.length ? `${attention.length} need attention (${why}): their reports say what ` +
+                          'went wrong' : 'none needs attention') +
       (apart.length ? `; ${apart.length} not graded, listed apart below and left out of the ` +
-                      'statistics.' : '.')));
+                      'statistics' : '') +
+      `. Mean total ${fmt(mean)} / ${fmt(maxTotal)}, median ${fmt(median)}.`));
+  if (data.isolation && data.isolation.length)
+    root.appendChild(element('p', 'cl-isolation', `Student code ran with: ${data.isolation.join('; ')}.`));
   root.appendChild(element('h2', null, 'Totals'));
   const bins = new Array(10).fill(0);
   for (const s of subs) bins[Math.min(9, Math.floor((10 * Math.max(0, s.total)) / maxTotal))]++;
@@ -87,10 +98,9 @@ function mountClass(root, data) {
   filter.placeholder = 'filter: name, verdict or cause';
   const shownCount = element('span', 'cl-shown');
   root.append(filter, ' ', shownCount);
-  const maxOf = (stub) => {
-    const maxima = [...new Set(subs.filter((s) => stub in s.stub_max).map((s) => s.stub_max[stub]))];
-    return maxima.length === 1 ? maxima[0] : null;
-  };
+  // the maxima of a stub's column, ascending: one when every submission has the same
+  const maximaOf = (stub) => [...new Set(subs.filter((s) => stub in s.stub_max)
+                                             .map((s) => s.stub_max[stub]))].sort((a, b) => a - b);
   const causeText = (s) => s.causes.map((c) => c.id + (c.likely ? '' : '?')).join(', ');
   function chips(s) {
     const td = element('td', 'cl-causes-cell');
@@ -100,43 +110,54 @@ function mountClass(root, data) {
       chip.dataset.cause = c.id;
       td.appendChild(chip);
     });
-    if (s.causes.length > 2) td.appendChild(element('span', 'cl-more', `+${s.causes.length - 2}`));
+    if (s.causes.length > 2) {
+      const more = element('span', 'cl-more', `+${s.causes.length - 2}`);
+      more.title = causeText(s);
+      td.appendChild(more);
+    }
     return td;
   }
   const columns = [
-    {title: 'submission', width: 16, value: (s) => s.submission,
-     cell: (s) => { const td = element('td'); td.title = s.submission; td.appendChild(link(s)); return td; }},
-    ...stubs.map((stub) => ({
-      title: shortName[stub] || stub, full: stub, max: maxOf(stub), width: 5.3,
-      value: (s) => (stub in s.stub_scores ? s.stub_scores[stub] : -1),
-      cell: (s) => {
-        if (!(stub in s.stub_scores)) return element('td');
-        const got = s.stub_scores[stub], max = s.stub_max[stub];
-        const td = element('td', got >= max ? 'cl-full' : got === 0 && max > 0 ? 'cl-none' : '',
-                           maxOf(stub) === null ? `${fmt(got)}/${fmt(max)}` : fmt(got));
-        td.title = `${stub}: ${fmt(got)} / ${fmt(max)}`;
-        return td;
-      },
-    })),
-    {title: 'total', width: 7.5, value: (s) => s.total,
-     cell: (s) => { const td = element('td', null, `${fmt(s.total)} / ${fmt(s.max)}`); td.title = td.textContent; return td; }},
-    {title: 'verdict', width: 8.5, value: (s) => s.verdict,
-     cell: (s) => { const td = element('td', 'cl-verdict' + (s.verdict === 'graded' ? '' : ' cl-verdict-bad'), s.verdict); td.title = s.verdict; return td; }},
-    {title: 'causes', width: 0, value: (s) => causeText(s), cell: chips},
-    {title: 's', full: 'seconds', width: 3, value: (s) => s.seconds,
-     cell: (s) => element('td', null, s.seconds.toFixed(1))},
+    {title: 'submission', cls: 'cl-name', value: (s) => s.submission,
+     cell: (s) => { const td = element('td', 'cl-name'); td.appendChild(link(s)); return td; }},
+    ...stubs.map((stub) => {
+      const maxima = maximaOf(stub);
+      return {
+        title: shortName[stub] || stub, full: stub, max: maxima.map(fmt).join(', '), cls: 'cl-num',
+        value: (s) => (stub in s.stub_scores ? s.stub_scores[stub] : -1),
+        cell: (s) => {
+          if (!(stub in s.stub_scores)) return element('td', 'cl-num');
+          const got = s.stub_scores[stub], max = s.stub_max[stub];
+          const td = element('td', 'cl-num' + (got >= max ? ' cl-full' : got === 0 && max > 0 ? ' cl-none' : ''),
+                             maxima.length === 1 ? fmt(got) : `${fmt(got)}/${fmt(max)}`);
+          td.title = `${stub}: ${fmt(got)} / ${fmt(max)}`;
+          return td;
+        },
+      };
+    }),
+    {title: 'total', cls: 'cl-num', value: (s) => s.total,
+     cell: (s) => element('td', 'cl-num', `${fmt(s.total)} / ${fmt(s.max)}`)},
+    {title: 'verdict', cls: 'cl-verdict', value: (s) => s.verdict,
+     cell: (s) => element('td', 'cl-verdict' + (s.verdict === 'graded' ? '' : ' cl-verdict-bad'), s.verdict)},
+    {title: 'causes', cls: 'cl-causes-cell', value: (s) => causeText(s), cell: chips},
+    {title: 's', full: 'seconds of grading', cls: 'cl-num', value: (s) => s.seconds,
+     cell: (s) => element('td', 'cl-num', s.seconds.toFixed(1))},
   ];
-  const fixed = columns.reduce((sum, c) => sum + c.width, 0);
-  const causes = columns.find((c) => c.title === 'causes');
-  causes.width = Math.max(12, 100 - fixed);
   const table = element('table', 'cl-table cl-submissions');
-  const colgroup = element('colgroup');
-  for (const c of columns) {
-    const col = element('col');
-    col.style.width = `${c.width}%`;
-    colgroup.appendChild(col);
-  }
-  table.appendChild(colgroup);
+  // the legend, in the table's caption: right above its header, never a footnote
+  const legend = element('caption', 'cl-legend');
+  const key = (className, text, what) => {
+    const item = element('span', 'cl-key');
+    item.append(element('span', className, text), ` ${what}`);
+    return item;
+  };
+  legend.append(
+      key('cl-chip', 'id', 'a likely cause'), key('cl-chip cl-guess', 'id?', 'a guess'),
+      key('cl-more', '+n', 'more causes (all on hover and in the report)'),
+      key('cl-full', '5', 'full points'), key('cl-none', '0', 'none'),
+      key('cl-max', '/5', 'the stub\'s maximum (two when the editions differ: each cell then says its own)'),
+      element('span', 'cl-key', 's: seconds of grading'));
+  table.appendChild(legend);
   const head = table.createTHead().insertRow();
   const body = table.createTBody();
   let sortColumn = 0, sortUp = true;
@@ -157,14 +178,18 @@ function mountClass(root, data) {
       for (const c of columns) tr.appendChild(c.cell(s));
     }
     head.querySelectorAll('th').forEach((th, i) => {
-      th.className = i === sortColumn ? (sortUp ? 'cl-sorted-up' : 'cl-sorted-down') : '';
+      th.classList.toggle('cl-sorted-up', i === sortColumn && sortUp);
+      th.classList.toggle('cl-sorted-down', i === sortColumn && !sortUp);
     });
     shownCount.textContent = `${rows.length} of ${subs.length} shown`;
   }
   columns.forEach((c, i) => {
-    const th = element('th', null, c.title);
+    const th = element('th', c.cls, c.title);
     th.title = c.full || c.title;
-    if (c.max !== undefined && c.max !== null) th.appendChild(element('span', 'cl-max', ` /${fmt(c.max)}`));
+    if (c.max !== undefined) {
+      th.appendChild(document.createElement('br'));
+      th.appendChild(element('span', 'cl-max', `/${c.max}`));
+    }
     th.addEventListener('click', () => {
       sortUp = sortColumn === i ? !sortUp : true;
       sortColumn = i;

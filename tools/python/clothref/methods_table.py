@@ -39,6 +39,9 @@ def fmt(value, spec=".3g"):
     return "-" if value is None else format(value, spec)
 
 
+PEERS = ("odeint-euler", "odeint-rk4", "odeint-symplectic-euler")
+
+
 def cheapest(points, target):
     ok = [p for p in points if p["stable"] and p["error_final"] is not None
           and p["error_final"] <= target]
@@ -57,6 +60,9 @@ def main(argv=None):
         sweep = json.load(handle)["points"]
     with open(args.stability, encoding="utf-8") as handle:
         stability = json.load(handle)["results"]
+    # the library's methods only: the odeint peer's points (`sweep --peer`) sit on their
+    # counterparts' and are charted beside them, not tabled
+    sweep = [p for p in sweep if p["method"] not in PEERS]
     methods = list(dict.fromkeys(p["method"] for p in sweep))
 
     print(f"| method | observed order | evals/step | us/step (course2022, {args.precision}, "

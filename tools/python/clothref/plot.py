@@ -7,7 +7,8 @@ python3 -m clothref.plot trace A.jsonl [B.jsonl] [--times 0 0.5 1] [--labels ref
 python3 -m clothref.plot sweep SWEEP.json -o PREFIX [--norm final|rms]
     PREFIX-<scene>.EXT: log-log work-precision charts from `clothref sweep` (error against
     time per simulated second, and against derivative evaluations), float and double, one curve
-    per method, reference slopes for orders 1, 2 and 4, unstable points marked at the top.
+    per method, reference slopes for orders 1, 2 and 4, unstable points marked at the top;
+    Boost.Odeint's points (`clothref sweep --peer`) as open squares in their counterpart's colour.
 python3 -m clothref.plot stability STABILITY.json -o PREFIX
     PREFIX.EXT: measured and predicted stability limits per method and scene (log scale).
 --formats png,svg (default) picks the files written. Every file is written to a temporary name
@@ -44,6 +45,10 @@ class _LazyPyplot:
 plt = _LazyPyplot()
 METHOD_COLOURS = {"explicit": "#d62728", "implicit": "#ff7f0e", "midpoint": "#2ca02c",
                   "rk4": "#1f77b4", "symplectic": "#9467bd", "backward-euler": "#8c564b"}
+# Boost.Odeint's steppers (`clothref sweep --peer`): points without a line, in the colour of the
+# library's method that makes the same step
+PEER_COUNTERPARTS = {"odeint-euler": "explicit", "odeint-rk4": "rk4",
+                     "odeint-symplectic-euler": "symplectic"}
 TRACE_COLOURS = ["#1f4e9c", "#d1495b"]
 
 
@@ -313,10 +318,16 @@ def plot_sweep(args):
                 axis = axes[row][col]
                 for method in dict.fromkeys(p["method"] for p in subset):
                     mine = [p for p in subset if p["method"] == method]
-                    colour = METHOD_COLOURS.get(method, "black")
+                    peer = method in PEER_COUNTERPARTS
+                    colour = METHOD_COLOURS.get(PEER_COUNTERPARTS.get(method, method), "black")
                     good = sorted([p for p in mine if p["stable"] and p[key] is not None],
                                   key=lambda p: p[work])
-                    if good:
+                    if good and peer:
+                        axis.plot([p[work] for p in good], [p[key] for p in good], marker="s",
+                                  markersize=8, markerfacecolor="none", markeredgewidth=1.2,
+                                  linestyle="none", color=colour,
+                                  label=f"{method} (Boost.Odeint)")
+                    elif good:
                         axis.plot([p[work] for p in good], [p[key] for p in good], marker="o",
                                   markersize=3.5, color=colour, label=method)
                     # unstable points are kept: at their error if the run stayed finite,

@@ -51,7 +51,7 @@ void nameCauses(const CauseEvidence& evidence, const std::set<std::string>& like
         t.addCause(id);
       else if (std::none_of(guesses.begin(), guesses.end(),
                             [&](const Cause& g) { return g.id == id; }))
-        guesses.push_back(Cause{id, false, {}, {}, {}, {}, {}});
+        guesses.push_back(Cause{id, false, {}, {}, {}, {}, {}, {}});
     }
     for (const CauseEvidence::Finding& f : evidence.findings) {
       if (!likely.count(f.cause) || !finding_applies[k]) continue;

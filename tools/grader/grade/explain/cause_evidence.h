@@ -1,8 +1,8 @@
 // How the collision and spring-force probes name the causes of their failed checks, from two kinds
-// of evidence (docs/grading.md, "Collisions and spring forces explained by the constants that
-// fit"): mistake variants (formula_variants.h) run on every case, and quantities read back from
-// the student's numbers (contact_fit.h, spring_fit.h). One rule for both probes: a cause is likely
-// only when it explains every case; a variant that matches some cases only is a guess.
+// of evidence (docs/grading-reference.md, "Collisions and spring forces explained by the constants
+// that fit"): mistake variants (formula_variants.h) run on every case, and quantities read back
+// from the student's numbers (contact_fit.h, spring_fit.h). One rule for both probes: a cause is
+// likely only when it explains every case; a variant that matches some cases only is a guess.
 #pragma once
 #include <cstddef>
 #include <set>

@@ -1,7 +1,7 @@
 // Numbers as every output shows them, and the one way a probe writes an expected value beside the
 // student's: the components beyond the tolerance marked, by how much and how many tolerances
-// (docs/grading.md, "Reading a check"; report/outputs.h's kNumberLegend says it once in every
-// report).
+// (docs/grading-reference.md, "Reading a check"; report/outputs.h's kNumberLegend says it once in
+// every report).
 #pragma once
 #include <algorithm>
 #include <array>

@@ -205,4 +205,22 @@ std::vector<ContactFinding> explainContacts(const std::vector<ContactReading>& r
   return findings;
 }
 
+std::optional<double> contactDistanceOffset(const std::vector<ContactReading>& readings,
+                                            double correction) {
+  std::optional<double> offset;
+  int read = 0;
+  for (const ContactReading& r : readings) {
+    if (!r.correction_a || !r.correction_b || r.tangential_position > kAgree) continue;
+    // Each body moved by correction x (penetration + d) along the normal.
+    const double da = *r.correction_a * r.penetration / correction - r.penetration;
+    const double db = *r.correction_b * r.penetration / correction - r.penetration;
+    if (!std::isfinite(da) || !same(da, db)) return std::nullopt;
+    if (offset && !same(*offset, da)) return std::nullopt;
+    if (!offset) offset = da;
+    ++read;
+  }
+  if (read < 2 || !offset || std::abs(*offset) <= kAgree) return std::nullopt;
+  return offset;
+}
+
 }  // namespace clothref::grader

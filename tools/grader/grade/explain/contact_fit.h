@@ -66,4 +66,11 @@ struct ContactFinding {
 std::vector<ContactFinding> explainContacts(const std::vector<ContactReading>& readings,
                                             double restitution, double correction);
 
+// The contact distance read back from the corrections: when every touching pair's correction
+// moves each body by correction x (penetration + d) instead of correction x penetration (the
+// student's contact distance is the course's + d, e.g. `radius + 0.1`), the d that fits all of
+// them; none when fewer than two pairs can be read, they disagree, or d is 0.
+std::optional<double> contactDistanceOffset(const std::vector<ContactReading>& readings,
+                                            double correction);
+
 }  // namespace clothref::grader

@@ -1,5 +1,7 @@
 #include "grader/grade/mistakes/formula_variants.h"
 
+#include <cmath>
+
 #include "clothref/formula/course_formulas.h"
 #include "grader/grade/submission/edition.h"
 
@@ -21,6 +23,9 @@ Mat4X<float> springAccelerations(const Cloth<float>& cloth, const Mat4X<float>& 
         0.0f, mistake == ForceMistake::AssignTotalGravity ? course_gravity : 0.0f, 0.0f, 0.0f);
     for (int i = 0; i < p.size(); ++i) a.col(i) = p.mass[i] != 0 ? gravity : Vec4<float>::Zero();
   }
+  // The direction left unnormalised is the damper along d with the whole force times |d|.
+  variant.damper_unnormalised =
+      variant.damper_unnormalised || mistake == ForceMistake::DirectionUnnormalised;
   // The loop of the library's computeSpringForce (core/cloth.cpp), its accumulation switchable.
   for (const auto& s : cloth.springs) {
     const int i = int(s.start), j = int(s.end);
@@ -28,6 +33,8 @@ Mat4X<float> springAccelerations(const Cloth<float>& cloth, const Mat4X<float>& 
     formula::springForce(p.position.col(i).data(), p.position.col(j).data(),
                          p.velocity.col(i).data(), p.velocity.col(j).data(), s.rest_length,
                          cloth.spring_coef, cloth.damper_coef, f.data(), variant);
+    if (mistake == ForceMistake::DirectionUnnormalised)
+      f *= (p.position.col(i) - p.position.col(j)).norm();
     float wi = p.inverse_mass[i], wj = p.inverse_mass[j];
     if (mistake == ForceMistake::MassNotInverse) wi = p.mass[i], wj = p.mass[j];
     if (mistake == ForceMistake::DivideByMass) wi = 1.0f / p.mass[i], wj = 1.0f / p.mass[j];
@@ -40,6 +47,39 @@ Mat4X<float> springAccelerations(const Cloth<float>& cloth, const Mat4X<float>& 
     }
   }
   return a;
+}
+
+std::string forceModelText(ForceMistake mistake) {
+  switch (mistake) {
+    case ForceMistake::None:
+      return "the course's spring force";
+    case ForceMistake::DirectionUnnormalised:
+      return "the course's spring force along the unnormalised x_s - x_e (the result of "
+             "normalized() discarded)";
+    case ForceMistake::Assign:
+      return "the course's spring force assigned to the accelerations (=) instead of added";
+    case ForceMistake::SpringSign:
+      return "the course's spring force with the Hooke term's sign flipped";
+    case ForceMistake::DamperSign:
+      return "the course's spring force with the damper's sign flipped";
+    case ForceMistake::NoDamper:
+      return "the course's spring force without the damper";
+    case ForceMistake::DamperUnnormalised:
+      return "the course's spring force with the damper along the unnormalised x_s - x_e";
+    case ForceMistake::OneEnd:
+      return "the course's spring force on the start particle only";
+    case ForceMistake::MassNotInverse:
+      return "the course's spring force times the mass instead of the inverse mass";
+    case ForceMistake::DivideByMass:
+      return "the course's spring force divided by the mass (infinite for a fixed particle)";
+    case ForceMistake::OtherEndOnly:
+      return "the course's spring force on the end particle only";
+    case ForceMistake::AssignTotal:
+      return "the course's spring forces summed and assigned (what was there lost)";
+    case ForceMistake::AssignTotalGravity:
+      return "the course's spring forces summed and assigned, gravity added back";
+  }
+  return "";
 }
 
 namespace {
@@ -57,36 +97,124 @@ ContactVariant contactVariant(ContactMistake m) {
   return v;
 }
 
-void contact(Particles<float>& a, int i, Particles<float>& b, int j, float reach, float e,
-             float correction, const ContactVariant& variant) {
-  formula::resolveContact(a.position.col(i).data(), a.velocity.col(i).data(), a.inverse_mass[i],
-                          b.position.col(j).data(), b.velocity.col(j).data(), b.inverse_mass[j],
-                          reach, e, correction, variant);
-}
-
 }  // namespace
 
 void collideWithMistake(Spheres<float>& spheres, Cloth<float>& cloth, bool sphere_sphere,
                         float restitution, float correction, ContactMistake mistake) {
-  const ContactVariant variant = contactVariant(mistake);
-  if (mistake == ContactMistake::RestitutionZero) restitution = 0;
-  if (mistake == ContactMistake::RestitutionOne) restitution = 1;
+  collideModel(spheres, cloth, sphere_sphere,
+               withMistake(courseContact(restitution, correction), mistake));
+}
+
+ContactModel courseContact(float restitution, float correction) {
+  ContactModel model;
+  model.restitution = restitution;
+  model.correction = correction;
+  return model;
+}
+
+ContactModel withMistake(ContactModel model, ContactMistake mistake) {
+  const ContactVariant v = contactVariant(mistake);
+  ContactVariant& m = model.variant;
+  m.normal_flipped = m.normal_flipped || v.normal_flipped;
+  m.touching_skipped = m.touching_skipped || v.touching_skipped;
+  m.separating_pushed = m.separating_pushed || v.separating_pushed;
+  m.full_velocity = m.full_velocity || v.full_velocity;
+  m.undivided = m.undivided || v.undivided;
+  m.massless_fixed = m.massless_fixed || v.massless_fixed;
+  m.moves_a = m.moves_a && v.moves_a;
+  m.moves_b = m.moves_b && v.moves_b;
+  if (mistake == ContactMistake::RestitutionZero) model.restitution = 0;
+  if (mistake == ContactMistake::RestitutionOne) model.restitution = 1;
+  model.first_sphere_only = model.first_sphere_only || mistake == ContactMistake::FirstSphereOnly;
+  model.sphere_zero_for_all =
+      model.sphere_zero_for_all || mistake == ContactMistake::SphereZeroForAll;
+  model.pair_twice = model.pair_twice || mistake == ContactMistake::PairTwice;
+  static const std::pair<ContactMistake, const char*> texts[] = {
+      {ContactMistake::NoApproachCheck, "with an impulse for separating bodies too"},
+      {ContactMistake::RestitutionFull, "with the impulse from the whole relative velocity"},
+      {ContactMistake::CorrectionSphereOnly, "with the position correction on the sphere only"},
+      {ContactMistake::CorrectionOtherOnly, "with the position correction on the other body only"},
+      {ContactMistake::NoCorrection, "without the position correction"},
+      {ContactMistake::FixedMassless, "with a fixed particle as massless"},
+      {ContactMistake::FirstSphereOnly, "for sphere 0 only"},
+      {ContactMistake::SphereZeroForAll, "with sphere 0's position and radius for every sphere"},
+      {ContactMistake::NormalSign, "with the normal reversed"},
+      {ContactMistake::TouchingSkipped, "skipping bodies that exactly touch"},
+      {ContactMistake::RestitutionZero, "with restitution 0"},
+      {ContactMistake::RestitutionOne, "with restitution 1"},
+      {ContactMistake::PairTwice, "with every pair processed twice"},
+      {ContactMistake::ImpulseNotDivided, "with the impulse not divided by 1/m_a + 1/m_b"}};
+  for (const auto& [which, text] : texts)
+    if (which == mistake) model.changes.push_back(text);
+  return model;
+}
+
+ContactModel combined(ContactModel model, const ContactModel& other, const ContactModel& course) {
+  ContactVariant& m = model.variant;
+  const ContactVariant& o = other.variant;
+  m.normal_flipped = m.normal_flipped || o.normal_flipped;
+  m.touching_skipped = m.touching_skipped || o.touching_skipped;
+  m.separating_pushed = m.separating_pushed || o.separating_pushed;
+  m.full_velocity = m.full_velocity || o.full_velocity;
+  m.undivided = m.undivided || o.undivided;
+  m.massless_fixed = m.massless_fixed || o.massless_fixed;
+  m.moves_a = m.moves_a && o.moves_a;
+  m.moves_b = m.moves_b && o.moves_b;
+  if (other.restitution != course.restitution) model.restitution = other.restitution;
+  if (other.correction != course.correction) model.correction = other.correction;
+  if (other.reach_offset != course.reach_offset) model.reach_offset = other.reach_offset;
+  model.first_sphere_only = model.first_sphere_only || other.first_sphere_only;
+  model.sphere_zero_for_all = model.sphere_zero_for_all || other.sphere_zero_for_all;
+  model.pair_twice = model.pair_twice || other.pair_twice;
+  model.divides_by_speed = model.divides_by_speed || other.divides_by_speed;
+  model.changes.insert(model.changes.end(), other.changes.begin(), other.changes.end());
+  return model;
+}
+
+namespace {
+
+// One contact of `model`: the course's formula with its switches; with divides_by_speed, a pair
+// that approaches with a body at rest gets NaN velocities (that body's normal speed is 0 / 0, and
+// the impulse J made from it reaches both bodies).
+void modelContact(Particles<float>& a, int i, Particles<float>& b, int j, float reach,
+                  const ContactModel& model) {
+  const Vec4<float> va = a.velocity.col(i), vb = b.velocity.col(j);
+  const bool approaching = (va - vb).dot(a.position.col(i) - b.position.col(j)) < 0;
+  const bool touched = formula::resolveContact(
+      a.position.col(i).data(), a.velocity.col(i).data(), a.inverse_mass[i],
+      b.position.col(j).data(), b.velocity.col(j).data(), b.inverse_mass[j],
+      reach + model.reach_offset, model.restitution, model.correction, model.variant);
+  if (touched && model.divides_by_speed && approaching && (va.isZero(0) || vb.isZero(0))) {
+    a.velocity.col(i).setConstant(std::nanf(""));
+    b.velocity.col(j).setConstant(std::nanf(""));
+  }
+}
+
+}  // namespace
+
+void collideModel(Spheres<float>& spheres, Cloth<float>& cloth, bool sphere_sphere,
+                  const ContactModel& model) {
   auto& sp = spheres.particles;
-  const int count = mistake == ContactMistake::FirstSphereOnly ? 1 : spheres.size();
+  const int count = model.first_sphere_only ? 1 : spheres.size();
   // The loops of the library's two collide stubs (core/spheres.cpp), their ranges switchable.
   if (!sphere_sphere) {
     for (int i = 0; i < count; ++i) {
-      const int a = mistake == ContactMistake::SphereZeroForAll ? 0 : i;
+      const int a = model.sphere_zero_for_all ? 0 : i;
       for (int j = 0; j < cloth.particles.size(); ++j)
-        contact(sp, a, cloth.particles, j, spheres.radius[a], restitution, correction, variant);
+        modelContact(sp, a, cloth.particles, j, spheres.radius[a], model);
     }
     return;
   }
   for (int i = 0; i < count; ++i)
-    for (int j = mistake == ContactMistake::PairTwice ? 0 : i + 1; j < spheres.size(); ++j)
-      if (j != i)
-        contact(sp, i, sp, j, spheres.radius[i] + spheres.radius[j], restitution, correction,
-                variant);
+    for (int j = model.pair_twice ? 0 : i + 1; j < spheres.size(); ++j)
+      if (j != i) modelContact(sp, i, sp, j, spheres.radius[i] + spheres.radius[j], model);
+}
+
+std::string contactModelText(const ContactModel& model) {
+  std::string text = "the course's collide";
+  for (std::size_t k = 0; k < model.changes.size(); ++k)
+    text += (k == 0 ? " " : " and ") + model.changes[k];
+  return text;
 }
 
 }  // namespace clothref::grader

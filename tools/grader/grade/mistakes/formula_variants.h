@@ -4,6 +4,9 @@
 // Expected answers never come from here: they are the library's stubs (computeSpringForce,
 // collide); FormulaVariants.* prove the no-mistake variants bit-equal to them.
 #pragma once
+#include <string>
+#include <vector>
+
 #include "clothref/core/cloth.h"
 #include "clothref/core/spheres.h"
 
@@ -22,7 +25,8 @@ struct ContactVariant {
 
 enum class ForceMistake {
   None,
-  Assign,  // a = -F / m instead of a -= F / m
+  DirectionUnnormalised,  // `d.normalized();` discarded: F = d (k_d (v_rel . d) + k_s (|d| - rest))
+  Assign,                 // a = -F / m instead of a -= F / m
   SpringSign,
   DamperSign,
   NoDamper,
@@ -36,8 +40,14 @@ enum class ForceMistake {
 };
 
 // Stub 2 with one mistake: `cloth`'s accelerations are `acc0` plus the springs' (shape 4 x N).
+// The cloth's spring_coef and damper_coef are the model's constants (a fitted k_s, k_d: set them
+// on a copy).
 Mat4X<float> springAccelerations(const Cloth<float>& cloth, const Mat4X<float>& acc0,
                                  ForceMistake mistake);
+
+// What a mistake's model computes, in a student's words ("the course's spring force with the
+// damper's sign flipped"): the head of a replay's proof line (explain/replay.h).
+std::string forceModelText(ForceMistake mistake);
 
 enum class ContactMistake {
   None,
@@ -61,5 +71,33 @@ enum class ContactMistake {
 // in place, with the course's restitution and correction factor.
 void collideWithMistake(Spheres<float>& spheres, Cloth<float>& cloth, bool sphere_sphere,
                         float restitution, float correction, ContactMistake mistake);
+
+// A contact model: the course's collide with any number of the mistakes' switches on and its
+// constants free (a fitted restitution, correction factor or contact distance), so that a model
+// of one mistake, of a fitted constant or of two mistakes at once is replayed on every case of a
+// probe (issue 38: a cause is likely only when its model gives the student's numbers everywhere).
+struct ContactModel {
+  ContactVariant variant;
+  float restitution = 0, correction = 0.15f;
+  float reach_offset = 0;  // the contact distance r (+ r_b) + this (m): `radius + 0.1`
+  bool first_sphere_only = false, sphere_zero_for_all = false, pair_twice = false;
+  // v . n computed as |v| cos(angle), cos = v . n / |v|: NaN for a body at rest in an approaching
+  // pair (the impulse's normal part is that body's own v . n, each body's formed apart)
+  bool divides_by_speed = false;
+  std::vector<std::string> changes;  // what differs from the course's collide, for the text
+};
+
+// The course's collide (no switch on) with its restitution and correction factor.
+ContactModel courseContact(float restitution, float correction);
+// `model` with `mistake` switched on too.
+ContactModel withMistake(ContactModel model, ContactMistake mistake);
+// `model` with the switches and constants of `other` that differ from the course's too.
+ContactModel combined(ContactModel model, const ContactModel& other, const ContactModel& course);
+
+// Stub 3 or 4 as `model` computes it, in place.
+void collideModel(Spheres<float>& spheres, Cloth<float>& cloth, bool sphere_sphere,
+                  const ContactModel& model);
+// "the course's collide without the position correction and with restitution 1"
+std::string contactModelText(const ContactModel& model);
 
 }  // namespace clothref::grader

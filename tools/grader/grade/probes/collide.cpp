@@ -13,67 +13,16 @@
 #include "grader/grade/cause_ids.h"
 #include "grader/grade/explain/cause_evidence.h"
 #include "grader/grade/explain/contact_fit.h"
+#include "grader/grade/explain/replay.h"
 #include "grader/grade/mistakes/formula_variants.h"
 #include "grader/grade/probes/collide_cases.h"
+#include "grader/grade/probes/collide_replay.h"
 #include "grader/grade/probes/util.h"
 
 namespace clothref::grader {
 namespace {
 
 using namespace contacts;
-
-struct Outcome {
-  Mat4X<float> cloth_x, cloth_v, sphere_x, sphere_v;
-};
-
-Outcome outcomeOf(const State& s) {
-  return {s.cloth.particles.position, s.cloth.particles.velocity, s.spheres.particles.position,
-          s.spheres.particles.velocity};
-}
-
-// Largest |a - b| / (1 + |b|) over every value (NaN counts as infinitely far).
-double distance(const Outcome& a, const Outcome& b) {
-  double worst = 0;
-  const auto one = [&](const Mat4X<float>& x, const Mat4X<float>& y) {
-    for (int k = 0; k < x.size(); ++k) {
-      const double d =
-          std::abs(double(x.data()[k]) - double(y.data()[k])) / (1 + std::abs(double(y.data()[k])));
-      worst = std::isfinite(d) ? std::max(worst, d) : 1e300;
-    }
-  };
-  one(a.cloth_x, b.cloth_x);
-  one(a.cloth_v, b.cloth_v);
-  one(a.sphere_x, b.sphere_x);
-  one(a.sphere_v, b.sphere_v);
-  return worst;
-}
-
-Vec4<double> momentum(const State& s, const Outcome& o) {
-  Vec4<double> total = Vec4<double>::Zero();
-  for (int i = 0; i < s.cloth.particles.size(); ++i)
-    total += double(s.cloth.particles.mass[i]) * o.cloth_v.col(i).cast<double>();
-  for (int i = 0; i < s.spheres.size(); ++i)
-    total += double(s.spheres.particles.mass[i]) * o.sphere_v.col(i).cast<double>();
-  return total;
-}
-
-// How far the case's total momentum may move: 1e-5 of the momenta involved (float sums).
-double momentumTolerance(const Case& c) {
-  double scale = 0;
-  for (int q : c.spheres)
-    scale += c.state.spheres.particles.mass[q] *
-             c.state.spheres.particles.velocity.col(q).cast<double>().norm();
-  for (int q : c.particles)
-    scale += c.state.cloth.particles.mass[q] *
-             c.state.cloth.particles.velocity.col(q).cast<double>().norm();
-  return 1e-5 * (1 + scale);
-}
-
-// Whether the call left the case's total momentum unchanged (within momentumTolerance).
-bool conserves(const Case& c, const Outcome& after) {
-  const Vec4<double> change = momentum(c.state, after) - momentum(c.state, outcomeOf(c.state));
-  return change.norm() <= momentumTolerance(c);
-}
 
 // The pairs of a case that touch before the call, each read back in the course's terms
 // (contact_fit.h) from the student's result; a body in two contacts is left out (its change mixes
@@ -129,10 +78,13 @@ int readPairs(const Case& c, bool sphere_sphere, const Outcome& actual,
 
 std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_sphere) {
   const std::vector<PlannedTest> checks = checkTable(sphere_sphere);
-  const float e = sphere_sphere ? 0.8f : 0.0f;
+  // The course's values (the edition's scene): restitution of the pair's kind, the correction.
+  const float e = static_cast<float>(sphere_sphere ? context.course.restitution_sphere
+                                                   : context.course.restitution_cloth);
+  const float correction = static_cast<float>(context.course.correction);
   const double rel = context.rubric.tolerances.collide_rel;
   std::vector<Case> cases =
-      sphere_sphere ? sphereCases(context.edition) : clothCases(context.edition);
+      sphere_sphere ? sphereCases(context.course) : clothCases(context.course);
   probe::ProbeMessage request;
   const char* group_name = sphere_sphere ? group::kCollideSpheres : group::kCollideCloth;
   request.texts[key::kGroup] = group_name;
@@ -181,6 +133,7 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
   // NaN or infinity out of the student's call, per case, and whether the case had a body at rest
   // (velocity exactly 0): NaN only where a body rests is a division by its speed.
   std::vector<bool> non_finite(cases.size(), false), at_rest(cases.size(), false);
+  std::vector<Outcome> actuals;  // the student's outcome of each case (for the replays)
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const Case& c = cases[k];
     for (int q : c.spheres)
@@ -200,8 +153,9 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
                          util::matrix(answer->f(key::perCase(key::kClothVel, n)), kN * kN),
                          util::matrix(answer->f(key::perCase(key::kSpherePos, n)), 3),
                          util::matrix(answer->f(key::perCase(key::kSphereVel, n)), 3)};
+    actuals.push_back(actual);
     State reference = c.state;
-    collideCourse(reference, sphere_sphere, e);
+    collideCourse(reference, sphere_sphere, e, correction);
     const Outcome expected = outcomeOf(reference);
     if (c.free_bodies && !conserves(c, actual)) {
       const Vec4<double> before = momentum(c.state, outcomeOf(c.state));
@@ -215,7 +169,7 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
     TestResult t = util::test(checks[c.check]);
     for (std::size_t m = 0; m < signatures.size(); ++m) {
       State variant = c.state;
-      collideWithMistake(variant.spheres, variant.cloth, sphere_sphere, e, kCorrection,
+      collideWithMistake(variant.spheres, variant.cloth, sphere_sphere, e, correction,
                          signatures[m].first);
       const Outcome v = outcomeOf(variant);
       evidence.differs[k][m] = distance(v, expected) > rel;
@@ -278,7 +232,7 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
   // What the numbers say in the course's terms (contact_fit.h): the one quantity that differs,
   // shown on the cases with a touching pair.
   const std::vector<ContactFinding> findings =
-      answer ? explainContacts(readings, e, kCorrection) : std::vector<ContactFinding>{};
+      answer ? explainContacts(readings, e, correction) : std::vector<ContactFinding>{};
   for (const ContactFinding& f : findings)
     if (!f.cause.empty()) evidence.findings.push_back({f.cause, f.text});
   const auto finding = [&](const std::string& id) -> const ContactFinding* {
@@ -301,7 +255,7 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
       continue;
     for (const Case& c : cases) {
       State variant = c.state;
-      collideWithMistake(variant.spheres, variant.cloth, sphere_sphere, e, kCorrection,
+      collideWithMistake(variant.spheres, variant.cloth, sphere_sphere, e, correction,
                          signatures[m].first);
       if (c.free_bodies && !conserves(c, outcomeOf(variant))) {
         breaks_momentum.push_back(id);
@@ -339,7 +293,46 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
   } else {
     tests.push_back(
         util::failedTest(checks.back(), failure.text, {util::guess(failure.causeId())}));
+    return tests;
   }
+  // Likely means proven: every model of a cause replayed on every case (explain/replay.h).
+  const ContactModel course = courseContact(e, correction);
+  std::vector<Candidate> candidates;
+  for (const auto& [mistake, id] : signatures)
+    candidates.push_back({{id}, withMistake(course, mistake)});
+  for (const ContactFinding& f : findings) {
+    ContactModel fitted = course;
+    if (f.cause == cause::kRestitutionIgnored) {
+      fitted.restitution = float(f.value);
+      fitted.changes.push_back("with restitution " + util::num(f.value));
+    } else if (f.cause == cause::kCorrectionFactor) {
+      fitted.correction = float(f.value);
+      fitted.changes.push_back("with a position correction of " + util::num(f.value) +
+                               " x overlap");
+    } else {
+      continue;  // the others are the switches' models above
+    }
+    candidates.push_back({{f.cause}, fitted});
+  }
+  if (const std::optional<double> d = contactDistanceOffset(readings, correction)) {
+    ContactModel reach = course;
+    reach.reach_offset = float(*d);
+    reach.changes.push_back("with a contact distance of " +
+                            std::string(sphere_sphere ? "r_a + r_b" : "the radius") + " + " +
+                            util::num(*d) + " m");
+    candidates.push_back({{cause::kContactDistance}, reach});
+  }
+  ContactModel speed = course;
+  speed.divides_by_speed = true;
+  speed.changes.push_back("with each normal speed formed as |v| (v . n / |v|)");
+  candidates.push_back({{cause::kDivisionBySpeed}, speed});
+  proveContacts(candidates, cases, actuals, checks, sphere_sphere, rel, course, tests);
+  requireProofs(tests, {cause::kNonFinite});
+  for (TestResult& t : tests)
+    if (!t.passed() &&
+        std::none_of(t.causes.begin(), t.causes.end(), [](const Cause& c) { return c.likely; }) &&
+        !t.names(cause::kUnknown))
+      t.causes.insert(t.causes.begin(), util::guess(cause::kUnknown));
   return tests;
 }
 

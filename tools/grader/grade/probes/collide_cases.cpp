@@ -1,22 +1,26 @@
 #include "grader/grade/probes/collide_cases.h"
 
+#include <algorithm>
+#include <cmath>
 #include <functional>
 #include <iterator>
 
 namespace clothref::grader::contacts {
 
-void collideCourse(State& s, bool sphere_sphere, float restitution) {
+void collideCourse(State& s, bool sphere_sphere, float restitution, float correction) {
   if (sphere_sphere)
-    collide(s.spheres, restitution, kCorrection);
+    collide(s.spheres, restitution, correction);
   else
-    collide(s.spheres, s.cloth, restitution, kCorrection);
+    collide(s.spheres, s.cloth, restitution, correction);
 }
 
 namespace {
 
-State baseState(int edition) {
+State baseState(const Edition& course) {
   State s;
-  s.cloth.particles = initializeVertex<float>(kN, 2.0f, edition == 2024 ? 1.0f : 0.0f, 1.0f);
+  s.cloth.particles = initializeVertex<float>(kN, static_cast<float>(course.cloth_half_extent),
+                                              static_cast<float>(course.cloth_height),
+                                              static_cast<float>(course.particle_mass));
   for (int i = 0; i < kN; ++i)
     for (int j = 0; j < kN; ++j)  // parked 50 m below, 3 m apart: nothing touches them
       s.cloth.particles.position.col(i * kN + j) =
@@ -48,11 +52,11 @@ static_assert(std::size(kSphereCheckNames) == kSpheresMomentum + 1);
 
 }  // namespace
 
-std::vector<Case> clothCases(int edition) {
+std::vector<Case> clothCases(const Edition& course) {
   std::vector<Case> cases;
   const auto make = [&](ClothCheck check, std::vector<int> spheres, std::vector<int> particles,
                         const std::function<void(State&)>& setup, bool free_bodies = true) {
-    Case c{check, baseState(edition), std::move(spheres), std::move(particles), free_bodies};
+    Case c{check, baseState(course), std::move(spheres), std::move(particles), free_bodies};
     setup(c.state);
     cases.push_back(std::move(c));
   };
@@ -94,11 +98,11 @@ std::vector<Case> clothCases(int edition) {
   return cases;
 }
 
-std::vector<Case> sphereCases(int edition) {
+std::vector<Case> sphereCases(const Edition& course) {
   std::vector<Case> cases;
   const auto make = [&](SphereCheck check, std::vector<int> spheres,
                         const std::function<void(State&)>& setup) {
-    Case c{check, baseState(edition), std::move(spheres), {}, true};
+    Case c{check, baseState(course), std::move(spheres), {}, true};
     setup(c.state);
     cases.push_back(std::move(c));
   };
@@ -143,6 +147,52 @@ std::vector<PlannedTest> checkTable(bool sphere_sphere) {
            : std::vector<const char*>(std::begin(kClothCheckNames), std::end(kClothCheckNames)))
     checks.push_back({stub, name, 1});
   return checks;
+}
+
+Outcome outcomeOf(const State& s) {
+  return {s.cloth.particles.position, s.cloth.particles.velocity, s.spheres.particles.position,
+          s.spheres.particles.velocity};
+}
+
+double distance(const Outcome& a, const Outcome& b) {
+  double worst = 0;
+  const auto one = [&](const Mat4X<float>& x, const Mat4X<float>& y) {
+    for (int k = 0; k < x.size(); ++k) {
+      const double d =
+          std::abs(double(x.data()[k]) - double(y.data()[k])) / (1 + std::abs(double(y.data()[k])));
+      worst = std::isfinite(d) ? std::max(worst, d) : 1e300;
+    }
+  };
+  one(a.cloth_x, b.cloth_x);
+  one(a.cloth_v, b.cloth_v);
+  one(a.sphere_x, b.sphere_x);
+  one(a.sphere_v, b.sphere_v);
+  return worst;
+}
+
+Vec4<double> momentum(const State& s, const Outcome& o) {
+  Vec4<double> total = Vec4<double>::Zero();
+  for (int i = 0; i < s.cloth.particles.size(); ++i)
+    total += double(s.cloth.particles.mass[i]) * o.cloth_v.col(i).cast<double>();
+  for (int i = 0; i < s.spheres.size(); ++i)
+    total += double(s.spheres.particles.mass[i]) * o.sphere_v.col(i).cast<double>();
+  return total;
+}
+
+double momentumTolerance(const Case& c) {
+  double scale = 0;
+  for (int q : c.spheres)
+    scale += c.state.spheres.particles.mass[q] *
+             c.state.spheres.particles.velocity.col(q).cast<double>().norm();
+  for (int q : c.particles)
+    scale += c.state.cloth.particles.mass[q] *
+             c.state.cloth.particles.velocity.col(q).cast<double>().norm();
+  return 1e-5 * (1 + scale);
+}
+
+bool conserves(const Case& c, const Outcome& after) {
+  const Vec4<double> change = momentum(c.state, after) - momentum(c.state, outcomeOf(c.state));
+  return change.norm() <= momentumTolerance(c);
 }
 
 }  // namespace clothref::grader::contacts

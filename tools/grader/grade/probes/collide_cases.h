@@ -8,20 +8,21 @@
 #include "clothref/core/cloth.h"
 #include "clothref/core/spheres.h"
 #include "grader/grade/probes/probes.h"
+#include "grader/grade/submission/edition.h"
 
 namespace clothref::grader::contacts {
 
 inline constexpr int kN = 25;                          // particles per cloth edge
 inline constexpr float kRadii[] = {0.5f, 0.5f, 1.0f};  // m: the three spheres
-inline constexpr float kCorrection = 0.15f;            // the course's position correction
 
 struct State {
   Cloth<float> cloth;
   Spheres<float> spheres;
 };
 
-// The library's stub on `s`: the expected answer.
-void collideCourse(State& s, bool sphere_sphere, float restitution);
+// The library's stub on `s` with the course's restitution and position correction (the fraction
+// of the overlap undone): the expected answer.
+void collideCourse(State& s, bool sphere_sphere, float restitution, float correction);
 
 // Rows of the check tables (checkTable()): one case each, then momentum over them all.
 enum ClothCheck {
@@ -52,8 +53,27 @@ struct Case {
   bool free_bodies = true;              // momentum must be conserved
 };
 
-std::vector<Case> clothCases(int edition);   // Spheres::collide(Cloth*)
-std::vector<Case> sphereCases(int edition);  // Spheres::collide()
+// On the edition's course cloth (its half extent, height and particle mass).
+std::vector<Case> clothCases(const Edition& course);   // Spheres::collide(Cloth*)
+std::vector<Case> sphereCases(const Edition& course);  // Spheres::collide()
 std::vector<PlannedTest> checkTable(bool sphere_sphere);
+
+// What a call left: every body's positions (m) and velocities (m/s), cloth then spheres.
+struct Outcome {
+  Mat4X<float> cloth_x, cloth_v, sphere_x, sphere_v;
+};
+Outcome outcomeOf(const State& s);
+
+// Largest |a - b| / (1 + |b|) over every value (NaN counts as infinitely far).
+double distance(const Outcome& a, const Outcome& b);
+
+// The total momentum (kg m/s) of the case's bodies moving as in `o`.
+Vec4<double> momentum(const State& s, const Outcome& o);
+
+// How far the case's total momentum may move: 1e-5 of the momenta involved (float sums).
+double momentumTolerance(const Case& c);
+
+// Whether the call left the case's total momentum unchanged (within momentumTolerance).
+bool conserves(const Case& c, const Outcome& after);
 
 }  // namespace clothref::grader::contacts

@@ -2,11 +2,14 @@
 // moving states, with existing accelerations (accumulation) and with fixed and heavy particles.
 // Accelerations are compared with clothref's per particle, within force_rel times the sum of the
 // magnitudes that meet at that particle (so reordered float sums pass, wrong physics does not).
+#include <algorithm>
+#include <optional>
 #include <random>
 
 #include "clothref/core/cloth.h"
 #include "grader/grade/cause_ids.h"
 #include "grader/grade/explain/cause_evidence.h"
+#include "grader/grade/explain/replay.h"
 #include "grader/grade/explain/spring_fit.h"
 #include "grader/grade/mistakes/formula_variants.h"
 #include "grader/grade/probes/util.h"
@@ -96,6 +99,33 @@ SpringCase springCase(const Case& c, const Mat4X<float>& actual) {
   return out;
 }
 
+// A model of the student's computeSpringForce: one mistake's switch, the constants on `cloth`.
+struct ForceCandidate {
+  std::vector<std::string> ids;
+  ForceMistake mistake;
+  float spring_coef, damper_coef;
+  std::string text;
+};
+
+// The form a spring reading fitted, as the mistake whose model computes it.
+ForceMistake mistakeOfForm(SpringForm form) {
+  switch (form) {
+    case SpringForm::Course:
+      return ForceMistake::None;
+    case SpringForm::DamperUnnormalised:
+      return ForceMistake::DamperUnnormalised;
+    case SpringForm::DamperUnnormalisedTwice:  // no model of its own: the candidate is skipped
+      return ForceMistake::None;
+    case SpringForm::OneEndOnly:
+      return ForceMistake::OneEnd;
+    case SpringForm::EndOnly:
+      return ForceMistake::OtherEndOnly;
+    case SpringForm::MassNotInverse:
+      return ForceMistake::MassNotInverse;
+  }
+  return ForceMistake::None;
+}
+
 }  // namespace
 
 std::vector<PlannedTest> forcesChecks() {
@@ -108,11 +138,15 @@ std::vector<PlannedTest> forcesChecks() {
 std::vector<TestResult> probeForces(const ProbeContext& context) {
   const double rel = context.rubric.tolerances.force_rel;
   Cloth<float> base;
-  base.particles = initializeVertex<float>(kN, 2.0f, context.edition == 2024 ? 1.0f : 0.0f, 1.0f);
+  // The course's cloth and constants (the edition's scene).
+  const Edition& course = context.course;
+  base.particles = initializeVertex<float>(kN, static_cast<float>(course.cloth_half_extent),
+                                           static_cast<float>(course.cloth_height),
+                                           static_cast<float>(course.particle_mass));
   for (int corner : {0, kN - 1, kN * (kN - 1), kN * kN - 1}) setMass(base.particles, corner, 0.0f);
   initializeSpring(base, kN);
-  base.spring_coef = context.edition == 2024 ? 20000.0f : 25000.0f;
-  base.damper_coef = 750.0f;
+  base.spring_coef = static_cast<float>(course.spring_coef);
+  base.damper_coef = static_cast<float>(course.damper_coef);
   std::mt19937 rng(static_cast<unsigned>(context.seed));
   std::uniform_real_distribution<float> u(-1.0f, 1.0f);
   const auto noise = [&](Mat4X<float>& m, float amount, bool keep_w) {
@@ -203,11 +237,13 @@ std::vector<TestResult> probeForces(const ProbeContext& context) {
   for (const auto& signature : signatures) ids.push_back(signature.second);
   CauseEvidence evidence = makeEvidence(cases.size(), ids);
   std::vector<SpringReading> readings;  // each case read as the course's force, constants free
+  std::vector<Mat4X<float>> actuals;    // the student's accelerations of each case
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const Case& c = cases[k];
     TestResult t = util::test(checks[c.check]);
     const Mat4X<float> actual =
         util::matrix(answer->f(key::perCase(key::kClothAcc, static_cast<int>(k))), kN * kN);
+    actuals.push_back(actual);
     Cloth<float> reference = c.cloth;  // the library's stub gives the expected answer
     reference.particles.acceleration = c.acc0;
     computeSpringForce(reference);
@@ -241,17 +277,115 @@ std::vector<TestResult> probeForces(const ProbeContext& context) {
         util::vec3(c.acc0.col(i)) + "\n" +
         util::compareVectors("acceleration after the call", expected.col(i), actual.col(i),
                              util::Tolerance{rel * scale[i] + 1e-6, 0}, "m/s\u00B2");
-    for (int q = 0; q < kN * kN; ++q)  // measured: shown whatever else explains the numbers
+    // Measured: a fixed particle's acceleration changed. It explains the check (likely) only where
+    // every other particle is right; beside other differences (NaN, garbage, a second mistake)
+    // it is shown as a guess, and earns no mistake's points.
+    bool others_right = true;
+    for (int q = 0; q < kN * kN; ++q)
+      if (p.mass[q] != 0) {
+        const double err = (actual.col(q).cast<double>() - expected.col(q).cast<double>()).norm();
+        others_right = others_right && std::isfinite(err) && err <= rel * scale[q] + 1e-6;
+      }
+    for (int q = 0; q < kN * kN; ++q)
       if (p.mass[q] == 0 && actual.col(q) != c.acc0.col(q)) {
-        t.addCause(cause::kFixedParticleMoves);
+        t.addCause(cause::kFixedParticleMoves, others_right);
         break;
       }
-    if (!util::finite(util::flat(actual))) evidence.measured[k].push_back(cause::kNonFinite);
     tests.push_back(t);
   }
-  for (const SpringFinding& f : explainSprings(readings, base.spring_coef, base.damper_coef))
-    evidence.findings.push_back({f.cause, f.text});
+  const std::vector<SpringFinding> findings =
+      explainSprings(readings, base.spring_coef, base.damper_coef);
+  for (const SpringFinding& f : findings) evidence.findings.push_back({f.cause, f.text});
   nameCauses(evidence, likelyCauses(evidence), std::vector<bool>(cases.size(), true), tests);
+
+  // Likely means proven: each cause's model replayed on every case (explain/replay.h).
+  std::vector<ForceCandidate> candidates;
+  for (const auto& [mistake, id] : signatures)
+    candidates.push_back(
+        {{id}, mistake, base.spring_coef, base.damper_coef, forceModelText(mistake)});
+  candidates.push_back({{cause::kDirectionNotNormalised},
+                        ForceMistake::DirectionUnnormalised,
+                        base.spring_coef,
+                        base.damper_coef,
+                        forceModelText(ForceMistake::DirectionUnnormalised)});
+  // The constants and the form the readings agree on, as one model of every finding.
+  const auto common = [&](auto get) -> std::optional<double> {
+    std::optional<double> value;
+    for (const SpringReading& r : readings) {
+      if (!r.fits) return std::nullopt;
+      const double v = get(r);
+      if (std::isnan(v)) continue;
+      if (value && std::abs(*value - v) > 1e-3 * std::max(1.0, std::abs(v))) return std::nullopt;
+      if (!value) value = v;
+    }
+    return value;
+  };
+  const std::optional<double> ks = common([](const SpringReading& r) { return r.spring_coef; });
+  const std::optional<double> kd = common([](const SpringReading& r) { return r.damper_coef; });
+  const std::optional<double> form =
+      common([](const SpringReading& r) { return double(int(r.form)); });
+  if (!findings.empty() && form && SpringForm(int(*form)) != SpringForm::DamperUnnormalisedTwice) {
+    ForceCandidate fitted{{},
+                          mistakeOfForm(SpringForm(int(*form))),
+                          float(ks.value_or(base.spring_coef)),
+                          float(kd.value_or(base.damper_coef)),
+                          {}};
+    for (const SpringFinding& f : findings) fitted.ids.push_back(f.cause);
+    fitted.text = forceModelText(fitted.mistake) + " with k_s = " + util::num(fitted.spring_coef) +
+                  " N/m and k_d = " + util::num(fitted.damper_coef) + " N s/m";
+    candidates.push_back(fitted);
+  }
+  // The models of the causes named likely first; the first that proves is named, another that
+  // proves too is an alternative reading (explain/replay.h).
+  const auto named = [&](const std::string& id) {
+    for (const TestResult& t : tests)
+      for (const Cause& c : t.causes)
+        if (c.id == id && c.likely) return true;
+    return false;
+  };
+  std::stable_partition(candidates.begin(), candidates.end(), [&](const ForceCandidate& c) {
+    return std::any_of(c.ids.begin(), c.ids.end(), named);
+  });
+  std::vector<Replay> replays;
+  std::vector<std::string> winner;
+  for (const ForceCandidate& m : candidates) {
+    Replay replay;
+    replay.model = m.text;
+    for (std::size_t k = 0; k < cases.size(); ++k) {
+      Cloth<float> cloth = cases[k].cloth;
+      cloth.spring_coef = m.spring_coef;
+      cloth.damper_coef = m.damper_coef;
+      const Mat4X<float> model = springAccelerations(cloth, cases[k].acc0, m.mistake);
+      replay.checks.push_back(
+          {checks[cases[k].check].check,
+           {{"accelerations",
+             sameAnswer(model, actuals[k], scales(cases[k].cloth, cases[k].acc0), rel)}}});
+    }
+    const bool failed =
+        std::any_of(tests.begin(), tests.end(), [](const TestResult& t) { return !t.passed(); });
+    if (replay.proven() && failed && winner.empty()) {
+      applyReplay(replay, m.ids, tests);
+      winner = m.ids;
+    } else if (replay.proven() && failed && m.ids != winner) {
+      alternative(replay, m.ids, winner.front(), tests);
+    }
+    replays.push_back(replay);
+  }
+  // A likely cause no model proves: a guess, with where its best model parts from the numbers.
+  for (std::size_t m = 0; m < candidates.size(); ++m) {
+    std::size_t best = m;
+    for (std::size_t q = 0; q < candidates.size(); ++q)
+      if (candidates[q].ids == candidates[m].ids &&
+          replays[q].reproduced() > replays[best].reproduced())
+        best = q;
+    if (best == m && !replays[m].proven()) applyReplay(replays[m], candidates[m].ids, tests);
+  }
+  requireProofs(tests, {cause::kNonFinite, cause::kFixedParticleMoves});
+  for (TestResult& t : tests)
+    if (!t.passed() &&
+        std::none_of(t.causes.begin(), t.causes.end(), [](const Cause& c) { return c.likely; }) &&
+        !t.names(cause::kUnknown))
+      t.causes.insert(t.causes.begin(), util::guess(cause::kUnknown));
   return tests;
 }
 

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,19 @@ struct ProbeContext {
   std::map<std::string, std::string> sources;
   // The sanitizer run a crashing or varying probe gets (run/sanitize.h); null: none.
   SanitizedProbes* sanitizer = nullptr;
+  // A repair's probe (proveByRepair below): the probe rebuilt with one student file replaced by
+  // the given bytes (run/build.h, rebuildWithFile), published for the probe uid. Empty: no
+  // repairs (a repaired probe's own run).
+  std::function<ProbeBuild(const std::string& file, const std::string& bytes)> rebuild;
+  // Set: a crash or a variation is not explained now but kept here, for util::explainLater (a run
+  // whose failure a retry may still replace: its sanitizer build and run are saved then).
+  struct Unexplained* explain_later = nullptr;
+};
+
+// The run a probe kept for later explanation (ProbeContext::explain_later): its request and folder.
+struct Unexplained {
+  std::optional<probe::ProbeMessage> request;
+  std::filesystem::path dir;
 };
 
 // Test names of each group, in order (used for compile errors and crashes, where the group did
@@ -46,7 +60,8 @@ struct PlannedTest {
 std::vector<PlannedTest> plannedTests(int edition);
 
 // The one table of probes: one row per probe group, each group one child process (or two, for a
-// retry or a second size) run as one job. Adding a probe: docs/grading.md, "Adding a probe".
+// retry or a second size) run as one job. Adding a probe: docs/grading-reference.md, "Adding a
+// probe".
 struct ProbeGroup {
   std::string group;                // the protocol's group name (probe::group, bridge/probe_keys.h)
   std::string stub;                 // the course stub it grades; "" = information only
@@ -68,6 +83,15 @@ std::vector<ProbeGroup> probeGroups(int edition, bool information);
 std::vector<std::vector<TestResult>> runProbeGroups(
     const std::vector<ProbeGroup>& groups, const ProbeContext& context,
     const std::map<std::string, std::string>& unavailable, int jobs);
+
+// Issue 38's repairs (explain/repair_proof.h): for each stub with a failed check, each pattern of
+// its source whose cause no replay proved (an `auto` expression, an integer division, a backup
+// that is no copy, a discarded normalized(), a changed deltaTime) is repaired in a private copy,
+// the file rebuilt with `context.rebuild` (one build per pattern) and the stub's groups probed
+// again; what the repair changed proves or disproves the cause. Then every cause still named
+// likely without a proof becomes a guess, but for what is read directly (the catalogue's
+// properties: a crash, NaN, a changed deltaTime; a spring list's foreign pairs and sizes).
+void proveByRepair(const ProbeContext& context, std::vector<TestResult>& tests);
 
 // The folders the rows name, with the stub each grades ("" = information only), in run order
 // (probeTable()).

@@ -3,11 +3,15 @@
 // matter; duplicates, missing or foreign springs, wrong rest lengths and labels do.
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <map>
 #include <set>
 
 #include "clothref/core/cloth.h"
+#include "clothref/formula/course_formulas.h"
 #include "grader/grade/cause_ids.h"
+#include "grader/grade/explain/replay.h"
+#include "grader/grade/explain/spring_set_fit.h"
 #include "grader/grade/probes/util.h"
 #include "grader/grade/run/build.h"
 #include "grader/grade/text.h"
@@ -16,16 +20,10 @@ namespace clothref::grader {
 namespace {
 
 const std::string& kStub = stubName(Stub::InitializeSpring);
-const char* kTypeNames[] = {"STRUCTURAL", "SHEAR", "BEND"};
+constexpr const auto& kTypeNames = kSpringTypeNames;
 
 // Rows of springsChecks(), the probe's check table.
 enum SpringCheck { kConnections, kRestLengths, kTypeLabels, kSecondSize };
-
-struct SpringSet {
-  // (lower index, higher index) -> every (rest length, type) pushed for that pair.
-  std::map<std::pair<int, int>, std::vector<std::pair<float, int>>> pairs;
-  int count = 0;
-};
 
 // Ours on an n x n cloth of the course's size, height and particle mass.
 SpringSet referenceSprings(int n, const Edition& course) {
@@ -70,15 +68,12 @@ std::optional<SpringSet> studentSprings(const probe::ProbeMessage& answer, int n
 
 // The grid family of a pair: "structural horizontal", ..., or "" for a non-neighbour pair.
 std::string family(std::pair<int, int> pair, int n) {
-  const int ia = pair.first / n, ja = pair.first % n, ib = pair.second / n, jb = pair.second % n;
-  const int di = ib - ia, dj = jb - ja;
-  if (di == 0 && dj == 1) return "structural horizontal (i,j)-(i,j+1)";
-  if (di == 1 && dj == 0) return "structural vertical (i,j)-(i+1,j)";
-  if (di == 1 && dj == 1) return "shear down-right (i,j)-(i+1,j+1)";
-  if (di == 1 && dj == -1) return "shear down-left (i,j)-(i+1,j-1)";
-  if (di == 0 && dj == 2) return "bend horizontal (i,j)-(i,j+2)";
-  if (di == 2 && dj == 0) return "bend vertical (i,j)-(i+2,j)";
-  return "";
+  static const char* names[] = {
+      "structural horizontal (i,j)-(i,j+1)", "structural vertical (i,j)-(i+1,j)",
+      "shear down-right (i,j)-(i+1,j+1)",    "shear down-left (i,j)-(i+1,j-1)",
+      "bend horizontal (i,j)-(i,j+2)",       "bend vertical (i,j)-(i+2,j)"};
+  const int f = springFamily(pair, n);
+  return f < 0 ? "" : names[f];
 }
 
 std::string pairText(std::pair<int, int> pair, int n) {
@@ -294,6 +289,7 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
       "A " + std::to_string(n) + " x " + std::to_string(n) +
       " cloth (your cloth.cpp compiled again with particlesPerEdge = " + std::to_string(n) +
       ").\n\n";
+  std::optional<SpringSet> small_set;  // the student's springs at the second size
   if (context.probe_small.empty()) {
     small.output =
         state + "Not run: " +
@@ -305,7 +301,6 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
     util::ProbeFailure small_failure;
     auto small_answer =
         util::runGroup(context, context.probe_small, kSpringsSmallFolder, request, small_failure);
-    std::optional<SpringSet> small_set;
     if (small_answer) small_set = studentSprings(*small_answer, n, small_failure.text);
     if (!small_set) {
       small.output = state + small_failure.text + "\n";
@@ -343,6 +338,41 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
     }
   }
   tests.push_back(small);
+
+  // Likely means proven: the model fitted at N = 25, replayed at both sizes. A cause it does not
+  // stand for (foreign pairs, hard-coded sizes) is read directly, never proven by it.
+  if (student) {
+    const SpringModel model = fitSpringModel(*student, reference, course_n);
+    const SpringSet at25 = modelSprings(model, reference, course_n);
+    const Comparison c25 = compare(*student, at25, course_n, rest_rel);
+    Replay replay;
+    replay.model = springModelText(model);
+    replay.checks.push_back(
+        {checks[kConnections].check, {{"springs", c25.missing + c25.extra + c25.duplicates == 0}}});
+    replay.checks.push_back({checks[kRestLengths].check, {{"rest lengths", c25.wrong_rest == 0}}});
+    replay.checks.push_back({checks[kTypeLabels].check, {{"type labels", c25.wrong_type == 0}}});
+    if (small_set) {
+      const Comparison c10 = compare(
+          *small_set, modelSprings(model, referenceSprings(n, context.course), n), n, rest_rel);
+      replay.checks.push_back(
+          {checks[kSecondSize].check,
+           {{"springs", c10.missing + c10.extra + c10.duplicates == 0},
+            {"rest lengths and labels", c10.wrong_rest + c10.wrong_type == 0}}});
+    }
+    std::vector<std::string> ids;
+    if (std::any_of(model.missing.begin(), model.missing.end(), [](bool b) { return b; }))
+      ids.push_back(cause::kMissingSprings);
+    if (std::any_of(model.copies.begin(), model.copies.end(), [](int k) { return k > 1; }))
+      ids.push_back(cause::kDuplicateSprings);
+    for (const TestResult& t : tests)
+      for (const Cause& cause : t.causes)
+        if ((cause.id == cause::kShearRestLength || cause.id == cause::kBendRestLength ||
+             cause.id == cause::kApproximateSqrt2 || cause.id == cause::kSwappedSpringTypes) &&
+            std::find(ids.begin(), ids.end(), cause.id) == ids.end())
+          ids.push_back(cause.id);
+    if (!ids.empty()) applyReplay(replay, ids, tests);
+  }
+  requireProofs(tests, {cause::kHardCodedN25, cause::kWrongSpringEndpoints});
   return tests;
 }
 

@@ -62,6 +62,30 @@ struct ProbeFailure {
   }
 };
 
+// Appends to `failure.text` what the sanitizer says of `request` run again in `dir` (a crash or
+// two runs that differ, of the context's main probe).
+inline void explainFailure(const ProbeContext& context, const probe::ProbeMessage& request,
+                           const std::filesystem::path& dir, ProbeFailure& failure) {
+  const std::string report = context.sanitizer->explain(request, dir / "sanitize");
+  failure.text += report.empty()
+                      ? "\n\nThe grader rebuilt your files with AddressSanitizer and "
+                        "UndefinedBehaviorSanitizer and ran this probe again: they reported "
+                        "nothing (the fault may depend on the optimisation level)."
+                      : "\n\nThe grader rebuilt your files with AddressSanitizer and "
+                        "UndefinedBehaviorSanitizer (`-g -O1`) and ran this probe again; "
+                        "their report:\n\n" +
+                            codeBlock(report);
+}
+
+// The explanation a run with ProbeContext::explain_later left in `kept`, appended to `failure`'s
+// text (nothing when none was kept).
+inline void explainLater(const ProbeContext& context, Unexplained& kept, ProbeFailure& failure) {
+  if (!kept.request) return;
+  const probe::ProbeMessage request = std::move(*kept.request);
+  kept.request.reset();
+  explainFailure(context, request, kept.dir, failure);
+}
+
 // Runs `request` in a fresh folder under the context's work dir, twice (runProbeTwice: the
 // answer depends on the files alone) unless `once` (information only, never scored). On failure
 // returns nullopt and fills `failure`.
@@ -85,15 +109,12 @@ inline std::optional<probe::ProbeMessage> runGroup(const ProbeContext& context,
   // A crash, or two runs that differ: the instrumented build names the line, when it finds one.
   const bool explain = run.status == ChildStatus::Varies || failure.verdict == Verdict::Crashed;
   if (explain && context.sanitizer && executable == context.probe) {
-    const std::string report = context.sanitizer->explain(request, dir / "sanitize");
-    failure.text += report.empty()
-                        ? "\n\nThe grader rebuilt your files with AddressSanitizer and "
-                          "UndefinedBehaviorSanitizer and ran this probe again: they reported "
-                          "nothing (the fault may depend on the optimisation level)."
-                        : "\n\nThe grader rebuilt your files with AddressSanitizer and "
-                          "UndefinedBehaviorSanitizer (`-g -O1`) and ran this probe again; "
-                          "their report:\n\n" +
-                              codeBlock(report);
+    if (context.explain_later) {
+      context.explain_later->request = std::move(request);
+      context.explain_later->dir = dir;
+    } else {
+      explainFailure(context, request, dir, failure);
+    }
   }
   return std::nullopt;
 }
@@ -104,8 +125,8 @@ inline TestResult test(const PlannedTest& check) {
 }
 
 // A cause the numbers confirm, and one they only suggest (results.h, Cause).
-inline Cause likely(const std::string& id) { return Cause{id, true, {}, {}, {}, {}, {}}; }
-inline Cause guess(const std::string& id) { return Cause{id, false, {}, {}, {}, {}, {}}; }
+inline Cause likely(const std::string& id) { return Cause{id, true, {}, {}, {}, {}, {}, {}}; }
+inline Cause guess(const std::string& id) { return Cause{id, false, {}, {}, {}, {}, {}, {}}; }
 
 // A test of the group that could not run: zero points, the verdict as output.
 inline TestResult failedTest(const PlannedTest& check, const std::string& why,
@@ -120,6 +141,22 @@ inline TestResult failedTest(const PlannedTest& check, const std::string& why,
 inline bool finite(const std::vector<float>& v) {
   for (float x : v)
     if (!std::isfinite(x)) return false;
+  return true;
+}
+
+// A model's values against the student's within a check's tolerance, |model - yours| <= rel (1 +
+// |yours|); a value that is not finite matches only one that is not finite either (a replay's
+// comparison, explain/replay.h).
+inline bool closeTo(const Mat4X<float>& model, const Mat4X<float>& yours, double rel) {
+  if (model.size() != yours.size()) return false;
+  for (int k = 0; k < model.size(); ++k) {
+    const double m = model.data()[k], y = yours.data()[k];
+    if (!std::isfinite(m) || !std::isfinite(y)) {
+      if (std::isfinite(m) != std::isfinite(y)) return false;
+      continue;
+    }
+    if (std::abs(m - y) > rel * (1 + std::abs(y))) return false;
+  }
   return true;
 }
 

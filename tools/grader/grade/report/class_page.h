@@ -4,19 +4,36 @@
 // that ran through. Self-contained: its script and data are inline and it loads nothing; every
 // name a student controls reaches it as JSON data set with textContent, never as markup.
 #pragma once
-#include <filesystem>
+#include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
-#include "grader/grade/batch.h"
+#include "grader/grade/results.h"
 
 namespace clothref::grader {
 
-// The class overview for `rows` (the batch's, sorted by name) of the batch in `batch_dir`: a
-// sortable, filterable table (score per stub, total, verdict, time, report link), a histogram of
-// totals, the pass rate per stub and per check, and per named cause the submissions it was found
-// in. A folder whose results.json is missing or unreadable still gets its row, without checks.
-std::string batchIndexHtml(const std::filesystem::path& batch_dir,
-                           const std::vector<BatchRow>& rows);
+// One submission of the class overview, as plain data: its batch row (row.json's fields) and,
+// from its results.json, each check's outcome and the causes named.
+struct ClassRow {
+  std::string name;                                    // the submission's folder in BATCHDIR
+  int edition = 0;                                     // 0 when not gradable
+  std::map<std::string, double> stub_score, stub_max;  // per course stub
+  double score = 0, max_score = 0;
+  Verdict verdict = Verdict::Graded;
+  std::string problem;    // why it is not gradable, else empty
+  double seconds = 0;     // wall time of grading it
+  std::string isolation;  // how its student code was isolated (the page says each once)
+  std::string report;     // its report, relative to BATCHDIR ("alice/report.html")
+  std::vector<std::pair<std::string, bool>> checks;  // check name, passed; results.json's order
+  std::vector<std::pair<std::string, bool>> causes;  // cause id, likely on some check
+};
+
+// The class overview: a first line saying how many were graded and how many need attention and
+// why (their verdicts), how student code was isolated (each description once), a sortable,
+// filterable table (score per stub, total, verdict, causes, time, report link) with its legend, a
+// histogram of totals, the pass rate per stub and per check, and per named cause the submissions
+// it was found in.
+std::string batchIndexHtml(const std::vector<ClassRow>& rows);
 
 }  // namespace clothref::grader

@@ -1,7 +1,10 @@
 // What Gradescope shows as HTML (gradescope_html.h).
 #include "grader/grade/report/gradescope_html.h"
 
+#include <algorithm>
+#include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "grader/grade/report/markdown_html.h"
@@ -13,17 +16,27 @@
 namespace clothref::grader {
 namespace {
 
-// A failed check's line of the summary: its name, then its likely causes and its guesses on lines
-// of their own.
-std::string failedLine(const TestResult& t) {
-  std::string likely, guesses;
-  for (const Cause& cause : t.causes)
-    (cause.likely ? likely : guesses) +=
-        std::string((cause.likely ? likely : guesses).empty() ? "" : ", ") + "<em>" +
-        pages::escapeHtml(cause.id) + "</em>";
-  return "<li>" + pages::escapeHtml(t.name()) +
-         (likely.empty() ? "" : "<br>likely cause: " + likely) +
-         (guesses.empty() ? "" : "<br>possible cause (a guess): " + guesses) + "</li>\n";
+// What is wrong with a stub, on one line: its likely causes, then its guesses marked "?".
+std::string causesLine(const GradeReport& report, const std::string& stub) {
+  std::vector<std::pair<std::string, bool>> named;
+  for (const TestResult& t : report.tests) {
+    if (t.stub != stub || t.passed() || t.informational) continue;
+    for (const Cause& cause : t.causes) {
+      auto it = std::find_if(named.begin(), named.end(),
+                             [&](const auto& n) { return n.first == cause.id; });
+      if (it == named.end())
+        named.push_back({cause.id, cause.likely});
+      else
+        it->second = it->second || cause.likely;
+    }
+  }
+  std::string out;
+  for (bool likely : {true, false})
+    for (const auto& [id, is_likely] : named)
+      if (is_likely == likely)
+        out += std::string(out.empty() ? "" : ", ") + "<em>" + pages::escapeHtml(id) + "</em>" +
+               (likely ? "" : "?");
+  return out;
 }
 
 }  // namespace
@@ -37,35 +50,35 @@ std::string testPicture(const TestResult& test, std::size_t index) {
 
 nlohmann::ordered_json withHtmlSummary(nlohmann::ordered_json results, const GradeReport& given) {
   const GradeReport report = cleaned(given);
-  std::string out = "<p><strong>Score " + points(report.score) + " / " + points(report.max_score) +
-                    "</strong> (edition " + std::to_string(report.edition) + ", verdict " +
-                    std::string(verdictId(report.verdict)) +
-                    ")</p>\n<table>\n<tr><th>stub</th>"
-                    "<th>points</th><th>checks passed</th></tr>\n";
+  // One line per stub that lost points: its points, its checks passed, what is wrong; the stubs
+  // whose every check passed on one line after them.
+  std::string rows, passed_stubs;
+  const std::set<std::string> later = stubsShownLater(report);
   for (const std::string& stub : stubNames()) {
-    if (!report.stub_max.count(stub)) continue;
+    if (!report.stub_max.count(stub) || later.count(stub)) continue;
     const auto [passed, total] = checksPassed(report, stub);
-    out += "<tr><td>" + pages::escapeHtml(stub) + "</td><td>" +
-           points(report.stub_score.count(stub) ? report.stub_score.at(stub) : 0) + " / " +
-           points(report.stub_max.at(stub)) + "</td><td>" + std::to_string(passed) + " of " +
-           std::to_string(total) + "</td></tr>\n";
+    const std::string score =
+        points(report.stub_score.count(stub) ? report.stub_score.at(stub) : 0) + " / " +
+        points(report.stub_max.at(stub));
+    if (passed == total)
+      passed_stubs += (passed_stubs.empty() ? "" : ", ") + pages::escapeHtml(stub) + " " + score;
+    else
+      rows += "<tr><td>" + pages::escapeHtml(stub) + "</td><td>" + score + "</td><td>" +
+              std::to_string(passed) + " of " + std::to_string(total) + "</td><td>" +
+              causesLine(report, stub) + "</td></tr>\n";
   }
-  out += "</table>\n";
-  std::string failed;
-  int not_shown = 0;  // failed tests the rubric shows later or never: not named here either
-  for (const TestResult& t : report.tests) {
-    if (t.passed() || t.informational) continue;
-    if (t.visibility != "visible") {
-      ++not_shown;
-      continue;
-    }
-    failed += failedLine(t);
-  }
-  if (!failed.empty())
-    out += "<p>Failed checks (details in each test below):</p>\n<ul>\n" + failed + "</ul>\n";
-  if (not_shown)
-    out += "<p>" + std::to_string(not_shown) + " more failed check" + (not_shown == 1 ? "" : "s") +
-           " shown later.</p>\n";
+  // with a stub shown later the Markdown summary below says why there is no score yet
+  std::string out = later.empty() ? "<p><strong>Score " + points(report.score) + " / " +
+                                        points(report.max_score) + "</strong> (edition " +
+                                        std::to_string(report.edition) + ", verdict " +
+                                        std::string(verdictId(report.verdict)) + ")</p>\n"
+                                  : std::string();
+  if (!rows.empty())
+    out +=
+        "<table>\n<tr><th>stub</th><th>points</th><th>checks passed</th><th>what is wrong "
+        "(a guess: ?; each test below says why)</th></tr>\n" +
+        rows + "</table>\n";
+  if (!passed_stubs.empty()) out += "<p>Every check passed: " + passed_stubs + ".</p>\n";
   if (results.contains("output") && results["output"].is_string())
     out += markdownToHtml(results["output"].get<std::string>());
   results["output"] = out;

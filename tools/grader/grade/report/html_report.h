@@ -10,12 +10,10 @@
 // results.json gives as HTML), sketch_svg.h and whole_run_svg.h (the pictures), markdown_html.h.
 #pragma once
 
-#include <filesystem>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
-#include "grader/grade/grade.h"
 #include "grader/grade/report/class_page.h"
 #include "grader/grade/report/gradescope_html.h"
 #include "grader/grade/report/markdown_html.h"
@@ -24,14 +22,14 @@
 
 namespace clothref::grader {
 
-// gradeSubmission, keeping the whole run's two traces (reference and student) long enough to turn
-// them into viewer data (pages/view_data.h) in `whole_run_view`; null when the whole run wrote
-// none (not run, or the student's simulation did not finish). Uses options.keep_work when set,
-// else a temporary copy of the scratch folder that is removed before returning.
-GradeReport gradeWithWholeRun(const std::filesystem::path& dir, const GradeOptions& options,
-                              nlohmann::ordered_json& whole_run_view);
+// The whole run's two traces (reference and student), as the whole-run check of a graded report
+// keeps them (TestResult::traces), turned into viewer data (pages/view_data.h); null when the
+// whole run wrote none (not run, or the student's simulation did not finish). A student trace the
+// reader refuses (cut short by a crash) adds a note to `report` saying the run could not be
+// pictured, and gives null.
+nlohmann::ordered_json wholeRunView(GradeReport& report);
 
-// The student's report page; `whole_run_view` as from gradeWithWholeRun (null: no viewer).
+// The student's report page; `whole_run_view` as from wholeRunView (null: no viewer).
 std::string studentReportHtml(const GradeReport& report,
                               const nlohmann::ordered_json& whole_run_view);
 

@@ -78,16 +78,28 @@ std::string markdownToHtml(std::string_view markdown) {
     if (table) out += "</table>\n";
     paragraph = table = false;
   };
-  // "| a | b |" rows: the first is the header, a "|---|" row under it is dropped.
+  // "| a | b |" rows: the first is the header, a "|---|" row under it is dropped; "\|" is a '|'
+  // inside a cell.
   const auto cells = [](const std::string& row) {
     std::vector<std::string> found;
-    std::size_t start = row.find('|') + 1;
-    for (std::size_t bar; (bar = row.find('|', start)) != std::string::npos; start = bar + 1) {
-      const std::string cell = row.substr(start, bar - start);
-      const std::size_t first = cell.find_first_not_of(' ');
-      found.push_back(first == std::string::npos
-                          ? std::string()
-                          : cell.substr(first, cell.find_last_not_of(' ') - first + 1));
+    std::string cell;
+    bool open = false;
+    for (std::size_t k = 0; k < row.size(); ++k) {
+      if (row[k] == '\\' && k + 1 < row.size() && row[k + 1] == '|') {
+        cell += '|';
+        ++k;
+      } else if (row[k] == '|') {
+        if (open) {
+          const std::size_t first = cell.find_first_not_of(' ');
+          found.push_back(first == std::string::npos
+                              ? std::string()
+                              : cell.substr(first, cell.find_last_not_of(' ') - first + 1));
+        }
+        open = true;
+        cell.clear();
+      } else {
+        cell += row[k];
+      }
     }
     return found;
   };

@@ -1,9 +1,12 @@
 #include "grader/grade/report/outputs.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 #include <sstream>
 
+#include "grader/grade/cause_ids.h"
 #include "grader/grade/text.h"
 
 namespace clothref::grader {
@@ -39,11 +42,6 @@ std::string xmlEscape(const std::string& text) {
 // “check” of a test, as later tests refer to it.
 std::string curlyQuoted(const std::string& text) { return "\xE2\x80\x9C" + text + "\xE2\x80\x9D"; }
 
-std::string causeHead(const Cause& cause) {
-  return std::string(cause.likely ? "**Likely cause**" : "**Possible cause (a guess)**") + " (" +
-         codeSpan(cause.id) + ")" + (cause.text.empty() ? "" : ": " + cause.text);
-}
-
 std::string quoteBlock(const std::vector<SourceQuote>& quotes) {
   std::string lines;
   for (const SourceQuote& quote : quotes)
@@ -51,52 +49,8 @@ std::string quoteBlock(const std::vector<SourceQuote>& quotes) {
   return codeBlock(lines);
 }
 
-// What earlier failed tests of a report showed, so that a repeat refers to it instead.
-struct Shown {
-  std::map<std::string, std::string> outputs;  // a long output -> the test that showed it
-  std::map<std::string, std::string> quotes;   // stub, id and quotes -> the check that showed them
-  // id and visibility -> the test that explained the cause: a visible test never refers to one
-  // the student cannot see yet
-  std::map<std::string, std::string> explained;
-};
+}  // namespace
 
-// Whether `key` is new to `seen` (null: nothing is recorded), and else the test that showed it.
-std::pair<bool, std::string> firstTime(std::map<std::string, std::string>* seen,
-                                       const std::string& key, const std::string& test) {
-  if (!seen) return {true, test};
-  const auto [it, first] = seen->emplace(key, test);
-  return {first, it->second};
-}
-
-// The one cause renderer: the head line (likely or a guess, the id, the catalogue's text); under
-// a likely cause the catalogue's why and example (a guess stays short: its text only), on the
-// first failed test that names it; then what the probe measured and the quoted source lines (on
-// the first test of the stub that names them). `shown` null: a test no later one refers to.
-std::string causeMarkdown(const Cause& cause, const TestResult& t, Shown* shown) {
-  std::string block = causeHead(cause) + "\n";
-  if (cause.likely && (!cause.why.empty() || !cause.example.empty())) {
-    const auto [first, where] =
-        firstTime(shown ? &shown->explained : nullptr, cause.id + "\n" + t.visibility, t.name());
-    if (!first)
-      block += "\nWhy, and the mistake with its fix: under " + curlyQuoted(where) + " above.\n";
-    if (first && !cause.why.empty()) block += "\n**Why**: " + cause.why + "\n";
-    if (first && !cause.example.empty())
-      block += "\nThe mistake and its fix, in short:\n\n" + codeBlock(cause.example);
-  }
-  if (!cause.detail.empty())
-    block += "\n" + cause.detail + (cause.detail.back() == '\n' ? "" : "\n");
-  if (!cause.quotes.empty()) {
-    const auto [first, where] =
-        firstTime(shown ? &shown->quotes : nullptr,
-                  t.stub + "\n" + cause.id + "\n" + quoteBlock(cause.quotes), t.check);
-    block += first ? "\nIn " + codeSpan(cause.quotes.front().file) + ", inside " +
-                         codeSpan(t.stub) + ":\n\n" + quoteBlock(cause.quotes)
-                   : "\nThe lines are quoted under " + curlyQuoted(where) + " above.\n";
-  }
-  return block;
-}
-
-// A Markdown block per note, those with a verbatim block after the one-line ones.
 std::string notesMarkdown(const std::vector<Note>& notes) {
   std::string out;
   for (const Note& note : notes)
@@ -106,12 +60,34 @@ std::string notesMarkdown(const std::vector<Note>& notes) {
   return out;
 }
 
+std::string causeMarkdown(const Cause& cause, const std::string& stub, const CauseShown& shown) {
+  std::string block =
+      std::string(cause.likely ? "**Likely cause**" : "**Possible cause (a guess)**") + " (" +
+      codeSpan(cause.id) + ")";
+  if (!shown.explained_under.empty())
+    block += ": explained under " + curlyQuoted(shown.explained_under) + " above.\n";
+  else
+    block += (cause.text.empty() ? "" : ": " + cause.text) + "\n";
+  // what the probe measured for this check: one paragraph right under the head
+  if (!cause.detail.empty())
+    block += "\n" + cause.detail + (cause.detail.back() == '\n' ? "" : "\n");
+  // how the cause was proven on this submission, or where its model and the numbers part
+  if (!cause.proof.empty()) block += "\n" + cause.proof + "\n";
+  if (shown.explained_under.empty() && cause.likely) {
+    if (!cause.why.empty()) block += "\n**Why**: " + cause.why + "\n";
+    if (!cause.example.empty())
+      block += "\nThe mistake and its fix, in short:\n\n" + codeBlock(cause.example);
+  }
+  if (shown.quote && !cause.quotes.empty())
+    block += "\nIn " + codeSpan(cause.quotes.front().file) + ", inside " + codeSpan(stub) +
+             ":\n\n" + quoteBlock(cause.quotes);
+  return block;
+}
+
 std::string statusWord(const TestResult& t) {
   if (t.informational) return t.passed() ? "identical" : "differs";
   return t.passed() ? "passed" : "failed";
 }
-
-}  // namespace
 
 std::pair<int, int> checksPassed(const GradeReport& report, const std::string& stub) {
   int passed = 0, total = 0;
@@ -121,6 +97,13 @@ std::pair<int, int> checksPassed(const GradeReport& report, const std::string& s
       passed += t.passed();
     }
   return {passed, total};
+}
+
+std::set<std::string> stubsShownLater(const GradeReport& report) {
+  std::set<std::string> later;
+  for (const TestResult& t : report.tests)
+    if (t.visibility != "visible") later.insert(t.stub);
+  return later;
 }
 
 double roundedPoints(double value) {
@@ -158,6 +141,24 @@ GradeReport cleaned(const GradeReport& given) {
     for (std::string& other : choice.others) name(other);
   }
   for (TestResult& test : report.tests) {
+    // A guess that only says how the probe's run ended (it crashed, timed out, answered twice
+    // differently) beside a likely cause of the same check: that cause is what made it end so.
+    const bool explained = std::any_of(test.causes.begin(), test.causes.end(),
+                                       [](const Cause& c) { return c.likely; });
+    if (explained)
+      std::erase_if(test.causes, [](const Cause& c) {
+        return !c.likely && (c.id == cause::kCrashed || c.id == cause::kTimedOut ||
+                             c.id == cause::kUndefinedBehaviour);
+      });
+    // A symptom (NaN, a blow-up, a wrong order) beside a cause proven on this check: the proven
+    // cause's model gives that check's numbers (its replay or repair), so it is no cause of its
+    // own.
+    const bool proven = std::any_of(test.causes.begin(), test.causes.end(),
+                                    [](const Cause& c) { return c.proven(); });
+    if (proven)
+      std::erase_if(test.causes, [](const Cause& c) {
+        return c.id == cause::kNonFinite || c.id == cause::kUnstable || c.id == cause::kWrongOrder;
+      });
     name(test.stub);
     name(test.check);
     name(test.visibility);
@@ -166,6 +167,7 @@ GradeReport cleaned(const GradeReport& given) {
     for (Cause& cause : test.causes) {
       name(cause.id);
       text(cause.detail);
+      text(cause.proof);
       text(cause.text);
       text(cause.why);
       text(cause.example);
@@ -193,21 +195,43 @@ std::string TestText::markdown() const {
 
 std::vector<TestText> testTexts(const GradeReport& report) {
   std::vector<TestText> texts;
-  Shown shown;
+  // visibility and a long output -> the test that showed it (a test refers only to one shown with
+  // it)
+  std::map<std::string, std::string> outputs;
+  const std::set<std::string> later = stubsShownLater(report);
+  // stub, visibility and cause -> the check that explained it and the lines it quoted: a visible
+  // test never refers to one the student cannot see yet
+  std::map<std::string, std::pair<std::string, std::vector<SourceQuote>>> explained;
   for (const TestResult& t : report.tests) {
     TestText text;
     text.output = t.output;
     // the Markdown report shows information-only tests last: nothing refers to them
-    const bool shown_failed = !t.passed() && !t.informational;
-    if (shown_failed && t.output.find('\n') != std::string::npos) {
-      auto [it, first] = shown.outputs.emplace(t.output, t.name());
+    const bool failed = !t.passed() && !t.informational;
+    if (failed && t.output.find('\n') != std::string::npos) {
+      auto [it, first] = outputs.emplace(t.visibility + "\n" + t.output, t.name());
       if (!first) text.output = "Same as for " + curlyQuoted(it->second) + " above.\n";
     }
-    if (!t.rubric_note.empty())
+    // the per-mistake line tells how every check of its stub went: not on a stub whose checks
+    // are shown at different times
+    const bool one_time =
+        !later.count(t.stub) ||
+        std::all_of(report.tests.begin(), report.tests.end(), [&](const TestResult& other) {
+          return other.stub != t.stub || other.visibility == t.visibility;
+        });
+    if (!t.rubric_note.empty() && one_time)
       text.output = t.rubric_note + (text.output.empty() ? "\n" : "\n\n" + text.output);
-    for (const Cause& cause : t.causes)
-      (cause.likely ? text.likely : text.guesses)
-          .push_back(causeMarkdown(cause, t, shown_failed ? &shown : nullptr));
+    for (const Cause& cause : t.causes) {
+      CauseShown shown;
+      if (failed) {
+        const auto [it, first] = explained.emplace(t.stub + "\n" + t.visibility + "\n" + cause.id,
+                                                   std::pair{t.name(), cause.quotes});
+        if (!first) {
+          shown.explained_under = it->second.first;
+          shown.quote = cause.quotes != it->second.second;  // other lines than those shown
+        }
+      }
+      (cause.likely ? text.likely : text.guesses).push_back(causeMarkdown(cause, t.stub, shown));
+    }
     texts.push_back(text);
   }
   return texts;
@@ -231,6 +255,14 @@ std::string filesMarkdown(const GradeReport& report) {
           "\nThe whole log of " + codeSpan(f.name) + " (its own messages):\n\n" + codeBlock(f.log);
   }
   return out;
+}
+
+std::string scoreSentence(const GradeReport& report, const std::string& score,
+                          const std::string& verdict) {
+  if (!stubsShownLater(report).empty())
+    return "Some checks are shown later: the score and the verdict come with them.";
+  return score + points(report.score) + " / " + points(report.max_score) + verdict +
+         verdictId(report.verdict) + ".";
 }
 
 std::string summaryLine(const GradeReport& given) {
@@ -259,8 +291,8 @@ nlohmann::ordered_json resultsJson(const GradeReport& given) {
   out["execution_time"] =
       std::round((report.seconds.count("total") ? report.seconds.at("total") : 0) * 1000) / 1000;
   std::string summary = "Edition " + std::to_string(report.edition) + " (" + report.edition_source +
-                        "). Code score " + points(report.score) + " / " + points(report.max_score) +
-                        ". Verdict: " + verdictId(report.verdict) + ".\n\n" + filesMarkdown(report);
+                        "). " + scoreSentence(report, "Code score ", ". Verdict: ") + "\n\n" +
+                        filesMarkdown(report);
   if (!report.isolation.empty()) summary += "\nStudent code ran with: " + report.isolation + ".\n";
   if (!report.notes.empty()) summary += "\n" + notesMarkdown(report.notes);
   summary += "\n" + std::string(kNumberLegend) + "\n";
@@ -287,7 +319,7 @@ nlohmann::ordered_json resultsJson(const GradeReport& given) {
       if (t.informational) extra["information_only"] = statusWord(t);
       nlohmann::ordered_json causes = nlohmann::ordered_json::array();
       for (const Cause& cause : t.causes)
-        causes.push_back({{"id", cause.id}, {"likely", cause.likely}});
+        causes.push_back({{"id", cause.id}, {"likely", cause.likely}, {"proven", cause.proven()}});
       if (!t.causes.empty()) extra["causes"] = causes;
       test["extra_data"] = extra;
     }
@@ -356,44 +388,6 @@ std::string junitXml(const GradeReport& given) {
         << "</system-out></testcase>\n";
   }
   out << "  </testsuite>\n</testsuites>\n";
-  return out.str();
-}
-
-std::string markdownReport(const GradeReport& given) {
-  const GradeReport report = cleaned(given);
-  const std::vector<TestText> texts = testTexts(report);
-  std::ostringstream out;
-  out << "# Grading report: " << codeSpan(report.submission) << "\n\n";
-  out << "Edition " << report.edition << " (" << report.edition_source << "). **Code score "
-      << points(report.score) << " / " << points(report.max_score) << "**. Verdict: **"
-      << verdictId(report.verdict) << "**.\n\n";
-  if (!report.isolation.empty()) out << "Student code ran with: " << report.isolation << ".\n\n";
-  out << "| stub | score |\n|---|---|\n";
-  for (const auto& stub : stubNames())
-    if (report.stub_max.count(stub))
-      out << "| `" << stub << "` | " << points(report.stub_score.at(stub)) << " / "
-          << points(report.stub_max.at(stub)) << " |\n";
-  out << "\n## Files\n\n" << filesMarkdown(report);
-  if (!report.notes.empty()) out << "\n" << notesMarkdown(report.notes);
-  out << "\n## Failed checks\n\n" << kNumberLegend << "\n";
-  bool any = false;
-  for (std::size_t k = 0; k < report.tests.size(); ++k) {
-    const TestResult& t = report.tests[k];
-    if (t.passed() || t.informational) continue;
-    any = true;
-    out << "\n### " << t.name() << " (" << points(t.score) << " / " << points(t.max_score)
-        << ")\n\n"
-        << texts[k].markdown() << "\n";
-  }
-  if (!any) out << "\nNone.\n";
-  out << "\n## Passed checks\n\n";
-  for (const TestResult& t : report.tests)
-    if (t.passed() && !t.informational)
-      out << "- " << t.name() << " (" << points(t.score) << " / " << points(t.max_score) << ")\n";
-  for (std::size_t k = 0; k < report.tests.size(); ++k)
-    if (report.tests[k].informational)
-      out << "\n## " << report.tests[k].name() << ": " << statusWord(report.tests[k]) << "\n\n"
-          << texts[k].markdown() << "\n";
   return out.str();
 }
 

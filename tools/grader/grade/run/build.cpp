@@ -19,6 +19,7 @@
 #include "grader/grade/run/compile_cache.h"
 #include "grader/grade/run/compiler_messages.h"
 #include "grader/grade/run/tools.h"
+#include "grader/grade/submission/neighbours.h"
 
 #ifndef CLOTHREF_GRADER_COURSE_DIR
 #define CLOTHREF_GRADER_COURSE_DIR ""
@@ -47,80 +48,6 @@ namespace {
 std::string fromEnv(const char* name, const char* fallback) {
   const char* value = std::getenv(name);
   return value && *value ? value : fallback;
-}
-
-// Sanitizer defaults compiled into a sanitized probe (the child's environment is clean, so no
-// ASAN_OPTIONS): no leak check at exit (a leak is not the crash we look for, and LeakSanitizer
-// needs ptrace, which a sandbox may refuse).
-constexpr const char* kSanitizerOptionsSource =
-    "extern \"C\" const char* __asan_default_options() { return \"detect_leaks=0\"; }\n"
-    "extern \"C\" const char* __ubsan_default_options() { return \"print_stacktrace=1\"; }\n";
-
-std::vector<std::string> compileCommand(const CourseToolchain& t, int edition,
-                                        const fs::path& source, const fs::path& object,
-                                        int particles_per_edge, const fs::path& pch = {}) {
-  const std::string ed = std::to_string(edition);
-  std::vector<std::string> command = baseFlags(t);
-  command.insert(command.end(), {"-fmax-errors=3", "-fdiagnostics-color=never",
-                                 "-DCLOTHREF_GRADER_EDITION_" + ed});
-  if (!pch.empty()) command.insert(command.end(), {"-include", pch.string()});
-  if (particles_per_edge != 25)
-    command.push_back("-DCLOTHREF_GRADER_PARTICLES_PER_EDGE=" + std::to_string(particles_per_edge));
-  command.insert(command.end(),
-                 {"-I" + (t.course_dir / ed / "include").string(),
-                  "-I" + (t.course_dir / "common" / "include").string(), "-isystem",
-                  t.eigen_include.string(), "-c", source.string(), "-o", object.string()});
-  return command;
-}
-
-// A compile or link the grader could not run (ToolRun::ours): the grade stops as ours.
-const ToolRun& checked(const ToolRun& run) {
-  if (run.ours) throw GraderFault(run.output.substr(0, run.output.find('\n')));
-  return run;
-}
-
-// Runs the compile commands, taking objects from the cache where it has them and filling it.
-std::vector<ToolRun> compileAll(const CourseToolchain& t,
-                                const std::vector<std::vector<std::string>>& commands,
-                                const fs::path& work_dir) {
-  std::vector<ToolRun> results(commands.size());
-  std::vector<std::vector<std::string>> to_run;
-  std::vector<std::size_t> index;
-  std::vector<fs::path> cached(commands.size());
-  for (std::size_t k = 0; k < commands.size(); ++k) {
-    const auto& c = commands[k];
-    const fs::path source = *(std::find(c.begin(), c.end(), "-c") + 1);
-    const fs::path object = *(std::find(c.begin(), c.end(), "-o") + 1);
-    std::error_code error;
-    if (!t.cache_dir.empty()) {
-      cached[k] = cachePath(t, c, source, work_dir, t.trusted_sources);
-      if (copyObject(cached[k], object)) {
-        results[k].ok = true;
-        continue;
-      }
-    }
-    if (fromPrebuilt(t, c, source, object)) {
-      results[k].ok = true;
-      continue;
-    }
-    to_run.push_back(c);
-    index.push_back(k);
-  }
-  const std::vector<ToolRun> runs =
-      runTools(to_run, work_dir, t.jobs, t.compile_seconds, &t.isolation);
-  for (std::size_t r = 0; r < runs.size(); ++r) {
-    const std::size_t k = index[r];
-    results[k] = checked(runs[r]);
-    if (!runs[r].ok || cached[k].empty()) continue;
-    const auto& c = commands[k];
-    const fs::path object = *(std::find(c.begin(), c.end(), "-o") + 1);
-    std::error_code error;
-    fs::create_directories(t.cache_dir, error);
-    const fs::path temporary = cached[k].string() + ".tmp" + uniqueSuffix();
-    if (fs::copy_file(object, temporary, fs::copy_options::overwrite_existing, error))
-      fs::rename(temporary, cached[k], error);  // atomic: concurrent graders never see half a file
-  }
-  return results;
 }
 
 }  // namespace
@@ -153,16 +80,12 @@ std::vector<fs::path> ourFolders(const CourseToolchain& t) {
       if (path == fs::path(folder)) return true;
     return path == fs::temp_directory_path(error).lexically_normal() || !path.has_relative_path();
   };
-  const auto under = [](const fs::path& path, const fs::path& root) {
-    const std::string p = path.string(), r = root.string();
-    return p == r || (p.size() > r.size() && p.compare(0, r.size(), r) == 0 && p[r.size()] == '/');
-  };
   std::vector<fs::path> ours;
   for (const fs::path& path : candidates) {
     if (system(path)) continue;
     bool inside = false;
     for (const fs::path& other : candidates)
-      inside = inside || (other != path && !system(other) && under(path, other));
+      inside = inside || (other != path && !system(other) && isUnder(path, other));
     if (!inside && std::find(ours.begin(), ours.end(), path) == ours.end()) ours.push_back(path);
   }
   return ours;
@@ -187,33 +110,64 @@ CourseToolchain defaultToolchain() {
   return t;
 }
 
+namespace {
+
+// One edition's precompiled header and our three reference objects for `t`'s flags, into its
+// cache (the prebuilt folder); their names go to `wanted`.
+bool prebuildEdition(const CourseToolchain& t, int edition, const fs::path& work_dir,
+                     std::set<std::string>& wanted, std::string* problem) {
+  const std::string what = std::to_string(edition) + (t.sanitize ? " (sanitizer)" : "");
+  const fs::path pch = precompiledHeader(t, edition, work_dir);
+  if (pch.empty()) {
+    if (problem) *problem = "the precompiled header of " + what + " failed";
+    return false;
+  }
+  wanted.insert(pch.parent_path().filename().string());
+  std::vector<std::vector<std::string>> commands;
+  for (const std::string& name : studentFileNames()) {
+    const fs::path source = t.reference_dir / std::to_string(edition) / name;
+    commands.push_back(compileCommand(t, edition, source, work_dir / (name + ".o"), 25, pch));
+    wanted.insert(cachePath(t, commands.back(), source, work_dir, true).filename().string());
+  }
+  const std::vector<ToolRun> runs = compileAll(t, commands, work_dir);
+  for (std::size_t k = 0; k < runs.size(); ++k)
+    if (!runs[k].ok) {
+      if (problem)
+        *problem = "our reference " + studentFileNames()[k] + " of " + what + " does not compile";
+      return false;
+    }
+  return true;
+}
+
+}  // namespace
+
 bool prebuildCourse(const CourseToolchain& given, const std::vector<int>& editions,
                     const fs::path& out_dir, const fs::path& work_dir, std::string* problem) {
   CourseToolchain t = given;
   t.cache_dir = fs::absolute(out_dir);
   t.prebuilt_dir.clear();
   t.trusted_sources = true;  // our reference files: keyed for every isolation
+  // Our own files at build time: no limit meant for students' compiles on a loaded machine (an
+  // instrumented header or object takes minutes of wall time there).
+  t.compile_seconds = 3600;
   std::set<std::string> wanted;
-  for (const int edition : editions) {
-    const fs::path pch = precompiledHeader(t, edition, work_dir);
-    if (pch.empty()) {
-      if (problem) *problem = "the precompiled header of " + std::to_string(edition) + " failed";
-      return false;
+  // The normal build, then the sanitizer's (ProbeRebuilder): its own precompiled header, our
+  // reference objects for files that did not build, and the object of its defaults.
+  for (const bool sanitize : {false, true})
+    for (const int edition : editions) {
+      t.sanitize = sanitize;
+      if (!prebuildEdition(t, edition, work_dir, wanted, problem)) return false;
     }
-    wanted.insert(pch.parent_path().filename().string());
-    std::vector<std::vector<std::string>> commands;
-    for (const std::string& name : studentFileNames()) {
-      const fs::path source = t.reference_dir / std::to_string(edition) / name;
-      commands.push_back(compileCommand(t, edition, source, work_dir / (name + ".o"), 25, pch));
-      wanted.insert(cachePath(t, commands.back(), source, work_dir, true).filename().string());
-    }
-    const std::vector<ToolRun> runs = compileAll(t, commands, work_dir);
-    for (std::size_t k = 0; k < runs.size(); ++k)
-      if (!runs[k].ok) {
-        if (problem) *problem = "our reference " + studentFileNames()[k] + " does not compile";
-        return false;
-      }
+  const fs::path options = sanitizerOptionsObject(t, work_dir);
+  if (options.empty()) {
+    if (problem) *problem = "the sanitizer's defaults (sanitizer_options.cpp) do not compile";
+    return false;
   }
+  const fs::path options_source = work_dir / "sanitizer_options.cpp";
+  wanted.insert(cachePath(t, {t.compiler, "-c", options_source.string(), "-o", options.string()},
+                          options_source, work_dir, true)
+                    .filename()
+                    .string());
   // What an older clothref built (other headers or flags) is never found again: remove it.
   std::error_code error;
   for (const auto& entry : fs::directory_iterator(t.cache_dir, error))
@@ -224,10 +178,7 @@ bool prebuildCourse(const CourseToolchain& given, const std::vector<int>& editio
 ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseToolchain& given,
                        const fs::path& work_dir) {
   // Compiles run inside the scratch folder: every path they get must be absolute.
-  CourseToolchain toolchain = given;
-  if (!toolchain.cache_dir.empty()) toolchain.cache_dir = fs::absolute(toolchain.cache_dir);
-  if (!toolchain.prebuilt_dir.empty())
-    toolchain.prebuilt_dir = fs::absolute(toolchain.prebuilt_dir);
+  const CourseToolchain toolchain = absolutePaths(given);
   ProbeBuild build;
   const std::string ed = std::to_string(edition);
   const auto stem = [](const std::string& name) { return name.substr(0, name.size() - 4); };
@@ -297,9 +248,7 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseTo
   // 2. Our reference version for every file that is missing or did not compile: our own source,
   // compiled (when nothing prebuilt matches) with the grader's uid, which alone may read it, and
   // keyed as our prebuilt objects are. No student compile runs in this folder after it.
-  CourseToolchain ours = toolchain;
-  ours.isolation = Isolation{};
-  ours.trusted_sources = true;
+  const CourseToolchain ours = oursOf(toolchain);
   commands.clear();
   names.clear();
   for (const UsedFile& used : build.files) {
@@ -323,26 +272,12 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseTo
   // 3. Link. A link error (e.g. a framework function deleted) makes us swap in our version of
   // the file the linker complains about, one file at a time.
   const auto link_start = std::chrono::steady_clock::now();
-  const fs::path driver_lib = toolchain.driver_lib_dir / ("libclothref_grader_course_" + ed + ".a");
-  fs::path sanitizer_options;
-  if (toolchain.sanitize) {
-    std::ofstream(work_dir / "sanitizer_options.cpp") << kSanitizerOptionsSource;
-    sanitizer_options = work_dir / "sanitizer_options.o";
-    const ToolRun built =
-        runTools({{toolchain.compiler, "-c", (work_dir / "sanitizer_options.cpp").string(), "-o",
-                   sanitizer_options.string()}},
-                 work_dir, 1, toolchain.compile_seconds, &toolchain.isolation)
-            .front();
-    if (!built.ok) sanitizer_options.clear();
-  }
+  const fs::path sanitizer_options =
+      toolchain.sanitize ? sanitizerOptionsObject(toolchain, work_dir) : fs::path();
   const auto link = [&](const std::vector<fs::path>& objects, const fs::path& out) {
-    std::vector<std::string> command = {toolchain.compiler, "-o", out.string()};
-    if (toolchain.sanitize) command.push_back(kSanitizeFlag);
-    if (!sanitizer_options.empty()) command.push_back(sanitizer_options.string());
-    for (const auto& o : objects) command.push_back(o.string());
-    command.push_back(driver_lib.string());
-    return checked(
-        runTools({command}, work_dir, 1, toolchain.compile_seconds, &toolchain.isolation).front());
+    return checked(runTools({linkCommand(toolchain, edition, objects, sanitizer_options, out)},
+                            work_dir, 1, toolchain.compile_seconds, &toolchain.isolation)
+                       .front());
   };
   std::vector<fs::path> objects = {work_dir / "cloth.o", work_dir / "sphere.o",
                                    work_dir / "integrator.o"};
@@ -388,6 +323,7 @@ ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseTo
   }
   build.link_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - link_start).count();
+  build.objects = objects;
   build.ok = true;
   return build;
 }

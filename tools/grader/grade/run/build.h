@@ -8,7 +8,9 @@
 // edition).
 #pragma once
 #include <filesystem>
+#include <functional>
 #include <map>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -68,15 +70,59 @@ struct ProbeBuild {
   bool small_ok = false;
   std::string small_problem;  // why the second-size cloth.cpp did not build
   std::vector<UsedFile> files;
+  // The objects `probe` was linked from, one per student file in studentFileNames() order: the
+  // student's, or our reference's standing in for it (rebuildProbe reuses them).
+  std::vector<std::filesystem::path> objects;
   double compile_seconds = 0, link_seconds = 0;
 };
 
 ProbeBuild buildProbes(const SubmissionFiles& files, int edition, const CourseToolchain& toolchain,
                        const std::filesystem::path& work_dir);
 
+// A repair's probe (issue 38, grade/probes/repair.cpp): the student file `name` replaced by
+// `bytes` (the quoted lines repaired in a private copy) and compiled alone as the student's files
+// are, then linked with `base`'s objects of the other files: one compile and one link.
+// `ok` false, with the compiler's (or linker's) first error in `problem`, when it does not build.
+ProbeBuild rebuildWithFile(const ProbeBuild& base, const std::string& name,
+                           const std::string& bytes, int edition, const CourseToolchain& toolchain,
+                           const std::filesystem::path& work_dir);
+
+// Probes built again from one grade's build (`base`, made by buildProbes in another folder) with
+// some files compiled with `toolchain`'s flags (the sanitizer's, docs/grading-reference.md
+// "Diagnosing crashes") and every other file's object taken from `base` as it is: one file
+// rebuilt costs one compile (against the precompiled header of those flags, from the cache when
+// another grade compiled the same bytes) and a link. A file of `base` that is our reference (the
+// student's was missing or did not build) is rebuilt from our reference (prebuilt with clothref
+// when it matches). Each set is built in a new folder of its own (`folder(name)`, the tool uid's):
+// its student compiles run before any object or probe of ours is there, as in buildProbes. Each
+// file is compiled at most once per rebuilder, whatever sets ask for it; the rebuilt objects come
+// first in the link, so the inline functions and templates they share with the others are
+// theirs. Thread-safe.
+class ProbeRebuilder {
+ public:
+  using Folder = std::function<std::filesystem::path(const std::string& name)>;
+  ProbeRebuilder(const ProbeBuild& base, const SubmissionFiles& files, int edition,
+                 const CourseToolchain& toolchain, Folder folder);
+  // The probe with the student files `rebuilt` (names of studentFileNames()) compiled again,
+  // linked in that set's folder; empty when a compile or the link failed.
+  std::filesystem::path probe(const std::vector<std::string>& rebuilt);
+
+ private:
+  const ProbeBuild& base_;
+  const SubmissionFiles& files_;
+  int edition_;
+  CourseToolchain toolchain_;
+  Folder folder_;
+  std::mutex mutex_;
+  std::map<std::string, std::filesystem::path> objects_;  // by file; empty: it failed
+  std::map<std::string, std::filesystem::path> probes_;   // by the rebuilt set; empty: failed
+};
+
 // Fills `out_dir` (a `prebuilt_dir`) with what grading needs whatever the submission: per edition
-// the precompiled stand-in headers and our three reference objects; removes what it holds for
-// other headers or flags. Run with clothref's build; false (and why) when something fails.
+// the precompiled stand-in headers and our three reference objects, for the default flags and for
+// the sanitizer's (its diagnostic build), and the sanitizer's defaults object; removes what it
+// holds for other headers or flags. Run with clothref's build; false (and why) when something
+// fails.
 bool prebuildCourse(const CourseToolchain& toolchain, const std::vector<int>& editions,
                     const std::filesystem::path& out_dir, const std::filesystem::path& work_dir,
                     std::string* problem);

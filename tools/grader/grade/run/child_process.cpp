@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -19,7 +20,9 @@
 #include <sstream>
 
 #include "grader/grade/run/folders.h"
+#include "grader/grade/run/process_tree.h"
 #include "grader/grade/run/spawn.h"
+#include "grader/grade/submission/neighbours.h"
 
 namespace clothref::grader {
 using namespace spawn;
@@ -31,7 +34,9 @@ std::string ChildRun::describe() const {
       out << "finished";
       break;
     case ChildStatus::Crashed:
-      if (verdict() == Verdict::MemoryLimit)
+      if (memory_limit)
+        out << "ran out of memory (the memory limit of a probe; stopped by the kernel)";
+      else if (verdict() == Verdict::MemoryLimit)
         out << "ran out of memory (address-space limit; std::bad_alloc, then abort)";
       else if (verdict() == Verdict::OutputLimit)
         out << "was stopped for writing too much output (file-size limit, SIGXFSZ)";
@@ -87,6 +92,7 @@ Verdict ChildRun::verdict() const {
     case ChildStatus::Crashed:
       break;
   }
+  if (memory_limit) return Verdict::MemoryLimit;
   if (signal == SIGXCPU) return Verdict::TimedOut;
   if (signal == SIGXFSZ) return Verdict::OutputLimit;
   // The C++ runtime's last words when `new` fails under RLIMIT_AS (the student could print them
@@ -107,10 +113,12 @@ ChildRun notStarted(const std::string& why, bool waiting_for_slot = false) {
   return run;
 }
 
-// The folders a fallback run may not see (our folders, covered) and the shared ones it gets empty
-// and private (/var/tmp, /dev/shm; /tmp holds the scratch folder), as mount points that exist.
-void privateMounts(const Isolation& isolation, const std::filesystem::path& work_dir,
-                   ExecLimits& how) {
+// The fallback's filesystems for a probe run as root with a private mount namespace: our folders
+// covered; its folder a tmpfs of kRunFolderBytes owned by its uid; every folder any user may
+// write into (sharedTemporaryFolders: /tmp, /var/tmp, /dev/shm, /run/lock, ...) an empty private
+// tmpfs of kPrivateTmpBytes. The child enters its folder and runs its program by descriptors, so
+// covering /tmp, where the scratch folder lies, hides nothing it needs.
+void privateMounts(const Isolation& isolation, ExecLimits& how) {
   if (isolation.kind != IsolationKind::Rlimits || !isolation.private_mounts || isolation.uid < 0)
     return;
   how.new_mount_namespace = true;
@@ -118,11 +126,19 @@ void privateMounts(const Isolation& isolation, const std::filesystem::path& work
   for (const std::filesystem::path& folder : isolation.ours)
     if (std::filesystem::is_directory(folder, error))
       how.hide.push_back(folder.lexically_normal().string());
-  const std::string work = std::filesystem::weakly_canonical(work_dir, error).string();
-  for (const char* shared : {"/var/tmp", "/dev/shm"}) {
-    const std::string real = std::filesystem::weakly_canonical(shared, error).string();
-    if (!error && std::filesystem::is_directory(real, error) && work.rfind(real + "/", 0) != 0)
-      how.private_tmp.push_back(real);
+  // Outermost first; a folder inside another (or inside one of ours) is covered with it.
+  const std::string uid = std::to_string(isolation.uid);
+  how.folder_options =
+      "size=" + std::to_string(kRunFolderBytes) + ",mode=0700,uid=" + uid + ",gid=" + uid;
+  std::vector<std::string> shared;
+  for (const std::filesystem::path& folder : sharedTemporaryFolders())
+    shared.push_back(folder.lexically_normal().string());
+  std::sort(shared.begin(), shared.end());
+  for (const std::string& folder : shared) {
+    bool covered = false;
+    for (const std::string& outer : how.private_tmp) covered = covered || isUnder(folder, outer);
+    for (const std::string& hidden : how.hide) covered = covered || isUnder(folder, hidden);
+    if (!covered) how.private_tmp.push_back(folder);
   }
 }
 
@@ -146,7 +162,7 @@ ChildRun runChildOnce(const std::vector<std::string>& command,
   }
   std::vector<std::string> argv = limits.launcher;
   std::vector<std::string> inner =
-      boxed ? bubblewrapArgv(isolation, command, run_dir, kInfoFd) : command;
+      boxed ? bubblewrapArgv(isolation, command, kInfoFd, limits.sanitizer_channel) : command;
   // Injected faults reach probe runs only (not the isolation's detection run).
   const auto fault = [&](const char* point) { return expect_answer && injectFault(point); };
   // bubblewrap refuses an option it does not know before it starts anything
@@ -162,10 +178,16 @@ ChildRun runChildOnce(const std::vector<std::string>& command,
   int pipe_fds[2] = {-1, -1};
   int info_fds[2] = {-1, -1};
   int setup_fds[2] = {-1, -1};
+  int report_fds[2] = {-1, -1};
+  // The sanitizers' channel: the probe's uid reopens its write end through /proc/self/fd.
+  const bool channel = limits.sanitizer_channel;
   if (in_fd < 0 || out_fd < 0 || err_fd < 0 || pipe_fault || pipe2(pipe_fds, O_CLOEXEC) != 0 ||
-      pipe2(setup_fds, O_CLOEXEC) != 0 || (boxed && pipe2(info_fds, O_CLOEXEC | O_NONBLOCK) != 0)) {
+      pipe2(setup_fds, O_CLOEXEC) != 0 || (boxed && pipe2(info_fds, O_CLOEXEC | O_NONBLOCK) != 0) ||
+      (channel && (pipe2(report_fds, O_CLOEXEC) != 0 ||
+                   (isolation.uid >= 0 && fchown(report_fds[1], static_cast<uid_t>(isolation.uid),
+                                                 static_cast<gid_t>(isolation.uid)) != 0)))) {
     for (int fd : {in_fd, out_fd, err_fd, pipe_fds[0], pipe_fds[1], info_fds[0], info_fds[1],
-                   setup_fds[0], setup_fds[1]})
+                   setup_fds[0], setup_fds[1], report_fds[0], report_fds[1]})
       if (fd >= 0) close(fd);
     return notStarted(files_fault || pipe_fault ? setupFailureText(kSetupInjected)
                                                 : "cannot set up the child's files or pipes");
@@ -175,12 +197,16 @@ ChildRun runChildOnce(const std::vector<std::string>& command,
   how.limits = &limits;
   how.uid = isolation.uid;
   how.injected_fault = fault("setup");
-  privateMounts(isolation, work_dir, how);
+  how.sanitizer_link = channel && !boxed;  // bubblewrap makes the link in the sandbox
+  privateMounts(isolation, how);
   // The rlimits fallback puts a supervisor between us and the student (superviseChild).
   const bool supervised = !boxed && isolation.kind == IsolationKind::Rlimits &&
                           isolation.containment != Containment::None;
   bool in_namespace = supervised && isolation.containment == Containment::PidNamespace;
-  const RunCgroup cgroup(isolation.kind == IsolationKind::None ? "" : isolation.cgroup_parent);
+  const bool confined = isolation.kind != IsolationKind::None;
+  const RunCgroup cgroup(confined ? isolation.cgroup_parent : "",
+                         confined ? isolation.memory_cgroup : "", isolation.memory_cgroup_v1,
+                         limits.memory_bytes);
   pid_t pid = -1;
   const bool fork_fault = fault("fork");
   if (fork_fault) {
@@ -192,19 +218,25 @@ ChildRun runChildOnce(const std::vector<std::string>& command,
     }
     if (!in_namespace) pid = fork();
   }
-  const int answer_fd = expect_answer ? pipe_fds[1] : -1;
+  ChildFds fds;
+  fds.in = in_fd;
+  fds.out = out_fd;
+  fds.err = err_fd;
+  fds.answer = expect_answer ? pipe_fds[1] : -1;
+  fds.info = info_fds[1];
+  fds.setup = setup_fds[1];
+  fds.report = report_fds[1];
   if (pid == 0) {
     cgroup.join();
-    if (supervised)
-      superviseChild(exec, in_fd, out_fd, err_fd, answer_fd, setup_fds[1], how, in_namespace);
-    execChild(exec, in_fd, out_fd, err_fd, answer_fd, info_fds[1], setup_fds[1], how);
+    if (supervised) superviseChild(exec, fds, how, in_namespace);
+    execChild(exec, fds, how);
   }
   const int fork_error = errno;
-  for (int fd : {in_fd, out_fd, err_fd, pipe_fds[1], info_fds[1], setup_fds[1]})
+  for (int fd : {in_fd, out_fd, err_fd, pipe_fds[1], info_fds[1], setup_fds[1], report_fds[1]})
     if (fd >= 0) close(fd);
   if (pid < 0) {
     // No process: nothing to wait for or kill (a kill(-1) would signal every process we may).
-    for (int fd : {pipe_fds[0], info_fds[0], setup_fds[0]})
+    for (int fd : {pipe_fds[0], info_fds[0], setup_fds[0], report_fds[0]})
       if (fd >= 0) close(fd);
     return notStarted(fork_fault ? setupFailureText(kSetupInjected)
                                  : std::string("cannot start the child (fork: ") +
@@ -232,21 +264,34 @@ ChildRun runChildOnce(const std::vector<std::string>& command,
     return disk_full = diskFull();
   };
   const std::size_t max_answer = 512u << 20;
+  std::string report;  // the sanitizers' channel, read as it comes (a full pipe would block them)
+  const std::size_t max_report = 1u << 20;
+  if (report_fds[0] >= 0) fcntl(report_fds[0], F_SETFL, O_NONBLOCK);
+  const auto readReport = [&] {
+    if (report_fds[0] < 0) return;
+    char buffer[65536];
+    for (ssize_t n; (n = read(report_fds[0], buffer, sizeof buffer)) > 0;)
+      if (report.size() < max_report)
+        report.append(
+            buffer, std::min<std::size_t>(static_cast<std::size_t>(n), max_report - report.size()));
+  };
   for (bool open_pipe = true; open_pipe;) {
     if (boxed) {
       readAvailable(info_fds[0], info);
       sandbox.pin(info);
     }
+    readReport();
     const double left = limits.wall_seconds - secondsSince(start);
     if (left <= 0) {
       timed_out = true;
       break;
     }
     if (checkDisk()) break;
-    pollfd fd{pipe_fds[0], POLLIN, 0};
-    const int ready = poll(&fd, 1, static_cast<int>(std::min(left, kDiskCheckSeconds) * 1000) + 1);
+    pollfd polled[2] = {{pipe_fds[0], POLLIN, 0}, {report_fds[0], POLLIN, 0}};
+    const int ready = poll(polled, report_fds[0] >= 0 ? 2 : 1,
+                           static_cast<int>(std::min(left, kDiskCheckSeconds) * 1000) + 1);
     if (ready < 0 && errno != EINTR) break;
-    if (ready <= 0) continue;
+    if (ready <= 0 || !(polled[0].revents & (POLLIN | POLLHUP | POLLERR))) continue;
     char buffer[65536];
     const ssize_t n = read(pipe_fds[0], buffer, sizeof buffer);
     if (n < 0 && errno == EINTR) continue;
@@ -269,8 +314,11 @@ ChildRun runChildOnce(const std::vector<std::string>& command,
       break;
     }
     if (checkDisk()) break;
+    readReport();
     usleep(2000);
   }
+  // Read before the kill: whether a run stopped at the limit computed or waited.
+  const double cpu_at_limit = reaped ? -1 : treeCpuSeconds(pid);
   if (boxed) {
     readAvailable(info_fds[0], info);
     close(info_fds[0]);
@@ -278,6 +326,11 @@ ChildRun runChildOnce(const std::vector<std::string>& command,
   }
   ChildRun run;
   run.disk_limit_bytes = limits.disk_bytes;
+  run.cpu_seconds = cpu_at_limit;
+  if (expect_answer) {
+    const std::optional<probe::ProbeMessage> frame = probe::decodeMessage(answer);
+    run.answered = frame && frame->nonce == request_nonce;
+  }
   if (!reaped) {
     sandbox.killAndWait();
     if (!(supervised && stopSupervisor(pid, status))) {
@@ -319,6 +372,14 @@ ChildRun runChildOnce(const std::vector<std::string>& command,
     run.waiting_for_slot = said.find("Resource temporarily unavailable") != std::string::npos;
   }
   close(setup_fds[0]);
+  if (report_fds[0] >= 0) {
+    readReport();
+    close(report_fds[0]);
+    run.sanitizer_report = report;
+  }
+  // Killed by the kernel at the memory cgroup's limit: the memory limit, not a crash.
+  if (run.status == ChildStatus::Crashed && run.signal == SIGKILL && cgroup.oomKilled())
+    run.memory_limit = true;
   run.seconds = secondsSince(start);
   if (run.status != ChildStatus::NotStarted) run.stderr_head = readHead(err_path, 2000, 12);
   // What the run wrote does not outlive it: its folder's files (unless kept for --keep-work) and
@@ -340,22 +401,39 @@ ChildRun runChild(const std::vector<std::string>& command, const std::filesystem
   const auto first = Clock::now();
   ChildRun run;
   // A run the grader could not start is tried again: while the uid's process slots are taken
-  // (another run's fork bomb), for up to one more wall limit (by then the run holding them has
-  // been killed), the wall limit counting from the attempt that starts; any other failure of
-  // ours, once.
+  // (another run's fork bomb), for as long as any run of the uid can hold them (slotWait: by
+  // then that run has been stopped), the wall limit counting from the attempt that starts; any
+  // other failure of ours, once.
   for (int attempt = 0;; ++attempt) {
     run = runChildOnce(command, work_dir, stdin_file, limits, expect_answer, request_nonce,
                        Clock::now());
     if (run.status != ChildStatus::NotStarted) break;
-    if (run.waiting_for_slot ? secondsSince(first) >= 2 * limits.wall_seconds + 1 : attempt >= 1)
-      break;
+    if (run.waiting_for_slot ? secondsSince(first) >= slotWait(limits) : attempt >= 1) break;
     usleep(50000);
+  }
+  if (limits.answers && run.verdict() == Verdict::NonFinite) {
+    std::lock_guard<std::mutex> lock(limits.answers->mutex);
+    limits.answers->non_finite.insert(work_dir.filename().string());
   }
   if (limits.log) {
     std::lock_guard<std::mutex> lock(limits.log->mutex);
     limits.log->verdicts.push_back(run.verdict());
+    limits.log->folders.push_back(work_dir.filename().string());
   }
   return run;
+}
+
+ChildLimits limitsForTimeout(double seconds) {
+  ChildLimits limits;
+  limits.wall_seconds = seconds;
+  limits.cpu_seconds = static_cast<std::uint64_t>(seconds) + 1;
+  return limits;
+}
+
+double slotWait(const ChildLimits& limits) {
+  return limits.slot_wait_seconds > 0
+             ? limits.slot_wait_seconds
+             : kSanitizerSlowdown * limits.wall_seconds + kSlotWaitMarginSeconds;
 }
 
 std::vector<std::vector<std::string>> probeVariants() {
@@ -393,12 +471,23 @@ ChildRun runProbeTwice(const std::filesystem::path& executable, const probe::Pro
   const std::vector<std::vector<std::string>> variants = probeVariants();
   variant.environment = variants[0];
   ChildRun first = runProbe(executable, request, work_dir, variant);
+  // A first run stopped at the wall-clock limit having used less than half of it in CPU time
+  // waited (for a CPU on a loaded machine, or in a sleep) rather than computed: it is tried once
+  // more and the retry stands. An endless loop computes: it is stopped once, one limit.
+  if (first.status == ChildStatus::TimedOut && first.cpu_seconds >= 0 &&
+      first.cpu_seconds < 0.5 * limits.wall_seconds)
+    first = runProbe(executable, request, work_dir, variant);
   const bool repeat = first.status == ChildStatus::Ok || first.status == ChildStatus::Crashed ||
                       first.status == ChildStatus::ExitedNonZero ||
                       first.status == ChildStatus::NoAnswer;
   if (repeat) {
     variant.environment = variants[1];
-    const ChildRun second = runProbe(executable, request, work_dir, variant);
+    ChildRun second = runProbe(executable, request, work_dir, variant);
+    // The first run finished; a second one stopped at the wall-clock limit may have waited for a
+    // CPU on a loaded machine rather than run: it is tried once more, and the retry
+    // stands. An endless loop is stopped in the first run and still costs one limit.
+    if (first.status != ChildStatus::TimedOut && second.status == ChildStatus::TimedOut)
+      second = runProbe(executable, request, work_dir, variant);
     const bool alike =
         second.status == first.status &&
         (first.status == ChildStatus::Ok
@@ -420,6 +509,7 @@ ChildRun runProbeTwice(const std::filesystem::path& executable, const probe::Pro
   if (limits.log) {
     std::lock_guard<std::mutex> lock(limits.log->mutex);
     limits.log->verdicts.push_back(first.verdict());
+    limits.log->folders.push_back(work_dir.filename().string());
   }
   return first;
 }

@@ -1,5 +1,6 @@
 #include "grader/grade/run/compiler_messages.h"
 
+#include <fstream>
 #include <regex>
 #include <sstream>
 #include <vector>
@@ -68,19 +69,37 @@ bool isBelow(const fs::path& path, const fs::path& dir) {
   return mismatch.first == dir.end() && mismatch.second != path.end();
 }
 
+// Whether `source` has a line directive (`#line 12 "name"`, or GCC's `# 12 "name"`): a message may
+// then be located in a file name the student made up.
+bool hasLineDirective(const fs::path& source) {
+  std::ifstream in(source, std::ios::binary);
+  static const std::regex directive(R"(^\s*#\s*(line\s+)?[0-9])");
+  for (std::string line; std::getline(in, line);)
+    if (std::regex_search(line, directive)) return true;
+  return false;
+}
+
 struct Site {
   const CompileSite& given;
   fs::path student;                                       // canonical
   fs::path work;                                          // canonical
   std::vector<std::pair<fs::path, std::string>> headers;  // canonical
+  bool renames = false;                                   // the student's file has a line directive
   explicit Site(const CompileSite& site) : given(site) {
     std::error_code error;
     if (!site.student_file.empty()) student = resolved(site.student_file.string(), site.work_dir);
     work = fs::weakly_canonical(site.work_dir, error);
     if (error) work = site.work_dir.lexically_normal();
     for (const auto& [dir, shown] : site.header_dirs) headers.push_back({resolved(dir, {}), shown});
+    renames = !student.empty() && hasLineDirective(student);
   }
   bool isStudent(const fs::path& path) const { return !student.empty() && path == student; }
+  // A name the student's own line directive gave its file: it names no file there is (so no
+  // excerpt of another file can come with it), and the student's file renames itself.
+  bool isRenamed(const fs::path& path) const {
+    std::error_code error;
+    return renames && !fs::exists(path, error) && !error;
+  }
   bool isHeader(const fs::path& path) const {
     for (const auto& [dir, shown] : headers)
       if (isBelow(path, dir)) return true;
@@ -111,10 +130,18 @@ std::string cleanLine(std::string line, const std::string& location, const Site&
 }
 
 // Whether a message located at `location` may be quoted, and the name of the file when not.
-bool quotable(const std::string& location, const Site& site, std::string& named) {
+// `excerpt` says whether the source lines under it may be too (not for a renamed file: gcc found
+// no file by that name, and the student's own text is in the message).
+bool quotable(const std::string& location, const Site& site, std::string& named,
+              bool* excerpt = nullptr) {
+  if (excerpt) *excerpt = true;
   if (location.empty() || isToolLocation(location)) return true;
   const fs::path path = resolved(location, site.given.work_dir);
   if (site.isStudent(path) || site.isHeader(path)) return true;
+  if (site.isRenamed(path)) {
+    if (excerpt) *excerpt = false;
+    return true;
+  }
   named = isBelow(path, site.work) ? path.lexically_relative(site.work).string() : path.string();
   return false;
 }
@@ -140,7 +167,8 @@ std::string firstCompilerError(const std::string& log, const CompileSite& given)
     const bool link = isLinkMessage(lines[i]);
     const std::string location = link ? std::string() : locationOf(lines[i]);
     std::string named;
-    if (!quotable(location, site, named))
+    bool with_excerpt = true;
+    if (!quotable(location, site, named, &with_excerpt))
       return "error in " + named + ", which is not a course header (not quoted)\n";
     std::string quote = cleanLine(lines[i], location, site) + "\n";
     // what belongs to it: a message of several lines (a static_assert's text), its excerpt
@@ -149,6 +177,7 @@ std::string firstCompilerError(const std::string& log, const CompileSite& given)
     for (std::size_t k = i + 1; k < lines.size(); ++k) {
       const bool excerpt = isExcerpt(lines[k]);
       if (!excerpt && (isLinkMessage(lines[k]) || !locationOf(lines[k]).empty())) break;
+      if (lines[k].empty() || (excerpt && !with_excerpt)) continue;
       if ((excerpt ? ++excerpt_lines : ++text_lines) > (excerpt ? 2 : 4)) break;
       quote += cleanLine(lines[k], location, site) + "\n";
     }
@@ -167,9 +196,11 @@ std::string compilerLog(const std::string& log, const CompileSite& given) {
   std::string out;
   std::size_t kept = 0, left_out = 0;
   bool keeping = false;  // the current message's excerpt lines follow it
+  bool keeping_excerpt = false;
   for (const std::string& line : lines) {
+    if (line.empty()) continue;
     if (isExcerpt(line)) {
-      if (keeping && kept < kMaxLogLines) {
+      if (keeping && keeping_excerpt && kept < kMaxLogLines) {
         out += line + "\n";
         ++kept;
       } else {
@@ -180,8 +211,11 @@ std::string compilerLog(const std::string& log, const CompileSite& given) {
     const bool link = isLinkMessage(line);
     const std::string location = link ? std::string() : locationOf(line);
     // a line without a place of its own continues the message before it (a text of several lines)
-    if (link || !location.empty())
-      keeping = link || site.isStudent(resolved(location, site.given.work_dir));
+    if (link || !location.empty()) {
+      const fs::path path = resolved(location, site.given.work_dir);
+      keeping = link || site.isStudent(path) || site.isRenamed(path);
+      keeping_excerpt = link || site.isStudent(path);
+    }
     if (!keeping) {
       ++left_out;
       continue;

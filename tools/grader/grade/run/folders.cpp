@@ -231,13 +231,37 @@ std::uint64_t bytesBelow(const fs::path& path, int uid, std::uint64_t stop_after
   return total;
 }
 
+namespace {
+
+// Folders any user may write into, found below `dir` down to `depth` more levels (links not
+// followed, other file systems entered; /proc, /sys and /usr skipped: the kernel's, and the
+// system's, which no user may write).
+void findWorldWritable(const fs::path& dir, int depth, std::vector<fs::path>& found) {
+  const int fd = open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+  if (fd < 0) return;
+  for (const std::string& name : entryNames(fd)) {
+    struct stat info {};
+    if (fstatat(fd, name.c_str(), &info, AT_SYMLINK_NOFOLLOW) != 0 || !S_ISDIR(info.st_mode))
+      continue;
+    const fs::path path = dir / name;
+    if (path == "/proc" || path == "/sys" || path == "/usr") continue;
+    if (info.st_mode & S_IWOTH) found.push_back(path);
+    if (depth > 0) findWorldWritable(path, depth - 1, found);
+  }
+  close(fd);
+}
+
+}  // namespace
+
 const std::vector<fs::path>& sharedTemporaryFolders() {
   static const std::vector<fs::path> folders = [] {
-    std::vector<fs::path> all;
+    std::vector<fs::path> candidates;
     std::error_code error;
-    const fs::path temp = fs::temp_directory_path(error);
-    for (const fs::path& candidate :
-         {temp, fs::path("/tmp"), fs::path("/var/tmp"), fs::path("/dev/shm")}) {
+    candidates.push_back(fs::temp_directory_path(error));
+    for (const char* usual : {"/tmp", "/var/tmp", "/dev/shm"}) candidates.push_back(usual);
+    findWorldWritable("/", 2, candidates);  // /run/lock, and any other the host has
+    std::vector<fs::path> all;
+    for (const fs::path& candidate : candidates) {
       if (candidate.empty()) continue;
       const fs::path real = fs::canonical(candidate, error);
       if (error || !fs::is_directory(real, error)) continue;

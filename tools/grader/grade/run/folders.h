@@ -1,5 +1,5 @@
-// The folders student code touches, and who may read them (docs/grading.md, "Sandbox"): one
-// grade's scratch folder, laid out so that each part belongs to the uid that needs it and to no
+// The folders student code touches, and who may read them (docs/grading-reference.md, "Sandbox"):
+// one grade's scratch folder, laid out so that each part belongs to the uid that needs it and to no
 // other student; the course kit, the only files of ours that compiles of student code read; and
 // the link-proof tree operations the grader uses on folders a student process could write into
 // (copy, remove, measure), which never follow a symbolic link.
@@ -77,8 +77,10 @@ std::uint64_t copyTree(const std::filesystem::path& from, const std::filesystem:
 std::uint64_t bytesBelow(const std::filesystem::path& path, int uid = -1,
                          std::uint64_t stop_after = ~std::uint64_t{0} >> 1);
 
-// The folders every process may write into (TMPDIR's, /tmp, /var/tmp, /dev/shm): where a student
-// process could leave files outside its own folder.
+// The folders every process may write into (TMPDIR's, /tmp, /var/tmp, /dev/shm, /run/lock, and
+// any other folder open to every user within three levels of /, found once per process): where a
+// student process could leave files outside its own folder. The fallback makes each a private
+// filesystem of its runs where it can, and counts and removes what a grade's uids leave in them.
 const std::vector<std::filesystem::path>& sharedTemporaryFolders();
 
 // Bytes of the top-level entries of `folders` owned by `uid`, and their removal (without

@@ -201,6 +201,8 @@ Isolation detect() {
   isolation.uid = geteuid() == 0 ? kProbeUid : -1;
   isolation.tool_uid = geteuid() == 0 ? kToolUid : -1;
   isolation.cgroup_parent = cgroupParent(&isolation.why_no_cgroup);
+  isolation.memory_cgroup = memoryCgroupParent(isolation.cgroup_parent, &isolation.memory_cgroup_v1,
+                                               &isolation.why_no_memory_cgroup);
   if (isolation.uid >= 0) {
     isolation.why_not_private_mounts = whyNoPrivateMountNamespace();
     isolation.private_mounts = isolation.why_not_private_mounts.empty();
@@ -259,6 +261,103 @@ std::string cgroupParent(std::string* why) {
   return parent.path;
 }
 
+namespace {
+
+// Our cgroup v1 memory folder: "<memory mount><our memory cgroup>", or "".
+std::string ownMemoryCgroupV1() {
+  std::ifstream mounts("/proc/self/mounts");
+  std::string device, point, type, options, rest, mount_point;
+  while (mounts >> device >> point >> type >> options && std::getline(mounts, rest)) {
+    if (type != "cgroup") continue;
+    std::istringstream list(options);
+    for (std::string option; std::getline(list, option, ',');)
+      if (option == "memory") mount_point = point;
+    if (!mount_point.empty()) break;
+  }
+  if (mount_point.empty()) return {};
+  std::ifstream groups("/proc/self/cgroup");
+  for (std::string line; std::getline(groups, line);) {
+    const std::size_t first = line.find(':'), second = line.find(':', first + 1);
+    if (first == std::string::npos || second == std::string::npos) continue;
+    std::istringstream controllers(line.substr(first + 1, second - first - 1));
+    for (std::string controller; std::getline(controllers, controller, ',');)
+      if (controller == "memory") {
+        const std::string path = line.substr(second + 1);
+        return mount_point + (path == "/" ? "" : path);
+      }
+  }
+  return {};
+}
+
+bool writeFile(const std::string& path, const std::string& text) {
+  const int fd = open(path.c_str(), O_WRONLY | O_CLOEXEC);
+  if (fd < 0) return false;
+  const bool ok = write(fd, text.data(), text.size()) == static_cast<ssize_t>(text.size());
+  close(fd);
+  return ok;
+}
+
+struct MemoryParent {
+  std::string path, why;
+  bool v1 = false, made = false;
+  explicit MemoryParent(const std::string& v2_parent) {
+    if (geteuid() != 0) {
+      why = "not root";
+      return;
+    }
+    // cgroup v2: the memory controller handed down to our folder's children.
+    if (!v2_parent.empty() && writeFile(v2_parent + "/cgroup.subtree_control", "+memory")) {
+      path = v2_parent;
+      return;
+    }
+    const std::string own = ownMemoryCgroupV1();
+    if (own.empty()) {
+      why = v2_parent.empty() ? "no cgroup v2 tier and no cgroup v1 memory hierarchy"
+                              : "the memory controller is not delegated to us";
+      return;
+    }
+    // A killed grader's folder (its process gone) is removed: its runs' folders are empty.
+    std::error_code error;
+    for (const auto& entry : fs::directory_iterator(own, error)) {
+      const std::string name = entry.path().filename().string(), prefix = "clothref-grader-";
+      if (name.rfind(prefix, 0) != 0 || fs::exists("/proc/" + name.substr(prefix.size()), error))
+        continue;
+      for (const auto& run : fs::directory_iterator(entry.path(), error))
+        if (run.is_directory(error)) rmdir(run.path().c_str());
+      rmdir(entry.path().c_str());
+    }
+    const std::string candidate = own + "/clothref-grader-" + std::to_string(getpid());
+    if (mkdir(candidate.c_str(), 0700) != 0 && errno != EEXIST) {
+      why = "cannot make a memory cgroup in " + own + " (" + std::strerror(errno) + ")";
+      return;
+    }
+    const std::string trial = candidate + "/check";
+    if (mkdir(trial.c_str(), 0700) != 0 ||
+        !writeFile(trial + "/memory.limit_in_bytes", std::to_string(64ull << 20)) ||
+        !canJoin(trial))
+      why = "a process cannot join a memory cgroup in " + own;
+    rmdir(trial.c_str());
+    if (why.empty()) {
+      path = candidate;
+      v1 = made = true;
+    } else {
+      rmdir(candidate.c_str());
+    }
+  }
+  ~MemoryParent() {
+    if (made) rmdir(path.c_str());
+  }
+};
+
+}  // namespace
+
+std::string memoryCgroupParent(const std::string& v2_parent, bool* v1, std::string* why) {
+  static const MemoryParent parent(v2_parent);
+  if (v1) *v1 = parent.v1;
+  if (why) *why = parent.why;
+  return parent.path;
+}
+
 std::string Isolation::describe() const {
   // A leased pair depends on what else was graded at the time: the line names the scheme, not the
   // number, so a batch's CSV is the same whichever submission got which pair.
@@ -273,10 +372,12 @@ std::string Isolation::describe() const {
     case IsolationKind::Bubblewrap:
       return "bubblewrap (new user, net, pid, mount, ipc, uts namespaces; only /usr visible), " +
              user + ", rlimits" + (cgroup_parent.empty() ? "" : ", own cgroup per run") +
-             "; compiles as " + tool_user + " in bubblewrap";
+             (memory_cgroup.empty() ? "" : ", own memory cgroup per run") + "; compiles as " +
+             tool_user + " in bubblewrap";
     case IsolationKind::Rlimits:
       return "rlimits, " + user + ", private working directory, " +
              (cgroup_parent.empty() ? "" : "own cgroup per run (killed when it ends), ") +
+             (memory_cgroup.empty() ? "" : "own memory cgroup per run, ") +
              (containment == Containment::PidNamespace
                   ? "own pid namespace per run"
                   : "a subreaper that kills what a run leaves behind") +
@@ -345,17 +446,26 @@ Isolation detectIsolation() {
 }
 
 std::vector<std::string> bubblewrapArgv(const Isolation& isolation,
-                                        const std::vector<std::string>& command,
-                                        const fs::path& private_dir, int status_fd) {
+                                        const std::vector<std::string>& command, int status_fd,
+                                        bool sanitizer_channel) {
   std::vector<std::string> argv = {isolation.bwrap, "--unshare-all", "--die-with-parent",
                                    "--new-session", "--cap-drop",    "ALL"};
   addSystemTrees(argv);
-  argv.insert(argv.end(), {"--proc", "/proc", "--dev", "/dev", "--size",
-                           std::to_string(kBoxTmpBytes), "--tmpfs", "/tmp"});
+  // Every place the program may write is a bounded filesystem of its own: a burst of writes
+  // meets its limit at write time (ENOSPC), whatever a poll would have seen.
+  const std::string tmp_bytes = std::to_string(kPrivateTmpBytes);
+  argv.insert(argv.end(), {"--proc", "/proc", "--dev", "/dev", "--size", tmp_bytes, "--tmpfs",
+                           "/dev/shm", "--size", tmp_bytes, "--tmpfs", "/tmp"});
   addHidden(isolation, argv);
   const std::string program = "/sandbox/bin/" + fs::path(command.front()).filename().string();
-  argv.insert(argv.end(), {"--ro-bind", command.front(), program, "--bind", private_dir.string(),
-                           "/sandbox/work", "--chdir", "/sandbox/work"});
+  argv.insert(argv.end(), {"--ro-bind", command.front(), program, "--size",
+                           std::to_string(kRunFolderBytes), "--tmpfs", "/sandbox/work"});
+  if (sanitizer_channel)
+    argv.insert(argv.end(), {"--symlink", "/proc/self/fd/" + std::to_string(kSanitizerReportFd),
+                             "/sandbox/work/" + std::string(kSanitizerReportName) + ".2"});
+  // The sandbox's root and /dev (tmpfs bubblewrap made, writable by the program's uid) read-only.
+  argv.insert(argv.end(),
+              {"--chdir", "/sandbox/work", "--remount-ro", "/dev", "--remount-ro", "/"});
   if (status_fd >= 0) argv.insert(argv.end(), {"--json-status-fd", std::to_string(status_fd)});
   argv.push_back("--");
   argv.push_back(program);

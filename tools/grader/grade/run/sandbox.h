@@ -55,6 +55,13 @@ struct Isolation {
   // it detached itself. Empty: no cgroup tier (`why_no_cgroup` says why).
   std::string cgroup_parent;
   std::string why_no_cgroup;
+  // As root where the host lets a process join a memory cgroup of ours (cgroup v2 with the memory
+  // controller delegated to `cgroup_parent`, or cgroup v1's memory hierarchy): a folder of ours in
+  // it; each run gets its own memory cgroup below, limited to ChildLimits::memory_bytes. Empty:
+  // none (`why_no_memory_cgroup` says why), and a run's memory is bounded by RLIMIT_AS alone.
+  std::string memory_cgroup;
+  bool memory_cgroup_v1 = false;
+  std::string why_no_memory_cgroup;
   // As root: holds `uid` and `tool_uid` for this grade alone (leaseUids()) until the last copy of
   // this Isolation is gone.
   std::shared_ptr<const void> uid_lease;
@@ -80,20 +87,39 @@ std::string whyNoPrivateMountNamespace();
 // cgroup there (tried in a forked child).
 std::string cgroupParent(std::string* why);
 
+// The memory cgroup folder for this grader process (made once, removed at exit), or "" with the
+// reason in `why`; `v1` says whether it is cgroup v1's memory hierarchy (memory.limit_in_bytes)
+// rather than v2 (memory.max). `v2_parent` is cgroupParent()'s folder, where v2 delegates the
+// memory controller.
+std::string memoryCgroupParent(const std::string& v2_parent, bool* v1, std::string* why);
+
 // The isolation for this grader process: probes bubblewrap once (same uid drop and flags as a
 // real run, command /bin/true) and caches the answer. Throws InputError for an unknown
 // CLOTHREF_GRADER_ISOLATION value or when `bubblewrap` is forced but does not work.
 Isolation detectIsolation();
 
-// The argv that runs `command` (argv[0] an absolute path) inside bubblewrap: `private_dir`
-// becomes the writable working directory /sandbox/work; argv[0] is bound read-only at
-// /sandbox/bin/<name>; /tmp is an empty tmpfs of kBoxTmpBytes; `status_fd` is the descriptor
-// bubblewrap reports on (--json-status-fd: the sandbox's pid first, the program's exit code when
-// it ends; without the exit code, bubblewrap itself failed).
-inline constexpr std::uint64_t kBoxTmpBytes = 16ull << 20;
+// A run's own folder: a filesystem of this size where one can be mounted (bubblewrap's tmpfs,
+// the fallback's private mount namespace), so a burst of writes meets the limit at write time.
+inline constexpr std::uint64_t kRunFolderBytes = 32ull << 20;
+// Every other place a run may write (its /tmp and /dev/shm, and in the fallback every folder any
+// user may write into, /var/tmp and /run/lock among them): a private filesystem of this size each.
+inline constexpr std::uint64_t kPrivateTmpBytes = 8ull << 20;
+// The descriptor of the sanitizers' own channel in a sanitizer run (child_process.h), and the name
+// its link takes in the run's folder: `.sanitizer-report.<pid>` -> /proc/self/fd/<this>, which
+// ASAN_OPTIONS and UBSAN_OPTIONS name as log_path (the sanitizers add ".<pid>").
+inline constexpr int kSanitizerReportFd = 6;
+inline constexpr const char* kSanitizerReportName = ".sanitizer-report";
+
+// The argv that runs `command` (argv[0] an absolute path) inside bubblewrap: the working
+// directory /sandbox/work is an empty tmpfs of kRunFolderBytes, /tmp and /dev/shm empty tmpfs of
+// kPrivateTmpBytes, and the rest read-only (/, /dev, /usr); argv[0] is bound read-only at
+// /sandbox/bin/<name>; with `sanitizer_channel`, /sandbox/work/.sanitizer-report.2 links to the
+// channel (the program is pid 2 of the sandbox); `status_fd` is the descriptor bubblewrap reports
+// on (--json-status-fd: the sandbox's pid first, the program's exit code when it ends; without
+// the exit code, bubblewrap itself failed).
 std::vector<std::string> bubblewrapArgv(const Isolation& isolation,
-                                        const std::vector<std::string>& command,
-                                        const std::filesystem::path& private_dir, int status_fd);
+                                        const std::vector<std::string>& command, int status_fd,
+                                        bool sanitizer_channel = false);
 
 // The argv that runs a compiler or linker `command` inside bubblewrap with the grader's uid:
 // /usr, `work_dir` (read-write) and the absolute paths the command names (read-only; the folder

@@ -127,55 +127,81 @@ bool injectFault(const char* point) {
   return false;
 }
 
-// The private /var/tmp and /dev/shm of a fallback run (its /tmp holds our scratch folder).
-constexpr const char* kPrivateTmpOptions = "size=16m,mode=1777";
+// Where the child goes once its mounts are made: its folder and its program, as descriptors
+// opened before a private filesystem covered the folders they lie in (-1: by path).
+struct Entered {
+  int folder = -1, program = -1;
+};
 
-// Covers `hide` in a private mount namespace (root only, before the uid drop). It fails closed:
-// where the namespace or a mount fails, the child reports it and exits instead of running with
-// our folders visible.
-static void hideFolders(const ExecLimits& how) {
-  if (!how.new_mount_namespace) return;
+// Covers `hide` in a private mount namespace (root only, before the uid drop), makes a probe's
+// folder a bounded filesystem of its own and every folder in `private_tmp` a private one. It
+// fails closed: where the namespace or a mount fails, the child reports it and exits instead of
+// running with our folders visible or its writes unbounded.
+static Entered privateFilesystems(const ExecArgs& exec, const ExecLimits& how) {
+  Entered entered;
+  if (!how.new_mount_namespace) return entered;
   if (unshare(CLONE_NEWNS) != 0) setupFailed(kSetupMount);
   if (mount("none", "/", nullptr, MS_REC | MS_PRIVATE, nullptr) != 0) setupFailed(kSetupMount);
+  if (!how.folder_options.empty()) {
+    if (mount("tmpfs", exec.dir.c_str(), "tmpfs", MS_NOSUID | MS_NODEV,
+              how.folder_options.c_str()) != 0)
+      setupFailed(kSetupMount);
+    entered.folder = open(exec.dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    entered.program = open(exec.argv[0], O_PATH | O_CLOEXEC);
+    if (entered.folder < 0 || entered.program < 0) setupFailed(kSetupMount);
+  }
   for (const std::string& folder : how.hide)
     if (mount("tmpfs", folder.c_str(), "tmpfs", MS_RDONLY | MS_NOSUID | MS_NODEV | MS_NOEXEC,
               "size=4k,mode=0555") != 0)
       setupFailed(kSetupMount);
   for (const std::string& folder : how.private_tmp)
-    if (mount("tmpfs", folder.c_str(), "tmpfs", MS_NOSUID | MS_NODEV, kPrivateTmpOptions) != 0)
+    if (mount("tmpfs", folder.c_str(), "tmpfs", MS_NOSUID | MS_NODEV,
+              how.private_tmp_options.c_str()) != 0)
       setupFailed(kSetupMount);
+  return entered;
 }
 
-// Moves `fd` to `target` (a fixed number the child's layout reserves); -1 stays closed.
-static void place(int fd, int target) {
-  if (fd >= 0 && fd != target) dup2(fd, target);
+// `.sanitizer-report.<pid>` -> /proc/self/fd/<kSanitizerReportFd> in the current folder (no
+// allocation: the name is built in place).
+static void linkSanitizerChannel() {
+  static_assert(kSanitizerReportFd >= 0 && kSanitizerReportFd < 10);
+  char target[] = "/proc/self/fd/N", name[64];
+  target[sizeof target - 2] = static_cast<char>('0' + kSanitizerReportFd);
+  std::size_t at = 0;
+  for (const char* c = kSanitizerReportName; *c && at < 40; ++c) name[at++] = *c;
+  name[at++] = '.';
+  char digits[24];
+  int n = 0;
+  for (long v = getpid(); v > 0 && n < 23; v /= 10) digits[n++] = static_cast<char>('0' + v % 10);
+  while (n > 0) name[at++] = digits[--n];
+  name[at] = '\0';
+  (void)!symlink(target, name);
 }
 
-[[noreturn]] void execChild(const ExecArgs& exec, int stdin_fd, int stdout_fd, int stderr_fd,
-                            int answer_fd, int info_fd, int setup_fd, const ExecLimits& how) {
+// Moves every descriptor the child keeps into its place: first all of them above the layout
+// (so putting one in place never overwrites another), then each to its number, and every other
+// descriptor closed. The setup pipe stays close-on-exec: a successful exec closes it unwritten.
+static void placeDescriptors(const ChildFds& fds) {
+  constexpr int kHigh = 100;
+  const int from[] = {fds.in, fds.out, fds.err, fds.answer, fds.info, fds.setup, fds.report};
+  const int target[] = {0, 1, 2, probe::kResultFd, kInfoFd, kSetupFd, kSanitizerReportFd};
+  int high[7];
+  for (int k = 0; k < 7; ++k) high[k] = from[k] >= 0 ? fcntl(from[k], F_DUPFD_CLOEXEC, kHigh) : -1;
+  if (high[3] < 0)  // no answer expected: /dev/null in its place
+    high[3] = fcntl(open("/dev/null", O_RDONLY | O_CLOEXEC), F_DUPFD_CLOEXEC, kHigh);
+  for (int k = 0; k < 7; ++k)
+    if (high[k] >= 0)
+      dup3(high[k], target[k], k == 5 ? O_CLOEXEC : 0);
+    else if (k >= 3)
+      close(target[k]);  // no descriptor of the grader's leaks into the program
+  if (syscall(SYS_close_range, kSanitizerReportFd + 1, ~0u, 0) != 0)
+    for (int fd = kSanitizerReportFd + 1; fd < 1024 + kHigh; ++fd) close(fd);
+}
+
+[[noreturn]] void execChild(const ExecArgs& exec, const ChildFds& fds, const ExecLimits& how) {
   setpgid(0, 0);
-  // The setup pipe first, above every other descriptor the layout uses, then the rest in place.
-  const int setup = fcntl(setup_fd, F_DUPFD_CLOEXEC, kSetupFd + 1);
-  dup2(stdin_fd, 0);
-  dup2(stdout_fd, 1);
-  dup2(stderr_fd, 2);
-  if (answer_fd >= 0) {
-    dup2(answer_fd, probe::kResultFd);
-  } else {
-    int devnull = open("/dev/null", O_RDONLY);
-    if (devnull >= 0) dup2(devnull, probe::kResultFd);
-  }
-  if (info_fd >= 0)
-    place(info_fd, kInfoFd);
-  else
-    close(kInfoFd);  // no descriptor of the grader's leaks into the program
-  if (setup >= 0) {
-    dup3(setup, kSetupFd, O_CLOEXEC);
-    close(setup);
-  }
-  for (int fd = kSetupFd + 1; fd < 1024; ++fd) close(fd);
+  placeDescriptors(fds);
   if (how.injected_fault) setupFailed(kSetupInjected);
-  if (chdir(exec.dir.c_str()) != 0) setupFailed(kSetupChdir);
   if (const ChildLimits* limits = how.limits) {
     setLimit(RLIMIT_CPU, limits->cpu_seconds);
     setLimit(RLIMIT_AS, limits->address_space_bytes);
@@ -186,9 +212,14 @@ static void place(int fd, int target) {
     setLimit(RLIMIT_CPU, static_cast<std::uint64_t>(how.tool_seconds) + 1);
     setLimit(RLIMIT_AS, kToolAddressSpace);
     setLimit(RLIMIT_FSIZE, kToolFileSize);
+    setLimit(RLIMIT_NOFILE, kToolOpenFiles);
+    if (how.uid >= 0) setLimit(RLIMIT_NPROC, kToolProcesses);
   }
   setLimit(RLIMIT_CORE, 0);
-  hideFolders(how);
+  const Entered entered = privateFilesystems(exec, how);
+  if (entered.folder >= 0 ? fchdir(entered.folder) != 0 : chdir(exec.dir.c_str()) != 0)
+    setupFailed(kSetupChdir);
+  if (entered.folder >= 0) close(entered.folder);
   if (how.uid >= 0) {
     // Groups first, then gid, then uid: after setresuid we could not change the others.
     const auto id = static_cast<uid_t>(how.uid);
@@ -200,11 +231,19 @@ static void place(int fd, int target) {
       setupFailed(kSetupUid);
   }
   prctl(PR_SET_NO_NEW_PRIVS, 1, 0, 0, 0);  // no set-uid program gives the privileges back
+  // Its parent gone (the grader killed, or the fallback's supervisor), the program goes too; set
+  // after the uid drop, which clears it.
+  prctl(PR_SET_PDEATHSIG, SIGKILL);
+  if (how.sanitizer_link) linkSanitizerChannel();
   // The same addresses on every run (kept through bubblewrap's exec, which is not set-uid): what
   // undefined behaviour reads then depends on the run's variant only (ChildLimits::variant).
   if (how.limits && how.limits->fixed_layout) personality(ADDR_NO_RANDOMIZE);
-  execve(exec.argv[0], exec.argv.data(), exec.envp.data());
-  if (errno == ENOENT) execvpe(exec.argv[0], exec.argv.data(), exec.envp.data());
+  if (entered.program >= 0)
+    syscall(SYS_execveat, entered.program, "", exec.argv.data(), exec.envp.data(), AT_EMPTY_PATH);
+  else
+    execve(exec.argv[0], exec.argv.data(), exec.envp.data());
+  if (errno == ENOENT && entered.program < 0)
+    execvpe(exec.argv[0], exec.argv.data(), exec.envp.data());
   // The uid's process slots are taken (another run's fork bomb): the caller retries.
   setupFailed(errno == EAGAIN ? kSetupNoSlot : kSetupExec);
 }
@@ -270,22 +309,26 @@ static void killInherited() {
 // namespace (`in_namespace`) or a child subreaper. It starts the student program, reaps it and
 // whatever was reparented to it, passes the student's status on, and leaves nothing behind: in a
 // namespace the kernel kills the rest when pid 1 exits; as a subreaper it kills them itself.
-[[noreturn]] void superviseChild(const ExecArgs& exec, int stdin_fd, int stdout_fd, int stderr_fd,
-                                 int answer_fd, int setup_fd, const ExecLimits& how,
+[[noreturn]] void superviseChild(const ExecArgs& exec, const ChildFds& fds, const ExecLimits& how,
                                  bool in_namespace) {
   setpgid(0, 0);
-  prctl(PR_SET_PDEATHSIG, SIGKILL);  // the grader gone: so is the supervisor (and its namespace)
-  if (!in_namespace) prctl(PR_SET_CHILD_SUBREAPER, 1);
   struct sigaction action {};
   action.sa_handler = stopStudent;
   sigaction(SIGTERM, &action, nullptr);
+  // The grader gone (killed), the supervisor is told as at a wall timeout (SIGTERM): it kills the
+  // student and, as a subreaper, everything reparented to it, before it exits; in a pid namespace
+  // its exit ends the rest. A SIGKILL would leave a subreaper's orphans to init.
+  prctl(PR_SET_PDEATHSIG, SIGKILL);
+  if (!in_namespace) prctl(PR_SET_CHILD_SUBREAPER, 1);
   // A raw clone, not glibc's fork(): in a child of a threaded grader, fork() would wait for the
   // malloc and stdio locks that other threads held when we were cloned, forever.
   const pid_t student = static_cast<pid_t>(syscall(SYS_clone, SIGCHLD, 0, 0, 0, 0));
-  if (student < 0) setupFailed(kSetupClone, setup_fd);
+  if (student < 0) setupFailed(kSetupClone, fds.setup);
   if (student == 0) {
     signal(SIGTERM, SIG_DFL);
-    execChild(exec, stdin_fd, stdout_fd, stderr_fd, answer_fd, -1, setup_fd, how);
+    ChildFds student_fds = fds;
+    student_fds.info = -1;
+    execChild(exec, student_fds, how);
   }
   supervised_student = student;
   // Only the student holds the answer pipe and the output files: the grader sees the end of the

@@ -16,6 +16,7 @@
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
+#include <fstream>
 #include <optional>
 #include <string>
 #include <vector>
@@ -79,6 +80,13 @@ struct ExecLimits {
   // kPrivateTmpBytes each (built before fork: no allocation after it).
   bool new_mount_namespace = false;
   std::vector<std::string> hide, private_tmp;
+  std::string private_tmp_options = "size=" + std::to_string(kPrivateTmpBytes) + ",mode=1777";
+  // A probe run there: its folder (ExecArgs::dir) becomes a tmpfs mounted with these options
+  // (size, mode, owner), entered and the program executed through descriptors opened before
+  // `private_tmp` covers the folders they lie in. Empty: the folder as it is.
+  std::string folder_options;
+  // A sanitizer run: `.sanitizer-report.<pid>` in its folder links to kSanitizerReportFd.
+  bool sanitizer_link = false;
   bool injected_fault = false;  // CLOTHREF_GRADER_FAULT: fail before exec, as a setup failure
 };
 // The sandbox's first process (bubblewrap's pid 1 of the new pid namespace), pinned by a pidfd,
@@ -112,36 +120,84 @@ struct SandboxInit {
     pidfd = -1;
   }
 };
-// A run's own cgroup (Isolation::cgroup_parent set): the child joins it first thing after fork;
-// when the run ends, cgroup.kill ends every process in it, whatever it did to detach (setsid,
-// double fork, a new session in another process group), and the empty folder is removed.
+// A run's own cgroups: the child joins them first thing after fork. With Isolation::cgroup_parent
+// (cgroup v2 with cgroup.kill), when the run ends cgroup.kill ends every process in it, whatever it
+// did to detach (setsid, double fork, a new session in another process group); with
+// Isolation::memory_cgroup, its processes together hold at most `memory_bytes` (their private
+// filesystems included), past which the kernel's OOM killer stops one. The empty folders are
+// removed when the run ends.
 struct RunCgroup {
-  std::string dir;
-  int procs_fd = -1;  // cgroup.procs, opened before fork (no allocation in the child)
-  explicit RunCgroup(const std::string& parent) {
-    if (parent.empty()) return;
+  std::string dir, memory_dir;
+  int procs_fd = -1, memory_procs_fd = -1;  // cgroup.procs, opened before fork (no allocation)
+  bool memory_v1 = false;
+  RunCgroup(const std::string& parent, const std::string& memory_parent, bool v1,
+            std::uint64_t memory_bytes) {
     static std::atomic<unsigned long> next{0};
-    dir = parent + "/run-" + std::to_string(next++);
-    if (mkdir(dir.c_str(), 0700) != 0) {
-      dir.clear();
+    const std::string name = "/run-" + std::to_string(next++);
+    if (!parent.empty()) {
+      dir = parent + name;
+      if (mkdir(dir.c_str(), 0700) != 0)
+        dir.clear();
+      else
+        procs_fd = open((dir + "/cgroup.procs").c_str(), O_WRONLY | O_CLOEXEC);
+    }
+    if (memory_parent.empty() || memory_bytes == 0) return;
+    const std::string bytes = std::to_string(memory_bytes);
+    if (!v1) {  // v2: the same folder as the kill tier, the memory controller delegated to it
+      if (memory_parent == parent && !dir.empty() && writeValue(dir + "/memory.max", bytes)) {
+        writeValue(dir + "/memory.swap.max", "0");
+        memory_dir = dir;
+      }
       return;
     }
-    procs_fd = open((dir + "/cgroup.procs").c_str(), O_WRONLY | O_CLOEXEC);
+    memory_v1 = true;
+    memory_dir = memory_parent + name;
+    if (mkdir(memory_dir.c_str(), 0700) != 0 ||
+        !writeValue(memory_dir + "/memory.limit_in_bytes", bytes)) {
+      rmdir(memory_dir.c_str());
+      memory_dir.clear();
+      return;
+    }
+    writeValue(memory_dir + "/memory.memsw.limit_in_bytes", bytes);  // no swap either, if counted
+    memory_procs_fd = open((memory_dir + "/cgroup.procs").c_str(), O_WRONLY | O_CLOEXEC);
   }
   // Child side, before the uid drop: "0" moves the writing process.
   void join() const {
     if (procs_fd >= 0) (void)!write(procs_fd, "0", 1);
+    if (memory_procs_fd >= 0) (void)!write(memory_procs_fd, "0", 1);
+  }
+  // Whether the memory limit's OOM killer stopped a process of the run (v2 memory.events, v1
+  // memory.oom_control: "oom_kill N").
+  bool oomKilled() const {
+    if (memory_dir.empty()) return false;
+    std::ifstream in(memory_dir + (memory_v1 ? "/memory.oom_control" : "/memory.events"));
+    std::string key;
+    for (unsigned long long count = 0; in >> key >> count;)
+      if (key == "oom_kill") return count > 0;
+    return false;
   }
   ~RunCgroup() {
-    if (dir.empty()) return;
     if (procs_fd >= 0) close(procs_fd);
-    const int kill_fd = open((dir + "/cgroup.kill").c_str(), O_WRONLY | O_CLOEXEC);
-    if (kill_fd >= 0) {
-      (void)!write(kill_fd, "1", 1);
-      close(kill_fd);
+    if (memory_procs_fd >= 0) close(memory_procs_fd);
+    if (!dir.empty()) {
+      const int kill_fd = open((dir + "/cgroup.kill").c_str(), O_WRONLY | O_CLOEXEC);
+      if (kill_fd >= 0) {
+        (void)!write(kill_fd, "1", 1);
+        close(kill_fd);
+      }
     }
     // rmdir succeeds once the last process has been reaped by its parent (up to 2 s).
-    for (int k = 0; k < 200 && rmdir(dir.c_str()) != 0 && errno == EBUSY; ++k) usleep(10000);
+    for (const std::string& folder : {dir, memory_v1 ? memory_dir : std::string()})
+      for (int k = 0; !folder.empty() && k < 200 && rmdir(folder.c_str()) != 0 && errno == EBUSY;
+           ++k)
+        usleep(10000);
+  }
+  static bool writeValue(const std::string& path, const std::string& value) {
+    const int fd = open(path.c_str(), O_WRONLY | O_CLOEXEC);
+    if (fd < 0) return false;
+    const bool ok = write(fd, value.data(), value.size()) == static_cast<ssize_t>(value.size());
+    close(fd);
+    return ok;
   }
 };
 
@@ -151,11 +207,16 @@ const char* setupFailureText(unsigned char why);
 // Whether the test hook CLOTHREF_GRADER_FAULT asks for a fault of ours at `point` now.
 bool injectFault(const char* point);
 
+// The descriptors a child gets, as the parent holds them (-1: none): its stdin, stdout and
+// stderr, the answer pipe (fd 3), bubblewrap's status (kInfoFd), the setup pipe (kSetupFd) and
+// the sanitizers' channel (kSanitizerReportFd).
+struct ChildFds {
+  int in = -1, out = -1, err = -1, answer = -1, info = -1, setup = -1, report = -1;
+};
+
 // The child's side, after fork: never return.
-[[noreturn]] void execChild(const ExecArgs& exec, int stdin_fd, int stdout_fd, int stderr_fd,
-                            int answer_fd, int info_fd, int setup_fd, const ExecLimits& how);
-[[noreturn]] void superviseChild(const ExecArgs& exec, int stdin_fd, int stdout_fd, int stderr_fd,
-                                 int answer_fd, int setup_fd, const ExecLimits& how,
+[[noreturn]] void execChild(const ExecArgs& exec, const ChildFds& fds, const ExecLimits& how);
+[[noreturn]] void superviseChild(const ExecArgs& exec, const ChildFds& fds, const ExecLimits& how,
                                  bool in_namespace);
 
 // SIGKILL to the process group `pid` leads and to `pid` (never for a pid <= 1).

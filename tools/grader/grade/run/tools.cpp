@@ -8,6 +8,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <fstream>
 
 #include "grader/grade/run/spawn.h"
 
@@ -16,9 +17,39 @@ using namespace spawn;
 
 namespace {
 
-// The fallback's confinement of one compile or link (docs/grading.md, "Sandbox"): as root, the
-// tool uid, and (where a private mount namespace can be made) our folders covered. A command
-// writing outside `work_dir` (the precompiled header into the cache) compiles only our own
+// A tool's log as the grader reads it: its size, whether any byte is not white space (read up to
+// kScannedLogBytes; a larger log has text), and the lines kept for the messages: at most 4000
+// lines and 200000 bytes, blank lines left out.
+struct ToolLog {
+  std::uint64_t bytes = 0;
+  bool has_text = false;
+  std::string kept;
+};
+constexpr std::uint64_t kScannedLogBytes = 64ull << 20;
+
+ToolLog readToolLog(const std::filesystem::path& path) {
+  ToolLog log;
+  const long size = fileSize(path);
+  log.bytes = size > 0 ? static_cast<std::uint64_t>(size) : 0;
+  log.has_text = log.bytes > kScannedLogBytes;
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  int lines = 0;
+  std::uint64_t scanned = 0;
+  while (scanned < kScannedLogBytes && std::getline(in, line)) {
+    scanned += line.size() + 1;
+    if (line.find_first_not_of(" \t\r\v\f") == std::string::npos) continue;
+    log.has_text = true;
+    if (lines >= 4000 || log.kept.size() >= 200000) continue;
+    log.kept += line.substr(0, 200000 - log.kept.size()) + "\n";
+    ++lines;
+  }
+  return log;
+}
+
+// The fallback's confinement of one compile or link (docs/grading-reference.md, "Sandbox"): as
+// root, the tool uid, and (where a private mount namespace can be made) our folders covered. A
+// command writing outside `work_dir` (the precompiled header into the cache) compiles only our own
 // headers and keeps the grader's uid.
 void confineTool(const Isolation& isolation, const std::vector<std::string>& command,
                  const std::filesystem::path& work_dir, ExecLimits& how) {
@@ -101,7 +132,14 @@ std::vector<ToolRun> runTools(const std::vector<std::vector<std::string>>& comma
       const ExecArgs exec(argv, work_dir);
       const bool fork_fault = injectFault("tool-fork");
       const pid_t pid = in_fd < 0 || log_fd < 0 || !pipes || fork_fault ? -1 : fork();
-      if (pid == 0) execChild(exec, in_fd, log_fd, log_fd, -1, status_fds[1], setup_fds[1], how);
+      if (pid == 0) {
+        ChildFds fds;
+        fds.in = in_fd;
+        fds.out = fds.err = log_fd;
+        fds.info = status_fds[1];
+        fds.setup = setup_fds[1];
+        execChild(exec, fds, how);
+      }
       const int fork_error = errno;
       for (int fd : {in_fd, log_fd, setup_fds[1], status_fds[1]})
         if (fd >= 0) close(fd);
@@ -134,7 +172,8 @@ std::vector<ToolRun> runTools(const std::vector<std::vector<std::string>>& comma
         }
         const unsigned char why = setupReport(finished.setup_fd);
         close(finished.setup_fd);
-        const std::string output = readHead(log_path(finished.index), 200000, 4000);
+        const ToolLog log = readToolLog(log_path(finished.index));
+        const std::string& output = log.kept;
         if (why) {
           ours(finished.index, setupFailureText(why));
           continue;
@@ -145,8 +184,10 @@ std::vector<ToolRun> runTools(const std::vector<std::vector<std::string>>& comma
         }
         // A compiler or linker that fails says why; one that fails in silence was stopped from
         // outside (seen: killed by another root's grader under the same uid), not by the code.
+        // Judged on the raw bytes of the log and the exit status, never on the lines kept: a
+        // `#line` naming the file with thousands of newlines makes every message start blank.
         const bool exited_ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
-        if (!late && !exited_ok && output.find_first_not_of(" \t\r\n") == std::string::npos) {
+        if (!late && !exited_ok && !log.has_text) {
           ours(finished.index, WIFSIGNALED(status)
                                    ? "the tool was stopped by signal " +
                                          std::to_string(WTERMSIG(status)) + " without a message"

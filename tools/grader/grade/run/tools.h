@@ -30,11 +30,16 @@ struct ToolRun {
 // more, then is a failed run marked `ours`, whose output says what failed.
 // With an `isolation` each command runs as its tool uid (never root: sandbox.h); of kind
 // Bubblewrap in bubblewrap seeing only /usr, the work dir and the paths it names; every run has
-// CPU (wall + 1 s), address-space (kToolAddressSpace) and file-size (kToolFileSize) limits.
+// CPU (wall + 1 s), address-space (kToolAddressSpace), file-size (kToolFileSize), open-file
+// (kToolOpenFiles) and, under the tool uid, process (kToolProcesses) limits. A failed run whose
+// log holds nothing but white space, and that was stopped by a signal or wrote nothing at all,
+// is ours (a tool stopped from outside); any byte the compiler wrote makes it the compiler's.
 std::vector<ToolRun> runTools(const std::vector<std::vector<std::string>>& commands,
                               const std::filesystem::path& work_dir, int jobs, double wall_seconds,
                               const Isolation* isolation = nullptr);
 inline constexpr std::uint64_t kToolAddressSpace = 8ull << 30;  // a 10 GB constexpr stops here
 inline constexpr std::uint64_t kToolFileSize = 1ull << 30;
+inline constexpr std::uint64_t kToolOpenFiles = 256;  // RLIMIT_NOFILE
+inline constexpr std::uint64_t kToolProcesses = 64;   // RLIMIT_NPROC of the tool uid (not root)
 
 }  // namespace clothref::grader

@@ -10,6 +10,7 @@
 #include <cerrno>
 #include <cstring>
 #include <fstream>
+#include <iostream>
 #include <mutex>
 #include <set>
 #include <sstream>
@@ -39,20 +40,29 @@ int openLockDirectory(const fs::path& dir) {
   return fd;
 }
 
-// The uids in /proc/<pid>/status ("Uid:\treal\teffective\tsaved\tfs"); none for a zombie, which
-// is gone but for its parent's wait.
-std::vector<int> processUids(const fs::path& status_path) {
+// The uids in /proc/<pid>/status ("Uid:\treal\teffective\tsaved\tfs") and its parent ("PPid:");
+// no uids for a zombie, which is gone but for its parent's wait.
+struct ProcessStatus {
+  std::vector<int> uids;
+  long parent = 0;
+};
+ProcessStatus processStatus(const fs::path& status_path) {
+  ProcessStatus found;
   std::ifstream status(status_path);
   for (std::string line; std::getline(status, line);) {
     if (line.rfind("State:", 0) == 0 && line.find('Z') != std::string::npos) return {};
+    if (line.rfind("PPid:", 0) == 0) found.parent = std::atol(line.c_str() + 5);
     if (line.rfind("Uid:", 0) == 0) {
       std::istringstream fields(line.substr(4));
-      std::vector<int> uids;
-      for (int uid; fields >> uid;) uids.push_back(uid);
-      return uids;
+      for (int uid; fields >> uid;) found.uids.push_back(uid);
     }
   }
-  return {};
+  return found;
+}
+
+bool anyOf(const std::vector<int>& ids, const std::vector<int>& uids) {
+  return std::any_of(ids.begin(), ids.end(),
+                     [&](int id) { return std::find(uids.begin(), uids.end(), id) != uids.end(); });
 }
 
 // Whether process `pid` sees the same root folder as we do. A grader in a chroot (a Gradescope
@@ -65,20 +75,58 @@ bool sharesOurRoot(const fs::path& proc_entry) {
   return theirs.st_dev == ours.st_dev && theirs.st_ino == ours.st_ino;
 }
 
-// The processes running under one of `uids`: pid and whether it shares our root.
+// Whether process `pid` is in a user namespace other than ours: one it made itself (a probe's
+// `unshare(CLONE_NEWUSER)`), or bubblewrap made for it.
+bool inOtherUserNamespace(const fs::path& proc_entry) {
+  struct stat theirs {
+  }, ours{};
+  if (stat((proc_entry / "ns" / "user").c_str(), &theirs) != 0 ||
+      stat("/proc/self/ns/user", &ours) != 0)
+    return false;
+  return theirs.st_ino != ours.st_ino || theirs.st_dev != ours.st_dev;
+}
+
+// The first ancestor of `pid` that runs under none of `uids` (0 when the chain breaks): who
+// started the processes of those uids it descends from. A grader's probes and compiles descend
+// from that grader; a killed grader's leftovers from init (or a subreaper of ours).
+long starterOf(long pid, const std::vector<int>& uids) {
+  for (int depth = 0; depth < 64 && pid > 0; ++depth) {
+    const ProcessStatus status = processStatus("/proc/" + std::to_string(pid) + "/status");
+    if (status.uids.empty()) return 0;
+    if (!anyOf(status.uids, uids)) return pid;
+    pid = status.parent;
+  }
+  return 0;
+}
+
+// Whether the process at `proc_entry` (running under one of `uids`) is ours to kill: under our
+// root, or in a user namespace and root of its own that it made from ours, started by nothing
+// under another root. A process of another grader in a chroot (no user namespace, or started by
+// that grader, under its root) is not: a chroot shares /proc and the uids with the host, not /run,
+// where the leases are.
+bool oursToKill(const fs::path& proc_entry, long pid, const std::vector<int>& uids) {
+  if (sharesOurRoot(proc_entry)) return true;
+  if (!inOtherUserNamespace(proc_entry)) return false;
+  // Its starter under another root is another grader; init, or a process whose root we may not
+  // read (a container's pid 1), started nothing of a grade: the process is an orphan of ours.
+  const long starter = starterOf(pid, uids);
+  if (starter <= 1) return true;
+  const fs::path entry = "/proc/" + std::to_string(starter);
+  struct stat root {};
+  return stat((entry / "root").c_str(), &root) != 0 || sharesOurRoot(entry);
+}
+
+// The processes running under one of `uids`: pid and whether it is ours to kill.
 std::vector<std::pair<long, bool>> processesOf(const std::vector<int>& uids) {
   std::vector<std::pair<long, bool>> found;
   std::error_code error;
   for (const auto& entry : fs::directory_iterator("/proc", error)) {
     const std::string name = entry.path().filename().string();
     if (name.empty() || name.find_first_not_of("0123456789") != std::string::npos) continue;
-    const std::vector<int> ids = processUids(entry.path() / "status");
-    const bool theirs = std::any_of(ids.begin(), ids.end(), [&](int id) {
-      return std::find(uids.begin(), uids.end(), id) != uids.end();
-    });
+    const ProcessStatus status = processStatus(entry.path() / "status");
     const long pid = std::stol(name);
-    if (!theirs || pid <= 1 || pid == getpid()) continue;
-    found.emplace_back(pid, sharesOurRoot(entry.path()));
+    if (!anyOf(status.uids, uids) || pid <= 1 || pid == getpid()) continue;
+    found.emplace_back(pid, oursToKill(entry.path(), pid, uids));
   }
   return found;
 }
@@ -105,7 +153,22 @@ int killProcessesOf(const std::vector<int>& uids, int rounds) {
   return static_cast<int>(killed.size());
 }
 
-UidLease leaseUids(const fs::path& lock_dir) {
+namespace {
+
+// One line on stderr per skipped slot and grader process: a slot we cannot use is the staff's to
+// know about, and it is tried again by every later lease.
+void sayOnce(int slot, const std::string& why) {
+  static std::mutex mutex;
+  static std::set<int> said;
+  std::lock_guard<std::mutex> lock(mutex);
+  if (!said.insert(slot).second) return;
+  std::cerr << "clothref: uid slot " << slot << " (uids " << kProbeUid - 2 * slot << " and "
+            << kToolUid - 2 * slot << ") skipped: " << why << "\n";
+}
+
+}  // namespace
+
+UidLease leaseUids(const fs::path& lock_dir, int kill_rounds) {
   // flock holds between open file descriptions, in this process as in others: one mutex keeps
   // this process's own leases from racing to the same slot's file.
   static std::mutex mutex;
@@ -125,11 +188,22 @@ UidLease leaseUids(const fs::path& lock_dir) {
     // Free here, but a grader under another root (whose leases we cannot see) runs these uids.
     if (usedUnderAnotherRoot({lease.uid, lease.tool_uid})) {
       close(fd);
+      sayOnce(slot,
+              "in use by a process under another root (another grader's, not ours to "
+              "kill); taken again once it ends");
+      continue;
+    }
+    // A grader killed while it graded may have left processes under these uids: they are ours.
+    // One that does not die (stuck in the kernel) keeps the slot from us until it ends.
+    killProcessesOf({lease.uid, lease.tool_uid}, kill_rounds);
+    if (!processesOf({lease.uid, lease.tool_uid}).empty()) {
+      close(fd);
+      sayOnce(slot,
+              "held by a process left behind that could not be killed; taken again once it "
+              "ends");
       continue;
     }
     close(dir_fd);
-    // A grader killed while it graded may have left processes under these uids: they are ours.
-    killProcessesOf({lease.uid, lease.tool_uid});
     // Released (the lock closed) when the last holder lets go. A non-null pointer, so that a
     // held lease tests true.
     lease.hold = std::shared_ptr<const void>(new int(fd), [](const void* held) {

@@ -1,4 +1,5 @@
-// The uids student code runs as, one pair per grade, leased host-wide (docs/grading.md, "Layers").
+// The uids student code runs as, one pair per grade, leased host-wide (docs/grading-reference.md,
+// "Layers").
 #pragma once
 #include <filesystem>
 #include <memory>
@@ -22,13 +23,17 @@ inline constexpr int kToolUid = 65532;
 // dies with the process that holds it. A slot whose uids run processes under another root is
 // taken by a grader there (a chroot shares /proc and the uids, not /run) and is skipped; a
 // process still running under the uids in our root (left by a grader that was killed) is killed.
-// The lowest free slot is taken; kUidSlots at once at the most on a host (more throws).
+// One that does not die (stuck in the kernel) is reported in one line on stderr and its slot
+// skipped until it ends. `kill_rounds` are killProcessesOf's passes (0 in tests: a leftover that
+// does not die). The lowest free slot is taken; kUidSlots at once at the most on a host (more
+// throws).
 struct UidLease {
   int uid = kProbeUid, tool_uid = kToolUid;
   std::shared_ptr<const void> hold;
 };
 inline constexpr int kUidSlots = 256;
-UidLease leaseUids(const std::filesystem::path& lock_dir = "/run/clothref-grader");
+UidLease leaseUids(const std::filesystem::path& lock_dir = "/run/clothref-grader",
+                   int kill_rounds = 50);
 
 // Kills (SIGKILL) every process under our root whose real or effective uid is one of `uids`,
 // until none is left (at most `rounds` passes over /proc). Returns how many were killed.

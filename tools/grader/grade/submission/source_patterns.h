@@ -1,6 +1,6 @@
 // Patterns in a student's source: what the text says, only ever to refine a finding the probes
-// measured (a crash, numbers equal to a simulated mistake), never to make one (docs/grading.md,
-// "Diagnoses").
+// measured (a crash, numbers equal to a simulated mistake), never to make one
+// (docs/grading-reference.md, "Diagnoses").
 #pragma once
 #include <string>
 #include <vector>

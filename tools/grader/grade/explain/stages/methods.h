@@ -1,5 +1,6 @@
-// The methods a stage fit is compared with, as data (docs/grading.md, "The four integrators" and
-// "Accepted variants"), and the comparisons: stage by stage, and whole stub (known method).
+// The methods a stage fit is compared with, as data (docs/grading-reference.md, "The four
+// integrators" and "Accepted variants"), and the comparisons: stage by stage, and whole stub (known
+// method).
 #pragma once
 #include <cmath>
 #include <string>

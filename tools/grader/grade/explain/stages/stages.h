@@ -1,4 +1,4 @@
-// An integrator explained by its stages (docs/grading.md, "Integrators explained by their
+// An integrator explained by its stages (docs/grading-reference.md, "Integrators explained by their
 // stages"). On a contact-free system the probe driver records every state a student's integrate()
 // hands to simulateOneStep() and the state it returns; here each of them is written as an exact
 // combination of the course's building blocks (x0, v0, the accelerations a_k of the evaluations so
@@ -141,7 +141,7 @@ struct StageFit {
 
 // The tolerance of "exact to rounding": a recorded value is the combination to within
 // kUlps * 2^-24 * (|value| + sum of |each term|) (float arithmetic of a few operations per
-// component, in any order; docs/grading.md).
+// component, in any order; docs/grading-reference.md).
 inline constexpr double kUlps = 32;
 inline constexpr int kMaxDenominator = 12;  // rationals of the course's terms: 1/2, 1/6, ...
 

@@ -17,6 +17,7 @@
 #include "grader/grade/cause_ids.h"
 #include "grader/grade/mistakes/integrate_mistakes.h"
 #include "grader/grade/probes/integrate/diagnosis.h"
+#include "grader/grade/probes/integrate/replay.h"
 #include "grader/grade/probes/integrate/stages.h"
 #include "grader/grade/probes/integrate/text.h"
 
@@ -63,7 +64,7 @@ void addOneStepCauses(TestResult& one, const std::vector<std::string>& numeric,
   }
   for (const std::string& id : possible)
     if (std::find(likely.begin(), likely.end(), id) == likely.end()) one.addCause(id, false);
-  if (likely.empty()) one.addCause(cause::kUnknown, false);
+  if (likely.empty()) one.addCause("unknown", false);
 }
 
 TestResult checkOneStep(const ProbeContext& context, const IntegratorRun& run,
@@ -91,32 +92,39 @@ TestResult checkOneStep(const ProbeContext& context, const IntegratorRun& run,
 std::string firstLikelyCause(const TestResult& one) {
   for (const Cause& cause : one.causes)
     if (cause.likely) return cause.id;
-  return cause::kUnknown;
+  return "unknown";
 }
 
 // Each body the course method moves must move.
 TestResult checkEveryBody(const IntegratorRun& run, const TestResult& one) {
   TestResult all = makeTest(run.stub, kChecks[1].name, kChecks[1].weight);
+  // Moved: by a finite distance (distance() says 1e300 for NaN: a body made NaN was lost, not
+  // integrated).
+  const auto moved = [&](int body) {
+    const double d = distance(run.actual, run.start, body);
+    return d > run.rel && d < 1e299;
+  };
   std::string stuck;
-  if (distance(run.expected, run.start, 0) > run.rel &&
-      distance(run.actual, run.start, 0) <= run.rel)
+  if (distance(run.expected, run.start, 0) > run.rel && !moved(0))
     stuck += "the cloth (particles[0])";
-  if (distance(run.expected, run.start, 1) > run.rel &&
-      distance(run.actual, run.start, 1) <= run.rel)
+  if (distance(run.expected, run.start, 1) > run.rel && !moved(1))
     stuck += std::string(stuck.empty() ? "" : " and ") + "the spheres (particles[1])";
   all.fraction = stuck.empty() ? 1 : 0;
   if (stuck.empty()) {
     all.output = "Every Particles* in the vector was integrated.";
     return all;
   }
-  all.output = "After one step " + stuck +
-               " did not move at all, although the course method moves it (state: " +
-               systemText(run.random) + ").\n\n";
+  const bool lost = !(distance(run.actual, run.start, 0) < 1e299) ||
+                    !(distance(run.actual, run.start, 1) < 1e299);
+  all.output =
+      "After one step " + stuck +
+      (lost ? " was not integrated (its numbers are not finite)" : " did not move at all") +
+      ", although the course method moves it (state: " + systemText(run.random) + ").\n\n";
   const bool only_spheres = stuck.find("cloth") == std::string::npos;
   // Nothing moved: the one-step diagnosis says why (integer division, ...), when it has one.
   const std::string first = firstLikelyCause(one);
   const std::string id = only_spheres ? cause::kOnlyFirstBody : first;
-  all.addCause(id, id != cause::kUnknown);
+  all.addCause(id, id != "unknown");
   return all;
 }
 
@@ -174,7 +182,7 @@ TestResult checkOrder(const ProbeContext& context, const IntegratorRun& run, con
   if (order.fraction == 0) {
     const std::string id = one.fraction == 1 ? causeAfterPassedStep(stages, cause::kWrongOrder)
                                              : firstLikelyCause(one);
-    order.addCause(id, id != cause::kUnknown);
+    order.addCause(id, id != "unknown");
   }
   return order;
 }
@@ -194,9 +202,9 @@ TestResult checkStability(const IntegratorRun& run, const TestResult& one,
   if (stable.fraction == 0) {
     // The blow-up is a consequence: the one-step finding names the mistake when there is one.
     const std::string first = firstLikelyCause(one);
-    const std::string id = one.fraction == 1 ? causeAfterPassedStep(stages, cause::kUnstable)
-                           : first == cause::kUnknown ? cause::kUnstable
-                                                      : first;
+    const std::string id = one.fraction == 1    ? causeAfterPassedStep(stages, "unstable")
+                           : first == "unknown" ? "unstable"
+                                                : first;
     stable.addCause(id);
   }
   return stable;
@@ -231,7 +239,13 @@ std::vector<TestResult> probeIntegrator(const ProbeContext& context, int index) 
   util::ProbeFailure failure;
   ChildRun child;
   std::string note;  // why the course-size cloth was used
-  bool ok = runIntegrator(context, index, false, run, failure, child, false);
+  // A crash on the probe cloth is explained only when the course's cloth crashes too: its text
+  // is then the same, and a retry that answers saves the sanitizer's build and run.
+  Unexplained kept;
+  ProbeContext first = context;
+  first.explain_later = &kept;
+  bool ok = runIntegrator(first, index, false, run, failure, child, false);
+  if (!ok && failure.verdict != Verdict::Crashed) util::explainLater(context, kept, failure);
   if (!ok && failure.verdict == Verdict::Crashed) {
     // Code written for the course's cloth (e.g. indexing particlesPerEdge into it) crashes on the
     // small probe cloth: grade it on the course's cloth instead, and say so.
@@ -241,11 +255,13 @@ std::vector<TestResult> probeIntegrator(const ProbeContext& context, int index) 
     util::ProbeFailure again;
     IntegratorRun course;
     ok = runIntegrator(context, index, true, course, again, child, true);
-    if (ok)
+    if (ok) {
       run = std::move(course);
-    else
+    } else {
+      util::explainLater(context, kept, failure);
       failure = {again.verdict, "On the 4 x 4 probe cloth: " + failure.text +
                                     "\n\nOn the course's cloth: " + again.text};
+    }
   } else if (!ok && context.limits.log) {
     std::lock_guard<std::mutex> lock(context.limits.log->mutex);
     context.limits.log->verdicts.push_back(child.verdict());
@@ -264,6 +280,13 @@ std::vector<TestResult> probeIntegrator(const ProbeContext& context, int index) 
   if (method != Method::Explicit) tests.push_back(checkBackups(run));
   tests.push_back(checkOrder(context, run, one, stages));
   tests.push_back(checkStability(run, one, stages));
+  // Likely means proven: every cause named is replayed on every probe state (replay.h).
+  proveIntegratorCauses(context, run, stages, tests);
+  for (TestResult& t : tests)
+    if (!t.passed() &&
+        std::none_of(t.causes.begin(), t.causes.end(), [](const Cause& c) { return c.likely; }) &&
+        !t.names("unknown"))
+      t.causes.insert(t.causes.begin(), util::guess("unknown"));
   addStages(tests, stages);
   if (!note.empty())
     for (TestResult& t : tests) t.output = note + t.output;

@@ -1,5 +1,5 @@
-// The integrator probe's test systems (docs/grading.md, "Integrators"; the system itself and
-// clothref's step of it are mistakes/system.h): the states tried, the encoding of a system into
+// The integrator probe's test systems (docs/grading-reference.md, "Integrators"; the system itself
+// and clothref's step of it are mistakes/system.h): the states tried, the encoding of a system into
 // the probe's request and of the answer back, and the distances and errors the checks compare.
 #pragma once
 #include <cstdint>

@@ -1,0 +1,209 @@
+#include "grader/grade/explain/repair_proof.h"
+
+#include <gtest/gtest.h>
+
+namespace clothref::grader {
+namespace {
+
+const Repair* find(const std::vector<Repair>& repairs, const std::string& cause) {
+  for (const Repair& r : repairs)
+    if (r.cause == cause) return &r;
+  return nullptr;
+}
+
+// The line `n` (1-based) of `text`, without its end.
+std::string lineOf(const std::string& text, int n) {
+  std::size_t start = 0;
+  for (int k = 1; k < n; ++k) start = text.find('\n', start) + 1;
+  const std::size_t end = text.find('\n', start);
+  std::string line = text.substr(start, end - start);
+  if (!line.empty() && line.back() == '\r') line.pop_back();
+  return line;
+}
+
+const std::string kSphere =
+    "void Spheres::collide(Cloth* cloth) {\n"                                           // 1
+    "  for (int i = 0; i < sphereCount; ++i) {\n"                                       // 2
+    "    // auto old = _particles.position(i) - cloth->particles().position(0);\n"      // 3
+    "    auto N = cloth->particles().position(0) - _particles.position(i);\r\n"         // 4
+    "    auto n = (_particles.position(i) - cloth->particles().position(0)).norm();\n"  // 5
+    "  }\n"                                                                             // 6
+    "}\n"                                                                               // 7
+    "void Spheres::collide() { auto d = _particles.position(0) - _particles.position(1); }\n";
+
+// An `auto` Eigen expression inside the stub is evaluated into a vector on its own line; a
+// commented one, a number (`.norm()`) and one in another stub are left alone; line numbers and
+// line ends stay.
+TEST(RepairProof, AutoExpressionsAreEvaluated) {
+  const std::vector<Repair> repairs = repairsOf("sphere.cpp", kSphere, "Spheres::collide(Cloth*)");
+  const Repair* r = find(repairs, "dangling-auto-expression");
+  ASSERT_NE(r, nullptr);
+  ASSERT_EQ(r->lines.size(), 1u);
+  EXPECT_EQ(r->lines[0].line, 4);
+  EXPECT_EQ(r->lines[0].text, "auto N = cloth->particles().position(0) - _particles.position(i);");
+  EXPECT_EQ(lineOf(r->patched, 4),
+            "    auto N = (cloth->particles().position(0) - _particles.position(i)).eval();");
+  EXPECT_NE(r->patched.find(".eval();\r\n"), std::string::npos);
+  EXPECT_EQ(lineOf(r->patched, 3), lineOf(kSphere, 3));
+  EXPECT_EQ(lineOf(r->patched, 5), lineOf(kSphere, 5));
+  EXPECT_EQ(lineOf(r->patched, 8), lineOf(kSphere, 8));
+  EXPECT_EQ(r->what, "line 4 repaired (its `auto` expression stored as a vector with `.eval()`)");
+}
+
+const std::string kIntegrator =
+    "void MidpointEuler::integrate(const std::vector<Particles*>& particles,\n"           // 1
+    "                              std::function<void(void)> simulateOneStep) const {\n"  // 2
+    "  auto backup = particles;\n"                                                        // 3
+    "  float half = 1 / 2 * deltaTime;  // 1 / 2 is fine in a comment\n"                  // 4
+    "  deltaTime /= 2;\n"                                                                 // 5
+    "}\n"                                                                                 // 6
+    "void RungeKuttaFourth::integrate(const std::vector<Particles*>& particles,\n"        // 7
+    "                                 std::function<void(void)> simulateOneStep) const {\n"
+    "  std::vector<Eigen::Ref<Eigen::Matrix4Xf>> x0;\n"  // 9
+    "  auto v = particles[0]->velocity();\n"             // 10
+    "  x = x0 + (1/6) * (k1 + k4);\n"                    // 11
+    "  y = 1 / 6.0f;\n"                                  // 12
+    "}\n";
+
+TEST(RepairProof, IntegerDivisionBackupsAndDeltaTime) {
+  const std::vector<Repair> midpoint =
+      repairsOf("integrator.cpp", kIntegrator, "MidpointEuler::integrate");
+  const Repair* half = find(midpoint, "integer-division-half");
+  ASSERT_NE(half, nullptr);
+  EXPECT_EQ(lineOf(half->patched, 4),
+            "  float half = 1.0f / 2 * deltaTime;  // 1 / 2 is fine in a comment");
+  const Repair* alias = find(midpoint, "backup-alias");
+  ASSERT_NE(alias, nullptr);
+  EXPECT_EQ(lineOf(alias->patched, 3),
+            "  std::vector<Particles> backup_copies_; for (auto* p_ : particles) "
+            "backup_copies_.push_back(*p_); std::vector<Particles*> backup; for (auto& c_ : "
+            "backup_copies_) backup.push_back(&c_);");
+  const Repair* dt = find(midpoint, "deltatime-mutated");
+  ASSERT_NE(dt, nullptr);
+  EXPECT_EQ(dt->lines.size(), 1u);
+  EXPECT_EQ(dt->lines[0].line, 5);
+  // The guard is on the line of the opening brace; the line numbers stay.
+  EXPECT_NE(lineOf(dt->patched, 2).find("~ClothrefRestore_() { deltaTime = v; }"),
+            std::string::npos);
+  EXPECT_EQ(lineOf(dt->patched, 5), lineOf(kIntegrator, 5));
+  EXPECT_EQ(dt->what, "deltaTime restored to its value when integrate() returns");
+
+  const std::vector<Repair> rk4 =
+      repairsOf("integrator.cpp", kIntegrator, "RungeKuttaFourth::integrate");
+  const Repair* sixth = find(rk4, "integer-division-rk4");
+  ASSERT_NE(sixth, nullptr);
+  ASSERT_EQ(sixth->lines.size(), 1u);  // 1 / 6.0f is float division
+  EXPECT_EQ(lineOf(sixth->patched, 11), "  x = x0 + (1.0f / 6) * (k1 + k4);");
+  const Repair* views = find(rk4, "backup-alias");
+  ASSERT_NE(views, nullptr);
+  EXPECT_EQ(lineOf(views->patched, 9), "  std::vector<Eigen::Matrix4Xf> x0;");
+  EXPECT_EQ(lineOf(views->patched, 10), "  auto v = particles[0]->velocity().eval();");
+  EXPECT_EQ(find(rk4, "deltatime-mutated"), nullptr);
+}
+
+TEST(RepairProof, DiscardedNormalizedInTheSpringForce) {
+  const std::string cloth =
+      "void Cloth::computeSpringForce() {\n"
+      "  Eigen::Vector4f dir = a - b;\n"
+      "  dir.normalized();  // 單位向量\n"
+      "  dir = dir.normalized();\n"
+      "}\n";
+  const std::vector<Repair> repairs = repairsOf("cloth.cpp", cloth, "Cloth::computeSpringForce");
+  const Repair* r = find(repairs, "direction-not-normalised");
+  ASSERT_NE(r, nullptr);
+  ASSERT_EQ(r->lines.size(), 1u);
+  EXPECT_EQ(lineOf(r->patched, 3), "  dir.normalize();  // 單位向量");
+  EXPECT_EQ(lineOf(r->patched, 4), "  dir = dir.normalized();");
+}
+
+// A reference to the temporary std::max returns (undefined behaviour that need not crash).
+TEST(RepairProof, AReferenceToATemporaryBecomesACopy) {
+  const std::string cloth =
+      "void Cloth::computeSpringForce() {\n"
+      "  const float& length = std::max(d.norm(), 1e-6f);\n"
+      "  const float& k = springCoef;\n"
+      "}\n";
+  const std::vector<Repair> repairs = repairsOf("cloth.cpp", cloth, "Cloth::computeSpringForce");
+  const Repair* r = find(repairs, "undefined-behaviour");
+  ASSERT_NE(r, nullptr);
+  ASSERT_EQ(r->lines.size(), 1u);
+  EXPECT_EQ(lineOf(r->patched, 2), "  const float length = std::max(d.norm(), 1e-6f);");
+  EXPECT_EQ(lineOf(r->patched, 3), "  const float& k = springCoef;");
+}
+
+// The stub's tests before and after a repair: 4 checks, the first three failed before.
+std::vector<TestResult> stubTests(const std::vector<bool>& passed,
+                                  const std::vector<std::string>& causes) {
+  std::vector<TestResult> tests;
+  for (std::size_t k = 0; k < passed.size(); ++k) {
+    TestResult t = makeTest("Spheres::collide(Cloth*)", "check " + std::to_string(k + 1), 1);
+    t.fraction = passed[k] ? 1 : 0;
+    if (!passed[k])
+      for (const std::string& id : causes) t.addCause(id, true);
+    tests.push_back(t);
+  }
+  return tests;
+}
+
+Repair autoRepair() {
+  Repair r;
+  r.file = "sphere.cpp";
+  r.stub = "Spheres::collide(Cloth*)";
+  r.cause = "dangling-auto-expression";
+  r.lines = {{"sphere.cpp", 129, "auto N = a - b;"}};
+  r.what = "line 129 repaired (its `auto` expression stored as a vector with `.eval()`)";
+  return r;
+}
+
+// The example: the repair mends two checks, a third still fails, explained by a proven
+// mistake of the repaired build; the plausible cause the UB produced is no longer likely.
+TEST(RepairProof, AMendingRepairProvesItsCause) {
+  std::vector<TestResult> tests =
+      stubTests({false, false, false, true}, {"no-position-correction"});
+  std::vector<TestResult> repaired = stubTests({true, true, false, true}, {});
+  repaired[2].addCause("wrong-mass-split").proof = "Proven: a split gives your numbers.";
+  ASSERT_TRUE(applyRepair(autoRepair(), true, "", repaired, tests));
+  const std::string line =
+      "With line 129 repaired (its `auto` expression stored as a vector with `.eval()`): 3 of 4 "
+      "checks pass; the other 1 is explained by `wrong-mass-split` (proven).";
+  for (int k : {0, 1}) {
+    ASSERT_TRUE(tests[k].names("dangling-auto-expression"));
+    EXPECT_EQ(tests[k].causes.front().id, "no-position-correction");
+    EXPECT_FALSE(tests[k].causes.front().likely);
+    for (const Cause& c : tests[k].causes)
+      if (c.id == "dangling-auto-expression") {
+        EXPECT_TRUE(c.proven());
+        EXPECT_EQ(c.proof, line);
+        EXPECT_EQ(c.quotes.size(), 1u);
+      }
+  }
+  // The check still failing takes the repaired build's causes.
+  ASSERT_TRUE(tests[2].names("wrong-mass-split"));
+  EXPECT_FALSE(tests[2].names("no-position-correction"));
+  EXPECT_TRUE(tests[2].causes.front().proven());
+  EXPECT_EQ(tests[2].causes.front().id, "wrong-mass-split");
+}
+
+// A repair that does not build, or changes nothing, disproves the cause.
+TEST(RepairProof, ARepairThatDoesNotBuildOrChangesNothingDisproves) {
+  std::vector<TestResult> tests =
+      stubTests({false, false, true, true}, {"dangling-auto-expression"});
+  EXPECT_FALSE(applyRepair(autoRepair(), false, "sphere.cpp:129: error: no match", {}, tests));
+  for (int k : {0, 1}) {
+    EXPECT_FALSE(tests[k].causes.front().likely);
+    EXPECT_EQ(tests[k].causes.front().proof,
+              "Not proven: with line 129 repaired (its `auto` expression stored as a vector with "
+              "`.eval()`), sphere.cpp does not build (sphere.cpp:129: error: no match), so the "
+              "repair shows nothing.");
+  }
+  tests = stubTests({false, false, true, true}, {"dangling-auto-expression"});
+  EXPECT_FALSE(
+      applyRepair(autoRepair(), true, "", stubTests({false, false, true, true}, {}), tests));
+  EXPECT_FALSE(tests[0].causes.front().likely);
+  EXPECT_EQ(tests[0].causes.front().proof,
+            "Not proven: with line 129 repaired (its `auto` expression stored as a vector with "
+            "`.eval()`), the same checks fail: the repair does not mend your numbers.");
+}
+
+}  // namespace
+}  // namespace clothref::grader

@@ -1,0 +1,125 @@
+// The integrators' replays (grader/grade/probes/integrate/replay.h): a course method table run as
+// the course's code runs it is the library's method to the probe's tolerance, on the random state
+// with its contact too; a mistake's table is the code it stands for; the fitted changes (pinned
+// particles, a velocity factor) are read from the run.
+#include "grader/grade/probes/integrate/replay.h"
+
+#include <gtest/gtest.h>
+
+#include "grader/grade/mistakes/integrate_mistakes.h"
+
+namespace clothref::grader::integrators {
+namespace {
+
+constexpr double kRel = 2e-5;  // the rubric's integrate_rel
+
+TEST(IntegratorReplay, CourseTablesAreTheLibrarysMethods) {
+  for (int index = 0; index < 4; ++index) {
+    TableModel model;
+    model.table = &stages::courseTable(index);
+    const Method method = integratorMethod(index);
+    for (const System& start :
+         {randomSystem(20221), randomSystem(7), stageSystem(20221, false, 2022)}) {
+      const System table = stepped(start, tableStep(model));
+      const System library = stepped(start, clothrefStep(method));
+      EXPECT_LE(distance(table, library), kRel) << index;
+      // a mistake is far beyond it: the table is no looser than the check
+      EXPECT_GT(distance(stepped(start, variantStep(method, Variant::NoReevaluation)), library),
+                index == 0 ? -1.0 : kRel)
+          << index;
+    }
+  }
+}
+
+// RK4 whose increments are read after each stage overwrote the velocity with v0 + c·h·a of its
+// own stage (the example, written as students write it): the model of
+// rk4-stage-from-wrong-increment is that code, to the probe's tolerance.
+void overwrittenRk4(System& s) {
+  simulate(s);
+  const float dt = s.dt;
+  std::vector<Particles<float>*> bodies{&s.cloth.particles, &s.spheres.particles};
+  std::vector<Particles<float>> start;
+  for (auto* p : bodies) start.push_back(*p);
+  std::vector<Mat4X<float>> dx[4], dv[4];
+  const float w[3] = {0.5f, 0.5f, 1.0f};
+  for (int st = 0; st < 4; ++st) {
+    if (st > 0) simulate(s);
+    for (std::size_t k = 0; k < bodies.size(); ++k) {
+      Particles<float>* p = bodies[k];
+      dv[st].push_back(p->acceleration * dt);
+      if (st > 0) p->velocity = start[k].velocity + dv[st][k] * w[st - 1];
+      dx[st].push_back(p->velocity * dt);
+      if (st < 3) {
+        p->position = start[k].position + dx[st][k] * w[st];
+        p->velocity = start[k].velocity + dv[st][k] * w[st];
+      }
+    }
+  }
+  for (std::size_t k = 0; k < bodies.size(); ++k) {
+    bodies[k]->position =
+        start[k].position + (dx[0][k] + 2.0f * dx[1][k] + 2.0f * dx[2][k] + dx[3][k]) / 6.0f;
+    bodies[k]->velocity =
+        start[k].velocity + (dv[0][k] + 2.0f * dv[1][k] + 2.0f * dv[2][k] + dv[3][k]) / 6.0f;
+  }
+}
+
+IntegratorRun runOf(int index, const Step& student) {
+  IntegratorRun run;
+  run.index = index;
+  run.method = integratorMethod(index);
+  run.rel = kRel;
+  run.random = randomSystem(20221);
+  run.actual = stepped(run.random, student);
+  run.expected = stepped(run.random, clothrefStep(run.method));
+  run.start = run.random;
+  simulate(run.start);
+  return run;
+}
+
+TEST(IntegratorReplay, OverwrittenIncrementsAreTheirModel) {
+  const IntegratorRun run = runOf(3, overwrittenRk4);
+  ASSERT_GT(distance(run.actual, run.expected), kRel);  // a mistake the check sees
+  const std::vector<IntegratorModel> models =
+      modelsOf("rk4-stage-from-wrong-increment", run, RunStages{});
+  ASSERT_EQ(models.size(), 2u);
+  EXPECT_GT(distance(stepped(run.random, models[0].step), run.actual), kRel);
+  EXPECT_LE(distance(stepped(run.random, models[1].step), run.actual), kRel);
+  // RK4 with other weights on the course's stages is no model of it: the fit has no weights
+  // without a stage record, and a variant of the stages is far.
+  EXPECT_TRUE(modelsOf("rk4-wrong-weights", run, RunStages{}).empty());
+  for (const IntegratorModel& m : modelsOf("rk4-mixed-increments", run, RunStages{}))
+    EXPECT_GT(distance(stepped(run.random, m.step), run.actual), kRel) << m.text;
+}
+
+// A helper that stops hard-coded cloth particles after the step: read from the numbers, replayed.
+TEST(IntegratorReplay, PinnedParticlesAreReadAndReplayed) {
+  const Step pinning = [](System& s) {
+    clothrefStep(Method::Midpoint)(s);
+    for (int j : {1, 2, 6}) s.cloth.particles.velocity.col(j).setZero();
+  };
+  const IntegratorRun run = runOf(2, pinning);
+  const std::vector<IntegratorModel> models = modelsOf("integrator-pins-particles", run, {});
+  ASSERT_EQ(models.size(), 1u);
+  ASSERT_TRUE(models[0].table.has_value());
+  EXPECT_EQ(models[0].table->pinned, (std::vector<int>{1, 2, 6}));
+  EXPECT_FALSE(models[0].table->pinned_position);
+  EXPECT_LE(distance(stepped(run.random, models[0].step), run.actual), kRel);
+  EXPECT_NE(models[0].text.find("particles 1-2, 6 stopped"), std::string::npos) << models[0].text;
+}
+
+// Velocities scaled after the step, on one body only (a helper that damps the spheres).
+TEST(IntegratorReplay, AVelocityFactorIsReadPerBody) {
+  const Step damped = [](System& s) {
+    clothrefStep(Method::Explicit)(s);
+    s.spheres.particles.velocity *= 0.999f;
+  };
+  const IntegratorRun run = runOf(0, damped);
+  const std::vector<IntegratorModel> models = modelsOf("velocity-damped", run, {});
+  ASSERT_EQ(models.size(), 1u);
+  EXPECT_EQ(models[0].table->velocity_factor[0], 1);
+  EXPECT_NEAR(models[0].table->velocity_factor[1], 0.999, 1e-6);
+  EXPECT_LE(distance(stepped(run.random, models[0].step), run.actual), kRel);
+}
+
+}  // namespace
+}  // namespace clothref::grader::integrators

@@ -1,0 +1,282 @@
+#include "grader/grade/explain/repair_proof.h"
+
+#include <algorithm>
+#include <functional>
+#include <regex>
+
+#include "grader/grade/cause_ids.h"
+#include "grader/grade/submission/source_text.h"
+#include "grader/grade/text.h"
+
+namespace clothref::grader {
+namespace {
+
+// `text` split into lines, each with its own line end ("\n", "\r\n" or none for the last).
+std::vector<std::string> linesOf(const std::string& text) {
+  std::vector<std::string> lines;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    const std::size_t end = text.find('\n', start);
+    if (end == std::string::npos) {
+      lines.push_back(text.substr(start));
+      break;
+    }
+    lines.push_back(text.substr(start, end + 1 - start));
+    start = end + 1;
+  }
+  return lines;
+}
+
+std::string trimmed(std::string line) {
+  while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
+  const std::size_t first = line.find_first_not_of(" \t");
+  return first == std::string::npos ? "" : line.substr(first);
+}
+
+// One kind of pattern: where it is (on the blanked line) and how its line is repaired.
+struct Pattern {
+  std::string cause;
+  std::regex found;                                    // on the blanked line
+  std::function<std::string(const std::string&)> fix;  // the original line -> repaired
+  std::string what;                                    // "stored as a vector (`.eval()`)"
+};
+
+bool isIntegrator(const std::string& stub) { return stub.find("::integrate") != std::string::npos; }
+
+std::vector<Pattern> patternsOf(const std::string& stub) {
+  std::vector<Pattern> patterns;
+  // An `auto` holding an Eigen expression over the state (or over a vector a call returns, such
+  // as normalized()): evaluated on its own line, into a plain vector.
+  static const std::regex auto_expression(
+      R"(\bauto\s*&{0,2}\s*\w+\s*=\s*[^;]*(position|velocity|acceleration|normalized)\s*\([^;]*[-+*/][^;]*;|\bauto\s*&{0,2}\s*\w+\s*=\s*[^;]*[-+*/][^;]*(position|velocity|acceleration|normalized)\s*\([^;]*;)");
+  static const std::regex scalar_end(
+      R"(\.\s*(norm|squaredNorm|stableNorm|sum|dot|value|eval)\s*\([^()]*\)\s*;)");
+  patterns.push_back(
+      {cause::kDanglingAutoExpression, auto_expression,
+       [](const std::string& line) {
+         static const std::regex declaration(R"(\bauto\s*&{0,2}\s*(\w+)\s*=\s*([^;]*);)");
+         std::smatch m;
+         if (!std::regex_search(line, m, declaration) || std::regex_search(m[0].str(), scalar_end))
+           return line;
+         return m.prefix().str() + "auto " + m[1].str() + " = (" + m[2].str() + ").eval();" +
+                m.suffix().str();
+       },
+       "its `auto` expression stored as a vector with `.eval()`"});
+  // A reference bound to the temporary std::max / std::min return (`const float& l =
+  // std::max(a, b);`): it dangles at the end of the line; a copy does not.
+  static const std::regex reference(R"((\bconst\s+[\w:]+\s*)&(\s*\w+\s*=\s*std::(max|min)\s*\())");
+  patterns.push_back(
+      {cause::kUndefinedBehaviour, reference,
+       [](const std::string& line) { return std::regex_replace(line, reference, "$1$2"); },
+       "its reference to the temporary std::max / std::min returns made a copy"});
+  if (stub == "RungeKuttaFourth::integrate" || stub == "MidpointEuler::integrate") {
+    const bool rk4 = stub == "RungeKuttaFourth::integrate";
+    const std::string d = rk4 ? "6" : "2";
+    patterns.push_back({rk4 ? cause::kIntegerDivisionRk4 : cause::kIntegerDivisionHalf,
+                        std::regex(R"((^|[^.\w])1\s*/\s*)" + d + R"((?![.\w]))"),
+                        [d](const std::string& line) {
+                          return std::regex_replace(
+                              line, std::regex(R"((^|[^.\w])1\s*/\s*)" + d + R"((?![.\w]))"),
+                              "$011.0f / " + d);
+                        },
+                        "`1 / " + d + "` written `1.0f / " + d + "`"});
+  }
+  if (isIntegrator(stub) && stub != "ExplicitEuler::integrate") {
+    // A backup that is no copy: a vector of the Particles pointers, an Eigen::Ref view, or an
+    // `auto` holding position() / velocity() of a body (an Eigen::Ref).
+    static const std::regex pointers(
+        R"(^(\s*)(auto\s*&?|std::vector\s*<\s*Particles\s*\*\s*>)\s*(\w+)\s*(=\s*particles\s*|\(\s*particles\s*\)|\{\s*particles\s*\})\s*;)");
+    static const std::regex ref(R"(Eigen::Ref\s*<\s*(const\s+)?([\w:]+)\s*>)");
+    static const std::regex view(
+        R"(\bauto\s*&?\s*(\w+)\s*=\s*([\w\[\]]+\s*(->|\.)\s*(position|velocity)\s*\(\s*\))\s*;)");
+    patterns.push_back(
+        {cause::kBackupAlias,
+         std::regex(
+             R"((^\s*(auto\s*&?|std::vector\s*<\s*Particles\s*\*\s*>)\s*\w+\s*(=\s*particles\s*|\(\s*particles\s*\)|\{\s*particles\s*\})\s*;)|Eigen::Ref\s*<|\bauto\s*&?\s*\w+\s*=\s*[\w\[\]]+\s*(->|\.)\s*(position|velocity)\s*\(\s*\)\s*;)"),
+         [](const std::string& line) {
+           std::smatch m;
+           if (std::regex_search(line, m, pointers)) {
+             const std::string name = m[3].str(), copies = name + "_copies_";
+             return m.prefix().str() + m[1].str() + "std::vector<Particles> " + copies +
+                    "; for (auto* p_ : particles) " + copies +
+                    ".push_back(*p_); std::vector<Particles*> " + name +
+                    "; for (auto& c_ : " + copies + ") " + name + ".push_back(&c_);" +
+                    m.suffix().str();
+           }
+           if (std::regex_search(line, m, view))
+             return m.prefix().str() + "auto " + m[1].str() + " = " + m[2].str() + ".eval();" +
+                    m.suffix().str();
+           return std::regex_replace(line, ref, "$2");
+         },
+         "its backup made a copy of the state"});
+    // The global deltaTime changed: restored when integrate() returns (a guard at the brace).
+    patterns.push_back({cause::kDeltatimeMutated, std::regex(R"(\bdeltaTime\s*([-+*/]?=)(?!=))"),
+                        nullptr, "deltaTime restored to its value when integrate() returns"});
+  }
+  if (stub == "Cloth::computeSpringForce")
+    patterns.push_back(
+        {cause::kDirectionNotNormalised, std::regex(R"(^\s*\w+\s*\.\s*normalized\s*\(\s*\)\s*;)"),
+         [](const std::string& line) {
+           static const std::regex discarded(R"((\w+)\s*\.\s*normalized\s*\(\s*\)\s*;)");
+           return std::regex_replace(line, discarded, "$1.normalize();",
+                                     std::regex_constants::format_first_only);
+         },
+         "`normalized();` written `normalize();`"});
+  return patterns;
+}
+
+std::string lineList(const std::vector<SourceQuote>& lines) {
+  std::string out = lines.size() == 1 ? "line " : "lines ";
+  for (std::size_t k = 0; k < lines.size(); ++k)
+    out += (k == 0 ? "" : k + 1 == lines.size() ? " and " : ", ") + std::to_string(lines[k].line);
+  return out;
+}
+
+}  // namespace
+
+std::vector<Repair> repairsOf(const std::string& file, const std::string& source,
+                              const std::string& stub) {
+  std::vector<Repair> repairs;
+  const StubLines body = stubLines(source, stub);
+  if (body.first == 0) return repairs;
+  const std::vector<std::string> lines = linesOf(source);
+  const std::vector<std::string> blanked = linesOf(blankedCode(source));
+  for (const Pattern& pattern : patternsOf(stub)) {
+    Repair repair{file, stub, pattern.cause, {}, {}, {}};
+    std::vector<std::string> patched = lines;
+    for (int n = body.first; n <= body.last && n <= int(lines.size()); ++n) {
+      const std::size_t k = std::size_t(n - 1);
+      if (k >= blanked.size() || !std::regex_search(blanked[k], pattern.found)) continue;
+      if (pattern.fix) {
+        // Only the code is repaired: a comment at the end of the line stays as written.
+        std::size_t code_end = lines[k].size();
+        for (std::size_t c = 0; c + 1 < lines[k].size() && c < blanked[k].size(); ++c)
+          if (lines[k].compare(c, 2, "//") == 0 && blanked[k][c] == ' ') {
+            code_end = c;
+            break;
+          }
+        const std::string code = lines[k].substr(0, code_end);
+        const std::string fixed = pattern.fix(code);
+        if (fixed == code) continue;
+        patched[k] = fixed + lines[k].substr(code_end);
+      }
+      repair.lines.push_back({file, n, trimmed(lines[k])});
+    }
+    if (repair.lines.empty()) continue;
+    if (!pattern.fix) {
+      // The guard goes right after the body's opening brace, on its line (line numbers stay).
+      const std::size_t k = std::size_t(body.first - 1);
+      const std::size_t brace = blanked[k].find('{');
+      if (brace == std::string::npos) continue;
+      patched[k] = lines[k].substr(0, brace + 1) +
+                   " struct ClothrefRestore_ { float v = deltaTime; ~ClothrefRestore_() { "
+                   "deltaTime = v; } } clothref_restore_;" +
+                   lines[k].substr(brace + 1);
+    }
+    for (const std::string& line : patched) repair.patched += line;
+    repair.what =
+        pattern.fix ? lineList(repair.lines) + " repaired (" + pattern.what + ")" : pattern.what;
+    repairs.push_back(repair);
+  }
+  return repairs;
+}
+
+bool applyRepair(const Repair& repair, bool built, const std::string& problem,
+                 const std::vector<TestResult>& repaired, std::vector<TestResult>& tests) {
+  const std::string with = "With " + repair.what;
+  std::size_t total = 0, passing = 0, mended = 0;
+  bool same_shape = built && repaired.size() == tests.size();
+  for (std::size_t k = 0; same_shape && k < tests.size(); ++k)
+    same_shape = repaired[k].check == tests[k].check;
+  std::vector<std::string> others;  // the proven causes of the checks still failing
+  bool others_explained = true;
+  std::size_t still = 0, broken = 0;
+  if (same_shape)
+    for (std::size_t k = 0; k < tests.size(); ++k) {
+      ++total;
+      passing += repaired[k].passed();
+      if (!tests[k].passed() && repaired[k].passed()) ++mended;
+      if (tests[k].passed() && !repaired[k].passed()) ++broken;
+      if (repaired[k].passed()) continue;
+      ++still;
+      bool explained = false;
+      for (const Cause& c : repaired[k].causes)
+        if (c.proven()) {
+          explained = true;
+          if (std::find(others.begin(), others.end(), c.id) == others.end()) others.push_back(c.id);
+        }
+      others_explained = others_explained && explained;
+    }
+  std::string line;
+  const bool proven = same_shape && mended > 0 && broken == 0;
+  if (!built) {
+    line = "Not proven: with " + repair.what + ", " + repair.file + " does not build" +
+           (problem.empty() ? "" : " (" + problem.substr(0, problem.find('\n')) + ")") +
+           ", so the repair shows nothing.";
+  } else if (!same_shape) {
+    line = "Not proven: with " + repair.what + ", the stub could not be probed again.";
+  } else if (!proven) {
+    line = "Not proven: with " + repair.what + ", " +
+           (broken ? std::to_string(broken) + " checks that passed fail" : "the same checks fail") +
+           ": the repair does not mend your numbers.";
+  } else {
+    line = with + ": " + std::to_string(passing) + " of " + std::to_string(total) +
+           (total == 1 ? " check passes" : " checks pass");
+    if (still == 0) {
+      line += ".";
+    } else if (others_explained) {
+      std::string ids;
+      for (std::size_t k = 0; k < others.size(); ++k)
+        ids += (k == 0 ? "" : k + 1 == others.size() ? " and " : ", ") + codeSpan(others[k]);
+      line += "; the other " + std::to_string(still) + " " + (still == 1 ? "is" : "are") +
+              " explained by " + ids + " (proven).";
+    } else {
+      line += "; the other " + std::to_string(still) + " " + (still == 1 ? "is" : "are") +
+              " not explained by a proven mistake.";
+    }
+  }
+  for (std::size_t k = 0; k < tests.size(); ++k) {
+    TestResult& t = tests[k];
+    if (t.passed()) continue;
+    if (!proven) {
+      if (!t.names(repair.cause)) continue;
+      Cause& cause = t.addCause(repair.cause, false);
+      if (!cause.proven()) {
+        cause.likely = false;
+        cause.proof = line;
+        cause.quotes = repair.lines;
+      }
+      continue;
+    }
+    if (repaired[k].passed()) {
+      // Mended: the repaired lines were this check's mistake; what else was named was not.
+      for (Cause& other : t.causes)
+        if (other.id != repair.cause && other.likely) {
+          other.likely = false;
+          other.proof = "Not the mistake: " + with.substr(5) + " this check passes.";
+        }
+      Cause& cause = t.addCause(repair.cause, true);
+      cause.likely = true;
+      cause.proof = line;
+      cause.quotes = repair.lines;
+    } else {
+      // Still failing: the repaired build's causes, with the repair named first.
+      std::vector<Cause> causes;
+      Cause mine{repair.cause, false, {}, {}, {}, {}, {}, line};
+      mine.quotes = repair.lines;
+      causes.push_back(mine);
+      for (Cause c : repaired[k].causes) {
+        if (c.id == repair.cause) continue;
+        if (!c.proof.empty())
+          c.proof = with + " (the numbers of the repaired build): " +
+                    (c.proof.rfind("Proven: ", 0) == 0 ? c.proof.substr(8) : c.proof);
+        causes.push_back(c);
+      }
+      std::stable_partition(causes.begin(), causes.end(), [](const Cause& c) { return c.likely; });
+      t.causes = causes;
+    }
+  }
+  return proven;
+}
+
+}  // namespace clothref::grader

@@ -1,0 +1,188 @@
+// The integrators' causes proven by replay (replay.h).
+#include "grader/grade/probes/integrate/replay.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "clothref/verify/verify.h"
+#include "grader/grade/cause_ids.h"
+#include "grader/grade/probes/util.h"
+
+namespace clothref::grader::integrators {
+
+Replay replayIntegrator(const IntegratorModel& model, const ProbeContext& context,
+                        const IntegratorRun& run, const std::vector<TestResult>& tests) {
+  Replay replay;
+  replay.model = model.text;
+  const double rel = run.rel;
+  const auto name = [&](std::size_t k) {
+    return k < tests.size() ? tests[k].check : std::string("check ") + std::to_string(k + 1);
+  };
+  std::size_t k = 0;
+  // The one-step check, on the random state.
+  const System one = stepped(run.random, model.step);
+  const bool positions =
+      util::closeTo(one.cloth.particles.position, run.actual.cloth.particles.position, rel) &&
+      util::closeTo(one.spheres.particles.position, run.actual.spheres.particles.position, rel);
+  const bool velocities =
+      util::closeTo(one.cloth.particles.velocity, run.actual.cloth.particles.velocity, rel) &&
+      util::closeTo(one.spheres.particles.velocity, run.actual.spheres.particles.velocity, rel);
+  replay.checks.push_back({name(k++), {{"positions", positions}, {"velocities", velocities}}});
+  // Every body integrated: the same bodies stand still.
+  bool same_bodies = true;
+  for (int body : {0, 1})
+    same_bodies = same_bodies && (distance(one, run.start, body) <= rel) ==
+                                     (distance(run.actual, run.start, body) <= rel);
+  replay.checks.push_back({name(k++), {{"bodies that move", same_bodies}}});
+  // deltaTime after the call.
+  const auto& after = run.answer.f(key::perCase(key::kDtAfter, 0));
+  replay.checks.push_back(
+      {name(k++), {{"deltaTime after the call", !after.empty() && after[0] == one.dt}}});
+  if (run.method != Method::Explicit)
+    replay.checks.push_back({name(k++), {{"result", positions && velocities}}});
+  // The convergence ladder and the stability run, as the driver runs them (deltaTime reset
+  // before every step), recorded every stride.
+  const auto trajectory = [&](float dt, std::int64_t steps, std::int64_t stride) {
+    System s = springSystem(dt, run.spring_particles);
+    std::vector<float> record;
+    for (std::int64_t n = 1; n <= steps; ++n) {
+      s.dt = dt;
+      model.step(s);
+      if (n % stride == 0) {
+        const auto x = util::flat(s.cloth.particles.position);
+        record.insert(record.end(), x.begin(), x.end());
+      }
+    }
+    return record;
+  };
+  std::vector<double> model_errors, student_errors;
+  bool model_usable = true, student_usable = true;
+  for (std::size_t d = 0; d < run.dts.size(); ++d) {
+    const std::int64_t steps = std::llround(run.end_time / run.dts[d]);
+    const double m = trajectoryError(trajectory(float(run.dts[d]), steps, run.strides[d]),
+                                     run.dts[d], run.strides[d], run.spring_particles);
+    const double s = trajectoryError(run.answer.f(key::perCase(key::kTrajectory, int(d) + 1)),
+                                     run.dts[d], run.strides[d], run.spring_particles);
+    model_errors.push_back(m);
+    student_errors.push_back(s);
+    model_usable = model_usable && std::isfinite(m) && m > 0 && m < 1e299;
+    student_usable = student_usable && std::isfinite(s) && s > 0 && s < 1e299;
+  }
+  const double tolerance = context.rubric.tolerances.order;
+  const bool same_order =
+      model_usable == student_usable &&
+      (!model_usable ||
+       std::abs(fitOrder(run.dts, model_errors) - fitOrder(run.dts, student_errors)) <= tolerance);
+  replay.checks.push_back({name(k++), {{"convergence order", same_order}}});
+  const std::int64_t stable_steps = static_cast<std::int64_t>(20.0 / run.stable_dt);
+  const std::int64_t stable_stride = std::max<std::int64_t>(1, stable_steps / 100);
+  const std::vector<float> stable = trajectory(float(run.stable_dt), stable_steps, stable_stride);
+  const auto amplitude = [&](const std::vector<float>& record) {
+    const std::size_t per_record = 4 * std::size_t(run.spring_particles);
+    double a = 0;
+    for (std::size_t r = 0; r + per_record <= record.size(); r += per_record) {
+      const double u = std::abs(double(record[r + 4]) - 1.0);
+      a = std::isfinite(u) ? std::max(a, u) : 1e300;
+    }
+    return a;
+  };
+  const double model_amplitude = amplitude(stable);
+  const double student_amplitude =
+      amplitude(run.answer.f(key::perCase(key::kTrajectory, run.stable_case)));
+  replay.checks.push_back(
+      {name(k++), {{"stability", (model_amplitude <= 0.3) == (student_amplitude <= 0.3)}}});
+  return replay;
+}
+
+namespace {
+
+// Two table models' changes together (the same table): a mistake of each at once.
+std::optional<IntegratorModel> combine(const IntegratorModel& a, const IntegratorModel& b) {
+  if (!a.table || !b.table || a.table->table != b.table->table) return std::nullopt;
+  TableModel t = *a.table;
+  const TableModel& o = *b.table;
+  if (o.step != 1) t.step = o.step;
+  if (o.result_step != 1) t.result_step = o.result_step;
+  if (!o.weights_x.empty()) t.weights_x = o.weights_x;
+  if (!o.weights_v.empty()) t.weights_v = o.weights_v;
+  for (std::size_t b2 = 0; b2 < 2; ++b2)
+    if (o.velocity_factor[b2] != 1) t.velocity_factor[b2] = o.velocity_factor[b2];
+  if (!o.pinned.empty()) t.pinned = o.pinned, t.pinned_position = o.pinned_position;
+  if (!o.pinned_spheres.empty()) t.pinned_spheres = o.pinned_spheres;
+  if (o.dt_after_factor) t.dt_after_factor = o.dt_after_factor;
+  if (o.dt_after) t.dt_after = o.dt_after;
+  if (o.result_dt) t.result_dt = o.result_dt;
+  IntegratorModel both;
+  both.ids = a.ids;
+  both.ids.insert(both.ids.end(), b.ids.begin(), b.ids.end());
+  both.text = a.text + "; and " + b.text.substr(b.text.find(' ', 4) + 1);
+  both.step = tableStep(t);
+  both.table = t;
+  return both;
+}
+
+}  // namespace
+
+void proveIntegratorCauses(const ProbeContext& context, const IntegratorRun& run,
+                           const RunStages& stages, std::vector<TestResult>& tests) {
+  if (std::all_of(tests.begin(), tests.end(), [](const TestResult& t) { return t.passed(); }))
+    return;
+  // The causes named likely, then possible, then the stage fit's, then every other with a model.
+  std::vector<std::string> ids, named;
+  const auto add = [&](std::vector<std::string>& to, const std::string& id) {
+    if (std::find(to.begin(), to.end(), id) == to.end()) to.push_back(id);
+  };
+  for (bool likely : {true, false})
+    for (const TestResult& t : tests)
+      for (const Cause& c : t.causes)
+        if (c.likely == likely) add(ids, c.id), add(named, c.id);
+  for (bool likely : {true, false})
+    for (const std::string& id : stages.causes(likely)) add(ids, id);
+  for (const char* id :
+       {cause::kOnlyFirstBody, cause::kPositionUsesAcceleration, cause::kVelocityNotIntegrated,
+        cause::kPositionNotIntegrated, cause::kBackupAlias, cause::kNoReevaluation,
+        cause::kPerBodyLoop, cause::kMidpointFullStep, cause::kHeunMethod,
+        cause::kHalfStepCorrector, cause::kCorrectorStartVelocity, cause::kVelocityDamped,
+        cause::kIntegratorPinsParticles, cause::kDeltatimeMutated, cause::kRk4MixedIncrements,
+        cause::kRk4StageNotFromBackup, cause::kRk4StageFromWrongIncrement,
+        cause::kRk4StagesDiscarded})
+    add(ids, id);
+  std::vector<IntegratorModel> models;
+  std::vector<Replay> replays;
+  std::string winner;  // the cause the first proving model names
+  for (const std::string& id : ids)
+    for (IntegratorModel& m : modelsOf(id, run, stages)) {
+      replays.push_back(replayIntegrator(m, context, run, tests));
+      models.push_back(std::move(m));
+      if (!replays.back().proven()) continue;
+      if (winner.empty()) {
+        applyReplay(replays.back(), models.back().ids, tests);
+        winner = models.back().ids.front();
+      } else if (models.back().ids.front() != winner &&
+                 std::find(named.begin(), named.end(), id) != named.end()) {
+        alternative(replays.back(), models.back().ids, winner, tests);
+      }
+    }
+  for (std::size_t i = 0; i < models.size() && winner.empty(); ++i)
+    for (std::size_t j = i + 1; j < models.size() && winner.empty(); ++j) {
+      if (models[i].ids == models[j].ids) continue;
+      const std::optional<IntegratorModel> both = combine(models[i], models[j]);
+      if (!both) continue;
+      const Replay pair = replayIntegrator(*both, context, run, tests);
+      if (!pair.proven()) continue;
+      applyReplay(pair, both->ids, tests);
+      winner = both->ids.front();
+    }
+  // A cause named that no model proves: its best model's line, as a guess.
+  for (std::size_t m = 0; m < models.size(); ++m) {
+    if (std::find(named.begin(), named.end(), models[m].ids.front()) == named.end()) continue;
+    std::size_t best = m;
+    for (std::size_t q = 0; q < models.size(); ++q)
+      if (models[q].ids == models[m].ids && replays[q].reproduced() > replays[best].reproduced())
+        best = q;
+    if (best == m && !replays[m].proven()) applyReplay(replays[m], models[m].ids, tests);
+  }
+  requireProofs(tests, {cause::kDeltatimeMutated, "unstable", cause::kWrongOrder});
+}
+
+}  // namespace clothref::grader::integrators
