@@ -4,9 +4,9 @@
 #
 #   cmake -DMODE=ids -DJSON=<diagnoses.json> -DOUTPUT=<.../grader/grade/cause_ids.h> -P diagnoses.cmake
 #       the C++ header of the catalogue's ids and data (namespace clothref::grader::cause: one
-#       `kCamelCase` per id, and entries(): per id its kind and default deduction), written by
-#       the build whenever the JSON changes (rewritten only when its bytes change, so a new text does not
-#       rebuild the grader);
+#       `kCamelCase` per id, and entries(): per id its kind, default deduction, proof and model),
+#       written by the build whenever the JSON changes (rewritten only when its bytes change, so
+#       a new text does not rebuild the grader);
 #   cmake -DMODE=docs -DJSON=<diagnoses.json> -DDOC=<docs/grading-reference.md> [-DOUTPUT=<file>] -P ...
 #       DOC with the parts between its marker comments replaced: the catalogue's table and the why
 #       and example of every cause, and the table of default deductions, in the JSON's order,
@@ -16,8 +16,9 @@
 #       the same into OUTPUT, then fails with a unified diff when DOC differs (the ctest).
 #
 # A malformed catalogue fails here too: an id that is not lower-case words joined by '-', an id
-# given twice, two ids with the same constant name, a kind not in the list, a deduction outside
-# 0..1 or given for the kind "never" (or missing for another kind).
+# given twice, two ids with the same constant name, a kind or proof not in the list, a deduction
+# outside 0..1 or given for the kind "never" (or missing for another kind), a model that is not
+# lower-case words, or none for a cause proven by a replay.
 
 cmake_minimum_required(VERSION 3.19)
 
@@ -27,6 +28,10 @@ set(deductions_begin "<!-- deductions table: generated from tools/grader/diagnos
 set(deductions_end "<!-- end of the generated deductions table -->")
 set(kinds "never" "a wrong constant" "a missed special case" "a wrong sign" "a missing term"
     "a wrong method" "undefined behaviour (repaired)")
+# How a cause is proven on the student's own code (docs/grading-reference.md, "Likely means
+# proven"): its model replayed on every check, the quoted lines repaired and probed again, read
+# directly from the run (a crash, NaN, deltaTime changed), or not at all (a guess).
+set(proofs "replay" "repair" "read" "none")
 
 if(NOT JSON OR NOT MODE)
   message(FATAL_ERROR "diagnoses.cmake: pass -DMODE=ids|docs|check-docs and -DJSON=<diagnoses.json>")
@@ -87,7 +92,7 @@ set(seen_names "")
 set(constants "")
 set(named "")
 set(entries "")
-set(deductions "| cause | kind | deduction |\n|---|---|---|\n")
+set(deductions "| cause | kind | deduction | proven by | model |\n|---|---|---|---|---|\n")
 set(table "| id | stub | recognised by | text |\n|---|---|---|---|\n")
 set(explained "")
 foreach(k RANGE ${last})
@@ -126,8 +131,25 @@ foreach(k RANGE ${last})
     set(deduction_cpp "${deduction}")
     percent("${deduction}" deduction_cell)
   endif()
-  string(APPEND entries "    Entry{${name}, \"${kind}\", ${deduction_cpp}},\n")
-  string(APPEND deductions "| `${id}` | ${kind} | ${deduction_cell} |\n")
+  # how it is proven, and the name of its model (null where the grader has none)
+  string(JSON proof GET "${catalogue}" diagnoses ${k} proof)
+  if(NOT proof IN_LIST proofs)
+    message(FATAL_ERROR "${JSON}: /diagnoses/${k}/proof: \"${proof}\" is none of: ${proofs}")
+  endif()
+  string(JSON model_type TYPE "${catalogue}" diagnoses ${k} model)
+  set(model "")
+  set(model_cell "—")
+  if(NOT model_type STREQUAL "NULL")
+    string(JSON model GET "${catalogue}" diagnoses ${k} model)
+    if(NOT model MATCHES "^[a-z0-9]+( [a-z0-9]+)*$")
+      message(FATAL_ERROR "${JSON}: /diagnoses/${k}/model: \"${model}\" is not lower-case words joined by ' '")
+    endif()
+    set(model_cell "${model}")
+  elseif(proof STREQUAL "replay")
+    message(FATAL_ERROR "${JSON}: /diagnoses/${k}/model: a cause proven by a replay names its model")
+  endif()
+  string(APPEND entries "    Entry{${name}, \"${kind}\", ${deduction_cpp}, \"${proof}\", \"${model}\"},\n")
+  string(APPEND deductions "| `${id}` | ${kind} | ${deduction_cell} | ${proof} | ${model_cell} |\n")
   if(MODE STREQUAL "ids")
     continue()
   endif()
@@ -172,8 +194,9 @@ if(MODE STREQUAL "ids")
   string(APPEND header "constexpr std::array<NamedId, ${count}> namedIds() {\n  return {\n${named}  };\n}\n\n")
   string(APPEND header "// Every entry's data, in the catalogue's order: its kind of mistake, its default deduction\n")
   string(APPEND header "// (the share of its stub's points it costs once; < 0: never, a cause that never explains a\n")
-  string(APPEND header "// stub's failures alone).\n")
-  string(APPEND header "struct Entry {\n  const char* id;\n  const char* kind;\n  double deduction;\n};\n")
+  string(APPEND header "// stub's failures alone), how it is proven (replay, repair, read, none) and the name of its\n")
+  string(APPEND header "// model (\"\": none; tests/grader/catalogue_lists_test.cpp reads each model's code).\n")
+  string(APPEND header "struct Entry {\n  const char* id;\n  const char* kind;\n  double deduction;\n  const char* proof;\n  const char* model;\n};\n")
   string(APPEND header "constexpr std::array<Entry, ${count}> entries() {\n  return {\n${entries}  };\n}\n\n")
   string(APPEND header "}  // namespace clothref::grader::cause\n")
   write_if_changed("${OUTPUT}" "${header}")

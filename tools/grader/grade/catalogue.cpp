@@ -49,8 +49,8 @@ Diagnosis diagnosisAt(const nlohmann::json& entry, const std::string& source,
     catalogueError(source, pointer, "expected an object, got " + excerpt(entry.dump()));
   for (const auto& [key, value] : entry.items())
     if (key != "id" && key != "stub" && key != "recognised_by" && key != "kind" &&
-        key != "deduction" && key != "text" && key != "why" && key != "example" &&
-        key != "non_finite")
+        key != "deduction" && key != "proof" && key != "model" && key != "text" && key != "why" &&
+        key != "example" && key != "non_finite")
       catalogueError(source, pointer + "/" + excerpt(key), "unknown field");
   Diagnosis d;
   d.id = stringField(entry, "id", source, pointer);
@@ -64,13 +64,19 @@ Diagnosis diagnosisAt(const nlohmann::json& entry, const std::string& source,
   if (!known)
     catalogueError(source, pointer + "/recognised_by",
                    "unknown: \"" + excerpt(d.recognised_by) + "\"");
-  // The build reads these (diagnoses.cmake: the rubric's defaults); here they are only checked
-  // to be there with their types.
+  // The build reads these (diagnoses.cmake: the rubric's defaults, the models); here they are
+  // only checked to be there with their types.
   stringField(entry, "kind", source, pointer);
-  if (!entry.contains("deduction")) catalogueError(source, pointer + "/deduction", "missing");
-  if (const nlohmann::json& value = entry.at("deduction"); !value.is_null() && !value.is_number())
-    catalogueError(source, pointer + "/deduction",
-                   "expected a number or null, got " + excerpt(value.dump()));
+  stringField(entry, "proof", source, pointer);
+  for (const char* key : {"deduction", "model"}) {
+    if (!entry.contains(key)) catalogueError(source, pointer + "/" + key, "missing");
+    const nlohmann::json& value = entry.at(key);
+    const bool number = std::string(key) == "deduction";
+    if (!value.is_null() && !(number ? value.is_number() : value.is_string()))
+      catalogueError(source, pointer + "/" + key,
+                     std::string("expected ") + (number ? "a number" : "a string") +
+                         " or null, got " + excerpt(value.dump()));
+  }
   d.text = stringField(entry, "text", source, pointer);
   d.why = stringField(entry, "why", source, pointer);
   // no example where there is no student's line to show (the grader's own failure, `unknown`)

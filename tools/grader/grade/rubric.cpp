@@ -14,9 +14,9 @@
 namespace clothref::grader {
 
 // The catalogue's kinds and default deductions (tools/grader/diagnoses.json, generated into
-// cause_ids.h; docs/grading-reference.md, "Points follow mistakes"): a slip costs little, a missing piece of
-// physics more, a wrong method half the stub; the kind "never" (a crash, a timeout, a symptom or a
-// guess) has no deduction.
+// cause_ids.h; docs/grading-reference.md, "Points follow mistakes"): a slip costs little, a missing
+// piece of physics more, a wrong method half the stub; the kind "never" (a crash, a timeout, a
+// symptom or a guess) has no deduction.
 const std::vector<CauseDeduction>& causeDeductions() {
   static const std::vector<CauseDeduction> table = [] {
     std::vector<CauseDeduction> rows;

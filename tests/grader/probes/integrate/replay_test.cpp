@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "grader/grade/cause_ids.h"
 #include "grader/grade/mistakes/integrate_mistakes.h"
 
 namespace clothref::grader::integrators {
@@ -80,14 +81,14 @@ TEST(IntegratorReplay, OverwrittenIncrementsAreTheirModel) {
   const IntegratorRun run = runOf(3, overwrittenRk4);
   ASSERT_GT(distance(run.actual, run.expected), kRel);  // a mistake the check sees
   const std::vector<IntegratorModel> models =
-      modelsOf("rk4-stage-from-wrong-increment", run, RunStages{});
+      modelsOf(cause::kRk4StageFromWrongIncrement, run, RunStages{});
   ASSERT_EQ(models.size(), 2u);
   EXPECT_GT(distance(stepped(run.random, models[0].step), run.actual), kRel);
   EXPECT_LE(distance(stepped(run.random, models[1].step), run.actual), kRel);
   // RK4 with other weights on the course's stages is no model of it: the fit has no weights
   // without a stage record, and a variant of the stages is far.
-  EXPECT_TRUE(modelsOf("rk4-wrong-weights", run, RunStages{}).empty());
-  for (const IntegratorModel& m : modelsOf("rk4-mixed-increments", run, RunStages{}))
+  EXPECT_TRUE(modelsOf(cause::kRk4WrongWeights, run, RunStages{}).empty());
+  for (const IntegratorModel& m : modelsOf(cause::kRk4MixedIncrements, run, RunStages{}))
     EXPECT_GT(distance(stepped(run.random, m.step), run.actual), kRel) << m.text;
 }
 
@@ -98,7 +99,7 @@ TEST(IntegratorReplay, PinnedParticlesAreReadAndReplayed) {
     for (int j : {1, 2, 6}) s.cloth.particles.velocity.col(j).setZero();
   };
   const IntegratorRun run = runOf(2, pinning);
-  const std::vector<IntegratorModel> models = modelsOf("integrator-pins-particles", run, {});
+  const std::vector<IntegratorModel> models = modelsOf(cause::kIntegratorPinsParticles, run, {});
   ASSERT_EQ(models.size(), 1u);
   ASSERT_TRUE(models[0].table.has_value());
   EXPECT_EQ(models[0].table->pinned, (std::vector<int>{1, 2, 6}));
@@ -114,7 +115,7 @@ TEST(IntegratorReplay, AVelocityFactorIsReadPerBody) {
     s.spheres.particles.velocity *= 0.999f;
   };
   const IntegratorRun run = runOf(0, damped);
-  const std::vector<IntegratorModel> models = modelsOf("velocity-damped", run, {});
+  const std::vector<IntegratorModel> models = modelsOf(cause::kVelocityDamped, run, {});
   ASSERT_EQ(models.size(), 1u);
   EXPECT_EQ(models[0].table->velocity_factor[0], 1);
   EXPECT_NEAR(models[0].table->velocity_factor[1], 0.999, 1e-6);
