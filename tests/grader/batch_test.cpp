@@ -19,6 +19,7 @@
 
 #include "clothref/io/error.h"
 #include "corpus.h"
+#include "grader/grade/cause_ids.h"
 #include "test_util.h"
 
 extern char** environ;
@@ -169,7 +170,8 @@ TEST(Csv, HeaderHasEveryStubRowsQuoteAndMissingStubsAreEmpty) {
   row.verdict = grader::Verdict::Graded;
   row.isolation = "bubblewrap (net, pid), rlimits";
   row.seconds = 12.34;
-  row.causes = {{"missing-springs", true}, {"rk4-wrong-weights", false}, {"damper-sign", true}};
+  row.causes = {
+      {cause::kMissingSprings, true}, {cause::kRk4WrongWeights, false}, {cause::kDamperSign, true}};
   BatchRow refused;
   refused.name = "bob";
   refused.verdict = grader::Verdict::NotGradable;
@@ -202,7 +204,7 @@ TEST(Csv, RowJsonRoundTripsAndRefusesAStranger) {
   row.verdict = grader::Verdict::Crashed;
   row.isolation = "rlimits only";
   row.seconds = 3.5;
-  row.causes = {{"wrong-mass-split", true}, {"crashed", false}};
+  row.causes = {{cause::kWrongMassSplit, true}, {cause::kCrashed, false}};
   const BatchRow back = rowFromJson(nlohmann::json::parse(rowJson(row).dump()), "row.json");
   EXPECT_EQ(batchCsv({back}, true), batchCsv({row}, true));
   EXPECT_EQ(back.causes, row.causes);

@@ -7,8 +7,11 @@
 #include <gtest/gtest.h>
 
 #include <cctype>
+#include <fstream>
 #include <set>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "clothref/io/error.h"
 #include "grader/grade/cause_ids.h"
@@ -124,7 +127,20 @@ TEST(LoadCatalogue, RefusesAMalformedFileInOneLineNamingTheFileAndTheField) {
       {"id not words", "\"id\": \"unstable\"", "\"id\": \"Unstable \"",
        "/id: ", "\"Unstable \" is not lower-case words joined by '-'"},
       {"unknown way", "\"recognised_by\": \"guess\"", "\"recognised_by\": \"hunch\"",
-       "/recognised_by: ", "unknown: \"hunch\""}};
+       "/recognised_by: ", "unknown: \"hunch\""},
+      {"mistyped deduction",
+       "\"deduction\": null, \"proof\": \"read\", \"model\": null, \"text\": \"The file does",
+       "\"deduction\": \"none\", \"proof\": \"read\", \"model\": null, \"text\": \"The file does",
+       "/diagnoses/0/deduction: ", "expected a number or null"},
+      {"no deduction", "\"deduction\": null, \"proof\": \"read\"", "\"proof\": \"read\"",
+       "/diagnoses/0/deduction: ", "missing"},
+      {"no proof", "\"proof\": \"read\", \"model\": null, \"text\": \"The file does",
+       "\"model\": null, \"text\": \"The file does", "/diagnoses/0/proof: ", "missing"},
+      {"no model", "\"model\": null, \"text\": \"The file does", "\"text\": \"The file does",
+       "/diagnoses/0/model: ", "missing"},
+      {"mistyped model", "\"model\": null, \"text\": \"The file does",
+       "\"model\": 3, \"text\": \"The file does",
+       "/diagnoses/0/model: ", "expected a string or null"}};
   for (const Case& c : cases) {
     SCOPED_TRACE(c.what);
     const fs::path path = edited(temp, c.from, c.to);

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "grader/grade/batch.h"
+#include "grader/grade/cause_ids.h"
 #include "grader/grade/rubric.h"
 #include "test_util.h"
 
@@ -189,11 +190,12 @@ Figures gradeAndScore(const fs::path& root, const fs::path& out,
       for (const auto& cause : label["causes"]) {
         const std::string id = cause.get<std::string>();
         ++f.causes_labelled;
-        const bool right = id == "unknown" ? named.count(id) > 0 : likely.count(id) > 0;
+        const bool right =
+            id == grader::cause::kUnknown ? named.count(id) > 0 : likely.count(id) > 0;
         any_right = any_right || right;
         if (right) {
           ++f.causes_right;
-          f.causes_proven += id != "unknown" && proven.count(id) > 0;
+          f.causes_proven += id != grader::cause::kUnknown && proven.count(id) > 0;
         } else {
           ++f.causes_missed;
           ++(named.count(id) ? f.causes_guess : f.causes_unnamed);
@@ -383,12 +385,12 @@ TEST_F(Blind, AtLeastAsGoodAsMeasured) {
 // never likely, and the stub loses the mistake's deduction, not its points.
 TEST_F(Blind, DanglingAutoInCollideIsProvenByRepair) {
   const Named n = causes("2022/chou", "Spheres::collide(Cloth*)");
-  EXPECT_TRUE(n.proven.count("dangling-auto-expression")) << joined(n.named);
-  EXPECT_FALSE(n.likely.count("no-position-correction"));
+  EXPECT_TRUE(n.proven.count(grader::cause::kDanglingAutoExpression)) << joined(n.named);
+  EXPECT_FALSE(n.likely.count(grader::cause::kNoPositionCorrection));
   const grader::Rubric rubric = grader::defaultRubric(2022);
   EXPECT_EQ(score("2022/chou", "Spheres::collide(Cloth*)"),
             std::round(maximum("2022/chou", "Spheres::collide(Cloth*)") *
-                       (1 - rubric.deductions.at("dangling-auto-expression")) * 8) /
+                       (1 - rubric.deductions.at(grader::cause::kDanglingAutoExpression)) * 8) /
                 8);
 }
 
@@ -397,7 +399,7 @@ TEST_F(Blind, ASideEffectingHelperIsNoPerBodyLoop) {
   for (const char* stub :
        {"ImplicitEuler::integrate", "MidpointEuler::integrate", "RungeKuttaFourth::integrate"}) {
     const Named n = causes("2022/tseng", stub);
-    EXPECT_FALSE(n.likely.count("per-body-loop")) << stub;
+    EXPECT_FALSE(n.likely.count(grader::cause::kPerBodyLoop)) << stub;
     // Not yet: that integrator-pins-particles is proven here. The probes do not see the top row
     // held still on these three (graded full), issue 38's "probes that see every effect".
   }
@@ -406,29 +408,29 @@ TEST_F(Blind, ASideEffectingHelperIsNoPerBodyLoop) {
 // RK4 with the right weights written and stages overwritten: not rk4-wrong-weights.
 TEST_F(Blind, OverwrittenStagesAreNotWrongWeights) {
   const Named n = causes("2022/yeh", "RungeKuttaFourth::integrate");
-  EXPECT_FALSE(n.likely.count("rk4-wrong-weights")) << joined(n.likely);
-  EXPECT_TRUE(n.proven.count("rk4-stage-from-wrong-increment")) << joined(n.named);
+  EXPECT_FALSE(n.likely.count(grader::cause::kRk4WrongWeights)) << joined(n.likely);
+  EXPECT_TRUE(n.proven.count(grader::cause::kRk4StageFromWrongIncrement)) << joined(n.named);
 }
 
 // (1 / 6) in the update decides every number: integer division, not a stage cause.
 TEST_F(Blind, IntegerSixthIsIntegerDivision) {
   const Named n = causes("2022/lai-big5", "RungeKuttaFourth::integrate");
-  EXPECT_TRUE(n.proven.count("integer-division-rk4")) << joined(n.named);
-  EXPECT_FALSE(n.likely.count("rk4-stage-not-from-backup"));
+  EXPECT_TRUE(n.proven.count(grader::cause::kIntegerDivisionRk4)) << joined(n.named);
+  EXPECT_FALSE(n.likely.count(grader::cause::kRk4StageNotFromBackup));
 }
 
 // A division by a speed that can be zero is named as such, not as NaN with a spring's fix.
 TEST_F(Blind, DivisionBySpeedIsNamed) {
   const Named n = causes("2022/yeh", "Spheres::collide(Cloth*)");
-  EXPECT_TRUE(n.proven.count("division-by-speed")) << joined(n.named);
+  EXPECT_TRUE(n.proven.count(grader::cause::kDivisionBySpeed)) << joined(n.named);
 }
 
 // Discarded stages (x0 + k1, v0 + a0 dt): the stages discarded, not mixed increments whose fix
 // changes nothing.
 TEST_F(Blind, DiscardedStagesAreNotMixedIncrements) {
   const Named n = causes("2022/shih-big5", "RungeKuttaFourth::integrate");
-  EXPECT_TRUE(n.proven.count("rk4-stages-discarded")) << joined(n.named);
-  EXPECT_FALSE(n.likely.count("rk4-mixed-increments"));
+  EXPECT_TRUE(n.proven.count(grader::cause::kRk4StagesDiscarded)) << joined(n.named);
+  EXPECT_FALSE(n.likely.count(grader::cause::kRk4MixedIncrements));
 }
 
 // Points follow proven mistakes only: in every blind report, a stub scored per mistake (its line

@@ -22,6 +22,7 @@
 #include <thread>
 
 #include "corpus.h"
+#include "grader/grade/cause_ids.h"
 #include "grader/grade/grade.h"
 #include "grader/grade/probes/probes.h"
 #include "grader/grade/probes/util.h"
@@ -383,15 +384,18 @@ TEST(Verdict, AProbeTheGraderCouldNotStartIsAGraderError) {
   run.status = grader::ChildStatus::NotStarted;
   run.stderr_head = "timed out\n";  // the student's stderr chooses nothing
   EXPECT_EQ(run.verdict(), Verdict::GraderError);
-  EXPECT_EQ((grader::util::ProbeFailure{run.verdict(), run.describe()}.causeId()), "grader-error");
+  EXPECT_EQ((grader::util::ProbeFailure{run.verdict(), run.describe()}.causeId()),
+            grader::cause::kGraderError);
   run.status = grader::ChildStatus::Crashed;
   run.signal = SIGSEGV;
   run.stderr_head = "could not be started by the grader\n";
   EXPECT_EQ(run.verdict(), Verdict::Crashed);
-  EXPECT_EQ((grader::util::ProbeFailure{run.verdict(), run.describe()}.causeId()), "crashed");
+  EXPECT_EQ((grader::util::ProbeFailure{run.verdict(), run.describe()}.causeId()),
+            grader::cause::kCrashed);
   run.signal = SIGXCPU;
   EXPECT_EQ(run.verdict(), Verdict::TimedOut);
-  EXPECT_EQ((grader::util::ProbeFailure{run.verdict(), run.describe()}.causeId()), "timed-out");
+  EXPECT_EQ((grader::util::ProbeFailure{run.verdict(), run.describe()}.causeId()),
+            grader::cause::kTimedOut);
   EXPECT_NE(run.describe().find("timed out"), std::string::npos) << run.describe();
 
   grader::GradeReport report;

@@ -11,7 +11,9 @@
 #include <sstream>
 
 #include "clothref/io/error.h"
+#include "grader/grade/cause_ids.h"
 #include "grader/grade/probes/probes.h"
+#include "grader/grade/probes/util.h"
 #include "grader/grade/report/outputs.h"
 #include "test_util.h"
 
@@ -250,13 +252,13 @@ std::string notes(const GradeReport& report) {
 // so with the per-check score beside it.
 TEST(PerMistake, OneLikelyCauseWithADeductionCostsItOnce) {
   const Rubric rubric = defaultRubric(2022);
-  GradeReport report = stubWithFailures(kSpheres, 1, {{"correction-factor", true}});
+  GradeReport report = stubWithFailures(kSpheres, 1, {{cause::kCorrectionFactor, true}});
   ASSERT_GT(report.tests.size(), 2u);
   GradeReport old = report;
   applyRubric(perCheck(rubric), old);
   applyRubric(rubric, report);
   const double max = rubric.stub_points.at(kSpheres);
-  const double deduction = rubric.deductions.at("correction-factor");
+  const double deduction = rubric.deductions.at(cause::kCorrectionFactor);
   EXPECT_GT(deduction, 0);
   EXPECT_EQ(report.stub_score.at(kSpheres), max * (1 - deduction));
   EXPECT_LT(old.stub_score.at(kSpheres), report.stub_score.at(kSpheres));
@@ -282,7 +284,10 @@ TEST(PerMistake, OneLikelyCauseWithADeductionCostsItOnce) {
 TEST(PerMistake, AnythingButProvenMistakesWithADeductionIsScoredPerCheck) {
   const Rubric rubric = defaultRubric(2022);
   const std::vector<std::vector<std::pair<std::string, bool>>> cases = {
-      {{"correction-factor", false}}, {{"crashed", true}}, {{"unknown", false}}, {}};
+      {{cause::kCorrectionFactor, false}},
+      {{cause::kCrashed, true}},
+      {{cause::kUnknown, false}},
+      {}};
   for (const auto& causes : cases) {
     GradeReport report = stubWithFailures(kSpheres, 1, causes);
     GradeReport old = report;
@@ -292,27 +297,29 @@ TEST(PerMistake, AnythingButProvenMistakesWithADeductionIsScoredPerCheck) {
     EXPECT_EQ(notes(report), "");
   }
   // A failed check naming only a guess beside checks naming a proven mistake: per check too.
-  GradeReport report = stubWithFailures(kSpheres, 1, {{"correction-factor", true}});
-  report.tests.back().causes = {Cause{"restitution-ignored", false, {}, {}, {}, {}, {}, {}}};
+  GradeReport report = stubWithFailures(kSpheres, 1, {{cause::kCorrectionFactor, true}});
+  report.tests.back().causes = {Cause{cause::kRestitutionIgnored, false, {}, {}, {}, {}, {}, {}}};
   GradeReport old = report;
   applyRubric(rubric, report);
   applyRubric(perCheck(rubric), old);
   EXPECT_EQ(report.stub_score.at(kSpheres), old.stub_score.at(kSpheres));
   EXPECT_EQ(notes(report), "");
   // A guess beside the one likely cause does not count: the stub qualifies.
-  report = stubWithFailures(kSpheres, 1, {{"correction-factor", true}, {"unknown", false}});
+  report =
+      stubWithFailures(kSpheres, 1, {{cause::kCorrectionFactor, true}, {cause::kUnknown, false}});
   applyRubric(rubric, report);
   EXPECT_NE(notes(report), "");
   // NaN beside the mistake that makes it is its symptom, not a second mistake: the stub
   // qualifies (pan-big5's division by a zero speed); NaN alone has no deduction.
-  report = stubWithFailures(kSpheres, 1, {{"division-by-speed", true}, {"non-finite", true}});
+  report =
+      stubWithFailures(kSpheres, 1, {{cause::kDivisionBySpeed, true}, {cause::kNonFinite, true}});
   applyRubric(rubric, report);
   EXPECT_NE(notes(report).find("(`division-by-speed`)"), std::string::npos) << notes(report);
-  report = stubWithFailures(kSpheres, 1, {{"non-finite", true}});
+  report = stubWithFailures(kSpheres, 1, {{cause::kNonFinite, true}});
   applyRubric(rubric, report);
   EXPECT_EQ(notes(report), "");
   // A stub without a failed check is untouched.
-  report = stubWithFailures(kSpheres, 100, {{"correction-factor", true}});
+  report = stubWithFailures(kSpheres, 100, {{cause::kCorrectionFactor, true}});
   applyRubric(rubric, report);
   EXPECT_EQ(report.stub_score.at(kSpheres), rubric.stub_points.at(kSpheres));
   EXPECT_EQ(notes(report), "");
@@ -323,7 +330,7 @@ TEST(PerMistake, AnythingButProvenMistakesWithADeductionIsScoredPerCheck) {
 TEST(PerMistake, AnUnprovenLikelyCauseIsScoredPerCheck) {
   const Rubric rubric = defaultRubric(2022);
   GradeReport report =
-      stubWithFailures(kSpheres, 1, {{"correction-factor", true}}, /*proofs=*/false);
+      stubWithFailures(kSpheres, 1, {{cause::kCorrectionFactor, true}}, /*proofs=*/false);
   ASSERT_TRUE(report.tests.back().causes.front().likely);
   ASSERT_FALSE(report.tests.back().causes.front().proven());
   GradeReport old = report;
@@ -332,7 +339,7 @@ TEST(PerMistake, AnUnprovenLikelyCauseIsScoredPerCheck) {
   EXPECT_EQ(report.stub_score.at(kSpheres), old.stub_score.at(kSpheres));
   EXPECT_EQ(notes(report), "");
   // The same with its proof: the deduction applies.
-  report = stubWithFailures(kSpheres, 1, {{"correction-factor", true}});
+  report = stubWithFailures(kSpheres, 1, {{cause::kCorrectionFactor, true}});
   applyRubric(rubric, report);
   EXPECT_GT(report.stub_score.at(kSpheres), old.stub_score.at(kSpheres));
 }
@@ -341,16 +348,16 @@ TEST(PerMistake, AnUnprovenLikelyCauseIsScoredPerCheck) {
 // deductions add up, at most the stub's points, and the line names both.
 TEST(PerMistake, ProvenMistakesDeductionsAddUp) {
   const Rubric rubric = defaultRubric(2022);
-  GradeReport report = stubWithFailures(kSpheres, 1, {{"correction-factor", true}});
+  GradeReport report = stubWithFailures(kSpheres, 1, {{cause::kCorrectionFactor, true}});
   ASSERT_GT(report.tests.size(), 3u);
   report.tests[2].causes.clear();
-  report.tests[2].addCause("wrong-mass-split").proof = "Proven: a split.";
+  report.tests[2].addCause(cause::kWrongMassSplit).proof = "Proven: a split.";
   GradeReport old = report;
   applyRubric(rubric, report);
   applyRubric(perCheck(rubric), old);
   const double max = rubric.stub_points.at(kSpheres);
   const double both =
-      rubric.deductions.at("correction-factor") + rubric.deductions.at("wrong-mass-split");
+      rubric.deductions.at(cause::kCorrectionFactor) + rubric.deductions.at(cause::kWrongMassSplit);
   ASSERT_LT(both, 1);
   EXPECT_EQ(report.stub_score.at(kSpheres),
             std::max(old.stub_score.at(kSpheres), std::round(max * (1 - both) * 8) / 8));
@@ -358,18 +365,18 @@ TEST(PerMistake, ProvenMistakesDeductionsAddUp) {
   EXPECT_EQ(report.tests[1].rubric_note,
             "2 proven mistakes (`correction-factor`, `wrong-mass-split`) explain every failed "
             "check of this stub: together they lose " +
-                points(rubric.deductions.at("correction-factor") * 100) + " + " +
-                points(rubric.deductions.at("wrong-mass-split") * 100) + " = " +
+                points(rubric.deductions.at(cause::kCorrectionFactor) * 100) + " + " +
+                points(rubric.deductions.at(cause::kWrongMassSplit) * 100) + " = " +
                 points(both * 100) +
                 " % of its points once (rubric: per-mistake; per-check scoring would give " +
                 points(old.stub_score.at(kSpheres)) + " / " + points(max) + ").");
   // Deductions that add up to more than the stub: nothing given back beyond per check.
   Rubric heavy = rubric;
-  heavy.deductions["correction-factor"] = 0.7;
-  heavy.deductions["wrong-mass-split"] = 0.6;
-  GradeReport capped = stubWithFailures(kSpheres, 1, {{"correction-factor", true}});
+  heavy.deductions[cause::kCorrectionFactor] = 0.7;
+  heavy.deductions[cause::kWrongMassSplit] = 0.6;
+  GradeReport capped = stubWithFailures(kSpheres, 1, {{cause::kCorrectionFactor, true}});
   capped.tests[2].causes.clear();
-  capped.tests[2].addCause("wrong-mass-split").proof = "Proven: a split.";
+  capped.tests[2].addCause(cause::kWrongMassSplit).proof = "Proven: a split.";
   GradeReport capped_old = capped;
   applyRubric(heavy, capped);
   applyRubric(perCheck(heavy), capped_old);
@@ -388,13 +395,13 @@ TEST(PerMistake, NonFiniteAnswersEarnNoMistakesPoints) {
   std::set<std::string> can_be;
   for (const auto& [id, entry] : catalogue.entries)
     if (entry.non_finite) can_be.insert(id);
-  ASSERT_TRUE(can_be.count("division-by-speed"));
-  ASSERT_FALSE(can_be.count("no-reevaluation"));
+  ASSERT_TRUE(can_be.count(cause::kDivisionBySpeed));
+  ASSERT_FALSE(can_be.count(cause::kNoReevaluation));
   const std::string rk4 = "RungeKuttaFourth::integrate";
   // The probe answered NaN and names no cause per check: each failed check is taken as
   // non-finite, the stage fit's finding becomes a guess, and the stub is scored per check.
   // Its stage fit's finding has no proof: no model of it gives NaN on the probe's finite states.
-  GradeReport report = stubWithFailures(rk4, 0, {{"no-reevaluation", true}}, /*proofs=*/false);
+  GradeReport report = stubWithFailures(rk4, 0, {{cause::kNoReevaluation, true}}, /*proofs=*/false);
   ASSERT_GT(report.tests.size(), 1u);
   GradeReport old = report;
   applyRubric(perCheck(rubric), old);
@@ -404,34 +411,35 @@ TEST(PerMistake, NonFiniteAnswersEarnNoMistakesPoints) {
   EXPECT_EQ(notes(report), "");
   for (const TestResult& t : report.tests) {
     ASSERT_FALSE(t.causes.empty());
-    EXPECT_EQ(t.causes.front().id, "non-finite");
+    EXPECT_EQ(t.causes.front().id, cause::kNonFinite);
     EXPECT_TRUE(t.causes.front().likely);
-    for (const Cause& cause : t.causes) EXPECT_EQ(cause.likely, cause.id == "non-finite");
+    for (const Cause& cause : t.causes) EXPECT_EQ(cause.likely, cause.id == cause::kNonFinite);
   }
   // Not its stub, and finite: untouched, one mistake.
-  report = stubWithFailures(rk4, 0, {{"no-reevaluation", true}});
+  report = stubWithFailures(rk4, 0, {{cause::kNoReevaluation, true}});
   markNonFinite({kSpheres}, can_be, report.tests);
   applyRubric(rubric, report);
   EXPECT_NE(notes(report).find("(`no-reevaluation`)"), std::string::npos) << notes(report);
   // A cause that makes NaN itself keeps its place: NaN is its symptom (pan-big5).
-  report = stubWithFailures(kSpheres, 1, {{"division-by-speed", true}, {"non-finite", true}});
+  report =
+      stubWithFailures(kSpheres, 1, {{cause::kDivisionBySpeed, true}, {cause::kNonFinite, true}});
   markNonFinite({kSpheres}, can_be, report.tests);
   applyRubric(rubric, report);
   EXPECT_NE(notes(report).find("(`division-by-speed`)"), std::string::npos) << notes(report);
   // A probe that names non-finite on its own checks says which: the others keep their causes.
   // (The correction factor's model gives no NaN: on the NaN check it has no proof.)
-  report = stubWithFailures(kSpheres, 1, {{"correction-factor", true}});
-  report.tests.back().addCause("non-finite");
+  report = stubWithFailures(kSpheres, 1, {{cause::kCorrectionFactor, true}});
+  report.tests.back().addCause(cause::kNonFinite);
   report.tests.back().causes.front().proof.clear();
   markNonFinite({kSpheres}, can_be, report.tests);
   EXPECT_TRUE(report.tests[1].causes.front().likely);
-  EXPECT_EQ(report.tests[1].causes.front().id, "correction-factor");
-  EXPECT_FALSE(report.tests.back().causes.front().id == "correction-factor" &&
+  EXPECT_EQ(report.tests[1].causes.front().id, cause::kCorrectionFactor);
+  EXPECT_FALSE(report.tests.back().causes.front().id == cause::kCorrectionFactor &&
                report.tests.back().causes.front().likely);
   applyRubric(rubric, report);
   EXPECT_EQ(notes(report), "");
   // A cause proven on these numbers (its replay gave the NaN too) keeps its place (issue 38).
-  report = stubWithFailures(rk4, 0, {{"no-reevaluation", true}});
+  report = stubWithFailures(rk4, 0, {{cause::kNoReevaluation, true}});
   markNonFinite({rk4}, can_be, report.tests);
   applyRubric(rubric, report);
   EXPECT_NE(notes(report).find("(`no-reevaluation`)"), std::string::npos) << notes(report);
@@ -444,7 +452,7 @@ TEST(PerMistake, PerCheckRubricFileGivesTodaysScores) {
   std::ofstream(temp.file("rubric.json")) << R"({"scoring": "per-check"})";
   const Rubric rubric = loadRubric(temp.file("rubric.json"), defaultRubric(2022));
   EXPECT_EQ(rubric.scoring, Scoring::PerCheck);
-  GradeReport report = stubWithFailures(kSpheres, 1, {{"correction-factor", true}});
+  GradeReport report = stubWithFailures(kSpheres, 1, {{cause::kCorrectionFactor, true}});
   report.tests[2].fraction = 0.5;
   applyRubric(rubric, report);
   double sum = 0;
@@ -453,7 +461,8 @@ TEST(PerMistake, PerCheckRubricFileGivesTodaysScores) {
     sum += t.score;
   }
   EXPECT_EQ(report.stub_score.at(kSpheres), sum);
-  EXPECT_LT(sum, rubric.stub_points.at(kSpheres) * (1 - rubric.deductions.at("correction-factor")));
+  EXPECT_LT(sum,
+            rubric.stub_points.at(kSpheres) * (1 - rubric.deductions.at(cause::kCorrectionFactor)));
   EXPECT_EQ(notes(report), "");
 }
 
@@ -462,11 +471,12 @@ TEST(PerMistake, PerCheckRubricFileGivesTodaysScores) {
 // stubs to the total, and a stub that qualifies earns max(per check, points x (1 - deduction)).
 TEST(PerMistake, NeverLowersAScoreAndTheScoresAddUp) {
   std::mt19937 rng(33);
-  const std::vector<std::string> ids = {"correction-factor", "restitution-ignored", "crashed"};
+  const std::vector<std::string> ids = {cause::kCorrectionFactor, cause::kRestitutionIgnored,
+                                        cause::kCrashed};
   int raised = 0;
   for (int round = 0; round < 400; ++round) {
     Rubric rubric = defaultRubric(2022);
-    rubric.deductions["correction-factor"] = std::uniform_real_distribution<>(0, 1)(rng);
+    rubric.deductions[cause::kCorrectionFactor] = std::uniform_real_distribution<>(0, 1)(rng);
     if (round % 3 == 0) rubric.stub_points[kSpheres] = 3.3;  // thousandths
     GradeReport report;
     for (const PlannedTest& planned : plannedTests(2022)) {
@@ -538,7 +548,7 @@ TEST(PerMistake, NeverLowersAScoreAndTheScoresAddUp) {
 
 // The line is part of the test's text, so every output shows it: results.json, JUnit, Markdown.
 TEST(PerMistake, EveryOutputShowsTheLine) {
-  GradeReport report = stubWithFailures(kSpheres, 1, {{"correction-factor", true}});
+  GradeReport report = stubWithFailures(kSpheres, 1, {{cause::kCorrectionFactor, true}});
   applyRubric(defaultRubric(2022), report);
   const std::string line = report.tests[1].rubric_note;
   ASSERT_FALSE(line.empty());
@@ -558,11 +568,11 @@ TEST(PerMistake, RubricSetsScoringAndDeductions) {
                        "crashed": null}})"),
                                        "r.json", perCheck(defaultRubric(2022)));
   EXPECT_EQ(rubric.scoring, Scoring::PerMistake);
-  EXPECT_EQ(rubric.deductions.at("correction-factor"), 0.5);
-  EXPECT_EQ(rubric.deductions.at("missing-damper"), 0.0);
-  EXPECT_EQ(rubric.deductions.count("rk4-wrong-weights"), 0u);  // null: scored per check
-  EXPECT_EQ(rubric.deductions.at("restitution-ignored"),
-            defaultRubric(2022).deductions.at("restitution-ignored"));
+  EXPECT_EQ(rubric.deductions.at(cause::kCorrectionFactor), 0.5);
+  EXPECT_EQ(rubric.deductions.at(cause::kMissingDamper), 0.0);
+  EXPECT_EQ(rubric.deductions.count(cause::kRk4WrongWeights), 0u);  // null: scored per check
+  EXPECT_EQ(rubric.deductions.at(cause::kRestitutionIgnored),
+            defaultRubric(2022).deductions.at(cause::kRestitutionIgnored));
 }
 
 // A scoring word, cause id or deduction the rubric does not know is refused, one line naming
@@ -608,14 +618,28 @@ TEST(PerMistake, EveryCatalogueCauseHasADefault) {
     EXPECT_TRUE(cause.deduction < 0 || (cause.deduction > 0 && cause.deduction < 1)) << cause.id;
   }
   for (const auto& [id, entry] : catalogue.entries) EXPECT_TRUE(table.count(id)) << id;
+  EXPECT_EQ(table.size(), catalogue.entries.size());
+  // The default rubric holds the catalogue's deduction of every entry, none for the kind "never".
   const Rubric rubric = defaultRubric(2024);
-  for (const char* never : {"compile-error", "crashed", "timed-out", "undefined-behaviour",
-                            "unknown", "unstable", "wrong-order", "grader-error"})
-    EXPECT_EQ(rubric.deductions.count(never), 0u) << never;
+  for (const cause::Entry& entry : cause::entries()) {
+    const bool never = std::string(entry.kind) == "never";
+    EXPECT_EQ(never, entry.deduction < 0) << entry.id;
+    ASSERT_EQ(rubric.deductions.count(entry.id), never ? 0u : 1u) << entry.id;
+    if (!never) {
+      EXPECT_EQ(rubric.deductions.at(entry.id), entry.deduction) << entry.id;
+    }
+  }
+  // A guess, and the cause of every way a probe can fail to answer (a crash, a timeout, ours),
+  // never has one.
   for (const auto& [id, entry] : catalogue.entries)
     if (entry.recognised_by == "guess") {
       EXPECT_EQ(rubric.deductions.count(id), 0u) << id;
     }
+  for (const VerdictInfo& info : verdictTable()) {
+    const std::string id = util::ProbeFailure{info.verdict, {}}.causeId();
+    EXPECT_TRUE(catalogue.entries.count(id)) << id;
+    EXPECT_EQ(rubric.deductions.count(id), 0u) << id;
+  }
 }
 
 // docs/grading-reference.md's table of deductions states every default of the table.

@@ -3,23 +3,35 @@
 # written:
 #
 #   cmake -DMODE=ids -DJSON=<diagnoses.json> -DOUTPUT=<.../grader/grade/cause_ids.h> -P diagnoses.cmake
-#       the C++ header of cause-id constants (namespace clothref::grader::cause, one
-#       `kCamelCase` per id), written by the build whenever the JSON changes (rewritten only when
-#       its bytes change, so a new text does not rebuild the grader);
+#       the C++ header of the catalogue's ids and data (namespace clothref::grader::cause: one
+#       `kCamelCase` per id, and entries(): per id its kind, default deduction, proof and model),
+#       written by the build whenever the JSON changes (rewritten only when its bytes change, so
+#       a new text does not rebuild the grader);
 #   cmake -DMODE=docs -DJSON=<diagnoses.json> -DDOC=<docs/grading-reference.md> [-DOUTPUT=<file>] -P ...
-#       DOC with the part between its two marker comments replaced by the catalogue's table and
-#       the why and example of every cause, in the JSON's order, written to OUTPUT (default DOC:
-#       the `grader_diagnoses_docs` target regenerates the docs in place);
+#       DOC with the parts between its marker comments replaced: the catalogue's table and the why
+#       and example of every cause, and the table of default deductions, in the JSON's order,
+#       written to OUTPUT (default DOC: the `grader_diagnoses_docs` target regenerates the docs in
+#       place);
 #   cmake -DMODE=check-docs -DJSON=... -DDOC=... -DOUTPUT=<file in a temporary folder> -P ...
 #       the same into OUTPUT, then fails with a unified diff when DOC differs (the ctest).
 #
 # A malformed catalogue fails here too: an id that is not lower-case words joined by '-', an id
-# given twice, or two ids with the same constant name.
+# given twice, two ids with the same constant name, a kind or proof not in the list, a deduction
+# outside 0..1 or given for the kind "never" (or missing for another kind), a model that is not
+# lower-case words, or none for a cause proven by a replay.
 
 cmake_minimum_required(VERSION 3.19)
 
 set(begin_marker "<!-- diagnoses table: generated from tools/grader/diagnoses.json by tools/grader/diagnoses.cmake (cmake --build build --target grader_diagnoses_docs); do not edit by hand -->")
 set(end_marker "<!-- end of the generated diagnoses table -->")
+set(deductions_begin "<!-- deductions table: generated from tools/grader/diagnoses.json by tools/grader/diagnoses.cmake; do not edit by hand -->")
+set(deductions_end "<!-- end of the generated deductions table -->")
+set(kinds "never" "a wrong constant" "a missed special case" "a wrong sign" "a missing term"
+    "a wrong method" "undefined behaviour (repaired)")
+# How a cause is proven on the student's own code (docs/grading-reference.md, "Likely means
+# proven"): its model replayed on every check, the quoted lines repaired and probed again, read
+# directly from the run (a crash, NaN, deltaTime changed), or not at all (a guess).
+set(proofs "replay" "repair" "read" "none")
 
 if(NOT JSON OR NOT MODE)
   message(FATAL_ERROR "diagnoses.cmake: pass -DMODE=ids|docs|check-docs and -DJSON=<diagnoses.json>")
@@ -31,9 +43,10 @@ if(count EQUAL 0)
 endif()
 math(EXPR last "${count} - 1")
 
-# "backup-alias" -> "kBackupAlias", "hard-coded-n25" -> "kHardCodedN25"
+# "backup-alias" -> "kBackupAlias", "hard-coded-n25" -> "kHardCodedN25", "contact.pairs-twice" ->
+# "kContactPairsTwice"
 function(constant_name id out)
-  string(REPLACE "-" ";" words "${id}")
+  string(REGEX REPLACE "[-.]" ";" words "${id}")
   set(name "k")
   foreach(word IN LISTS words)
     string(SUBSTRING "${word}" 0 1 head)
@@ -42,6 +55,30 @@ function(constant_name id out)
     string(APPEND name "${head}${tail}")
   endforeach()
   set(${out} "${name}" PARENT_SCOPE)
+endfunction()
+
+# A share 0..1 as CMake reads it from the JSON ("0.25", "0.20000000000000001", "1") as a
+# percentage to 0.001 ("25 %", "20 %", "12.5 %").
+function(percent share out)
+  if(share MATCHES "^1(\\.0*)?$")
+    set(${out} "100 %" PARENT_SCOPE)
+    return()
+  endif()
+  if(NOT share MATCHES "^0(\\.([0-9]*))?$")
+    message(FATAL_ERROR "percent: \"${share}\" is no share 0..1")
+  endif()
+  string(SUBSTRING "${CMAKE_MATCH_2}0000000" 0 7 digits)
+  string(REGEX REPLACE "^0+([0-9])" "\\1" digits "${digits}")
+  math(EXPR millionths "(${digits} + 5) / 10")  # of a share: 10000 per percent
+  math(EXPR whole "${millionths} / 10000")
+  math(EXPR rest "${millionths} % 10000 + 10000")
+  string(SUBSTRING "${rest}" 1 3 rest)  # 3 decimals of a percent
+  string(REGEX REPLACE "0+$" "" rest "${rest}")
+  if(rest STREQUAL "")
+    set(${out} "${whole} %" PARENT_SCOPE)
+  else()
+    set(${out} "${whole}.${rest} %" PARENT_SCOPE)
+  endif()
 endfunction()
 
 # A value for one Markdown table cell: a '|' would end the cell.
@@ -54,6 +91,8 @@ set(seen_ids "")
 set(seen_names "")
 set(constants "")
 set(named "")
+set(entries "")
+set(deductions "| cause | kind | deduction | proven by | model |\n|---|---|---|---|---|\n")
 set(table "| id | stub | recognised by | text |\n|---|---|---|---|\n")
 set(explained "")
 foreach(k RANGE ${last})
@@ -72,6 +111,45 @@ foreach(k RANGE ${last})
   list(APPEND seen_names "${name}")
   string(APPEND constants "inline constexpr const char* ${name} = \"${id}\";\n")
   string(APPEND named "    NamedId{\"${name}\", ${name}},\n")
+  # kind and default deduction (a share of the stub's points, or null: never)
+  string(JSON kind GET "${catalogue}" diagnoses ${k} kind)
+  if(NOT kind IN_LIST kinds)
+    message(FATAL_ERROR "${JSON}: /diagnoses/${k}/kind: \"${kind}\" is none of: ${kinds}")
+  endif()
+  string(JSON deduction_type TYPE "${catalogue}" diagnoses ${k} deduction)
+  string(JSON deduction GET "${catalogue}" diagnoses ${k} deduction)
+  if(kind STREQUAL "never")
+    if(NOT deduction_type STREQUAL "NULL")
+      message(FATAL_ERROR "${JSON}: /diagnoses/${k}/deduction: the kind \"never\" has none (null)")
+    endif()
+    set(deduction_cpp "-1")
+    set(deduction_cell "—")
+  else()
+    if(NOT deduction_type STREQUAL "NUMBER" OR NOT deduction MATCHES "^(0(\\.[0-9]+)?|1(\\.0*)?)$")
+      message(FATAL_ERROR "${JSON}: /diagnoses/${k}/deduction: \"${deduction}\" is no share 0..1")
+    endif()
+    set(deduction_cpp "${deduction}")
+    percent("${deduction}" deduction_cell)
+  endif()
+  # how it is proven, and the name of its model (null where the grader has none)
+  string(JSON proof GET "${catalogue}" diagnoses ${k} proof)
+  if(NOT proof IN_LIST proofs)
+    message(FATAL_ERROR "${JSON}: /diagnoses/${k}/proof: \"${proof}\" is none of: ${proofs}")
+  endif()
+  string(JSON model_type TYPE "${catalogue}" diagnoses ${k} model)
+  set(model "")
+  set(model_cell "—")
+  if(NOT model_type STREQUAL "NULL")
+    string(JSON model GET "${catalogue}" diagnoses ${k} model)
+    if(NOT model MATCHES "^[a-z0-9]+( [a-z0-9]+)*$")
+      message(FATAL_ERROR "${JSON}: /diagnoses/${k}/model: \"${model}\" is not lower-case words joined by ' '")
+    endif()
+    set(model_cell "${model}")
+  elseif(proof STREQUAL "replay")
+    message(FATAL_ERROR "${JSON}: /diagnoses/${k}/model: a cause proven by a replay names its model")
+  endif()
+  string(APPEND entries "    Entry{${name}, \"${kind}\", ${deduction_cpp}, \"${proof}\", \"${model}\"},\n")
+  string(APPEND deductions "| `${id}` | ${kind} | ${deduction_cell} | ${proof} | ${model_cell} |\n")
   if(MODE STREQUAL "ids")
     continue()
   endif()
@@ -114,6 +192,12 @@ if(MODE STREQUAL "ids")
   string(APPEND header "// Every constant with its name, in the catalogue's order (tests/grader/catalogue_test.cpp).\n")
   string(APPEND header "struct NamedId {\n  const char* name;\n  const char* id;\n};\n")
   string(APPEND header "constexpr std::array<NamedId, ${count}> namedIds() {\n  return {\n${named}  };\n}\n\n")
+  string(APPEND header "// Every entry's data, in the catalogue's order: its kind of mistake, its default deduction\n")
+  string(APPEND header "// (the share of its stub's points it costs once; < 0: never, a cause that never explains a\n")
+  string(APPEND header "// stub's failures alone), how it is proven (replay, repair, read, none) and the name of its\n")
+  string(APPEND header "// model (\"\": none; tests/grader/catalogue_lists_test.cpp reads each model's code).\n")
+  string(APPEND header "struct Entry {\n  const char* id;\n  const char* kind;\n  double deduction;\n  const char* proof;\n  const char* model;\n};\n")
+  string(APPEND header "constexpr std::array<Entry, ${count}> entries() {\n  return {\n${entries}  };\n}\n\n")
   string(APPEND header "}  // namespace clothref::grader::cause\n")
   write_if_changed("${OUTPUT}" "${header}")
   return()
@@ -144,7 +228,19 @@ string(SUBSTRING "${doc}" 0 ${cut} before)
 string(SUBSTRING "${doc}" ${end} -1 after)
 set(generated "\n\n${table}\nWhy each cause gives the numbers a student sees, and a minimal example of the mistake and\nits fix (shown under a likely cause in every report):\n\n${explained}")
 string(REGEX REPLACE "\n+$" "\n\n" generated "${generated}")
-write_if_changed("${OUTPUT}" "${before}${generated}${after}")
+set(doc "${before}${generated}${after}")
+# the default deductions, between their own markers
+string(FIND "${doc}" "${deductions_begin}" begin)
+string(FIND "${doc}" "${deductions_end}" end)
+if(begin EQUAL -1 OR end EQUAL -1 OR end LESS begin)
+  message(FATAL_ERROR "${DOC}: the deductions table's marker comments are missing or out of order:\n"
+                      "${deductions_begin}\n...\n${deductions_end}")
+endif()
+string(LENGTH "${deductions_begin}" begin_length)
+math(EXPR cut "${begin} + ${begin_length}")
+string(SUBSTRING "${doc}" 0 ${cut} before)
+string(SUBSTRING "${doc}" ${end} -1 after)
+write_if_changed("${OUTPUT}" "${before}\n\n${deductions}\n${after}")
 
 if(MODE STREQUAL "check-docs")
   find_program(DIFF diff)

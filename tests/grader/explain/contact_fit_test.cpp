@@ -11,6 +11,7 @@
 #include <functional>
 
 #include "clothref/formula/course_formulas.h"
+#include "grader/grade/cause_ids.h"
 
 namespace clothref::grader {
 namespace {
@@ -101,7 +102,7 @@ TEST(ContactFit, TheCoursesContactReadsAsTheCourses) {
 TEST(ContactFit, ACorrectionFactorIsNamedWithItsValue) {
   const auto findings = explainContacts(readAll(course(0, 0.5f)), 0, 0.15);
   ASSERT_EQ(findings.size(), 1u);
-  EXPECT_EQ(findings[0].cause, "correction-factor");
+  EXPECT_EQ(findings[0].cause, cause::kCorrectionFactor);
   EXPECT_NEAR(findings[0].value, 0.5, 1e-4);
   EXPECT_EQ(findings[0].text,
             "velocities equal the course's; only positions differ: your position correction "
@@ -111,7 +112,7 @@ TEST(ContactFit, ACorrectionFactorIsNamedWithItsValue) {
 TEST(ContactFit, ARestitutionIsNamedWithItsValue) {
   const auto findings = explainContacts(readAll(course(0.5f, 0.15f)), 0.8, 0.15);
   ASSERT_EQ(findings.size(), 1u);
-  EXPECT_EQ(findings[0].cause, "restitution-ignored");
+  EXPECT_EQ(findings[0].cause, cause::kRestitutionIgnored);
   EXPECT_NEAR(findings[0].value, 0.5, 1e-3);
   EXPECT_NE(findings[0].text.find("restitution of 0.5; the course's is 0.8"), std::string::npos)
       << findings[0].text;
@@ -122,7 +123,7 @@ TEST(ContactFit, ARestitutionIsNamedWithItsValue) {
 TEST(ContactFit, ARestitutionOfZeroIsSaidAsZero) {
   const auto findings = explainContacts(readAll(course(0.0f, 0.15f)), 0.8, 0.15);
   ASSERT_EQ(findings.size(), 1u);
-  EXPECT_EQ(findings[0].cause, "restitution-ignored");
+  EXPECT_EQ(findings[0].cause, cause::kRestitutionIgnored);
   EXPECT_NE(findings[0].text.find("restitution of 0; the course's is 0.8"), std::string::npos)
       << findings[0].text;
 }
@@ -135,14 +136,14 @@ TEST(ContactFit, OneBodyNoCorrectionAndTheNormalsSign) {
                                    }),
                                    0, 0.15);
   ASSERT_EQ(one.size(), 1u);
-  EXPECT_EQ(one[0].cause, "correction-one-body");
+  EXPECT_EQ(one[0].cause, cause::kCorrectionOneBody);
   EXPECT_NE(one[0].text.find("only the sphere is pushed out"), std::string::npos) << one[0].text;
   const auto none = explainContacts(readAll(course(0, 0.0f)), 0, 0.15);
   ASSERT_EQ(none.size(), 1u);
-  EXPECT_EQ(none[0].cause, "no-position-correction");
+  EXPECT_EQ(none[0].cause, cause::kNoPositionCorrection);
   const auto reversed = explainContacts(readAll(course(0, -0.15f)), 0, 0.15);
   ASSERT_EQ(reversed.size(), 1u);
-  EXPECT_EQ(reversed[0].cause, "collision-normal-sign");
+  EXPECT_EQ(reversed[0].cause, cause::kCollisionNormalSign);
 }
 
 // A student's contact with one impulse mistake (the course's form otherwise).
@@ -181,14 +182,14 @@ Contact student(Mistake mistake) {
 TEST(ContactFit, ImpulseMistakesAreNamedNotTakenForConstants) {
   const auto full = explainContacts(readAll(student(Mistake::FullVelocity)), 0, 0.15);
   ASSERT_EQ(full.size(), 1u);
-  EXPECT_EQ(full[0].cause, "restitution-full-velocity");
+  EXPECT_EQ(full[0].cause, cause::kRestitutionFullVelocity);
   const auto always = explainContacts(readAll(student(Mistake::NoApproachCheck)), 0, 0.15);
   ASSERT_FALSE(always.empty());
-  EXPECT_EQ(always[0].cause, "no-approach-check");
+  EXPECT_EQ(always[0].cause, cause::kNoApproachCheck);
   for (const Mistake split : {Mistake::NotDivided, Mistake::DividedByMasses}) {
     const auto findings = explainContacts(readAll(student(split)), 0, 0.15);
     ASSERT_EQ(findings.size(), 1u);
-    EXPECT_EQ(findings[0].cause, "wrong-mass-split");
+    EXPECT_EQ(findings[0].cause, cause::kWrongMassSplit);
     EXPECT_NE(findings[0].text.find(split == Mistake::NotDivided ? "not divided by"
                                                                  : "divided by m_a + m_b"),
               std::string::npos)

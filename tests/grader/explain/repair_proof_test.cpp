@@ -1,4 +1,5 @@
 #include "grader/grade/explain/repair_proof.h"
+#include "grader/grade/cause_ids.h"
 
 #include <gtest/gtest.h>
 
@@ -36,7 +37,7 @@ const std::string kSphere =
 // line ends stay.
 TEST(RepairProof, AutoExpressionsAreEvaluated) {
   const std::vector<Repair> repairs = repairsOf("sphere.cpp", kSphere, "Spheres::collide(Cloth*)");
-  const Repair* r = find(repairs, "dangling-auto-expression");
+  const Repair* r = find(repairs, cause::kDanglingAutoExpression);
   ASSERT_NE(r, nullptr);
   ASSERT_EQ(r->lines.size(), 1u);
   EXPECT_EQ(r->lines[0].line, 4);
@@ -68,17 +69,17 @@ const std::string kIntegrator =
 TEST(RepairProof, IntegerDivisionBackupsAndDeltaTime) {
   const std::vector<Repair> midpoint =
       repairsOf("integrator.cpp", kIntegrator, "MidpointEuler::integrate");
-  const Repair* half = find(midpoint, "integer-division-half");
+  const Repair* half = find(midpoint, cause::kIntegerDivisionHalf);
   ASSERT_NE(half, nullptr);
   EXPECT_EQ(lineOf(half->patched, 4),
             "  float half = 1.0f / 2 * deltaTime;  // 1 / 2 is fine in a comment");
-  const Repair* alias = find(midpoint, "backup-alias");
+  const Repair* alias = find(midpoint, cause::kBackupAlias);
   ASSERT_NE(alias, nullptr);
   EXPECT_EQ(lineOf(alias->patched, 3),
             "  std::vector<Particles> backup_copies_; for (auto* p_ : particles) "
             "backup_copies_.push_back(*p_); std::vector<Particles*> backup; for (auto& c_ : "
             "backup_copies_) backup.push_back(&c_);");
-  const Repair* dt = find(midpoint, "deltatime-mutated");
+  const Repair* dt = find(midpoint, cause::kDeltatimeMutated);
   ASSERT_NE(dt, nullptr);
   EXPECT_EQ(dt->lines.size(), 1u);
   EXPECT_EQ(dt->lines[0].line, 5);
@@ -90,15 +91,15 @@ TEST(RepairProof, IntegerDivisionBackupsAndDeltaTime) {
 
   const std::vector<Repair> rk4 =
       repairsOf("integrator.cpp", kIntegrator, "RungeKuttaFourth::integrate");
-  const Repair* sixth = find(rk4, "integer-division-rk4");
+  const Repair* sixth = find(rk4, cause::kIntegerDivisionRk4);
   ASSERT_NE(sixth, nullptr);
   ASSERT_EQ(sixth->lines.size(), 1u);  // 1 / 6.0f is float division
   EXPECT_EQ(lineOf(sixth->patched, 11), "  x = x0 + (1.0f / 6) * (k1 + k4);");
-  const Repair* views = find(rk4, "backup-alias");
+  const Repair* views = find(rk4, cause::kBackupAlias);
   ASSERT_NE(views, nullptr);
   EXPECT_EQ(lineOf(views->patched, 9), "  std::vector<Eigen::Matrix4Xf> x0;");
   EXPECT_EQ(lineOf(views->patched, 10), "  auto v = particles[0]->velocity().eval();");
-  EXPECT_EQ(find(rk4, "deltatime-mutated"), nullptr);
+  EXPECT_EQ(find(rk4, cause::kDeltatimeMutated), nullptr);
 }
 
 TEST(RepairProof, DiscardedNormalizedInTheSpringForce) {
@@ -109,7 +110,7 @@ TEST(RepairProof, DiscardedNormalizedInTheSpringForce) {
       "  dir = dir.normalized();\n"
       "}\n";
   const std::vector<Repair> repairs = repairsOf("cloth.cpp", cloth, "Cloth::computeSpringForce");
-  const Repair* r = find(repairs, "direction-not-normalised");
+  const Repair* r = find(repairs, cause::kDirectionNotNormalised);
   ASSERT_NE(r, nullptr);
   ASSERT_EQ(r->lines.size(), 1u);
   EXPECT_EQ(lineOf(r->patched, 3), "  dir.normalize();  // 單位向量");
@@ -124,7 +125,7 @@ TEST(RepairProof, AReferenceToATemporaryBecomesACopy) {
       "  const float& k = springCoef;\n"
       "}\n";
   const std::vector<Repair> repairs = repairsOf("cloth.cpp", cloth, "Cloth::computeSpringForce");
-  const Repair* r = find(repairs, "undefined-behaviour");
+  const Repair* r = find(repairs, cause::kUndefinedBehaviour);
   ASSERT_NE(r, nullptr);
   ASSERT_EQ(r->lines.size(), 1u);
   EXPECT_EQ(lineOf(r->patched, 2), "  const float length = std::max(d.norm(), 1e-6f);");
@@ -149,7 +150,7 @@ Repair autoRepair() {
   Repair r;
   r.file = "sphere.cpp";
   r.stub = "Spheres::collide(Cloth*)";
-  r.cause = "dangling-auto-expression";
+  r.cause = cause::kDanglingAutoExpression;
   r.lines = {{"sphere.cpp", 129, "auto N = a - b;"}};
   r.what = "line 129 repaired (its `auto` expression stored as a vector with `.eval()`)";
   return r;
@@ -159,35 +160,35 @@ Repair autoRepair() {
 // mistake of the repaired build; the plausible cause the UB produced is no longer likely.
 TEST(RepairProof, AMendingRepairProvesItsCause) {
   std::vector<TestResult> tests =
-      stubTests({false, false, false, true}, {"no-position-correction"});
+      stubTests({false, false, false, true}, {cause::kNoPositionCorrection});
   std::vector<TestResult> repaired = stubTests({true, true, false, true}, {});
-  repaired[2].addCause("wrong-mass-split").proof = "Proven: a split gives your numbers.";
+  repaired[2].addCause(cause::kWrongMassSplit).proof = "Proven: a split gives your numbers.";
   ASSERT_TRUE(applyRepair(autoRepair(), true, "", repaired, tests));
   const std::string line =
       "With line 129 repaired (its `auto` expression stored as a vector with `.eval()`): 3 of 4 "
       "checks pass; the other 1 is explained by `wrong-mass-split` (proven).";
   for (int k : {0, 1}) {
-    ASSERT_TRUE(tests[k].names("dangling-auto-expression"));
-    EXPECT_EQ(tests[k].causes.front().id, "no-position-correction");
+    ASSERT_TRUE(tests[k].names(cause::kDanglingAutoExpression));
+    EXPECT_EQ(tests[k].causes.front().id, cause::kNoPositionCorrection);
     EXPECT_FALSE(tests[k].causes.front().likely);
     for (const Cause& c : tests[k].causes)
-      if (c.id == "dangling-auto-expression") {
+      if (c.id == cause::kDanglingAutoExpression) {
         EXPECT_TRUE(c.proven());
         EXPECT_EQ(c.proof, line);
         EXPECT_EQ(c.quotes.size(), 1u);
       }
   }
   // The check still failing takes the repaired build's causes.
-  ASSERT_TRUE(tests[2].names("wrong-mass-split"));
-  EXPECT_FALSE(tests[2].names("no-position-correction"));
+  ASSERT_TRUE(tests[2].names(cause::kWrongMassSplit));
+  EXPECT_FALSE(tests[2].names(cause::kNoPositionCorrection));
   EXPECT_TRUE(tests[2].causes.front().proven());
-  EXPECT_EQ(tests[2].causes.front().id, "wrong-mass-split");
+  EXPECT_EQ(tests[2].causes.front().id, cause::kWrongMassSplit);
 }
 
 // A repair that does not build, or changes nothing, disproves the cause.
 TEST(RepairProof, ARepairThatDoesNotBuildOrChangesNothingDisproves) {
   std::vector<TestResult> tests =
-      stubTests({false, false, true, true}, {"dangling-auto-expression"});
+      stubTests({false, false, true, true}, {cause::kDanglingAutoExpression});
   EXPECT_FALSE(applyRepair(autoRepair(), false, "sphere.cpp:129: error: no match", {}, tests));
   for (int k : {0, 1}) {
     EXPECT_FALSE(tests[k].causes.front().likely);
@@ -196,7 +197,7 @@ TEST(RepairProof, ARepairThatDoesNotBuildOrChangesNothingDisproves) {
               "`.eval()`), sphere.cpp does not build (sphere.cpp:129: error: no match), so the "
               "repair shows nothing.");
   }
-  tests = stubTests({false, false, true, true}, {"dangling-auto-expression"});
+  tests = stubTests({false, false, true, true}, {cause::kDanglingAutoExpression});
   EXPECT_FALSE(
       applyRepair(autoRepair(), true, "", stubTests({false, false, true, true}, {}), tests));
   EXPECT_FALSE(tests[0].causes.front().likely);

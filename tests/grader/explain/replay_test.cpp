@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "grader/grade/cause_ids.h"
 #include "grader/grade/rubric.h"
 
 namespace clothref::grader {
@@ -58,12 +59,12 @@ TEST(Replay, AModelThatPartsSaysWhere) {
 // The example: a cause the code contradicts (the stub skips every pair, so its
 // velocities differ too) fails its replay and is not named as likely; its line says where.
 TEST(Replay, APlausibleButWrongCauseIsAGuessWithItsLine) {
-  std::vector<TestResult> tests = threeFailed("no-position-correction");
+  std::vector<TestResult> tests = threeFailed(cause::kNoPositionCorrection);
   const Replay r = replayOf({{{"positions", true}, {"velocities", false}},
                              {{"positions", true}, {"velocities", true}},
                              {{"positions", true}, {"velocities", false}},
                              {{"total momentum", true}}});
-  applyReplay(r, {"no-position-correction"}, tests);
+  applyReplay(r, {cause::kNoPositionCorrection}, tests);
   for (const TestResult& t : tests) {
     if (t.passed()) continue;
     ASSERT_EQ(t.causes.size(), 1u) << t.check;
@@ -84,19 +85,19 @@ TEST(Replay, APlausibleButWrongCauseIsAGuessWithItsLine) {
 
 // A proven model names its causes likely on every failed check of the stub, with the proof.
 TEST(Replay, AProvenModelNamesItsCausesOnEveryFailedCheck) {
-  std::vector<TestResult> tests = threeFailed("unknown");
+  std::vector<TestResult> tests = threeFailed(cause::kUnknown);
   tests[0].causes[0].likely = false;
   const Replay r = replayOf({{{"positions", true}},
                              {{"positions", true}},
                              {{"positions", true}},
                              {{"total momentum", true}}});
-  applyReplay(r, {"first-sphere-only", "restitution-ignored"}, tests);
+  applyReplay(r, {cause::kFirstSphereOnly, cause::kRestitutionIgnored}, tests);
   for (const TestResult& t : tests) {
     if (t.passed()) {
       EXPECT_TRUE(t.causes.empty());
       continue;
     }
-    for (const char* id : {"first-sphere-only", "restitution-ignored"}) {
+    for (const char* id : {cause::kFirstSphereOnly, cause::kRestitutionIgnored}) {
       ASSERT_TRUE(t.names(id)) << t.check << " " << id;
       for (const Cause& c : t.causes)
         if (c.id == id) {
@@ -107,10 +108,10 @@ TEST(Replay, AProvenModelNamesItsCausesOnEveryFailedCheck) {
   }
   // A later failed replay of the same cause does not undo the proof.
   const Replay worse = replayOf({{{"positions", false}}});
-  applyReplay(worse, {"first-sphere-only"}, tests);
+  applyReplay(worse, {cause::kFirstSphereOnly}, tests);
   ASSERT_FALSE(tests.empty());
   for (const Cause& c : tests[0].causes) {
-    if (c.id == "first-sphere-only") {
+    if (c.id == cause::kFirstSphereOnly) {
       EXPECT_TRUE(c.proven());
     }
   }
@@ -119,19 +120,19 @@ TEST(Replay, AProvenModelNamesItsCausesOnEveryFailedCheck) {
 // What no replay proved becomes a guess, except what is read directly (NaN); likely causes first.
 TEST(Replay, RequireProofsKeepsOnlyProvenAndObserved) {
   TestResult t = makeTest("Spheres::collide(Cloth*)", "approaching pair", 1);
-  t.addCause("unknown", false);
-  t.addCause("correction-factor", true);
-  t.addCause("non-finite", true);
-  t.addCause("wrong-mass-split", true).proof = "Proven: a split.";
+  t.addCause(cause::kUnknown, false);
+  t.addCause(cause::kCorrectionFactor, true);
+  t.addCause(cause::kNonFinite, true);
+  t.addCause(cause::kWrongMassSplit, true).proof = "Proven: a split.";
   std::vector<TestResult> tests = {t};
-  requireProofs(tests, {"non-finite"});
+  requireProofs(tests, {cause::kNonFinite});
   ASSERT_EQ(tests[0].causes.size(), 4u);
-  EXPECT_EQ(tests[0].causes[0].id, "non-finite");
+  EXPECT_EQ(tests[0].causes[0].id, cause::kNonFinite);
   EXPECT_TRUE(tests[0].causes[0].likely);
-  EXPECT_EQ(tests[0].causes[1].id, "wrong-mass-split");
+  EXPECT_EQ(tests[0].causes[1].id, cause::kWrongMassSplit);
   EXPECT_TRUE(tests[0].causes[1].proven());
-  EXPECT_EQ(tests[0].causes[2].id, "unknown");
-  EXPECT_EQ(tests[0].causes[3].id, "correction-factor");
+  EXPECT_EQ(tests[0].causes[2].id, cause::kUnknown);
+  EXPECT_EQ(tests[0].causes[3].id, cause::kCorrectionFactor);
   EXPECT_FALSE(tests[0].causes[3].likely);
 }
 

@@ -9,6 +9,7 @@
 #include <random>
 
 #include "clothref/formula/course_formulas.h"
+#include "grader/grade/cause_ids.h"
 
 namespace clothref::grader {
 namespace {
@@ -116,16 +117,17 @@ TEST(SpringFit, EachChangeIsNamed) {
     Change change;
     const char* cause;
     const char* text;  // part of the text
-  } expected[] = {{Change::SpringHalved, "spring-coefficient", "k_s = 12500 N/m"},
-                  {Change::SpringSign, "spring-force-sign", "pushes its ends apart"},
-                  {Change::DamperSign, "damper-sign", "adds energy"},
-                  {Change::NoDamper, "missing-damper", "k_d fits as 0"},
-                  {Change::Unnormalised, "damper-not-normalised", "unit direction"},
-                  {Change::OneEnd, "force-one-end-only", "start particle"},
-                  {Change::MassNotInverse, "mass-not-inverse", "not the inverse mass"},
-                  {Change::WholeSign, "spring-force-sign", "the whole force has the wrong sign"},
-                  {Change::EndOnly, "force-one-end-only", "end particle"},
-                  {Change::UnnormalisedTwice, "damper-not-normalised", "in both places"}};
+  } expected[] = {
+      {Change::SpringHalved, cause::kSpringCoefficient, "k_s = 12500 N/m"},
+      {Change::SpringSign, cause::kSpringForceSign, "pushes its ends apart"},
+      {Change::DamperSign, cause::kDamperSign, "adds energy"},
+      {Change::NoDamper, cause::kMissingDamper, "k_d fits as 0"},
+      {Change::Unnormalised, cause::kDamperNotNormalised, "unit direction"},
+      {Change::OneEnd, cause::kForceOneEndOnly, "start particle"},
+      {Change::MassNotInverse, cause::kMassNotInverse, "not the inverse mass"},
+      {Change::WholeSign, cause::kSpringForceSign, "the whole force has the wrong sign"},
+      {Change::EndOnly, cause::kForceOneEndOnly, "end particle"},
+      {Change::UnnormalisedTwice, cause::kDamperNotNormalised, "in both places"}};
   for (const auto& e : expected) {
     const auto findings = explain(e.change);
     ASSERT_EQ(findings.size(), 1u) << e.cause;

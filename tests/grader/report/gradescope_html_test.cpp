@@ -14,6 +14,7 @@
 
 #include "clothref/record/record.h"
 #include "clothref/scene/scene.h"
+#include "grader/grade/cause_ids.h"
 #include "grader/grade/report/outputs.h"
 #include "grader/grade/report/whole_run_svg.h"
 #include "report_samples.h"
@@ -82,7 +83,7 @@ TEST(GradescopeHtml, SummaryIsStaticHtml) {
 TEST(GradescopeHtml, SummaryKeepsLikelyCausesAndGuessesApart) {
   GradeReport report = sampleReport();
   report.tests[1].causes.insert(report.tests[1].causes.begin(),
-                                Cause{"unknown", false, {}, {}, {}, {}, {}, {}});
+                                Cause{cause::kUnknown, false, {}, {}, {}, {}, {}, {}});
   const std::string output = withHtmlSummary(resultsJson(report), report)["output"];
   EXPECT_NE(output.find("<td><em>collision-normal-sign</em>, <em>unknown</em>?</td>"),
             std::string::npos)
@@ -195,7 +196,7 @@ TEST(GradescopeHtml, AHiddenStubAppearsNowhereAStudentSeesBeforeItsRelease) {
          {md["output"].get<std::string>(), html["output"].get<std::string>()}) {
       for (const char* hidden :
            {"Spheres::collide(Cloth*)", "Cloth::computeSpringForce", "1.25", "0 of 1", "6 / 20",
-            "0 of 2", "collision-normal-sign", "12 / 27.25", "27.25", "graded"})
+            "0 of 2", cause::kCollisionNormalSign, "12 / 27.25", "27.25", "graded"})
         EXPECT_EQ(summary.find(hidden), std::string::npos) << hidden << " in\n" << summary;
       EXPECT_NE(summary.find("shown later"), std::string::npos) << summary;
     }

@@ -59,7 +59,7 @@ TEST(ResultsJson, GradescopeFields) {
   EXPECT_EQ(test["output_format"], "md");
   EXPECT_EQ(test["visibility"], "visible");
   EXPECT_EQ(test["tags"],
-            nlohmann::ordered_json({"Spheres::collide(Cloth*)", "no-approach-check"}));
+            nlohmann::ordered_json({"Spheres::collide(Cloth*)", cause::kNoApproachCheck}));
   EXPECT_EQ(json["tests"][0]["status"], "passed");
 }
 
@@ -497,7 +497,7 @@ TEST(Quotes, ACauseQuotesOnlyTheLinesOfTheStubItGradesOncePerStub) {
     const std::string stub = test["tags"][0];
     outputs[stub] += test["output"].get<std::string>();
     for (std::size_t k = 1; k < test["tags"].size(); ++k)
-      named[stub] += test["tags"][k] == "dangling-auto-expression";
+      named[stub] += test["tags"][k] == cause::kDanglingAutoExpression;
   }
   for (const auto& [stub, own, others] :
        {std::tuple{"MidpointEuler::integrate", "midpoint_diff",
@@ -691,9 +691,10 @@ TEST(AllWriters, LikelyCausesAndGuessesAreBlocksOfTheirOwnInEveryOutput) {
   GradeReport report = sampleReport();
   TestResult& t = report.tests[1];
   t.output = "Expected 1, yours 2.";
-  t.causes = {Cause{"no-approach-check", true, "Measured: 3 of 4.", {}, "The impulse.", {}, {}, {}},
-              Cause{"wrong-mass-split", true, {}, {}, "The split.", {}, {}, {}},
-              Cause{"unknown", false, {}, {}, "No known mistake.", {}, {}, {}}};
+  t.causes = {
+      Cause{cause::kNoApproachCheck, true, "Measured: 3 of 4.", {}, "The impulse.", {}, {}, {}},
+      Cause{cause::kWrongMassSplit, true, {}, {}, "The split.", {}, {}, {}},
+      Cause{cause::kUnknown, false, {}, {}, "No known mistake.", {}, {}, {}}};
   t.sketch.bodies.push_back({"sphere 0", {0, 0.5f, 0}, 0.5f, {0, -1, 0}, {0, 0, 0}, {0, -1, 0}});
   const std::string md_blocks =
       "Expected 1, yours 2.\n\n**Likely cause** (`no-approach-check`): The impulse.\n\nMeasured: "

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <string>
 
+#include "grader/grade/cause_ids.h"
 #include "grader/grade/results.h"
 
 namespace clothref::grader::test_samples {
@@ -26,7 +27,7 @@ inline GradeReport sampleReport() {
       "State tried:\n\n- sphere 0: x (0.1, 0.42, -0.05)\n  - expected x (1, 2, 3) - actual "
       "x (1, 2, 4)\n\n```\n</pre><script>alert(2)</script>\n```\n\n**Likely cause** "
       "(`collision-normal-sign`): <the normal>";
-  fail.causes = {Cause{"collision-normal-sign",
+  fail.causes = {Cause{cause::kCollisionNormalSign,
                        true,
                        {},
                        {},

@@ -48,7 +48,8 @@ Diagnosis diagnosisAt(const nlohmann::json& entry, const std::string& source,
   if (!entry.is_object())
     catalogueError(source, pointer, "expected an object, got " + excerpt(entry.dump()));
   for (const auto& [key, value] : entry.items())
-    if (key != "id" && key != "stub" && key != "recognised_by" && key != "text" && key != "why" &&
+    if (key != "id" && key != "stub" && key != "recognised_by" && key != "kind" &&
+        key != "deduction" && key != "proof" && key != "model" && key != "text" && key != "why" &&
         key != "example" && key != "non_finite")
       catalogueError(source, pointer + "/" + excerpt(key), "unknown field");
   Diagnosis d;
@@ -63,6 +64,19 @@ Diagnosis diagnosisAt(const nlohmann::json& entry, const std::string& source,
   if (!known)
     catalogueError(source, pointer + "/recognised_by",
                    "unknown: \"" + excerpt(d.recognised_by) + "\"");
+  // The build reads these (diagnoses.cmake: the rubric's defaults, the models); here they are
+  // only checked to be there with their types.
+  stringField(entry, "kind", source, pointer);
+  stringField(entry, "proof", source, pointer);
+  for (const char* key : {"deduction", "model"}) {
+    if (!entry.contains(key)) catalogueError(source, pointer + "/" + key, "missing");
+    const nlohmann::json& value = entry.at(key);
+    const bool number = std::string(key) == "deduction";
+    if (!value.is_null() && !(number ? value.is_number() : value.is_string()))
+      catalogueError(source, pointer + "/" + key,
+                     std::string("expected ") + (number ? "a number" : "a string") +
+                         " or null, got " + excerpt(value.dump()));
+  }
   d.text = stringField(entry, "text", source, pointer);
   d.why = stringField(entry, "why", source, pointer);
   // no example where there is no student's line to show (the grader's own failure, `unknown`)

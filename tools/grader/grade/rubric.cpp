@@ -13,91 +13,17 @@
 
 namespace clothref::grader {
 
-namespace {
-
-// The kinds of mistake and what each costs once (docs/grading-reference.md, "Points follow
-// mistakes"): a slip costs little, a missing piece of physics more, a wrong method half the stub.
-constexpr const char* kConstant = "a wrong constant";
-constexpr const char* kEdge = "a missed special case";
-constexpr const char* kSign = "a wrong sign";
-constexpr const char* kTerm = "a missing term";
-constexpr const char* kMethod = "a wrong method";
-// Undefined behaviour the grader proved by repairing its lines (an `auto` over temporaries): the
-// physics may be right, the code cannot be trusted.
-constexpr const char* kUndefined = "undefined behaviour (repaired)";
-constexpr const char* kNever = "never";  // a crash, a timeout, a symptom or a guess
-constexpr double kNone = -1;
-
-}  // namespace
-
+// The catalogue's kinds and default deductions (tools/grader/diagnoses.json, generated into
+// cause_ids.h; docs/grading-reference.md, "Points follow mistakes"): a slip costs little, a missing
+// piece of physics more, a wrong method half the stub; the kind "never" (a crash, a timeout, a
+// symptom or a guess) has no deduction.
 const std::vector<CauseDeduction>& causeDeductions() {
-  static const std::vector<CauseDeduction> table = {
-      {"compile-error", kNever, kNone},
-      {"link-error", kNever, kNone},
-      {"missing-file", kNever, kNone},
-      {"crashed", kNever, kNone},
-      {"grader-error", kNever, kNone},
-      {"undefined-behaviour", kNever, kNone},
-      {"timed-out", kNever, kNone},
-      {"non-finite", kNever, kNone},
-      {"dangling-auto-expression", kUndefined, 0.3},
-      {"shear-rest-length", kConstant, 0.25},
-      {"bend-rest-length", kConstant, 0.25},
-      {"approximate-sqrt2", kConstant, 0.2},
-      {"swapped-spring-types", kConstant, 0.25},
-      {"missing-springs", kTerm, 0.4},
-      {"duplicate-springs", kMethod, 0.5},
-      {"wrong-spring-endpoints", kMethod, 0.5},
-      {"hard-coded-n25", kEdge, 0.25},
-      {"assign-not-accumulate", kMethod, 0.5},
-      {"spring-force-sign", kSign, 0.4},
-      {"damper-sign", kSign, 0.4},
-      {"damper-not-normalised", kTerm, 0.3},
-      {"direction-not-normalised", kTerm, 0.3},
-      {"missing-damper", kTerm, 0.4},
-      {"force-one-end-only", kMethod, 0.5},
-      {"fixed-particle-moves", kEdge, 0.25},
-      {"mass-not-inverse", kMethod, 0.5},
-      {"spring-coefficient", kConstant, 0.25},
-      {"damper-coefficient", kConstant, 0.25},
-      {"division-by-speed", kMethod, 0.4},
-      {"no-approach-check", kTerm, 0.4},
-      {"restitution-ignored", kConstant, 0.25},
-      {"restitution-full-velocity", kMethod, 0.5},
-      {"correction-one-body", kTerm, 0.3},
-      {"no-position-correction", kTerm, 0.4},
-      {"correction-factor", kConstant, 0.25},
-      {"contact-distance", kConstant, 0.25},
-      {"fixed-particle-massless", kEdge, 0.25},
-      {"first-sphere-only", kTerm, 0.4},
-      {"collision-normal-sign", kSign, 0.4},
-      {"touching-skipped", kEdge, 0.2},
-      {"pair-processed-twice", kMethod, 0.5},
-      {"wrong-mass-split", kMethod, 0.5},
-      {"backup-alias", kMethod, 0.5},
-      {"integer-division-rk4", kConstant, 0.25},
-      {"integer-division-half", kConstant, 0.25},
-      {"only-first-body", kTerm, 0.4},
-      {"deltatime-mutated", kEdge, 0.3},
-      {"position-uses-acceleration", kMethod, 0.3},
-      {"velocity-not-integrated", kTerm, 0.4},
-      {"position-not-integrated", kTerm, 0.4},
-      {"no-reevaluation", kMethod, 0.5},
-      {"per-body-loop", kMethod, 0.5},
-      {"midpoint-full-step", kMethod, 0.5},
-      {"heun-method", kMethod, 0.5},
-      {"half-step-corrector", kMethod, 0.5},
-      {"corrector-start-velocity", kMethod, 0.5},
-      {"velocity-damped", kMethod, 0.3},
-      {"integrator-pins-particles", kEdge, 0.3},
-      {"rk4-mixed-increments", kMethod, 0.5},
-      {"rk4-wrong-weights", kMethod, 0.5},
-      {"rk4-stage-not-from-backup", kMethod, 0.5},
-      {"rk4-stage-from-wrong-increment", kMethod, 0.5},
-      {"rk4-stages-discarded", kMethod, 0.5},
-      {"wrong-order", kNever, kNone},
-      {"unstable", kNever, kNone},
-      {"unknown", kNever, kNone}};
+  static const std::vector<CauseDeduction> table = [] {
+    std::vector<CauseDeduction> rows;
+    for (const cause::Entry& entry : cause::entries())
+      rows.push_back({entry.id, entry.kind, entry.deduction});
+    return rows;
+  }();
   return table;
 }
 

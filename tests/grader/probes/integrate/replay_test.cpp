@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "grader/grade/cause_ids.h"
 #include "grader/grade/mistakes/integrate_mistakes.h"
 
 namespace clothref::grader::integrators {
@@ -81,14 +82,14 @@ TEST(IntegratorReplay, OverwrittenIncrementsAreTheirModel) {
   const IntegratorRun run = runOf(3, overwrittenRk4);
   ASSERT_GT(distance(run.actual, run.expected), kRel);  // a mistake the check sees
   const std::vector<IntegratorModel> models =
-      modelsOf("rk4-stage-from-wrong-increment", kRubric, run, RunStages{});
+      modelsOf(cause::kRk4StageFromWrongIncrement, kRubric, run, RunStages{});
   ASSERT_EQ(models.size(), 2u);
   EXPECT_GT(distance(stepped(run.random, models[0].step), run.actual), kRel);
   EXPECT_LE(distance(stepped(run.random, models[1].step), run.actual), kRel);
   // RK4 with other weights on the course's stages is no model of it: the fit has no weights
   // without a stage record, and a variant of the stages is far.
-  EXPECT_TRUE(modelsOf("rk4-wrong-weights", kRubric, run, RunStages{}).empty());
-  for (const IntegratorModel& m : modelsOf("rk4-mixed-increments", kRubric, run, RunStages{}))
+  EXPECT_TRUE(modelsOf(cause::kRk4WrongWeights, kRubric, run, RunStages{}).empty());
+  for (const IntegratorModel& m : modelsOf(cause::kRk4MixedIncrements, kRubric, run, RunStages{}))
     EXPECT_GT(distance(stepped(run.random, m.step), run.actual), kRel) << m.text;
 }
 
@@ -100,7 +101,7 @@ TEST(IntegratorReplay, PinnedParticlesAreReadAndReplayed) {
   };
   const IntegratorRun run = runOf(2, pinning);
   const std::vector<IntegratorModel> models =
-      modelsOf("integrator-pins-particles", kRubric, run, {});
+      modelsOf(cause::kIntegratorPinsParticles, kRubric, run, {});
   // after the course's midpoint, and after its accepted variant (a symplectic predictor)
   ASSERT_EQ(models.size(), 2u);
   EXPECT_GT(distance(stepped(run.random, models[1].step), run.actual), kRel);
@@ -135,7 +136,7 @@ TEST(IntegratorReplay, PinsOnTheCoursesClothOnlyAreReadThereAfterAnAcceptedVaria
   simulate(course_cloth.start);
   run.course_cloth = course_cloth;
   const std::vector<IntegratorModel> models =
-      modelsOf("integrator-pins-particles", kRubric, run, {});
+      modelsOf(cause::kIntegratorPinsParticles, kRubric, run, {});
   ASSERT_EQ(models.size(), 2u);  // after the course's explicit Euler, after symplectic Euler
   ASSERT_TRUE(models[1].table.has_value());
   ASSERT_EQ(models[1].table->pinned.size(), 1u);
@@ -161,7 +162,7 @@ TEST(IntegratorReplay, AVelocityFactorIsReadPerBody) {
     s.spheres.particles.velocity *= 0.999f;
   };
   const IntegratorRun run = runOf(0, damped);
-  const std::vector<IntegratorModel> models = modelsOf("velocity-damped", kRubric, run, {});
+  const std::vector<IntegratorModel> models = modelsOf(cause::kVelocityDamped, kRubric, run, {});
   ASSERT_EQ(models.size(), 1u);
   EXPECT_EQ(models[0].table->velocity_factor[0], 1);
   EXPECT_NEAR(models[0].table->velocity_factor[1], 0.999, 1e-6);

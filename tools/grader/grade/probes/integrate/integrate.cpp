@@ -64,7 +64,7 @@ void addOneStepCauses(TestResult& one, const std::vector<std::string>& numeric,
   }
   for (const std::string& id : possible)
     if (std::find(likely.begin(), likely.end(), id) == likely.end()) one.addCause(id, false);
-  if (likely.empty()) one.addCause("unknown", false);
+  if (likely.empty()) one.addCause(cause::kUnknown, false);
 }
 
 TestResult checkOneStep(const ProbeContext& context, const IntegratorRun& run,
@@ -104,7 +104,7 @@ TestResult checkOneStep(const ProbeContext& context, const IntegratorRun& run,
 std::string firstLikelyCause(const TestResult& one) {
   for (const Cause& cause : one.causes)
     if (cause.likely) return cause.id;
-  return "unknown";
+  return cause::kUnknown;
 }
 
 // Each body the course method moves must move.
@@ -136,7 +136,7 @@ TestResult checkEveryBody(const IntegratorRun& run, const TestResult& one) {
   // Nothing moved: the one-step diagnosis says why (integer division, ...), when it has one.
   const std::string first = firstLikelyCause(one);
   const std::string id = only_spheres ? cause::kOnlyFirstBody : first;
-  all.addCause(id, id != "unknown");
+  all.addCause(id, id != cause::kUnknown);
   return all;
 }
 
@@ -194,7 +194,7 @@ TestResult checkOrder(const ProbeContext& context, const IntegratorRun& run, con
   if (order.fraction == 0) {
     const std::string id = one.fraction == 1 ? causeAfterPassedStep(stages, cause::kWrongOrder)
                                              : firstLikelyCause(one);
-    order.addCause(id, id != "unknown");
+    order.addCause(id, id != cause::kUnknown);
   }
   return order;
 }
@@ -214,9 +214,9 @@ TestResult checkStability(const IntegratorRun& run, const TestResult& one,
   if (stable.fraction == 0) {
     // The blow-up is a consequence: the one-step finding names the mistake when there is one.
     const std::string first = firstLikelyCause(one);
-    const std::string id = one.fraction == 1    ? causeAfterPassedStep(stages, "unstable")
-                           : first == "unknown" ? "unstable"
-                                                : first;
+    const std::string id = one.fraction == 1 ? causeAfterPassedStep(stages, cause::kUnstable)
+                           : first == cause::kUnknown ? cause::kUnstable
+                                                      : first;
     stable.addCause(id);
   }
   return stable;
@@ -297,8 +297,8 @@ std::vector<TestResult> probeIntegrator(const ProbeContext& context, int index) 
   for (TestResult& t : tests)
     if (!t.passed() &&
         std::none_of(t.causes.begin(), t.causes.end(), [](const Cause& c) { return c.likely; }) &&
-        !t.names("unknown"))
-      t.causes.insert(t.causes.begin(), util::guess("unknown"));
+        !t.names(cause::kUnknown))
+      t.causes.insert(t.causes.begin(), util::guess(cause::kUnknown));
   addStages(tests, stages);
   if (!note.empty())
     for (TestResult& t : tests) t.output = note + t.output;

@@ -239,7 +239,7 @@ void proveIntegratorCauses(const ProbeContext& context, const IntegratorRun& run
         best = q;
     if (best == m && !replays[m].proven()) applyReplay(replays[m], models[m].ids, tests);
   }
-  requireProofs(tests, {cause::kDeltatimeMutated, "unstable", cause::kWrongOrder});
+  requireProofs(tests, {cause::kDeltatimeMutated, cause::kUnstable, cause::kWrongOrder});
 }
 
 }  // namespace clothref::grader::integrators
