@@ -21,6 +21,10 @@
 #include <string>
 #include <thread>
 
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include "corpus.h"
 #include "grader/grade/cause_ids.h"
 #include "grader/grade/grade.h"
@@ -241,6 +245,56 @@ TEST(WholeRun, ReferenceIsIdenticalToClothrefAndNeverScored) {
   EXPECT_TRUE(found);
   EXPECT_TRUE(fs::file_size(temp.file("junit.xml")) > 0);
   EXPECT_TRUE(fs::file_size(temp.file("report.md")) > 0);
+}
+
+// Load never costs a student points (issue 39): the course's reference, graded by two graders at
+// once while four busy loops keep every core of the machine busy (each probe waits for a CPU much
+// of its time), keeps full marks, at the default limits.
+TEST(Load, TheReferenceKeepsFullMarksBesideTwoGradersAndFourBusyLoops) {
+  TempDir temp;
+  std::vector<pid_t> loops;
+  for (int k = 0; k < 4; ++k) {
+    const pid_t pid = fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+      const rlimit cpu{300, 300};  // ends by itself should the test die first
+      setrlimit(RLIMIT_CPU, &cpu);
+      volatile unsigned long spin = 0;
+      for (;;) spin = spin + 1;
+    }
+    loops.push_back(pid);
+  }
+  const fs::path submission = kCorpus / "2024" / "reference";
+  CommandResult runs[2];
+  const auto grade = [&](int k) {
+    runs[k] = runCli("grade '" + submission.string() + "' --no-whole-run --cache-dir '" +
+                     std::string(CLOTHREF_GRADER_CACHE) + "' --results '" +
+                     temp.file("results-" + std::to_string(k) + ".json") + "'");
+  };
+  std::thread first(grade, 0), second(grade, 1);
+  first.join();
+  second.join();
+  // the loops were still running: the graders shared the machine with them to the end
+  int still_running = 0;
+  for (pid_t pid : loops) {
+    still_running += waitpid(pid, nullptr, WNOHANG) == 0;
+    kill(pid, SIGKILL);
+    waitpid(pid, nullptr, 0);
+  }
+  EXPECT_EQ(still_running, 4);
+  for (int k = 0; k < 2; ++k) {
+    ASSERT_EQ(runs[k].exit_code, 0) << runs[k].output;
+    const nlohmann::json results = readJson(temp.file("results-" + std::to_string(k) + ".json"));
+    std::string failed;  // on a failure, which checks and why
+    for (const auto& t : results["tests"])
+      if (t.value("status", "") != "passed")
+        failed += t.value("name", "?") + ": " + t.value("output", "").substr(0, 300) + "\n";
+    double max = 0;  // the edition's code points (80)
+    for (const auto& [stub, points] : results["extra_data"]["stub_max"].items())
+      max += points.get<double>();
+    EXPECT_GT(max, 0.0);
+    EXPECT_DOUBLE_EQ(results["score"].get<double>(), max) << "grader " << k << "\n" << failed;
+  }
 }
 
 // Exit 0 whatever the score; non-zero only when nothing can be graded.
