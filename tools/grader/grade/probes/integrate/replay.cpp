@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string_view>
 
 #include "clothref/verify/verify.h"
 #include "grader/grade/cause_ids.h"
@@ -195,15 +196,8 @@ void proveIntegratorCauses(const ProbeContext& context, const IntegratorRun& run
         if (c.likely == likely) add(ids, c.id), add(named, c.id);
   for (bool likely : {true, false})
     for (const std::string& id : stages.causes(likely)) add(ids, id);
-  for (const char* id :
-       {cause::kOnlyFirstBody, cause::kPositionUsesAcceleration, cause::kVelocityNotIntegrated,
-        cause::kPositionNotIntegrated, cause::kBackupAlias, cause::kNoReevaluation,
-        cause::kPerBodyLoop, cause::kMidpointFullStep, cause::kHeunMethod,
-        cause::kHalfStepCorrector, cause::kCorrectorStartVelocity, cause::kVelocityDamped,
-        cause::kIntegratorPinsParticles, cause::kDeltatimeMutated, cause::kRk4MixedIncrements,
-        cause::kRk4StageNotFromBackup, cause::kRk4StageFromWrongIncrement,
-        cause::kRk4StagesDiscarded})
-    add(ids, id);
+  for (const cause::Entry& entry : cause::entries())  // the catalogue's integrator models
+    if (std::string_view(entry.model) == "integrator step") add(ids, entry.id);
   std::vector<IntegratorModel> models;
   std::vector<Replay> replays;
   std::string winner;  // the cause the first proving model names
