@@ -95,16 +95,25 @@ void namedCauses(const nlohmann::json& results, const std::string& stub,
 }
 
 // Ids the catalogue gained after a set's labels were written (`relabels`, "<edition>/<name>" ->
-// stub -> {"unknown": new id}): a stub labelled `unknown` because no entry existed is scored
-// against the entry made for it since.
+// stub -> {"unknown": new id, or a list of new ids}): a stub labelled `unknown` because no entry
+// existed is scored against the entries made for it since (a list: its `unknown` stood for
+// several uncatalogued mistakes).
 nlohmann::json relabelled(nlohmann::json labels, const nlohmann::json& relabels,
                           const std::string& name) {
   if (!relabels.contains(name)) return labels;
   for (const auto& [stub, change] : relabels[name].items()) {
     if (!labels["stubs"].contains(stub)) continue;
-    for (const auto& [old_id, new_id] : change.items())
-      for (auto& id : labels["stubs"][stub]["causes"])
-        if (id == old_id) id = new_id;
+    for (const auto& [old_id, new_ids] : change.items()) {
+      nlohmann::json causes = nlohmann::json::array();
+      for (const auto& id : labels["stubs"][stub]["causes"])
+        if (id != old_id)
+          causes.push_back(id);
+        else if (new_ids.is_array())
+          for (const auto& new_id : new_ids) causes.push_back(new_id);
+        else
+          causes.push_back(new_ids);
+      labels["stubs"][stub]["causes"] = causes;
+    }
   }
   return labels;
 }
@@ -423,6 +432,13 @@ TEST_F(Blind, IntegerSixthIsIntegerDivision) {
 TEST_F(Blind, DivisionBySpeedIsNamed) {
   const Named n = causes("2022/yeh", "Spheres::collide(Cloth*)");
   EXPECT_TRUE(n.proven.count(grader::cause::kDivisionBySpeed)) << joined(n.named);
+}
+
+// Friction added to the accelerations in collide (positions and velocities the course's): the
+// probe reads the accelerations back, so the stub loses points and the change is named as read.
+TEST_F(Blind, FrictionOnTheAccelerationsIsNamed) {
+  const Named n = causes("2024/peng", "Spheres::collide(Cloth*)");
+  EXPECT_TRUE(n.likely.count(grader::cause::kCollideChangesAcceleration)) << joined(n.named);
 }
 
 // Discarded stages (x0 + k1, v0 + a0 dt): the stages discarded, not mixed increments whose fix

@@ -136,6 +136,8 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
   // (velocity exactly 0): NaN only where a body rests is a division by its speed.
   std::vector<bool> non_finite(cases.size(), false), at_rest(cases.size(), false);
   std::vector<Outcome> actuals;  // the student's outcome of each case (for the replays)
+  // per case: the largest change of an acceleration by the call (m/s^2), 0 where none
+  std::vector<double> acceleration_changes(cases.size(), 0);
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const Case& c = cases[k];
     for (int q : c.spheres)
@@ -227,8 +229,19 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
     non_finite[k] =
         !util::finite(util::flat(actual.sphere_v)) || !util::finite(util::flat(actual.cloth_v)) ||
         !util::finite(util::flat(actual.sphere_x)) || !util::finite(util::flat(actual.cloth_x));
+    // The largest change the call made to an acceleration (the course's collide makes none).
+    double acceleration_change = 0;
+    for (const auto& [before, after] :
+         {std::pair{&expected.cloth_a, &actual.cloth_a}, {&expected.sphere_a, &actual.sphere_a}})
+      for (int i = 0; i < before->size() && i < after->size(); ++i)
+        acceleration_change =
+            std::max(acceleration_change, std::abs(double(after->data()[i] - before->data()[i])));
     if (non_finite[k])
       evidence.measured[k].push_back(cause::kNonFinite);
+    else if (!util::closeTo(expected.cloth_a, actual.cloth_a, rel) ||
+             !util::closeTo(expected.sphere_a, actual.sphere_a, rel))
+      acceleration_changes[k] = acceleration_change,
+      evidence.measured[k].push_back(cause::kCollideChangesAcceleration);
     else if (!sphere_sphere && c.check == kFixedParticle &&
              actual.cloth_v.col(0) != c.state.cloth.particles.velocity.col(0))
       evidence.measured[k].push_back(cause::kFixedParticleMassless);
@@ -337,7 +350,15 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
   speed.changes.push_back("with each normal speed formed as |v| (v . n / |v|)");
   candidates.push_back({{cause::kDivisionBySpeed}, speed});
   proveContacts(candidates, cases, actuals, checks, sphere_sphere, rel, course, tests);
-  requireProofs(tests, {cause::kNonFinite});
+  // What the accelerations measured: read on the case, not a model.
+  for (std::size_t k = 0; k < tests.size() && k < acceleration_changes.size(); ++k)
+    for (Cause& c : tests[k].causes)
+      if (c.id == cause::kCollideChangesAcceleration && acceleration_changes[k] > 0)
+        c.detail = "Measured: your call changed an acceleration by up to " +
+                   util::num(acceleration_changes[k]) +
+                   " m/s^2; the course's collide leaves the accelerations as simulateOneStep() "
+                   "made them.";
+  requireProofs(tests, {cause::kNonFinite, cause::kCollideChangesAcceleration});
   for (TestResult& t : tests)
     if (!t.passed() &&
         std::none_of(t.causes.begin(), t.causes.end(), [](const Cause& c) { return c.likely; }) &&
