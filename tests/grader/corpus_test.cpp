@@ -409,9 +409,27 @@ TEST_F(Blind, ASideEffectingHelperIsNoPerBodyLoop) {
        {"ImplicitEuler::integrate", "MidpointEuler::integrate", "RungeKuttaFourth::integrate"}) {
     const Named n = causes("2022/tseng", stub);
     EXPECT_FALSE(n.likely.count(grader::cause::kPerBodyLoop)) << stub;
-    // Not yet: that integrator-pins-particles is proven here. The probes do not see the top row
-    // held still on these three (graded full), issue 38's "probes that see every effect".
+    // the top row held still, seen on the course's cloth (the one-step check's second state)
+    EXPECT_TRUE(n.proven.count(grader::cause::kIntegratorPinsParticles))
+        << stub << ": " << joined(n.named);
   }
+}
+
+// A backup that is no copy beside a second mistake (liao's implicit: a vector of pointers, and a
+// helper that stops the last column): proven together, and "backups are copies" fails with them.
+TEST_F(Blind, AnAliasedBackupBesideAnotherMistakeFailsTheBackupCheck) {
+  const Named n = causes("2024/liao", "ImplicitEuler::integrate");
+  EXPECT_TRUE(n.proven.count(grader::cause::kBackupAlias)) << joined(n.named);
+  int backup_checks = 0;
+  // kept in a variable: a range-for over a member of a temporary dangles
+  const nlohmann::json liao = results("2024/liao");
+  for (const auto& test : liao["tests"])
+    if (test["tags"][0] == "ImplicitEuler::integrate" &&
+        test["name"].get<std::string>().find("backups are copies") != std::string::npos) {
+      ++backup_checks;
+      EXPECT_EQ(test["status"], "failed") << test["output"];
+    }
+  EXPECT_EQ(backup_checks, 1);
 }
 
 // RK4 with the right weights written and stages overwritten: not rk4-wrong-weights.

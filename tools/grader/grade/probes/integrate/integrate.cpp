@@ -222,6 +222,28 @@ TestResult checkStability(const IntegratorRun& run, const TestResult& one,
   return stable;
 }
 
+// "Backups are copies" compares the result with the right method's step from an aliased backup,
+// which a second mistake hides; a replay that proves `backup-alias` on every check (with that
+// other mistake) shows the backup is no copy, and the check fails with that proof.
+void failBackupsOnProvenAlias(std::vector<TestResult>& tests) {
+  const Cause* proof = nullptr;
+  for (const TestResult& t : tests)
+    for (const Cause& c : t.causes)
+      if (!t.passed() && c.id == cause::kBackupAlias && c.proven()) proof = &c;
+  if (!proof) return;
+  const Cause alias = *proof;  // tests grows no further, but a copy keeps it simple
+  for (TestResult& t : tests) {
+    if (t.check != kChecks[3].name || !t.passed()) continue;
+    t.fraction = 0;
+    t.output =
+        "Your result is the step of a method whose backup follows the live state, with another "
+        "mistake beside it (the replay below proves both on every check), so the backed-up start "
+        "state is not a copy.\n";
+    Cause& named = t.addCause(cause::kBackupAlias);
+    named.proof = alias.proof;
+  }
+}
+
 // The stage explanation once per stub: on its first failed check; later failed checks refer to it.
 void addStages(std::vector<TestResult>& tests, const RunStages& stages) {
   const std::string text = stages.markdown();
@@ -294,6 +316,7 @@ std::vector<TestResult> probeIntegrator(const ProbeContext& context, int index) 
   tests.push_back(checkStability(run, one, stages));
   // Likely means proven: every cause named is replayed on every probe state (replay.h).
   proveIntegratorCauses(context, run, stages, tests);
+  failBackupsOnProvenAlias(tests);
   for (TestResult& t : tests)
     if (!t.passed() &&
         std::none_of(t.causes.begin(), t.causes.end(), [](const Cause& c) { return c.likely; }) &&
