@@ -131,9 +131,7 @@ TEST(IntegratorReplay, PinsOnTheCoursesClothOnlyAreReadThereAfterAnAcceptedVaria
   for (int corner : {0, 24, 600, 624})
     ASSERT_GT(course_cloth.state.cloth.particles.mass[corner], 0);
   course_cloth.actual = stepped(course_cloth.state, curtain);
-  course_cloth.expected = stepped(course_cloth.state, clothrefStep(Method::Explicit));
-  course_cloth.start = course_cloth.state;
-  simulate(course_cloth.start);
+  completeOneStep(course_cloth, Method::Explicit);
   run.course_cloth = course_cloth;
   const std::vector<IntegratorModel> models =
       modelsOf(cause::kIntegratorPinsParticles, kRubric, run, {});

@@ -7,6 +7,13 @@
 
 namespace clothref::grader::integrators {
 
+void completeOneStep(OneStep& step, Method method) {
+  step.expected = stepped(step.state, clothrefStep(method));
+  step.start = step.state;
+  simulate(step.start);  // contacts move bodies before integrate() does
+  step.distance = distance(step.actual, step.expected);
+}
+
 bool runIntegrator(const ProbeContext& context, int index, bool course_size, IntegratorRun& run,
                    util::ProbeFailure& failure, ChildRun& child, bool log) {
   run.index = index;
@@ -74,10 +81,7 @@ bool runIntegrator(const ProbeContext& context, int index, bool course_size, Int
   simulate(run.start);  // contacts move bodies before integrate() does
   run.distance = distance(run.actual, run.expected);
   course_cloth.actual = answerSystem(run.answer, course_cloth.case_index, course_cloth.state);
-  course_cloth.expected = stepped(course_cloth.state, clothrefStep(run.method));
-  course_cloth.start = course_cloth.state;
-  simulate(course_cloth.start);
-  course_cloth.distance = distance(course_cloth.actual, course_cloth.expected);
+  completeOneStep(course_cloth, run.method);
   run.course_cloth = std::move(course_cloth);
   return true;
 }

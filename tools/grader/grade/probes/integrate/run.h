@@ -44,6 +44,9 @@ struct IntegratorRun {
   std::optional<OneStep> course_cloth;
 };
 
+// Fills `step`'s expected (the course's `method`), start and distance from its state and actual.
+void completeOneStep(OneStep& step, Method method);
+
 // Builds the request for `index` (small systems, or the course's cloth when `course_size`) and
 // runs it; `log` records a failed child's verdict. Returns false with `failure` set when the
 // child did not answer.
