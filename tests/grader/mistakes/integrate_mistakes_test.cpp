@@ -53,7 +53,8 @@ TEST(IntegrateMistakes, EveryMistakeChangesTheStep) {
        {Variant::SymplecticPredictor, Variant::Alias, Variant::NoReevaluationHalfVelocity,
         Variant::ZeroHalfStep, Variant::PerBody}},
       {Method::Rk4,
-       {Variant::Alias, Variant::RkIntDivision, Variant::RkMixedFinal, Variant::RkK4xInVelocity,
+       {Variant::Alias, Variant::RkIntDivision, Variant::RkIntDivisionOnLastStage,
+        Variant::RkMixedFinal, Variant::RkK4xInVelocity,
         Variant::RkStageFromCurrent, Variant::RkStageFromNewVelocity, Variant::RkStagesDiscarded,
         Variant::PerBody}}};
   for (const auto& [method, variants] : mistakes) {

@@ -82,14 +82,17 @@ void rungeKutta(System& s, const std::vector<Particles<float>*>& bodies, Variant
         bodies[b]->position = x + (mixed ? kv[k][b] : kx[k][b]) * stage[k];
     }
   }
+  // `x += (1 / 6) * (...)` adds to the state the last stage left, not to the backup.
+  const bool on_last_stage = variant == Variant::RkIntDivisionOnLastStage;
   for (std::size_t b = 0; b < bodies.size(); ++b) {
-    const Mat4X<float> x = X0(b), v = V0(b);
+    const Mat4X<float> x = on_last_stage ? bodies[b]->position : X0(b);
+    const Mat4X<float> v = on_last_stage ? bodies[b]->velocity : V0(b);
     if (variant == Variant::RkStagesDiscarded) {
       bodies[b]->position = x + kx[0][b];
       bodies[b]->velocity = v + kv[0][b];
       continue;
     }
-    const float w = variant == Variant::RkIntDivision ? 0.0f : 1.0f;
+    const float w = variant == Variant::RkIntDivision || on_last_stage ? 0.0f : 1.0f;
     const auto& kxs = variant == Variant::RkMixedFinal ? kv : kx;
     const Mat4X<float>& kv4 = variant == Variant::RkK4xInVelocity ? kx[3][b] : kv[3][b];
     bodies[b]->position =

@@ -22,6 +22,7 @@ enum class Variant {
   ZeroHalfStep,  // the prediction adds nothing (1 / 2 == 0, or kept in locals): re-evaluated at x0
   PerBody,       // one body at a time, each with its own simulateOneStep() calls
   RkIntDivision,
+  RkIntDivisionOnLastStage,  // x += (1 / 6) * (...) on the last stage's state: returns that stage
   RkMixedFinal,
   RkK4xInVelocity,
   RkMixedStage,

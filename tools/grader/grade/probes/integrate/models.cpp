@@ -260,6 +260,9 @@ std::vector<IntegratorModel> modelsOf(const std::string& id, const Rubric& rubri
     table(t, text);
   } else if (id == cause::kIntegerDivisionRk4 && method == Method::Rk4) {
     variant(Variant::RkIntDivision, "the course's RK4 with 1 / 6 = 0 in the update");
+    variant(Variant::RkIntDivisionOnLastStage,
+            "the course's RK4 with 1 / 6 = 0 in an update added (+=) to the state the last stage "
+            "left");
   } else if (id == cause::kRk4MixedIncrements && method == Method::Rk4) {
     variant(Variant::RkMixedFinal, "the course's RK4 whose position update adds the velocity k's");
     variant(Variant::RkK4xInVelocity, "the course's RK4 whose velocity update takes k4 of x");
