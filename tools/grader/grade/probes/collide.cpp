@@ -149,7 +149,7 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
     const Case& c = cases[k];
     if (!answer) {
       tests.push_back(
-          util::failedTest(checks[c.check], failure.text, {util::guess(failure.causeId())}));
+          util::failedTest(checks[c.check], failure.text, {util::likely(failure.causeId())}));
       continue;
     }
     const int n = static_cast<int>(k);
@@ -315,7 +315,7 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
     tests.push_back(t);
   } else {
     tests.push_back(
-        util::failedTest(checks.back(), failure.text, {util::guess(failure.causeId())}));
+        util::failedTest(checks.back(), failure.text, {util::likely(failure.causeId())}));
     return tests;
   }
   // Likely means proven: every model of a cause replayed on every case (explain/replay.h).

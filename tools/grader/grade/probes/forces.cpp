@@ -218,7 +218,7 @@ std::vector<TestResult> probeForces(const ProbeContext& context) {
   if (!answer) {
     for (const Case& c : cases)
       tests.push_back(
-          util::failedTest(checks[c.check], failure.text, {util::guess(failure.causeId())}));
+          util::failedTest(checks[c.check], failure.text, {util::likely(failure.causeId())}));
     return tests;
   }
   const std::pair<ForceMistake, const char*> signatures[] = {

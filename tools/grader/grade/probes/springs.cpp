@@ -216,7 +216,9 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
   if (!student) {
     const std::string id = answer ? cause::kWrongSpringEndpoints : failure.causeId();
     for (int k : {kConnections, kRestLengths, kTypeLabels})
-      tests.push_back(util::failedTest(checks[k], failure.text, {util::guess(id)}));
+      // How the process ended is read, not guessed; endpoints the answer cannot hold are a guess.
+      tests.push_back(util::failedTest(checks[k], failure.text,
+                                       {answer ? util::guess(id) : util::likely(id)}));
   } else {
     const Comparison c = compare(*student, reference, course_n, rest_rel);
     const std::string state = "The course cloth: " + std::to_string(course_n) + " x " +
@@ -305,7 +307,7 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
     if (!small_set) {
       small.output = state + small_failure.text + "\n";
       if (!small_answer)  // the process's own verdict first: a grader error is never yours
-        small.addCause(small_failure.causeId(), false);
+        small.addCause(small_failure.causeId(), true);
       if (big_ok && small_failure.verdict != Verdict::GraderError) {
         // Right at 25 and springs to particles a 10 x 10 cloth does not have: measured. A crash
         // at 10 is only suggestive.

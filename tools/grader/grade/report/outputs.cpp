@@ -145,15 +145,15 @@ GradeReport cleaned(const GradeReport& given) {
     for (std::string& other : choice.others) name(other);
   }
   for (TestResult& test : report.tests) {
-    // A guess that only says how the probe's run ended (it crashed, timed out, answered twice
-    // differently) beside a likely cause of the same check: that cause is what made it end so.
+    // How the probe's run ended (it crashed, timed out, answered twice differently: read, so
+    // likely) beside another likely cause of the same check: that cause is what made it end so.
+    const auto ending = [](const Cause& c) {
+      return c.id == cause::kCrashed || c.id == cause::kTimedOut ||
+             c.id == cause::kUndefinedBehaviour;
+    };
     const bool explained = std::any_of(test.causes.begin(), test.causes.end(),
-                                       [](const Cause& c) { return c.likely; });
-    if (explained)
-      std::erase_if(test.causes, [](const Cause& c) {
-        return !c.likely && (c.id == cause::kCrashed || c.id == cause::kTimedOut ||
-                             c.id == cause::kUndefinedBehaviour);
-      });
+                                       [&](const Cause& c) { return c.likely && !ending(c); });
+    if (explained) std::erase_if(test.causes, ending);
     // A symptom (NaN, a blow-up, a wrong order) beside a cause proven on this check: the proven
     // cause's model gives that check's numbers (its replay or repair), so it is no cause of its
     // own.

@@ -53,8 +53,8 @@ double roundedPoints(double value);
 
 // The report with every text made safe (text.h): valid UTF-8 (Big5 lines decoded, other bytes
 // U+FFFD), control characters escaped, names on one line; plus a note saying what was done. And
-// without the guesses a likely cause of the same check explains: `crashed`, `timed-out` or
-// `undefined-behaviour` (how the probe's run ended) beside the cause that made it end so. Every
+// without how the probe's run ended (`crashed`, `timed-out` or `undefined-behaviour`) where
+// another likely cause of the same check is what made it end so. Every
 // writer starts from this, so every output names the same causes.
 GradeReport cleaned(const GradeReport& report);
 

@@ -303,7 +303,7 @@ std::vector<TestResult> probeIntegrator(const ProbeContext& context, int index) 
   std::vector<TestResult> tests;
   if (!ok) {
     for (const PlannedTest& check : integratorChecks(index))
-      tests.push_back(util::failedTest(check, failure.text, {util::guess(failure.causeId())}));
+      tests.push_back(util::failedTest(check, failure.text, {util::likely(failure.causeId())}));
     return tests;
   }
   const RunStages stages = explainRun(context, run, !note.empty());
