@@ -54,9 +54,8 @@ TEST(IntegrateMistakes, EveryMistakeChangesTheStep) {
         Variant::ZeroHalfStep, Variant::PerBody}},
       {Method::Rk4,
        {Variant::Alias, Variant::RkIntDivision, Variant::RkIntDivisionOnLastStage,
-        Variant::RkMixedFinal, Variant::RkK4xInVelocity,
-        Variant::RkStageFromCurrent, Variant::RkStageFromNewVelocity, Variant::RkStagesDiscarded,
-        Variant::PerBody}}};
+        Variant::RkMixedFinal, Variant::RkK4xInVelocity, Variant::RkStageFromCurrent,
+        Variant::RkStageFromNewVelocity, Variant::RkStagesDiscarded, Variant::PerBody}}};
   for (const auto& [method, variants] : mistakes) {
     const System course = stepped(s, clothrefStep(method));
     for (Variant v : variants)

@@ -217,8 +217,8 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
     const std::string id = answer ? cause::kWrongSpringEndpoints : failure.causeId();
     for (int k : {kConnections, kRestLengths, kTypeLabels})
       // How the process ended is read, not guessed; endpoints the answer cannot hold are a guess.
-      tests.push_back(util::failedTest(checks[k], failure.text,
-                                       {answer ? util::guess(id) : util::likely(id)}));
+      tests.push_back(
+          util::failedTest(checks[k], failure.text, {answer ? util::guess(id) : util::likely(id)}));
   } else {
     const Comparison c = compare(*student, reference, course_n, rest_rel);
     const std::string state = "The course cloth: " + std::to_string(course_n) + " x " +
