@@ -499,5 +499,42 @@ TEST_F(Blind, PerMistakePointsOnlyOnProvenCauses) {
   EXPECT_GT(per_mistake, 0);  // the rule did apply somewhere
 }
 
+// The second blind set (tests/grader/blind2): 20 more hand-ins written by another session that
+// had not read the grader, after the grader was tuned on the first set, so its figures are the
+// honest ones; reported apart, with no relabels (its `unknown`s stay unknown). Its floors are what
+// it measured when it was added (see the constants); a change that loses ground fails.
+// Measured when it was added (20 submissions, 150 stubs, 49 labelled causes): 149 verdicts right
+// (kuan's force sums an uninitialised vector and got full marks: both runs read the same stack),
+// 32 causes proven, 7 read directly, 4 guesses, 6 not named, 1 likely cause outside its label
+// (fu's midpoint: `backup-alias`, where the corrector steps from the predicted state).
+constexpr int kSecondBlindVerdictsRight = 149;
+constexpr int kSecondBlindCausesProven = 32;
+constexpr int kSecondBlindCausesWrong = 1;
+
+class SecondBlind : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    temp_ = new TempDir;
+    temp_->closeToOthers();
+    figures_ = new Figures(gradeAndScore(kSource / "tests/grader/blind2", temp_->path() / "batch"));
+  }
+  static void TearDownTestSuite() {
+    delete figures_;
+    delete temp_;
+  }
+  static inline TempDir* temp_ = nullptr;
+  static inline Figures* figures_ = nullptr;
+};
+
+TEST_F(SecondBlind, AtLeastAsGoodAsMeasured) {
+  const Figures& f = *figures_;
+  print("second blind (tests/grader/blind2)", f);
+  printProofs("second blind", f);
+  ASSERT_GE(f.submissions, 10);
+  EXPECT_GE(f.verdicts_right, kSecondBlindVerdictsRight) << "of " << f.stubs;
+  EXPECT_GE(f.causes_proven, kSecondBlindCausesProven) << "of " << f.causes_labelled;
+  EXPECT_LE(f.causes_wrong, kSecondBlindCausesWrong);
+}
+
 }  // namespace
 }  // namespace clothref::test

@@ -15,7 +15,7 @@ Usage: scoring_table.py [--clothref build/bin/clothref] [--work build/scoring-ta
                         [--jobs 1] [--timeout 60] [--regrade] [SET ...]
   SET       a name and a glob of submission folders below the repository, as NAME=GLOB
             (default: corpus=tests/grader/corpus/20*/* handwritten=tests/grader/handwritten/20*/*
-            blind=tests/grader/blind/20*/*)
+            blind=tests/grader/blind/20*/* blind2=tests/grader/blind2/20*/*)
   --work    where the batches go (WORK/<set>-per-check, WORK/<set>-per-mistake); a batch skips
             the submissions it already graded, so pass --regrade (or a new folder) after the
             grader changed
@@ -32,7 +32,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
 DEFAULT_SETS = ["corpus=tests/grader/corpus/20*/*", "handwritten=tests/grader/handwritten/20*/*",
-                "blind=tests/grader/blind/20*/*"]
+                "blind=tests/grader/blind/20*/*", "blind2=tests/grader/blind2/20*/*"]
 MODES = ["per-check", "per-mistake"]
 # The rubric's line on a stub scored per mistake: one proven mistake, or several whose deductions
 # add up ("2 proven mistakes (`a`, `b`) explain ...: together they lose 25 + 50 = 75 % ...").
