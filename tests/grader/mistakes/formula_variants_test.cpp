@@ -136,6 +136,54 @@ TEST(FormulaVariants, EveryContactMistakeChangesSomething) {
   }
 }
 
+// A fixed particle read as massless (the textbook exchange of normal velocities, the grader's own
+// formula, no longer the library's): the course's contact test and correction are untouched (the
+// positions are the course's bit for bit); a free pair's velocities are the course's impulse to
+// rounding (the exchange is the impulse rearranged); a fixed particle, massless, gets the normal
+// velocity u_s + e (u_s - u_p) from the sphere's u_s and its own u_p.
+TEST(FormulaVariants, TheMasslessExchangeKeepsTheCoursesGeometry) {
+  std::mt19937 rng(13);
+  int fixed_contacts = 0;
+  for (int trial = 0; trial < 50; ++trial)
+    for (const float e : {0.0f, 0.8f})
+      for (const int below : {0, 12}) {  // onto the fixed particle 0, or free particle 12
+        Spheres<float> spheres, course_spheres;
+        Cloth<float> cloth, course_cloth;
+        randomScene(rng, spheres, cloth);
+        spheres = Spheres<float>{};  // one sphere, falling onto `below` and its neighbours
+        Vec4<float> above = cloth.particles.position.col(below);
+        above(1) += 0.2f;
+        addSphere(spheres, above, 0.6f, 1000.0f);
+        spheres.particles.velocity.col(0) = Vec4<float>(0, -1, 0, 0);
+        course_spheres = spheres;
+        course_cloth = cloth;
+        const Vec4<float> fixed_before = cloth.particles.velocity.col(0);
+        collideWithMistake(spheres, cloth, false, e, 0.15f, ContactMistake::FixedMassless);
+        collideWithMistake(course_spheres, course_cloth, false, e, 0.15f, ContactMistake::None);
+        ASSERT_TRUE(sameBits(spheres.particles.position, course_spheres.particles.position));
+        ASSERT_TRUE(sameBits(cloth.particles.position, course_cloth.particles.position));
+        if (below != 0) {  // free bodies only: the course's impulse, rearranged
+          for (int i = 0; i < cloth.particles.size(); ++i)
+            EXPECT_LE(
+                (cloth.particles.velocity.col(i) - course_cloth.particles.velocity.col(i)).norm(),
+                1e-5f * (1 + course_cloth.particles.velocity.col(i).norm()))
+                << "particle " << i;
+          EXPECT_LE(
+              (spheres.particles.velocity.col(0) - course_spheres.particles.velocity.col(0)).norm(),
+              1e-5f);
+          continue;
+        }
+        // the sphere meets the fixed particle first, at its starting velocity, along n = +y
+        const float u_s = -1, u_p = fixed_before(1);
+        if (u_s - u_p < 0) {
+          ++fixed_contacts;
+          EXPECT_NEAR(cloth.particles.velocity(1, 0), u_s + e * (u_s - u_p), 1e-5f);
+          EXPECT_TRUE(sameBits(course_cloth.particles.velocity.col(0), fixed_before));
+        }
+      }
+  EXPECT_GT(fixed_contacts, 20);
+}
+
 // `d.normalized();` discarded: the force along the unnormalised d = x_s - x_e, both terms (k_s
 // (|d| - rest) d, k_d ((v_s - v_e) . d) d), written here for one spring as the student's code is.
 TEST(FormulaVariants, DirectionUnnormalisedIsTheForceAlongD) {

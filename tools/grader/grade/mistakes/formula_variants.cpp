@@ -173,6 +173,43 @@ ContactModel combined(ContactModel model, const ContactModel& other, const Conta
 
 namespace {
 
+// The textbook exchange of normal velocities u_a = n (v_a . n), u_b = n (v_b . n) with masses,
+//   u_a' = (m_a u_a + m_b u_b + m_b e (u_b - u_a)) / (m_a + m_b), u_b' likewise,
+// a fixed body's 1/m = 0 read as m = 0 (massless), in place of the course's impulse: the course's
+// contact test and correction are the library's resolveContact (run on copies of the velocities),
+// the normal and approach a copy of its first lines (docs/design.md's table of copies;
+// FormulaVariants.TheMasslessExchangeKeepsTheCoursesGeometry).
+bool masslessFixedContact(float* x_a, float* v_a, float inverse_mass_a, float* x_b, float* v_b,
+                          float inverse_mass_b, float contact_distance, float restitution,
+                          float correction, const ContactVariant& variant) {
+  float n[4], relative[4];
+  for (int k = 0; k < 4; ++k) n[k] = variant.normal_flipped ? -(x_a[k] - x_b[k]) : x_a[k] - x_b[k];
+  const float squared = formula::dot4(n, n);
+  if (squared > 0.0f) {
+    const float length = std::sqrt(squared);
+    for (int k = 0; k < 4; ++k) n[k] = n[k] / length;
+  }
+  for (int k = 0; k < 4; ++k) relative[k] = v_a[k] - v_b[k];
+  const float approach = formula::dot4(relative, n);
+  float course_v_a[4], course_v_b[4];  // the course's impulse lands here, unused
+  for (int k = 0; k < 4; ++k) course_v_a[k] = v_a[k], course_v_b[k] = v_b[k];
+  if (!formula::resolveContact(x_a, course_v_a, inverse_mass_a, x_b, course_v_b, inverse_mass_b,
+                               contact_distance, restitution, correction, variant))
+    return false;
+  if (!(approach < 0.0f || variant.separating_pushed)) return true;
+  const float m_a = inverse_mass_a > 0.0f ? 1.0f / inverse_mass_a : 0.0f;
+  const float m_b = inverse_mass_b > 0.0f ? 1.0f / inverse_mass_b : 0.0f;
+  const float normal_a = formula::dot4(v_a, n), normal_b = formula::dot4(v_b, n);
+  for (int k = 0; k < 4; ++k) {
+    const float u_a = n[k] * normal_a, u_b = n[k] * normal_b;
+    const float new_a = (m_a * u_a + m_b * u_b + m_b * restitution * (u_b - u_a)) / (m_a + m_b);
+    const float new_b = (m_a * u_a + m_b * u_b + m_a * restitution * (u_a - u_b)) / (m_a + m_b);
+    v_a[k] += new_a - u_a;
+    v_b[k] += new_b - u_b;
+  }
+  return true;
+}
+
 // One contact of `model`: the course's formula with its switches; with divides_by_speed, a pair
 // that approaches with a body at rest gets NaN velocities (that body's normal speed is 0 / 0, and
 // the impulse J made from it reaches both bodies).
@@ -180,10 +217,13 @@ void modelContact(Particles<float>& a, int i, Particles<float>& b, int j, float 
                   const ContactModel& model) {
   const Vec4<float> va = a.velocity.col(i), vb = b.velocity.col(j);
   const bool approaching = (va - vb).dot(a.position.col(i) - b.position.col(j)) < 0;
-  const bool touched = formula::resolveContact(
-      a.position.col(i).data(), a.velocity.col(i).data(), a.inverse_mass[i],
-      b.position.col(j).data(), b.velocity.col(j).data(), b.inverse_mass[j],
-      reach + model.reach_offset, model.restitution, model.correction, model.variant);
+  const auto contact = model.variant.massless_fixed
+                           ? masslessFixedContact
+                           : formula::resolveContact<float, ContactVariant>;
+  const bool touched =
+      contact(a.position.col(i).data(), a.velocity.col(i).data(), a.inverse_mass[i],
+              b.position.col(j).data(), b.velocity.col(j).data(), b.inverse_mass[j],
+              reach + model.reach_offset, model.restitution, model.correction, model.variant);
   if (touched && model.divides_by_speed && approaching && (va.isZero(0) || vb.isZero(0))) {
     a.velocity.col(i).setConstant(std::nanf(""));
     b.velocity.col(j).setConstant(std::nanf(""));

@@ -12,7 +12,8 @@
 
 namespace clothref::grader {
 
-// Run-time switches with the names of formula::CourseSpring's and CourseContact's.
+// Run-time switches with the names of formula::CourseSpring's and CourseContact's, and one of
+// the grader's own: massless_fixed, the textbook exchange in place of the course's impulse.
 struct SpringVariant {
   bool spring_negated = false, damper_negated = false, no_damper = false,
        damper_unnormalised = false;
