@@ -1,4 +1,5 @@
-// The course's formulas, each written once: the spring force of one spring, the contact of a
+// The course's formulas, each written once: the external force (gravity and drag) on one
+// particle, the spring force of one spring, the contact of a
 // sphere with a particle (or another sphere), and the spring topology of the course's grid. Plain
 // inline templates on the course's 4-value columns (x, y, z, w; Eigen's Vector4 data()), the
 // scalar type a parameter, the standard library only, so both sides include this header: the
@@ -43,6 +44,17 @@ struct CourseContact {
   static constexpr bool moves_a = true;             // the correction of body a
   static constexpr bool moves_b = true;             // the correction of body b
 };
+
+// Shape::computeExternalForce for one particle, as an acceleration (m/s^2): gravity less the
+// viscous drag, a = g - (v c) (1/m), per component in that order; a fixed particle (mass 0) gets
+// none.
+template <typename T>
+inline void externalAcceleration(const T* velocity, T mass, T inverse_mass, const T* gravity,
+                                 T viscous_coef, T acceleration[4]) {
+  for (int k = 0; k < 4; ++k)
+    acceleration[k] =
+        mass == T(0) ? T(0) : gravity[k] - (velocity[k] * viscous_coef) * inverse_mass;
+}
 
 // Stub 2's per-spring force (Cloth::computeSpringForce): with d = x_s - x_e and n = d / |d|,
 //   F = n (k_d ((v_s - v_e) . n) + k_s (|d| - rest))

@@ -23,12 +23,8 @@ bool bitEqual(const System& a, const System& b) {
 }
 
 std::vector<System> systems() {
-  return {randomSystem(20221),
-          randomSystem(20228),
-          courseSystem(20221, 2022),
-          courseSystem(20235, 2024),
-          stageSystem(20221, false, 2022),
-          stageSystem(7, true, 2024)};
+  return {randomSystem(20221, 2022), randomSystem(20228, 2024),       courseSystem(20221, 2022),
+          courseSystem(20235, 2024), stageSystem(20221, false, 2022), stageSystem(7, true, 2024)};
 }
 
 // Every switch at its course value is the library's step, per method, on random and course-size

@@ -3,12 +3,12 @@
 #include <cmath>
 
 #include "clothref/formula/course_formulas.h"
-#include "grader/grade/submission/edition.h"
+#include "grader/grade/cause_ids.h"
 
 namespace clothref::grader {
 
 Mat4X<float> springAccelerations(const Cloth<float>& cloth, const Mat4X<float>& acc0,
-                                 ForceMistake mistake) {
+                                 ForceMistake mistake, const Vec4<float>& gravity) {
   SpringVariant variant;
   variant.spring_negated = mistake == ForceMistake::SpringSign;
   variant.damper_negated = mistake == ForceMistake::DamperSign;
@@ -17,11 +17,9 @@ Mat4X<float> springAccelerations(const Cloth<float>& cloth, const Mat4X<float>& 
   const auto& p = cloth.particles;
   Mat4X<float> a = acc0;
   if (mistake == ForceMistake::AssignTotal || mistake == ForceMistake::AssignTotalGravity) {
-    // The course's gravity (m/s^2), the same in both editions' scenes (edition_test checks).
-    static const float course_gravity = static_cast<float>(courseEdition(2022).gravity[1]);
-    const Vec4<float> gravity(
-        0.0f, mistake == ForceMistake::AssignTotalGravity ? course_gravity : 0.0f, 0.0f, 0.0f);
-    for (int i = 0; i < p.size(); ++i) a.col(i) = p.mass[i] != 0 ? gravity : Vec4<float>::Zero();
+    const Vec4<float> added =
+        mistake == ForceMistake::AssignTotalGravity ? gravity : Vec4<float>::Zero();
+    for (int i = 0; i < p.size(); ++i) a.col(i) = p.mass[i] != 0 ? added : Vec4<float>::Zero();
   }
   // The direction left unnormalised is the damper along d with the whole force times |d|.
   variant.damper_unnormalised =
@@ -47,6 +45,22 @@ Mat4X<float> springAccelerations(const Cloth<float>& cloth, const Mat4X<float>& 
     }
   }
   return a;
+}
+
+const std::vector<ForceRow>& forceRows() {
+  static const std::vector<ForceRow> rows = {
+      {ForceMistake::Assign, cause::kAssignNotAccumulate},
+      {ForceMistake::SpringSign, cause::kSpringForceSign},
+      {ForceMistake::DamperSign, cause::kDamperSign},
+      {ForceMistake::NoDamper, cause::kMissingDamper},
+      {ForceMistake::DamperUnnormalised, cause::kDamperNotNormalised},
+      {ForceMistake::OneEnd, cause::kForceOneEndOnly},
+      {ForceMistake::MassNotInverse, cause::kMassNotInverse},
+      {ForceMistake::DivideByMass, cause::kFixedParticleMoves},
+      {ForceMistake::OtherEndOnly, cause::kForceOneEndOnly},
+      {ForceMistake::AssignTotal, cause::kAssignNotAccumulate},
+      {ForceMistake::AssignTotalGravity, cause::kAssignNotAccumulate}};
+  return rows;
 }
 
 std::string forceModelText(ForceMistake mistake) {
@@ -98,6 +112,31 @@ ContactVariant contactVariant(ContactMistake m) {
 }
 
 }  // namespace
+
+std::vector<ContactRow> contactRows(bool sphere_sphere) {
+  std::vector<ContactRow> rows = {
+      {ContactMistake::NoApproachCheck, cause::kNoApproachCheck},
+      {ContactMistake::RestitutionFull, cause::kRestitutionFullVelocity},
+      {ContactMistake::CorrectionSphereOnly, cause::kCorrectionOneBody},
+      {ContactMistake::CorrectionOtherOnly, cause::kCorrectionOneBody},
+      {ContactMistake::NoCorrection, cause::kNoPositionCorrection},
+      {ContactMistake::FirstSphereOnly, cause::kFirstSphereOnly},
+      {ContactMistake::NormalSign, cause::kCollisionNormalSign},
+      {ContactMistake::TouchingSkipped, cause::kTouchingSkipped},
+      {ContactMistake::ImpulseNotDivided, cause::kWrongMassSplit},
+      // coefRestitution overwritten (e = 0 or 1); a case where it cannot matter is skipped
+      {ContactMistake::RestitutionZero, cause::kRestitutionIgnored},
+      {ContactMistake::RestitutionOne, cause::kRestitutionIgnored}};
+  // a pair twice only where there are pairs of spheres; a fixed particle and sphere 0's
+  // position only where there is a cloth
+  const std::vector<ContactRow> sphere_rows = {
+      {ContactMistake::PairTwice, cause::kPairProcessedTwice}};
+  const std::vector<ContactRow> cloth_rows = {
+      {ContactMistake::FixedMassless, cause::kFixedParticleMassless},
+      {ContactMistake::SphereZeroForAll, cause::kFirstSphereOnly}};
+  for (const ContactRow& row : sphere_sphere ? sphere_rows : cloth_rows) rows.push_back(row);
+  return rows;
+}
 
 void collideWithMistake(Spheres<float>& spheres, Cloth<float>& cloth, bool sphere_sphere,
                         float restitution, float correction, ContactMistake mistake) {
