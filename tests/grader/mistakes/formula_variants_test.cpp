@@ -124,7 +124,14 @@ TEST(FormulaVariants, EveryContactMistakeChangesSomething) {
           spheres.particles.position(1, 0) += 0.2f;
           spheres.particles.velocity.col(0) = Vec4<float>(0, -1, 0, 0);
         }
-        if (mistake == ContactMistake::TouchingSkipped) {  // exactly touching: |x_a - x_b| = r
+        if (mistake == ContactMistake::TouchingSkipped &&
+            sphere_sphere) {  // |x_0 - x_1| = r_0 + r_1
+          spheres.particles.position.col(0) = Vec4<float>(0, 0, 0, 1);
+          spheres.particles.position.col(1) =
+              Vec4<float>(0, spheres.radius[0] + spheres.radius[1], 0, 1);
+          spheres.particles.position.col(2) = Vec4<float>(10, 10, 10, 1);
+          spheres.particles.velocity.col(1) = Vec4<float>(0, -1, 0, 0);
+        } else if (mistake == ContactMistake::TouchingSkipped) {  // |x_a - x_b| = r
           spheres.particles.position.col(0) = cloth.particles.position.col(12);
           spheres.particles.position(1, 0) += 0.25f;
           spheres.radius[0] = 0.25f;
