@@ -133,6 +133,7 @@ std::vector<ContactRow> contactRows(bool sphere_sphere) {
       {ContactMistake::PairTwice, cause::kPairProcessedTwice}};
   const std::vector<ContactRow> cloth_rows = {
       {ContactMistake::FixedMassless, cause::kFixedParticleMassless},
+      {ContactMistake::FixedSkipped, cause::kFixedParticleSkipped},
       {ContactMistake::SphereZeroForAll, cause::kFirstSphereOnly}};
   for (const ContactRow& row : sphere_sphere ? sphere_rows : cloth_rows) rows.push_back(row);
   return rows;
@@ -168,6 +169,7 @@ ContactModel withMistake(ContactModel model, ContactMistake mistake) {
   model.sphere_zero_for_all =
       model.sphere_zero_for_all || mistake == ContactMistake::SphereZeroForAll;
   model.pair_twice = model.pair_twice || mistake == ContactMistake::PairTwice;
+  model.fixed_skipped = model.fixed_skipped || mistake == ContactMistake::FixedSkipped;
   static const std::pair<ContactMistake, const char*> texts[] = {
       {ContactMistake::NoApproachCheck, "with an impulse for separating bodies too"},
       {ContactMistake::RestitutionFull, "with the impulse from the whole relative velocity"},
@@ -182,7 +184,8 @@ ContactModel withMistake(ContactModel model, ContactMistake mistake) {
       {ContactMistake::RestitutionZero, "with restitution 0"},
       {ContactMistake::RestitutionOne, "with restitution 1"},
       {ContactMistake::PairTwice, "with every pair processed twice"},
-      {ContactMistake::ImpulseNotDivided, "with the impulse not divided by 1/m_a + 1/m_b"}};
+      {ContactMistake::ImpulseNotDivided, "with the impulse not divided by 1/m_a + 1/m_b"},
+      {ContactMistake::FixedSkipped, "skipping the fixed particles"}};
   for (const auto& [which, text] : texts)
     if (which == mistake) model.changes.push_back(text);
   return model;
@@ -205,6 +208,7 @@ ContactModel combined(ContactModel model, const ContactModel& other, const Conta
   model.first_sphere_only = model.first_sphere_only || other.first_sphere_only;
   model.sphere_zero_for_all = model.sphere_zero_for_all || other.sphere_zero_for_all;
   model.pair_twice = model.pair_twice || other.pair_twice;
+  model.fixed_skipped = model.fixed_skipped || other.fixed_skipped;
   model.divides_by_speed = model.divides_by_speed || other.divides_by_speed;
   model.changes.insert(model.changes.end(), other.changes.begin(), other.changes.end());
   return model;
@@ -280,7 +284,8 @@ void collideModel(Spheres<float>& spheres, Cloth<float>& cloth, bool sphere_sphe
     for (int i = 0; i < count; ++i) {
       const int a = model.sphere_zero_for_all ? 0 : i;
       for (int j = 0; j < cloth.particles.size(); ++j)
-        modelContact(sp, a, cloth.particles, j, spheres.radius[a], model);
+        if (!model.fixed_skipped || cloth.particles.mass[j] != 0)
+          modelContact(sp, a, cloth.particles, j, spheres.radius[a], model);
     }
     return;
   }

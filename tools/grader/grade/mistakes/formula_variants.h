@@ -75,7 +75,8 @@ enum class ContactMistake {
   RestitutionZero,  // coefRestitution overwritten
   RestitutionOne,
   PairTwice,  // stub 4's pairs (i, j) and (j, i)
-  ImpulseNotDivided
+  ImpulseNotDivided,
+  FixedSkipped  // a cloth particle of mass 0 skipped: no contact with it
 };
 
 // The collision probe's rows of stub 3 (sphere_sphere false) or stub 4, as forceRows(): a new
@@ -100,7 +101,8 @@ struct ContactModel {
   ContactVariant variant;
   float restitution = 0, correction = 0;  // the edition's, set by courseContact
   float reach_offset = 0;  // the contact distance r (+ r_b) + this (m): `radius + 0.1`
-  bool first_sphere_only = false, sphere_zero_for_all = false, pair_twice = false;
+  bool first_sphere_only = false, sphere_zero_for_all = false, pair_twice = false,
+       fixed_skipped = false;
   // v . n computed as |v| cos(angle), cos = v . n / |v|: NaN for a body at rest in an approaching
   // pair (the impulse's normal part is that body's own v . n, each body's formed apart)
   bool divides_by_speed = false;
