@@ -1,5 +1,6 @@
 // The course's formulas, written once (formula/course_formulas.h), against the course's own
-// Eigen idiom on random states, bit for bit, in float and double: the spring force of
+// Eigen idiom on random states, bit for bit, in float and double: the external force of
+// Shape::computeExternalForce, the spring force of
 // Cloth::computeSpringForce and the contact of Spheres::collide as the instructor writes them
 // (Eigen::Vector4 columns, norm(), normalize(), dot()), which is also the shape of the copies that
 // must remain on the course side (the grader's driver and reference files, docs/design.md). And the
@@ -51,6 +52,20 @@ bool courseContact(Vector4<T>& xa, Vector4<T>& va, T inverseMassA, Vector4<T>& x
   return true;
 }
 
+// Shape::computeExternalForce for one particle, as the course writes it.
+template <typename T>
+Vector4<T> courseExternalAcceleration(const Vector4<T>& velocity, T mass, T inverseMass,
+                                      const Vector4<T>& gravity, T viscousCoef) {
+  Vector4<T> acceleration;
+  if (mass == 0) {
+    acceleration.setZero();
+  } else {
+    acceleration = gravity;
+    acceleration -= velocity * viscousCoef * inverseMass;
+  }
+  return acceleration;
+}
+
 template <typename T>
 Vector4<T> randomColumn(std::mt19937& random, T scale, T w) {
   std::uniform_real_distribution<double> u(-1, 1);
@@ -67,6 +82,21 @@ template <typename T>
 class CourseFormulas : public ::testing::Test {};
 using Precisions = ::testing::Types<float, double>;
 TYPED_TEST_SUITE(CourseFormulas, Precisions);
+
+TYPED_TEST(CourseFormulas, ExternalAccelerationHasTheCoursesBitsOnRandomStates) {
+  using T = TypeParam;
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int trial = 0; trial < 20000; ++trial) {
+    const Vector4<T> v = randomColumn<T>(random, 3, 0), g = randomColumn<T>(random, 10, 0);
+    const T mass = trial % 5 == 0 ? T(0) : T(0.1 + 3 * u(random));
+    const T inverse = mass == T(0) ? T(0) : T(1) / mass, viscous = T(1e-3 * u(random));
+    Vector4<T> a;
+    formula::externalAcceleration(v.data(), mass, inverse, g.data(), viscous, a.data());
+    expectSameBits<T>(a, courseExternalAcceleration<T>(v, mass, inverse, g, viscous),
+                      "acceleration", trial);
+  }
+}
 
 TYPED_TEST(CourseFormulas, SpringForceHasTheCoursesBitsOnRandomStates) {
   using T = TypeParam;

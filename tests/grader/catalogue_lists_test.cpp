@@ -169,9 +169,11 @@ std::string joined(const std::set<std::string>& ids) {
 // entries naming them are the same ids: a model without an entry, or an entry naming a model
 // that does not answer to it, fails. A model's code is the table it is:
 //   "integrator step"  probes/integrate/models.cpp, modelsOf: one branch per id;
-//   "force variant"    probes/forces.cpp, the rows {ForceMistake::X, cause::kY} and candidates;
-//   "contact variant"  probes/collide.cpp, the rows {ContactMistake::X, cause::kY}, the fitted
-//                      constants and the candidates of ContactModel;
+//   "force variant"    the rows {ForceMistake::X, cause::kY} of mistakes/formula_variants.cpp
+//                      (forceRows(), the probe's) and the candidates of probes/forces.cpp;
+//   "contact variant"  the rows {ContactMistake::X, cause::kY} of mistakes/formula_variants.cpp
+//                      (contactRows()), and probes/collide.cpp's fitted constants and
+//                      candidates of ContactModel;
 //   "spring set"       probes/springs.cpp, the causes the fitted spring set stands for;
 //   "spring fit"       explain/spring_fit.cpp, the constants the fit reads (k_s, k_d): the
 //                      causes it names that are no force variant.
@@ -182,8 +184,8 @@ TEST(CatalogueModels, EveryModelHasAnEntryAndEveryEntryItsModel) {
        namedBy(grade + "probes/integrate/models.cpp", R"(\bid == cause::(k\w+))")},
       {"force variant",
        [&] {
-         std::set<std::string> ids =
-             namedBy(grade + "probes/forces.cpp", R"(\{ForceMistake::\w+, cause::(k\w+)\})");
+         std::set<std::string> ids = namedBy(grade + "mistakes/formula_variants.cpp",
+                                             R"(\{ForceMistake::\w+, cause::(k\w+)\})");
          for (const std::string& id :
               namedBy(grade + "probes/forces.cpp", R"(\{\{cause::(k\w+)\},\s*ForceMistake::)"))
            ids.insert(id);
@@ -191,8 +193,8 @@ TEST(CatalogueModels, EveryModelHasAnEntryAndEveryEntryItsModel) {
        }()},
       {"contact variant",
        [&] {
-         std::set<std::string> ids =
-             namedBy(grade + "probes/collide.cpp", R"(\{ContactMistake::\w+, cause::(k\w+)\})");
+         std::set<std::string> ids = namedBy(grade + "mistakes/formula_variants.cpp",
+                                             R"(\{ContactMistake::\w+, cause::(k\w+)\})");
          for (const char* more :
               {R"(candidates\.push_back\(\{\{cause::(k\w+)\})", R"(f\.cause == cause::(k\w+))"})
            for (const std::string& id : namedBy(grade + "probes/collide.cpp", more)) ids.insert(id);
@@ -228,7 +230,8 @@ TEST(CatalogueModels, EveryModelHasAnEntryAndEveryEntryItsModel) {
 }
 
 // Every switch of the force and contact models (mistakes/formula_variants.h's enums) is a row of
-// its probe, so a new switch has an entry through its row.
+// its probe (formula_variants.cpp's forceRows() and contactRows()) or one of the probe's
+// candidates, so a new switch has an entry through its row.
 TEST(CatalogueModels, EverySwitchOfAFormulaVariantIsAProbesRow) {
   const std::string header =
       test::readText(kRoot / "tools/grader/grade/mistakes/formula_variants.h");
@@ -238,6 +241,7 @@ TEST(CatalogueModels, EverySwitchOfAFormulaVariantIsAProbesRow) {
     ASSERT_NE(open, std::string::npos);
     const std::string body = header.substr(open, header.find("};", open) - open);
     const std::string probe =
+        test::readText(kRoot / "tools/grader/grade/mistakes/formula_variants.cpp") +
         test::readText(kRoot / "tools/grader/grade/probes" /
                        (name == "ForceMistake" ? "forces.cpp" : "collide.cpp"));
     int switches = 0;

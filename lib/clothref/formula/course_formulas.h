@@ -1,4 +1,5 @@
-// The course's formulas, each written once: the spring force of one spring, the contact of a
+// The course's formulas, each written once: the external force (gravity and drag) on one
+// particle, the spring force of one spring, the contact of a
 // sphere with a particle (or another sphere), and the spring topology of the course's grid. Plain
 // inline templates on the course's 4-value columns (x, y, z, w; Eigen's Vector4 data()), the
 // scalar type a parameter, the standard library only, so both sides include this header: the
@@ -24,27 +25,36 @@ inline T dot4(const T* a, const T* b) {
   return (a[0] * b[0] + a[2] * b[2]) + (a[1] * b[1] + a[3] * b[3]);
 }
 
-// The course's spring force and contact as the default variants of the two formulas below:
-// every switch is off at compile time, so the library's code is the course's line for line. The
-// grader models a student's mistake as a variant with one switch on (SpringVariant and
-// ContactVariant, tools/grader/grade/mistakes/formula_variants.h, read at run time); its tests
-// prove the no-mistake variant bit-equal to the library's stubs.
+// The steps of the two formulas below that a caller may vary, one switch per step, each read on
+// one line: CourseSpring and CourseContact hold the course's value of every switch at compile
+// time, so the library's code is the course's line for line. A caller that varies a step passes
+// its own struct with the same names (docs/design.md: the copies and who varies what).
 struct CourseSpring {
-  static constexpr bool spring_negated = false;       // k_s (|d| - rest) with the wrong sign
-  static constexpr bool damper_negated = false;       // the damper term with the wrong sign
-  static constexpr bool no_damper = false;            // no damper term
-  static constexpr bool damper_unnormalised = false;  // damper along d, not n
+  static constexpr bool spring_negated = false;       // the Hooke term k_s (|d| - rest), negated
+  static constexpr bool damper_negated = false;       // the damper term, negated
+  static constexpr bool no_damper = false;            // the damper term, left out
+  static constexpr bool damper_unnormalised = false;  // the damper's projection on d, not on n
 };
 struct CourseContact {
-  static constexpr bool normal_flipped = false;     // n points from a to b
-  static constexpr bool touching_skipped = false;   // penetration 0 is no contact
-  static constexpr bool separating_pushed = false;  // an impulse also when the bodies separate
-  static constexpr bool full_velocity = false;      // J from v_rel, not its normal part
-  static constexpr bool undivided = false;          // J not divided by 1/m_a + 1/m_b
-  static constexpr bool massless_fixed = false;     // the mass formula, 1/m = 0 read as m = 0
-  static constexpr bool moves_a = true;             // the correction moves body a
-  static constexpr bool moves_b = true;             // ... and body b
+  static constexpr bool normal_flipped = false;     // the normal, from a to b
+  static constexpr bool touching_skipped = false;   // the contact test, penetration 0 excluded
+  static constexpr bool separating_pushed = false;  // the approach test, left out
+  static constexpr bool full_velocity = false;      // the impulse's velocity, v_rel not its normal
+  static constexpr bool undivided = false;          // the impulse, not divided by 1/m_a + 1/m_b
+  static constexpr bool moves_a = true;             // the correction of body a
+  static constexpr bool moves_b = true;             // the correction of body b
 };
+
+// Shape::computeExternalForce for one particle, as an acceleration (m/s^2): gravity less the
+// viscous drag, a = g - (v c) (1/m), per component in that order; a fixed particle (mass 0) gets
+// none.
+template <typename T>
+inline void externalAcceleration(const T* velocity, T mass, T inverse_mass, const T* gravity,
+                                 T viscous_coef, T acceleration[4]) {
+  for (int k = 0; k < 4; ++k)
+    acceleration[k] =
+        mass == T(0) ? T(0) : gravity[k] - (velocity[k] * viscous_coef) * inverse_mass;
+}
 
 // Stub 2's per-spring force (Cloth::computeSpringForce): with d = x_s - x_e and n = d / |d|,
 //   F = n (k_d ((v_s - v_e) . n) + k_s (|d| - rest))
@@ -82,9 +92,7 @@ inline bool resolveContact(T* x_a, T* v_a, T inverse_mass_a, T* x_b, T* v_b, T i
                            T contact_distance, T restitution, T correction,
                            const Variant& variant = {}) {
   T n[4];
-  for (int k = 0; k < 4; ++k) n[k] = x_a[k] - x_b[k];
-  if (variant.normal_flipped)
-    for (int k = 0; k < 4; ++k) n[k] = -n[k];
+  for (int k = 0; k < 4; ++k) n[k] = variant.normal_flipped ? -(x_a[k] - x_b[k]) : x_a[k] - x_b[k];
   const T squared = dot4(n, n);
   const T penetration = contact_distance - std::sqrt(squared);
   if (penetration < T(0) || (variant.touching_skipped && penetration <= T(0))) return false;
@@ -95,19 +103,7 @@ inline bool resolveContact(T* x_a, T* v_a, T inverse_mass_a, T* x_b, T* v_b, T i
   T relative[4];
   for (int k = 0; k < 4; ++k) relative[k] = v_a[k] - v_b[k];
   const T approach = dot4(relative, n);
-  if (variant.massless_fixed && (approach < T(0) || variant.separating_pushed)) {
-    // The textbook exchange of normal velocities u with masses, a fixed body's m = 0 as massless.
-    const T m_a = inverse_mass_a > T(0) ? T(1) / inverse_mass_a : T(0);
-    const T m_b = inverse_mass_b > T(0) ? T(1) / inverse_mass_b : T(0);
-    const T normal_a = dot4(v_a, n), normal_b = dot4(v_b, n);
-    for (int k = 0; k < 4; ++k) {
-      const T u_a = n[k] * normal_a, u_b = n[k] * normal_b;
-      const T new_a = (m_a * u_a + m_b * u_b + m_b * restitution * (u_b - u_a)) / (m_a + m_b);
-      const T new_b = (m_a * u_a + m_b * u_b + m_a * restitution * (u_a - u_b)) / (m_a + m_b);
-      v_a[k] += new_a - u_a;
-      v_b[k] += new_b - u_b;
-    }
-  } else if (approach < T(0) || variant.separating_pushed) {
+  if (approach < T(0) || variant.separating_pushed) {
     const T factor = -(T(1) + restitution);
     const T denominator = inverse_mass_b + inverse_mass_a;
     for (int k = 0; k < 4; ++k) {

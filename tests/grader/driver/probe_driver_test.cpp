@@ -4,12 +4,14 @@
 // never with another group's or another integrator's answer.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <string>
 
 #include "clothref/core/method.h"
 #include "grader/bridge/probe_keys.h"
+#include "grader/grade/probes/integrate/systems.h"
 #include "grader/grade/run/build.h"
 #include "grader/grade/run/child_process.h"
 #include "test_util.h"
@@ -108,6 +110,40 @@ TEST_F(ProbeDriver, ServesTheCoursesIntegratorsAndRefusesEveryOtherMethod) {
                 std::string::npos)
           << group << " " << row << ": " << run.stderr_head;
     }
+}
+
+// The driver's own simulateOneStep (MiniWorld: the course's loops around the library's formulas,
+// its constants from the request) beside the reference integrator is the library's step, bit for
+// bit: one step of a random state with contacts, and of the course's cloth, every course method,
+// against clothref's simulateOneStep and integrate() on the same state.
+TEST_F(ProbeDriver, TheDriversSimulateIsTheLibrarys) {
+  ASSERT_TRUE(build_->ok) << build_->problem;
+  const std::vector<integrators::System> systems = {integrators::randomSystem(20221, 2022),
+                                                    integrators::courseSystem(20221, 2022)};
+  const auto same = [](const Mat4X<float>& a, const Mat4X<float>& b) {
+    return a.cols() == b.cols() &&
+           std::equal(a.data(), a.data() + a.size(), b.data(),
+                      [](float x, float y) { return test::bits(x) == test::bits(y); });
+  };
+  for (int index = 0; index < 4; ++index) {
+    probe::ProbeMessage message = withMethod(probe::group::kIntegrate, index);
+    message.ints[key::kCases] = {static_cast<std::int64_t>(systems.size())};
+    for (std::size_t k = 0; k < systems.size(); ++k)
+      integrators::addSystem(message, int(k), systems[k], 1, 0);
+    const ChildRun run = ask(message);
+    ASSERT_EQ(run.status, ChildStatus::Ok) << run.describe() << "\n" << run.stderr_head;
+    const Method method = integrators::integratorMethod(index);
+    for (std::size_t k = 0; k < systems.size(); ++k) {
+      const integrators::System driver = integrators::answerSystem(*run.answer, int(k), systems[k]);
+      const integrators::System library =
+          integrators::stepped(systems[k], integrators::clothrefStep(method));
+      SCOPED_TRACE(std::string(methodName(method)) + ", system " + std::to_string(k));
+      EXPECT_TRUE(same(driver.cloth.particles.position, library.cloth.particles.position));
+      EXPECT_TRUE(same(driver.cloth.particles.velocity, library.cloth.particles.velocity));
+      EXPECT_TRUE(same(driver.spheres.particles.position, library.spheres.particles.position));
+      EXPECT_TRUE(same(driver.spheres.particles.velocity, library.spheres.particles.velocity));
+    }
+  }
 }
 
 // No clothref symbol of the driver is global in the course libraries: a student file that declares

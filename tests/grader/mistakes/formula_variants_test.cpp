@@ -12,6 +12,8 @@
 namespace clothref::grader {
 namespace {
 
+const Vec4<float> kGravity(0, -9.8f, 0, 0);  // m/s^2, what AssignTotalGravity adds back
+
 bool sameBits(const Mat4X<float>& a, const Mat4X<float>& b) {
   return a.cols() == b.cols() && std::memcmp(a.data(), b.data(), sizeof(float) * a.size()) == 0;
 }
@@ -41,7 +43,7 @@ TEST(FormulaVariants, NoMistakeSpringForceIsTheLibrarysStub) {
   for (int trial = 0; trial < 50; ++trial) {
     Cloth<float> cloth = randomCloth(rng);
     const Mat4X<float> acc0 = cloth.particles.acceleration;
-    const Mat4X<float> variant = springAccelerations(cloth, acc0, ForceMistake::None);
+    const Mat4X<float> variant = springAccelerations(cloth, acc0, ForceMistake::None, kGravity);
     computeSpringForce(cloth);
     ASSERT_TRUE(sameBits(variant, cloth.particles.acceleration)) << "trial " << trial;
   }
@@ -51,14 +53,12 @@ TEST(FormulaVariants, EverySpringMistakeChangesARandomState) {
   std::mt19937 rng(8);
   const Cloth<float> cloth = randomCloth(rng);
   const Mat4X<float>& acc0 = cloth.particles.acceleration;
-  const Mat4X<float> course = springAccelerations(cloth, acc0, ForceMistake::None);
-  for (ForceMistake m :
-       {ForceMistake::Assign, ForceMistake::SpringSign, ForceMistake::DamperSign,
-        ForceMistake::NoDamper, ForceMistake::DamperUnnormalised, ForceMistake::OneEnd,
-        ForceMistake::MassNotInverse, ForceMistake::DivideByMass, ForceMistake::OtherEndOnly,
-        ForceMistake::AssignTotal, ForceMistake::AssignTotalGravity,
-        ForceMistake::DirectionUnnormalised})
-    EXPECT_FALSE(sameBits(springAccelerations(cloth, acc0, m), course)) << int(m);
+  const Mat4X<float> course = springAccelerations(cloth, acc0, ForceMistake::None, kGravity);
+  // every row the probe simulates, and the probe's candidate that is no row
+  std::vector<ForceMistake> mistakes = {ForceMistake::DirectionUnnormalised};
+  for (const ForceRow& row : forceRows()) mistakes.push_back(row.mistake);
+  for (const ForceMistake m : mistakes)
+    EXPECT_FALSE(sameBits(springAccelerations(cloth, acc0, m, kGravity), course)) << int(m);
 }
 
 // Three spheres and a 5 x 5 cloth close together: many contacts, approaching and separating,
@@ -105,35 +105,100 @@ TEST(FormulaVariants, NoMistakeContactIsTheLibrarysStub) {
   EXPECT_GT(contacts, 20);  // the scenes did have contacts
 }
 
+// Every row of both collision probes (contactRows()) changes the outcome of some random scene;
+// every other scene also drops sphere 0 onto the fixed particle 0.
 TEST(FormulaVariants, EveryContactMistakeChangesSomething) {
   std::mt19937 rng(10);
-  for (int m = 1; m <= int(ContactMistake::ImpulseNotDivided); ++m) {
-    const auto mistake = ContactMistake(m);
-    const bool sphere_sphere = mistake == ContactMistake::PairTwice;
-    bool changed = false;
-    for (int trial = 0; trial < 200 && !changed; ++trial) {
-      Spheres<float> spheres, course_spheres;
-      Cloth<float> cloth, course_cloth;
-      randomScene(rng, spheres, cloth);
-      if (mistake == ContactMistake::TouchingSkipped) {  // exactly touching: |x_a - x_b| = r
-        spheres.particles.position.col(0) = cloth.particles.position.col(12);
-        spheres.particles.position(1, 0) += 0.25f;
-        spheres.radius[0] = 0.25f;
-        spheres.particles.velocity.col(0) = Vec4<float>(0, -1, 0, 0);
+  int rows = 0;
+  for (const bool sphere_sphere : {false, true})
+    for (const ContactRow& row : contactRows(sphere_sphere)) {
+      ++rows;
+      const ContactMistake mistake = row.mistake;
+      bool changed = false;
+      for (int trial = 0; trial < 200 && !changed; ++trial) {
+        Spheres<float> spheres, course_spheres;
+        Cloth<float> cloth, course_cloth;
+        randomScene(rng, spheres, cloth);
+        if (trial % 2 == 1) {  // onto the fixed particle 0
+          spheres.particles.position.col(0) = cloth.particles.position.col(0);
+          spheres.particles.position(1, 0) += 0.2f;
+          spheres.particles.velocity.col(0) = Vec4<float>(0, -1, 0, 0);
+        }
+        if (mistake == ContactMistake::TouchingSkipped &&
+            sphere_sphere) {  // |x_0 - x_1| = r_0 + r_1
+          spheres.particles.position.col(0) = Vec4<float>(0, 0, 0, 1);
+          spheres.particles.position.col(1) =
+              Vec4<float>(0, spheres.radius[0] + spheres.radius[1], 0, 1);
+          spheres.particles.position.col(2) = Vec4<float>(10, 10, 10, 1);
+          spheres.particles.velocity.col(1) = Vec4<float>(0, -1, 0, 0);
+        } else if (mistake == ContactMistake::TouchingSkipped) {  // |x_a - x_b| = r
+          spheres.particles.position.col(0) = cloth.particles.position.col(12);
+          spheres.particles.position(1, 0) += 0.25f;
+          spheres.radius[0] = 0.25f;
+          spheres.particles.velocity.col(0) = Vec4<float>(0, -1, 0, 0);
+        }
+        course_spheres = spheres;
+        course_cloth = cloth;
+        const float e = mistake == ContactMistake::RestitutionZero ? 0.8f : 0.0f;
+        collideWithMistake(spheres, cloth, sphere_sphere, e, 0.15f, mistake);
+        collideWithMistake(course_spheres, course_cloth, sphere_sphere, e, 0.15f,
+                           ContactMistake::None);
+        changed = !sameBits(spheres.particles.velocity, course_spheres.particles.velocity) ||
+                  !sameBits(spheres.particles.position, course_spheres.particles.position) ||
+                  !sameBits(cloth.particles.velocity, course_cloth.particles.velocity) ||
+                  !sameBits(cloth.particles.position, course_cloth.particles.position);
       }
-      course_spheres = spheres;
-      course_cloth = cloth;
-      const float e = mistake == ContactMistake::RestitutionZero ? 0.8f : 0.0f;
-      collideWithMistake(spheres, cloth, sphere_sphere, e, 0.15f, mistake);
-      collideWithMistake(course_spheres, course_cloth, sphere_sphere, e, 0.15f,
-                         ContactMistake::None);
-      changed = !sameBits(spheres.particles.velocity, course_spheres.particles.velocity) ||
-                !sameBits(spheres.particles.position, course_spheres.particles.position) ||
-                !sameBits(cloth.particles.velocity, course_cloth.particles.velocity) ||
-                !sameBits(cloth.particles.position, course_cloth.particles.position);
+      EXPECT_TRUE(changed) << row.cause << " (mistake " << int(mistake) << ")";
     }
-    EXPECT_TRUE(changed) << "mistake " << m;
-  }
+  EXPECT_GT(rows, 20);
+}
+
+// A fixed particle read as massless (the textbook exchange of normal velocities, the grader's own
+// formula, no longer the library's): the course's contact test and correction are untouched (the
+// positions are the course's bit for bit); a free pair's velocities are the course's impulse to
+// rounding (the exchange is the impulse rearranged); a fixed particle, massless, gets the normal
+// velocity u_s + e (u_s - u_p) from the sphere's u_s and its own u_p.
+TEST(FormulaVariants, TheMasslessExchangeKeepsTheCoursesGeometry) {
+  std::mt19937 rng(13);
+  int fixed_contacts = 0;
+  for (int trial = 0; trial < 50; ++trial)
+    for (const float e : {0.0f, 0.8f})
+      for (const int below : {0, 12}) {  // onto the fixed particle 0, or free particle 12
+        Spheres<float> spheres, course_spheres;
+        Cloth<float> cloth, course_cloth;
+        randomScene(rng, spheres, cloth);
+        spheres = Spheres<float>{};  // one sphere, falling onto `below` and its neighbours
+        Vec4<float> above = cloth.particles.position.col(below);
+        above(1) += 0.2f;
+        addSphere(spheres, above, 0.6f, 1000.0f);
+        spheres.particles.velocity.col(0) = Vec4<float>(0, -1, 0, 0);
+        course_spheres = spheres;
+        course_cloth = cloth;
+        const Vec4<float> fixed_before = cloth.particles.velocity.col(0);
+        collideWithMistake(spheres, cloth, false, e, 0.15f, ContactMistake::FixedMassless);
+        collideWithMistake(course_spheres, course_cloth, false, e, 0.15f, ContactMistake::None);
+        ASSERT_TRUE(sameBits(spheres.particles.position, course_spheres.particles.position));
+        ASSERT_TRUE(sameBits(cloth.particles.position, course_cloth.particles.position));
+        if (below != 0) {  // free bodies only: the course's impulse, rearranged
+          for (int i = 0; i < cloth.particles.size(); ++i)
+            EXPECT_LE(
+                (cloth.particles.velocity.col(i) - course_cloth.particles.velocity.col(i)).norm(),
+                1e-5f * (1 + course_cloth.particles.velocity.col(i).norm()))
+                << "particle " << i;
+          EXPECT_LE(
+              (spheres.particles.velocity.col(0) - course_spheres.particles.velocity.col(0)).norm(),
+              1e-5f);
+          continue;
+        }
+        // the sphere meets the fixed particle first, at its starting velocity, along n = +y
+        const float u_s = -1, u_p = fixed_before(1);
+        if (u_s - u_p < 0) {
+          ++fixed_contacts;
+          EXPECT_NEAR(cloth.particles.velocity(1, 0), u_s + e * (u_s - u_p), 1e-5f);
+          EXPECT_TRUE(sameBits(course_cloth.particles.velocity.col(0), fixed_before));
+        }
+      }
+  EXPECT_GT(fixed_contacts, 20);
 }
 
 // `d.normalized();` discarded: the force along the unnormalised d = x_s - x_e, both terms (k_s
@@ -142,7 +207,8 @@ TEST(FormulaVariants, DirectionUnnormalisedIsTheForceAlongD) {
   std::mt19937 rng(11);
   const Cloth<float> cloth = randomCloth(rng);
   const Mat4X<float>& acc0 = cloth.particles.acceleration;
-  const Mat4X<float> model = springAccelerations(cloth, acc0, ForceMistake::DirectionUnnormalised);
+  const Mat4X<float> model =
+      springAccelerations(cloth, acc0, ForceMistake::DirectionUnnormalised, kGravity);
   Mat4X<float> by_hand = acc0;
   const auto& p = cloth.particles;
   for (const auto& s : cloth.springs) {

@@ -1,6 +1,6 @@
-// The integrator probe's mistake simulators (grader/grade/mistakes/integrate_mistakes.h): with no
-// mistake switched on, each copy of a course integrator is the library's, bit for bit; each
-// mistake changes the step (so a student's numbers equal to it name it).
+// The integrator mistakes as switches on one course step (grader/grade/mistakes/
+// integrate_mistakes.h): with no switch on, the step is the library's, bit for bit; each mistake
+// changes the step (so a student's numbers equal to it name it).
 #include "grader/grade/mistakes/integrate_mistakes.h"
 #include "grader/grade/probes/integrate/systems.h"
 
@@ -23,17 +23,23 @@ bool bitEqual(const System& a, const System& b) {
 }
 
 std::vector<System> systems() {
-  return {randomSystem(20221), randomSystem(20228), courseSystem(20221, 2022),
-          courseSystem(20235, 2024), stageSystem(20221, false, 2022)};
+  return {randomSystem(20221, 2022), randomSystem(20228, 2024),       courseSystem(20221, 2022),
+          courseSystem(20235, 2024), stageSystem(20221, false, 2022), stageSystem(7, true, 2024)};
 }
 
-TEST(IntegrateMistakes, NoMistakeIsBitEqualToTheLibrary) {
+// Every switch at its course value is the library's step, per method, on random and course-size
+// states of both editions (the step is written once with its switches, so this is the proof that
+// "no mistake" is the course).
+TEST(IntegrateMistakes, NoSwitchIsTheLibrarysStep) {
   for (int index = 0; index < 4; ++index) {
     const Method method = integratorMethod(index);
-    for (const System& s : systems())
-      EXPECT_TRUE(bitEqual(stepped(s, variantStep(method, Variant::None)),
+    for (const System& s : systems()) {
+      EXPECT_TRUE(bitEqual(stepped(s, courseStep(method, StepSwitches{})),
                            stepped(s, clothrefStep(method))))
           << methodName(method) << " on " << s.cloth.particles.size() << " particles";
+      EXPECT_TRUE(bitEqual(stepped(s, variantStep(method, Variant::None)),
+                           stepped(s, clothrefStep(method))));
+    }
   }
   // Re-evaluating nothing is the library's explicit Euler, whatever the method.
   for (const System& s : systems())

@@ -623,6 +623,12 @@ MUTANTS = [
      ["first-sphere-only"], "every contact computed with sphere 0 (position(0), _radius[0])"),
     ("cloth-fixed-particle-massless", BOTH, C, [(APPROACH_COMMENT, ""), (IMPULSE_BLOCK_CLOTH, FIXED_MASSLESS)],
      ["fixed-particle-massless"], "the spec's mass formula: a fixed particle (mass 0) acts massless"),
+    ("cloth-fixed-particle-skipped", BOTH, C,
+     [("      // Cloth particles have radius 0: they touch when inside the sphere.\n",
+       "      // A pinned corner cannot move: leave it alone.\n"
+       "      if (clothParticles.mass(j) == 0.0f) continue;\n"
+       "      // Cloth particles have radius 0: they touch when inside the sphere.\n")],
+     ["fixed-particle-skipped"], "a fixed particle (mass 0) skipped: the sphere passes through a pinned corner"),
     ("cloth-correction-one-body", ONLY22, C, [("      _particles.position(i) += correction;\n", "")],
      ["correction-one-body"], "position correction applied to the cloth particle only"),
     ("cloth-no-correction", ONLY22, C,

@@ -172,18 +172,14 @@ struct MiniWorld {
   float spring_coef = 0, damper_coef = 0, viscous = 0;
   Eigen::Vector4f gravity = Eigen::Vector4f::Zero();
   bool sphere_gravity = false, cloth_contact = false, sphere_contact = false;
-  float e_cloth = 0, e_sphere = 0.8f;
+  float e_cloth = 0, e_sphere = 0, correction = 0;  // the request's (the edition's record)
 };
 
 void externalForce(Particles& p, const Eigen::Vector4f& gravity, float viscous) {
-  for (int i = 0; i < p.getCapacity(); ++i) {
-    if (p.mass(i) == 0.0f) {
-      p.acceleration(i).setZero();
-    } else {
-      p.acceleration(i) = gravity;
-      p.acceleration(i) -= p.velocity(i) * viscous * p.inverseMass(i);
-    }
-  }
+  // the course's expression, written once for clothref and this driver alike
+  for (int i = 0; i < p.getCapacity(); ++i)
+    clothref::formula::externalAcceleration(p.velocity(i).data(), p.mass(i), p.inverseMass(i),
+                                            gravity.data(), viscous, p.acceleration(i).data());
 }
 
 void springForce(MiniWorld& w) {
@@ -201,10 +197,10 @@ void springForce(MiniWorld& w) {
   }
 }
 
-void contact(Particles& a, int i, Particles& b, int j, float reach, float e) {
+void contact(Particles& a, int i, Particles& b, int j, float reach, float e, float correction) {
   clothref::formula::resolveContact(a.position(i).data(), a.velocity(i).data(), a.inverseMass(i),
                                     b.position(j).data(), b.velocity(j).data(), b.inverseMass(j),
-                                    reach, e, 0.15f);
+                                    reach, e, correction);
 }
 
 void simulate(MiniWorld& w) {
@@ -217,12 +213,14 @@ void simulate(MiniWorld& w) {
   if (w.cloth_contact)
     for (int i = 0; i < w.spheres.getCapacity(); ++i)
       for (int j = 0; j < w.cloth.getCapacity(); ++j)
-        contact(w.spheres, i, w.cloth, j, w.radius[static_cast<size_t>(i)], w.e_cloth);
+        contact(w.spheres, i, w.cloth, j, w.radius[static_cast<size_t>(i)], w.e_cloth,
+                w.correction);
   if (w.sphere_contact)
     for (int i = 0; i < w.spheres.getCapacity(); ++i)
       for (int j = i + 1; j < w.spheres.getCapacity(); ++j)
         contact(w.spheres, i, w.spheres, j,
-                w.radius[static_cast<size_t>(i)] + w.radius[static_cast<size_t>(j)], w.e_sphere);
+                w.radius[static_cast<size_t>(i)] + w.radius[static_cast<size_t>(j)], w.e_sphere,
+                w.correction);
 }
 
 // The rows of clothref's method table (core/method.h), copied at compile time: the driver holds
@@ -278,14 +276,15 @@ void probeIntegrate(const ProbeMessage& in, ProbeMessage& out) {
     loadMass(w.spheres, sphereMass);
     w.springs = springsFrom(in, k);
     w.radius = in.f(perCase(key::kSphereRadius, k));
-    const auto& params =
-        in.f(perCase(key::kParams, k));  // ks, kd, viscous, gx, gy, gz, e_cloth, e_sphere
+    // ks, kd, viscous, gx, gy, gz, e_cloth, e_sphere, correction
+    const auto& params = in.f(perCase(key::kParams, k));
     w.spring_coef = params.at(0);
     w.damper_coef = params.at(1);
     w.viscous = params.at(2);
     w.gravity = Eigen::Vector4f(params.at(3), params.at(4), params.at(5), 0);
     w.e_cloth = params.at(6);
     w.e_sphere = params.at(7);
+    w.correction = params.at(8);
     const auto& flags =
         in.i(perCase(key::kFlags, k));  // sphere gravity, cloth contact, sphere contact
     w.sphere_gravity = flags.at(0) != 0;

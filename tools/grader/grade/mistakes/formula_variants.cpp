@@ -3,12 +3,12 @@
 #include <cmath>
 
 #include "clothref/formula/course_formulas.h"
-#include "grader/grade/submission/edition.h"
+#include "grader/grade/cause_ids.h"
 
 namespace clothref::grader {
 
 Mat4X<float> springAccelerations(const Cloth<float>& cloth, const Mat4X<float>& acc0,
-                                 ForceMistake mistake) {
+                                 ForceMistake mistake, const Vec4<float>& gravity) {
   SpringVariant variant;
   variant.spring_negated = mistake == ForceMistake::SpringSign;
   variant.damper_negated = mistake == ForceMistake::DamperSign;
@@ -17,11 +17,9 @@ Mat4X<float> springAccelerations(const Cloth<float>& cloth, const Mat4X<float>& 
   const auto& p = cloth.particles;
   Mat4X<float> a = acc0;
   if (mistake == ForceMistake::AssignTotal || mistake == ForceMistake::AssignTotalGravity) {
-    // The course's gravity (m/s^2), the same in both editions' scenes (edition_test checks).
-    static const float course_gravity = static_cast<float>(courseEdition(2022).gravity[1]);
-    const Vec4<float> gravity(
-        0.0f, mistake == ForceMistake::AssignTotalGravity ? course_gravity : 0.0f, 0.0f, 0.0f);
-    for (int i = 0; i < p.size(); ++i) a.col(i) = p.mass[i] != 0 ? gravity : Vec4<float>::Zero();
+    const Vec4<float> added =
+        mistake == ForceMistake::AssignTotalGravity ? gravity : Vec4<float>::Zero();
+    for (int i = 0; i < p.size(); ++i) a.col(i) = p.mass[i] != 0 ? added : Vec4<float>::Zero();
   }
   // The direction left unnormalised is the damper along d with the whole force times |d|.
   variant.damper_unnormalised =
@@ -47,6 +45,22 @@ Mat4X<float> springAccelerations(const Cloth<float>& cloth, const Mat4X<float>& 
     }
   }
   return a;
+}
+
+const std::vector<ForceRow>& forceRows() {
+  static const std::vector<ForceRow> rows = {
+      {ForceMistake::Assign, cause::kAssignNotAccumulate},
+      {ForceMistake::SpringSign, cause::kSpringForceSign},
+      {ForceMistake::DamperSign, cause::kDamperSign},
+      {ForceMistake::NoDamper, cause::kMissingDamper},
+      {ForceMistake::DamperUnnormalised, cause::kDamperNotNormalised},
+      {ForceMistake::OneEnd, cause::kForceOneEndOnly},
+      {ForceMistake::MassNotInverse, cause::kMassNotInverse},
+      {ForceMistake::DivideByMass, cause::kFixedParticleMoves},
+      {ForceMistake::OtherEndOnly, cause::kForceOneEndOnly},
+      {ForceMistake::AssignTotal, cause::kAssignNotAccumulate},
+      {ForceMistake::AssignTotalGravity, cause::kAssignNotAccumulate}};
+  return rows;
 }
 
 std::string forceModelText(ForceMistake mistake) {
@@ -99,6 +113,32 @@ ContactVariant contactVariant(ContactMistake m) {
 
 }  // namespace
 
+std::vector<ContactRow> contactRows(bool sphere_sphere) {
+  std::vector<ContactRow> rows = {
+      {ContactMistake::NoApproachCheck, cause::kNoApproachCheck},
+      {ContactMistake::RestitutionFull, cause::kRestitutionFullVelocity},
+      {ContactMistake::CorrectionSphereOnly, cause::kCorrectionOneBody},
+      {ContactMistake::CorrectionOtherOnly, cause::kCorrectionOneBody},
+      {ContactMistake::NoCorrection, cause::kNoPositionCorrection},
+      {ContactMistake::FirstSphereOnly, cause::kFirstSphereOnly},
+      {ContactMistake::NormalSign, cause::kCollisionNormalSign},
+      {ContactMistake::TouchingSkipped, cause::kTouchingSkipped},
+      {ContactMistake::ImpulseNotDivided, cause::kWrongMassSplit},
+      // coefRestitution overwritten (e = 0 or 1); a case where it cannot matter is skipped
+      {ContactMistake::RestitutionZero, cause::kRestitutionIgnored},
+      {ContactMistake::RestitutionOne, cause::kRestitutionIgnored}};
+  // a pair twice only where there are pairs of spheres; a fixed particle and sphere 0's
+  // position only where there is a cloth
+  const std::vector<ContactRow> sphere_rows = {
+      {ContactMistake::PairTwice, cause::kPairProcessedTwice}};
+  const std::vector<ContactRow> cloth_rows = {
+      {ContactMistake::FixedMassless, cause::kFixedParticleMassless},
+      {ContactMistake::FixedSkipped, cause::kFixedParticleSkipped},
+      {ContactMistake::SphereZeroForAll, cause::kFirstSphereOnly}};
+  for (const ContactRow& row : sphere_sphere ? sphere_rows : cloth_rows) rows.push_back(row);
+  return rows;
+}
+
 void collideWithMistake(Spheres<float>& spheres, Cloth<float>& cloth, bool sphere_sphere,
                         float restitution, float correction, ContactMistake mistake) {
   collideModel(spheres, cloth, sphere_sphere,
@@ -129,6 +169,7 @@ ContactModel withMistake(ContactModel model, ContactMistake mistake) {
   model.sphere_zero_for_all =
       model.sphere_zero_for_all || mistake == ContactMistake::SphereZeroForAll;
   model.pair_twice = model.pair_twice || mistake == ContactMistake::PairTwice;
+  model.fixed_skipped = model.fixed_skipped || mistake == ContactMistake::FixedSkipped;
   static const std::pair<ContactMistake, const char*> texts[] = {
       {ContactMistake::NoApproachCheck, "with an impulse for separating bodies too"},
       {ContactMistake::RestitutionFull, "with the impulse from the whole relative velocity"},
@@ -143,7 +184,8 @@ ContactModel withMistake(ContactModel model, ContactMistake mistake) {
       {ContactMistake::RestitutionZero, "with restitution 0"},
       {ContactMistake::RestitutionOne, "with restitution 1"},
       {ContactMistake::PairTwice, "with every pair processed twice"},
-      {ContactMistake::ImpulseNotDivided, "with the impulse not divided by 1/m_a + 1/m_b"}};
+      {ContactMistake::ImpulseNotDivided, "with the impulse not divided by 1/m_a + 1/m_b"},
+      {ContactMistake::FixedSkipped, "skipping the fixed particles"}};
   for (const auto& [which, text] : texts)
     if (which == mistake) model.changes.push_back(text);
   return model;
@@ -166,12 +208,50 @@ ContactModel combined(ContactModel model, const ContactModel& other, const Conta
   model.first_sphere_only = model.first_sphere_only || other.first_sphere_only;
   model.sphere_zero_for_all = model.sphere_zero_for_all || other.sphere_zero_for_all;
   model.pair_twice = model.pair_twice || other.pair_twice;
+  model.fixed_skipped = model.fixed_skipped || other.fixed_skipped;
   model.divides_by_speed = model.divides_by_speed || other.divides_by_speed;
   model.changes.insert(model.changes.end(), other.changes.begin(), other.changes.end());
   return model;
 }
 
 namespace {
+
+// The textbook exchange of normal velocities u_a = n (v_a . n), u_b = n (v_b . n) with masses,
+//   u_a' = (m_a u_a + m_b u_b + m_b e (u_b - u_a)) / (m_a + m_b), u_b' likewise,
+// a fixed body's 1/m = 0 read as m = 0 (massless), in place of the course's impulse: the course's
+// contact test and correction are the library's resolveContact (run on copies of the velocities),
+// the normal and approach a copy of its first lines (docs/design.md's table of copies;
+// FormulaVariants.TheMasslessExchangeKeepsTheCoursesGeometry).
+bool masslessFixedContact(float* x_a, float* v_a, float inverse_mass_a, float* x_b, float* v_b,
+                          float inverse_mass_b, float contact_distance, float restitution,
+                          float correction, const ContactVariant& variant) {
+  float n[4], relative[4];
+  for (int k = 0; k < 4; ++k) n[k] = variant.normal_flipped ? -(x_a[k] - x_b[k]) : x_a[k] - x_b[k];
+  const float squared = formula::dot4(n, n);
+  if (squared > 0.0f) {
+    const float length = std::sqrt(squared);
+    for (int k = 0; k < 4; ++k) n[k] = n[k] / length;
+  }
+  for (int k = 0; k < 4; ++k) relative[k] = v_a[k] - v_b[k];
+  const float approach = formula::dot4(relative, n);
+  float course_v_a[4], course_v_b[4];  // the course's impulse lands here, unused
+  for (int k = 0; k < 4; ++k) course_v_a[k] = v_a[k], course_v_b[k] = v_b[k];
+  if (!formula::resolveContact(x_a, course_v_a, inverse_mass_a, x_b, course_v_b, inverse_mass_b,
+                               contact_distance, restitution, correction, variant))
+    return false;
+  if (!(approach < 0.0f || variant.separating_pushed)) return true;
+  const float m_a = inverse_mass_a > 0.0f ? 1.0f / inverse_mass_a : 0.0f;
+  const float m_b = inverse_mass_b > 0.0f ? 1.0f / inverse_mass_b : 0.0f;
+  const float normal_a = formula::dot4(v_a, n), normal_b = formula::dot4(v_b, n);
+  for (int k = 0; k < 4; ++k) {
+    const float u_a = n[k] * normal_a, u_b = n[k] * normal_b;
+    const float new_a = (m_a * u_a + m_b * u_b + m_b * restitution * (u_b - u_a)) / (m_a + m_b);
+    const float new_b = (m_a * u_a + m_b * u_b + m_a * restitution * (u_a - u_b)) / (m_a + m_b);
+    v_a[k] += new_a - u_a;
+    v_b[k] += new_b - u_b;
+  }
+  return true;
+}
 
 // One contact of `model`: the course's formula with its switches; with divides_by_speed, a pair
 // that approaches with a body at rest gets NaN velocities (that body's normal speed is 0 / 0, and
@@ -180,10 +260,13 @@ void modelContact(Particles<float>& a, int i, Particles<float>& b, int j, float 
                   const ContactModel& model) {
   const Vec4<float> va = a.velocity.col(i), vb = b.velocity.col(j);
   const bool approaching = (va - vb).dot(a.position.col(i) - b.position.col(j)) < 0;
-  const bool touched = formula::resolveContact(
-      a.position.col(i).data(), a.velocity.col(i).data(), a.inverse_mass[i],
-      b.position.col(j).data(), b.velocity.col(j).data(), b.inverse_mass[j],
-      reach + model.reach_offset, model.restitution, model.correction, model.variant);
+  const auto contact = model.variant.massless_fixed
+                           ? masslessFixedContact
+                           : formula::resolveContact<float, ContactVariant>;
+  const bool touched =
+      contact(a.position.col(i).data(), a.velocity.col(i).data(), a.inverse_mass[i],
+              b.position.col(j).data(), b.velocity.col(j).data(), b.inverse_mass[j],
+              reach + model.reach_offset, model.restitution, model.correction, model.variant);
   if (touched && model.divides_by_speed && approaching && (va.isZero(0) || vb.isZero(0))) {
     a.velocity.col(i).setConstant(std::nanf(""));
     b.velocity.col(j).setConstant(std::nanf(""));
@@ -201,7 +284,8 @@ void collideModel(Spheres<float>& spheres, Cloth<float>& cloth, bool sphere_sphe
     for (int i = 0; i < count; ++i) {
       const int a = model.sphere_zero_for_all ? 0 : i;
       for (int j = 0; j < cloth.particles.size(); ++j)
-        modelContact(sp, a, cloth.particles, j, spheres.radius[a], model);
+        if (!model.fixed_skipped || cloth.particles.mass[j] != 0)
+          modelContact(sp, a, cloth.particles, j, spheres.radius[a], model);
     }
     return;
   }

@@ -12,7 +12,8 @@
 
 namespace clothref::grader {
 
-// Run-time switches with the names of formula::CourseSpring's and CourseContact's.
+// Run-time switches with the names of formula::CourseSpring's and CourseContact's, and one of
+// the grader's own: massless_fixed, the textbook exchange in place of the course's impulse.
 struct SpringVariant {
   bool spring_negated = false, damper_negated = false, no_damper = false,
        damper_unnormalised = false;
@@ -41,9 +42,19 @@ enum class ForceMistake {
 
 // Stub 2 with one mistake: `cloth`'s accelerations are `acc0` plus the springs' (shape 4 x N).
 // The cloth's spring_coef and damper_coef are the model's constants (a fitted k_s, k_d: set them
-// on a copy).
+// on a copy); `gravity` (m/s^2) the edition's, which AssignTotalGravity adds back.
 Mat4X<float> springAccelerations(const Cloth<float>& cloth, const Mat4X<float>& acc0,
-                                 ForceMistake mistake);
+                                 ForceMistake mistake, const Vec4<float>& gravity);
+
+// The force probe's rows: every mistake it simulates on each case, in this order, and the cause
+// each stands for (the catalogue's "force variant" entries answer to these rows and to the
+// probe's candidates, CatalogueModels.*). A new force mistake: its enumerator and comment above,
+// its switches in springAccelerations, its text and its row (formula_variants.cpp).
+struct ForceRow {
+  ForceMistake mistake;
+  const char* cause;
+};
+const std::vector<ForceRow>& forceRows();
 
 // What a mistake's model computes, in a student's words ("the course's spring force with the
 // damper's sign flipped"): the head of a replay's proof line (explain/replay.h).
@@ -64,8 +75,18 @@ enum class ContactMistake {
   RestitutionZero,  // coefRestitution overwritten
   RestitutionOne,
   PairTwice,  // stub 4's pairs (i, j) and (j, i)
-  ImpulseNotDivided
+  ImpulseNotDivided,
+  FixedSkipped  // a cloth particle of mass 0 skipped: no contact with it
 };
+
+// The collision probe's rows of stub 3 (sphere_sphere false) or stub 4, as forceRows(): a new
+// contact mistake is its enumerator, its switches (contactVariant or withMistake), its text and
+// its row (formula_variants.cpp).
+struct ContactRow {
+  ContactMistake mistake;
+  const char* cause;
+};
+std::vector<ContactRow> contactRows(bool sphere_sphere);
 
 // Stub 3 (sphere_sphere false: spheres against the cloth's particles) or stub 4 with one mistake,
 // in place, with the course's restitution and correction factor.
@@ -78,9 +99,10 @@ void collideWithMistake(Spheres<float>& spheres, Cloth<float>& cloth, bool spher
 // probe (issue 38: a cause is likely only when its model gives the student's numbers everywhere).
 struct ContactModel {
   ContactVariant variant;
-  float restitution = 0, correction = 0.15f;
+  float restitution = 0, correction = 0;  // the edition's, set by courseContact
   float reach_offset = 0;  // the contact distance r (+ r_b) + this (m): `radius + 0.1`
-  bool first_sphere_only = false, sphere_zero_for_all = false, pair_twice = false;
+  bool first_sphere_only = false, sphere_zero_for_all = false, pair_twice = false,
+       fixed_skipped = false;
   // v . n computed as |v| cos(angle), cos = v . n / |v|: NaN for a body at rest in an approaching
   // pair (the impulse's normal part is that body's own v . n, each body's formed apart)
   bool divides_by_speed = false;

@@ -1,9 +1,5 @@
-// The integrator probe's mistake simulators (integrate_mistakes.h).
+// The integrator mistakes as switches on one course step (integrate_mistakes.h).
 #include "grader/grade/mistakes/integrate_mistakes.h"
-
-#include <array>
-
-#include "clothref/core/integrator.h"
 
 namespace clothref::grader::integrators {
 namespace {
@@ -22,19 +18,28 @@ struct Backup {
   std::vector<Mat4X<float>> x0, v0;
 };
 
-// The course's predictor-corrector (implicit h = 1, midpoint h = 1/2) for `bodies` only; the
-// others keep their state (a per-body loop). With Variant::None it is the library's
-// integrateImplicit / integrateMidpoint, operation for operation.
-void predictCorrect(System& s, const std::vector<Particles<float>*>& bodies, float h,
-                    Variant variant) {
+// The course's explicit Euler (core/integrator.cpp's integrateExplicit, line for line).
+void explicitEuler(System& s, const std::vector<Particles<float>*>& bodies, const StepSwitches& w) {
   const float dt = s.dt;
-  const Backup backup(bodies, variant == Variant::Alias);
-  const auto X0 = [&](std::size_t b) { return backup.x(b); };
-  const auto V0 = [&](std::size_t b) { return backup.v(b); };
-  if (variant == Variant::NoReevaluationHalfVelocity) simulate(s);
-  if (variant == Variant::ZeroHalfStep) h = 0;
   for (auto* p : bodies) {
-    if (variant == Variant::SymplecticPredictor) {
+    if (w.position_half_acceleration)
+      p->position += p->velocity * dt + p->acceleration * (0.5f * dt * dt);
+    else if (w.updates_position)
+      p->position += p->velocity * dt;
+    if (w.updates_velocity) p->velocity += p->acceleration * dt;
+  }
+}
+
+// The course's predictor-corrector (implicit h = 1, midpoint h = 1/2: core/integrator.cpp's
+// predictEvaluateCorrect, operation for operation) for `bodies` only; the others keep their state.
+void predictCorrect(System& s, const std::vector<Particles<float>*>& bodies, float h,
+                    const StepSwitches& w) {
+  const float dt = s.dt;
+  const Backup backup(bodies, w.backup_follows_live);
+  if (w.evaluates_before_predictor) simulate(s);
+  if (w.predictor_adds_nothing) h = 0;
+  for (auto* p : bodies) {
+    if (w.predictor_symplectic) {
       p->velocity += (p->acceleration * dt) * h;
       p->position += (p->velocity * dt) * h;
     } else {
@@ -42,28 +47,25 @@ void predictCorrect(System& s, const std::vector<Particles<float>*>& bodies, flo
       p->velocity += (p->acceleration * dt) * h;
     }
   }
-  if (variant != Variant::NoReevaluationHalfVelocity) simulate(s);
+  if (!w.evaluates_before_predictor) simulate(s);
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     auto* p = bodies[b];
-    if (variant == Variant::ImplicitVNew) {
-      p->velocity = V0(b) + p->acceleration * dt;
-      p->position = X0(b) + p->velocity * dt;
+    if (w.corrector_new_velocity) {
+      p->velocity = backup.v(b) + p->acceleration * dt;
+      p->position = backup.x(b) + p->velocity * dt;
     } else {
-      const Mat4X<float> x = X0(b) + p->velocity * dt;
-      p->velocity = V0(b) + p->acceleration * dt;
+      const Mat4X<float> x = backup.x(b) + p->velocity * dt;
+      p->velocity = backup.v(b) + p->acceleration * dt;
       p->position = x;
     }
   }
 }
 
-// RK4 in the course's form for `bodies` only, with one mistake switched on (Variant::None: the
-// library's integrateRk4, operation for operation).
-void rungeKutta(System& s, const std::vector<Particles<float>*>& bodies, Variant variant,
-                int stage_index) {
+// The course's RK4 (core/integrator.cpp's integrateRk4, operation for operation) for `bodies`
+// only.
+void rungeKutta(System& s, const std::vector<Particles<float>*>& bodies, const StepSwitches& w) {
   const float dt = s.dt;
-  const Backup backup(bodies, variant == Variant::Alias);
-  const auto X0 = [&](std::size_t b) { return backup.x(b); };
-  const auto V0 = [&](std::size_t b) { return backup.v(b); };
+  const Backup backup(bodies, w.backup_follows_live);
   std::vector<Mat4X<float>> kx[4], kv[4];
   const float stage[] = {0.5f, 0.5f, 1.0f};
   for (int k = 0; k < 4; ++k) {
@@ -71,73 +73,125 @@ void rungeKutta(System& s, const std::vector<Particles<float>*>& bodies, Variant
     for (auto* p : bodies) kx[k].push_back(p->velocity * dt), kv[k].push_back(p->acceleration * dt);
     if (k == 3) break;
     for (std::size_t b = 0; b < bodies.size(); ++b) {
-      const bool current = variant == Variant::RkStageFromCurrent && k > 0;
-      const Mat4X<float> x = current ? bodies[b]->position : X0(b);
-      const Mat4X<float> v = current ? bodies[b]->velocity : V0(b);
-      const bool mixed = variant == Variant::RkMixedStage && stage_index == k;
+      const bool current = w.stage_from_current && k > 0;
+      const Mat4X<float> x = current ? bodies[b]->position : backup.x(b);
+      const Mat4X<float> v = current ? bodies[b]->velocity : backup.v(b);
       bodies[b]->velocity = v + kv[k][b] * stage[k];
-      if (variant == Variant::RkStageFromNewVelocity)
+      if (w.stage_position_from_new_velocity)
         bodies[b]->position = x + (bodies[b]->velocity * dt) * stage[k];
       else
-        bodies[b]->position = x + (mixed ? kv[k][b] : kx[k][b]) * stage[k];
+        bodies[b]->position = x + (w.stage_position_from_kv == k ? kv[k][b] : kx[k][b]) * stage[k];
     }
   }
-  // `x += (1 / 6) * (...)` adds to the state the last stage left, not to the backup.
-  const bool on_last_stage = variant == Variant::RkIntDivisionOnLastStage;
   for (std::size_t b = 0; b < bodies.size(); ++b) {
-    const Mat4X<float> x = on_last_stage ? bodies[b]->position : X0(b);
-    const Mat4X<float> v = on_last_stage ? bodies[b]->velocity : V0(b);
-    if (variant == Variant::RkStagesDiscarded) {
+    const Mat4X<float> x = w.result_on_last_stage ? bodies[b]->position : backup.x(b);
+    const Mat4X<float> v = w.result_on_last_stage ? bodies[b]->velocity : backup.v(b);
+    if (w.result_first_stage_only) {
       bodies[b]->position = x + kx[0][b];
       bodies[b]->velocity = v + kv[0][b];
       continue;
     }
-    const float w = variant == Variant::RkIntDivision || on_last_stage ? 0.0f : 1.0f;
-    const auto& kxs = variant == Variant::RkMixedFinal ? kv : kx;
-    const Mat4X<float>& kv4 = variant == Variant::RkK4xInVelocity ? kx[3][b] : kv[3][b];
+    const float weight = w.result_adds_nothing ? 0.0f : 1.0f;
+    const auto& kxs = w.result_position_from_kv ? kv : kx;
+    const Mat4X<float>& kv4 = w.result_velocity_k4_from_kx ? kx[3][b] : kv[3][b];
     bodies[b]->position =
-        x + (kxs[0][b] + 2.0f * kxs[1][b] + 2.0f * kxs[2][b] + kxs[3][b]) / 6.0f * w;
-    bodies[b]->velocity = v + (kv[0][b] + 2.0f * kv[1][b] + 2.0f * kv[2][b] + kv4) / 6.0f * w;
+        x + (kxs[0][b] + 2.0f * kxs[1][b] + 2.0f * kxs[2][b] + kxs[3][b]) / 6.0f * weight;
+    bodies[b]->velocity = v + (kv[0][b] + 2.0f * kv[1][b] + 2.0f * kv[2][b] + kv4) / 6.0f * weight;
   }
 }
 
 }  // namespace
 
-Step variantStep(Method method, Variant variant, int stage_index) {
-  return [method, variant, stage_index](System& s) {
+Step courseStep(Method method, const StepSwitches& switches) {
+  return [method, switches](System& s) {
     std::vector<Particles<float>*> bodies{&s.cloth.particles, &s.spheres.particles};
-    const float dt = s.dt;
     simulate(s);
-    if (variant == Variant::NoReevaluation ||
-        (method == Method::Explicit && variant == Variant::None)) {
-      integrateExplicit(Bodies<float>(bodies.data(), bodies.size()), dt);
+    if (method == Method::Explicit || !switches.reevaluates) {
+      explicitEuler(s, bodies, switches);
       return;
     }
-    if (method == Method::Explicit) {
-      for (auto* p : bodies) {
-        if (variant == Variant::PositionUsesAcceleration)
-          p->position += p->velocity * dt + p->acceleration * (0.5f * dt * dt);
-        else if (variant != Variant::VelocityOnly)
-          p->position += p->velocity * dt;
-        if (variant != Variant::PositionOnly) p->velocity += p->acceleration * dt;
-      }
-      return;
-    }
-    // A per-body loop: each body alone, later bodies after the earlier ones have moved.
+    // A per-body loop: each body alone, later bodies after the earlier ones have moved; the
+    // first body uses the derivatives evaluated before integrate(), each later one those of the
+    // previous body's last simulateOneStep().
     std::vector<std::vector<Particles<float>*>> groups;
-    if (variant == Variant::PerBody)
+    if (switches.per_body)
       for (auto* p : bodies) groups.push_back({p});
     else
       groups.push_back(bodies);
-    for (std::size_t g = 0; g < groups.size(); ++g) {
-      // A per-body loop's first body uses the derivatives evaluated before integrate(); each later
-      // one those of the previous body's last simulateOneStep().
+    for (const auto& group : groups) {
       if (method == Method::Implicit || method == Method::Midpoint)
-        predictCorrect(s, groups[g], method == Method::Midpoint ? 0.5f : 1.0f, variant);
+        predictCorrect(s, group, method == Method::Midpoint ? 0.5f : 1.0f, switches);
       else
-        rungeKutta(s, groups[g], variant, stage_index);
+        rungeKutta(s, group, switches);
     }
   };
+}
+
+StepSwitches switchesOf(Variant variant, int stage_index) {
+  StepSwitches w;
+  switch (variant) {
+    case Variant::None:
+      break;
+    case Variant::ImplicitVNew:
+      w.corrector_new_velocity = true;
+      break;
+    case Variant::SymplecticPredictor:
+      w.predictor_symplectic = true;
+      break;
+    case Variant::Alias:
+      w.backup_follows_live = true;
+      break;
+    case Variant::NoReevaluation:
+      w.reevaluates = false;
+      break;
+    case Variant::NoReevaluationHalfVelocity:
+      w.evaluates_before_predictor = true;
+      break;
+    case Variant::ZeroHalfStep:
+      w.predictor_adds_nothing = true;
+      break;
+    case Variant::PerBody:
+      w.per_body = true;
+      break;
+    case Variant::RkIntDivision:
+      w.result_adds_nothing = true;
+      break;
+    case Variant::RkIntDivisionOnLastStage:
+      w.result_adds_nothing = w.result_on_last_stage = true;
+      break;
+    case Variant::RkMixedFinal:
+      w.result_position_from_kv = true;
+      break;
+    case Variant::RkK4xInVelocity:
+      w.result_velocity_k4_from_kx = true;
+      break;
+    case Variant::RkMixedStage:
+      w.stage_position_from_kv = stage_index;
+      break;
+    case Variant::RkStageFromCurrent:
+      w.stage_from_current = true;
+      break;
+    case Variant::RkStageFromNewVelocity:
+      w.stage_position_from_new_velocity = true;
+      break;
+    case Variant::RkStagesDiscarded:
+      w.result_first_stage_only = true;
+      break;
+    case Variant::PositionUsesAcceleration:
+      w.position_half_acceleration = true;
+      break;
+    case Variant::VelocityOnly:
+      w.updates_position = false;
+      break;
+    case Variant::PositionOnly:
+      w.updates_velocity = false;
+      break;
+  }
+  return w;
+}
+
+Step variantStep(Method method, Variant variant, int stage_index) {
+  return courseStep(method, switchesOf(variant, stage_index));
 }
 
 std::vector<std::pair<std::string, Step>> acceptedVariants(const Rubric& rubric, Method method) {

@@ -14,7 +14,7 @@ void simulate(System& s) {
   else
     s.spheres.particles.acceleration.setZero();
   computeSpringForce(s.cloth);
-  if (s.contact) collide(s.spheres, s.cloth, 0.0f, 0.15f);
+  if (s.contact) collide(s.spheres, s.cloth, s.restitution_cloth, s.correction);
 }
 
 Step clothrefStep(Method method, int bodies_integrated) {

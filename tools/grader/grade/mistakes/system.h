@@ -21,6 +21,9 @@ struct System {
   // Sphere-cloth contact inside simulateOneStep, as the course's: it couples the bodies, so a
   // method that advances them one at a time gives another result.
   bool contact = false;
+  // The contacts' constants: coefRestitution of Spheres::collide(Cloth*) and of
+  // Spheres::collide(), and the correction factor; set with the system from the Edition record.
+  float restitution_cloth = 0, restitution_sphere = 0, correction = 0;
   float dt = 0;
   bool course_size = false;  // the course's 25 x 25 cloth and spheres (retry after a crash)
 };

@@ -104,31 +104,13 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
   }
   util::ProbeFailure failure;
   const auto answer = util::runGroup(context, context.probe, group_name, request, failure);
-  std::vector<std::pair<ContactMistake, const char*>> signatures = {
-      {ContactMistake::NoApproachCheck, cause::kNoApproachCheck},
-      {ContactMistake::RestitutionFull, cause::kRestitutionFullVelocity},
-      {ContactMistake::CorrectionSphereOnly, cause::kCorrectionOneBody},
-      {ContactMistake::CorrectionOtherOnly, cause::kCorrectionOneBody},
-      {ContactMistake::NoCorrection, cause::kNoPositionCorrection},
-      {ContactMistake::FirstSphereOnly, cause::kFirstSphereOnly},
-      {ContactMistake::NormalSign, cause::kCollisionNormalSign},
-      {ContactMistake::TouchingSkipped, cause::kTouchingSkipped},
-      {ContactMistake::ImpulseNotDivided, cause::kWrongMassSplit}};
-  // coefRestitution overwritten (e = 0 or 1); a case where it cannot matter is skipped below.
-  signatures.push_back({ContactMistake::RestitutionZero, cause::kRestitutionIgnored});
-  signatures.push_back({ContactMistake::RestitutionOne, cause::kRestitutionIgnored});
-  if (sphere_sphere) {
-    signatures.push_back({ContactMistake::PairTwice, cause::kPairProcessedTwice});
-  } else {
-    signatures.push_back({ContactMistake::FixedMassless, cause::kFixedParticleMassless});
-    signatures.push_back({ContactMistake::SphereZeroForAll, cause::kFirstSphereOnly});
-  }
+  const std::vector<ContactRow> signatures = contactRows(sphere_sphere);
   std::vector<TestResult> tests;
   std::string momentum_report;
   bool momentum_ok = true;
   bool momentum_non_finite = false;  // a failed case's momentum is NaN or infinite
   std::vector<std::string> ids;
-  for (const auto& signature : signatures) ids.push_back(signature.second);
+  for (const ContactRow& signature : signatures) ids.push_back(signature.cause);
   CauseEvidence evidence = makeEvidence(cases.size(), ids);
   std::vector<ContactReading> readings;             // the touching pairs of every case
   std::vector<bool> touching(cases.size(), false);  // a failed case has a pair in contact
@@ -176,7 +158,7 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
     for (std::size_t m = 0; m < signatures.size(); ++m) {
       State variant = c.state;
       collideWithMistake(variant.spheres, variant.cloth, sphere_sphere, e, correction,
-                         signatures[m].first);
+                         signatures[m].mistake);
       const Outcome v = outcomeOf(variant);
       evidence.differs[k][m] = distance(v, expected) > rel;
       evidence.matches[k][m] = distance(actual, v) <= 10 * rel;
@@ -189,9 +171,9 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
       tests.push_back(t);
       continue;
     }
-    t.output = "State tried (" +
-               std::string(sphere_sphere ? "coefRestitution 0.8" : "coefRestitution 0") +
-               ", radii 0.5, 0.5, 1.0, sphere masses 1000 r^3; all other bodies far away):\n\n";
+    t.output = "State tried (coefRestitution " + util::num(e) +
+               ", radii 0.5, 0.5, 1.0, sphere masses " + util::num(context.course.sphere_density) +
+               " r^3; all other bodies far away):\n\n";
     // Each body the case placed: a line of the text, and a body of the report's picture.
     const auto body = [&](const char* what, const char* short_name, int index,
                           const Mat4X<float>& x0, const Mat4X<float>& v0, float mass, float radius,
@@ -273,13 +255,13 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
   // impulse split read from the pairs.
   std::vector<std::string> breaks_momentum;
   for (std::size_t m = 0; m < signatures.size(); ++m) {
-    const std::string id = signatures[m].second;
+    const std::string id = signatures[m].cause;
     if (!likely.count(id) || std::count(breaks_momentum.begin(), breaks_momentum.end(), id))
       continue;
     for (const Case& c : cases) {
       State variant = c.state;
       collideWithMistake(variant.spheres, variant.cloth, sphere_sphere, e, correction,
-                         signatures[m].first);
+                         signatures[m].mistake);
       if (c.free_bodies && !conserves(c, outcomeOf(variant))) {
         breaks_momentum.push_back(id);
         break;

@@ -34,7 +34,8 @@ State baseState(const Edition& course) {
   for (int i = 0; i < kN * kN; ++i)
     if (s.cloth.particles.mass[i] != 0) s.cloth.particles.acceleration.col(i) = g;
   for (int k = 0; k < 3; ++k)
-    addSphere(s.spheres, Vec4<float>(100.0f * float(k + 1), 100, 0, 1), kRadii[k], 1000.0f);
+    addSphere(s.spheres, Vec4<float>(100.0f * float(k + 1), 100, 0, 1), kRadii[k],
+              static_cast<float>(course.sphere_density));
   if (course.sphere_external_force) s.spheres.particles.acceleration.colwise() = g;
   return s;
 }

@@ -147,6 +147,9 @@ std::vector<TestResult> probeForces(const ProbeContext& context) {
   initializeSpring(base, kN);
   base.spring_coef = static_cast<float>(course.spring_coef);
   base.damper_coef = static_cast<float>(course.damper_coef);
+  const Vec4<float> gravity(static_cast<float>(course.gravity[0]),
+                            static_cast<float>(course.gravity[1]),
+                            static_cast<float>(course.gravity[2]), 0.0f);
   std::mt19937 rng(static_cast<unsigned>(context.seed));
   std::uniform_real_distribution<float> u(-1.0f, 1.0f);
   const auto noise = [&](Mat4X<float>& m, float amount, bool keep_w) {
@@ -172,7 +175,7 @@ std::vector<TestResult> probeForces(const ProbeContext& context) {
     noise(c.cloth.particles.position, 0.03f, true);
     noise(c.cloth.particles.velocity, 0.5f, false);
     for (int i = 0; i < kN * kN; ++i)
-      if (c.cloth.particles.mass[i] != 0) c.acc0.col(i) = Vec4<float>(0, -9.8f, 0, 0);
+      if (c.cloth.particles.mass[i] != 0) c.acc0.col(i) = gravity;
     noise(c.acc0, 2.0f, false);
     for (int i = 0; i < kN * kN; ++i)
       if (c.cloth.particles.mass[i] == 0) c.acc0.col(i).setZero();
@@ -187,7 +190,7 @@ std::vector<TestResult> probeForces(const ProbeContext& context) {
       const int k = pick(rng);
       if (c.cloth.particles.mass[i] == 0) continue;
       setMass(c.cloth.particles, i, k == 0 ? 0.0f : k < 3 ? 2.5f : k < 5 ? 0.5f : 1.0f);
-      if (c.cloth.particles.mass[i] != 0) c.acc0.col(i) = Vec4<float>(0, -9.8f, 0, 0);
+      if (c.cloth.particles.mass[i] != 0) c.acc0.col(i) = gravity;
     }
     cases.push_back(c);
   }
@@ -221,20 +224,9 @@ std::vector<TestResult> probeForces(const ProbeContext& context) {
           util::failedTest(checks[c.check], failure.text, {util::likely(failure.causeId())}));
     return tests;
   }
-  const std::pair<ForceMistake, const char*> signatures[] = {
-      {ForceMistake::Assign, cause::kAssignNotAccumulate},
-      {ForceMistake::SpringSign, cause::kSpringForceSign},
-      {ForceMistake::DamperSign, cause::kDamperSign},
-      {ForceMistake::NoDamper, cause::kMissingDamper},
-      {ForceMistake::DamperUnnormalised, cause::kDamperNotNormalised},
-      {ForceMistake::OneEnd, cause::kForceOneEndOnly},
-      {ForceMistake::MassNotInverse, cause::kMassNotInverse},
-      {ForceMistake::DivideByMass, cause::kFixedParticleMoves},
-      {ForceMistake::OtherEndOnly, cause::kForceOneEndOnly},
-      {ForceMistake::AssignTotal, cause::kAssignNotAccumulate},
-      {ForceMistake::AssignTotalGravity, cause::kAssignNotAccumulate}};
+  const std::vector<ForceRow>& signatures = forceRows();
   std::vector<std::string> ids;
-  for (const auto& signature : signatures) ids.push_back(signature.second);
+  for (const ForceRow& signature : signatures) ids.push_back(signature.cause);
   CauseEvidence evidence = makeEvidence(cases.size(), ids);
   std::vector<SpringReading> readings;  // each case read as the course's force, constants free
   std::vector<Mat4X<float>> actuals;    // the student's accelerations of each case
@@ -251,7 +243,8 @@ std::vector<TestResult> probeForces(const ProbeContext& context) {
     const auto scale = scales(c.cloth, c.acc0);
     readings.push_back(readSprings(springCase(c, actual), rel));
     for (std::size_t m = 0; m < ids.size(); ++m) {
-      const Mat4X<float> variant = springAccelerations(c.cloth, c.acc0, signatures[m].first);
+      const Mat4X<float> variant =
+          springAccelerations(c.cloth, c.acc0, signatures[m].mistake, gravity);
       evidence.differs[k][m] = !sameAnswer(variant, expected, scale, rel);
       evidence.matches[k][m] = sameAnswer(variant, actual, scale, 10 * rel);
     }
@@ -355,7 +348,7 @@ std::vector<TestResult> probeForces(const ProbeContext& context) {
       Cloth<float> cloth = cases[k].cloth;
       cloth.spring_coef = m.spring_coef;
       cloth.damper_coef = m.damper_coef;
-      const Mat4X<float> model = springAccelerations(cloth, cases[k].acc0, m.mistake);
+      const Mat4X<float> model = springAccelerations(cloth, cases[k].acc0, m.mistake, gravity);
       replay.checks.push_back(
           {checks[cases[k].check].check,
            {{"accelerations",

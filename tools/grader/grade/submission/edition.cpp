@@ -24,6 +24,7 @@ Edition courseEdition(int year) {
   edition.spring_coef = cloth.spring_coef;
   edition.damper_coef = cloth.damper_coef;
   edition.sphere_count = static_cast<int>(spheres.items.size());
+  edition.sphere_density = spheres.density;
   edition.sphere_external_force = spheres.external_force;
   edition.sphere_sphere_collision = spheres.sphere_sphere_collision;
   edition.restitution_cloth = spheres.restitution_cloth;

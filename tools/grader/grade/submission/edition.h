@@ -22,6 +22,7 @@ struct Edition {
   double damper_coef = 0;        // N s/m: damperCoef
   // The spheres and their contacts.
   int sphere_count = 0;
+  double sphere_density = 0;             // kg/m^3: a sphere's mass is density r^3
   bool sphere_external_force = false;    // gravity and drag on spheres (2022)
   bool sphere_sphere_collision = false;  // Spheres::collide() (2022)
   double restitution_cloth = 0;          // coefRestitution of Spheres::collide(Cloth*)

@@ -12,6 +12,7 @@
 #include "grader/bridge/probe_protocol.h"
 #include "grader/grade/explain/stages/stages.h"
 #include "grader/grade/probes/util.h"
+#include "grader/grade/submission/edition.h"
 
 namespace clothref::grader::integrators {
 namespace {
@@ -30,6 +31,19 @@ void perturb(System& s, std::mt19937& rng) {
     for (int r = 0; r < 3; ++r) s.spheres.particles.velocity(r, i) = u(rng);
 }
 
+// The course's forces and contact constants, from the edition's record: gravity, drag,
+// restitutions and correction factor; and its sphere density (a sphere's mass, density r^3).
+float courseConstants(System& s, int edition) {
+  const Edition course = courseEdition(edition);
+  s.viscous = float(course.viscous_coef);
+  s.gravity = Vec4<float>(float(course.gravity[0]), float(course.gravity[1]),
+                          float(course.gravity[2]), 0.0f);
+  s.restitution_cloth = float(course.restitution_cloth);
+  s.restitution_sphere = float(course.restitution_sphere);
+  s.correction = float(course.correction);
+  return float(course.sphere_density);
+}
+
 DampedOscillator springOscillator() {
   DampedOscillator o;
   o.stiffness = 100;
@@ -46,16 +60,17 @@ Method integratorMethod(int index) {
                                                             : Method::Explicit;
 }
 
-System randomSystem(std::uint64_t seed) {
+System randomSystem(std::uint64_t seed, int edition) {
   System s;
+  const float density = courseConstants(s, edition);
   constexpr int n = 4;
   s.cloth.particles = initializeVertex<float>(n, 0.5f, 0.0f, 1.0f);
   for (int corner : {0, n - 1, n * (n - 1), n * n - 1}) setMass(s.cloth.particles, corner, 0.0f);
   initializeSpring(s.cloth, n);
   s.cloth.spring_coef = 500;
   s.cloth.damper_coef = 5;
-  addSphere(s.spheres, Vec4<float>(3, 1, 0, 1), 0.5f, 1000.0f);
-  addSphere(s.spheres, Vec4<float>(-3, 1.5f, 0.5f, 1), 0.5f, 1000.0f);
+  addSphere(s.spheres, Vec4<float>(3, 1, 0, 1), 0.5f, density);
+  addSphere(s.spheres, Vec4<float>(-3, 1.5f, 0.5f, 1), 0.5f, density);
   std::mt19937 rng(static_cast<unsigned>(seed));
   perturb(s, rng);
   // Sphere 0 sinks 10 cm into free particle 5 and keeps moving down onto it.
@@ -63,8 +78,6 @@ System randomSystem(std::uint64_t seed) {
       s.cloth.particles.position.col(5) + Vec4<float>(0, 0.4f, 0, 0);
   s.spheres.particles.velocity.col(0) = Vec4<float>(0.1f, -1, 0, 0);
   s.contact = true;
-  s.viscous = 3.4e-4f;
-  s.gravity = Vec4<float>(0, -9.8f, 0, 0);
   s.sphere_gravity = true;
   s.dt = 0.01f;
   return s;
@@ -86,8 +99,7 @@ System courseSystem(std::uint64_t seed, int edition, bool corners_free) {
   s.cloth.damper_coef = 5;
   std::mt19937 rng(static_cast<unsigned>(seed));
   perturb(s, rng);
-  s.viscous = 3.4e-4f;
-  s.gravity = Vec4<float>(0, -9.8f, 0, 0);
+  courseConstants(s, edition);
   s.sphere_gravity = true;
   s.dt = 0.01f;
   s.course_size = true;
@@ -97,8 +109,10 @@ System courseSystem(std::uint64_t seed, int edition, bool corners_free) {
 // An anchor at the origin, a unit mass at x = 1.2, no gravity or drag; one sphere far away at
 // rest. Beyond the two spring particles every one is fixed and parked far away without springs
 // (the course-size retry gives course-size code its 625 particles).
-System springSystem(float dt, int particles) {
+System springSystem(float dt, int particles, int edition) {
   System s;
+  System course;  // the sphere's density only: the spring system has no gravity, drag or contact
+  const float density = courseConstants(course, edition);
   s.cloth.particles = makeParticles<float>(particles, 1.0f);
   for (int i = 0; i < particles; ++i)
     if (i != 1) setMass(s.cloth.particles, i, 0.0f);
@@ -109,7 +123,7 @@ System springSystem(float dt, int particles) {
   s.cloth.springs.push_back({0, 1, 1.0f, SpringType::Structural});
   s.cloth.spring_coef = 100;
   s.cloth.damper_coef = 2;
-  addSphere(s.spheres, Vec4<float>(100, 100, 0, 1), 0.5f, 1000.0f);
+  addSphere(s.spheres, Vec4<float>(100, 100, 0, 1), 0.5f, density);
   s.dt = dt;
   s.course_size = particles > 2;
   return s;
@@ -123,7 +137,7 @@ double stabilityLimit(Method method) {
 // No contact, so that simulateOneStep() only sets accelerations, generic nonlinear functions of
 // the state (springs, damper, drag).
 System stageSystem(std::uint64_t seed, bool course_size, int edition) {
-  System s = course_size ? courseSystem(seed + 1000, edition) : randomSystem(seed + 1000);
+  System s = course_size ? courseSystem(seed + 1000, edition) : randomSystem(seed + 1000, edition);
   s.contact = false;
   s.dt = stages::kStageStep;
   return s;
@@ -145,8 +159,9 @@ void addSystem(probe::ProbeMessage& m, int k, const System& s, std::int64_t step
     m.ints[at(key::kSpringType)].push_back(static_cast<std::int64_t>(spring.type));
     m.floats[at(key::kSpringRest)].push_back(spring.rest_length);
   }
-  m.floats[at(key::kParams)] = {s.cloth.spring_coef, s.cloth.damper_coef, s.viscous, s.gravity[0],
-                                s.gravity[1],        s.gravity[2],        0.0f,      0.8f};
+  m.floats[at(key::kParams)] = {s.cloth.spring_coef, s.cloth.damper_coef,  s.viscous,
+                                s.gravity[0],        s.gravity[1],         s.gravity[2],
+                                s.restitution_cloth, s.restitution_sphere, s.correction};
   m.ints[at(key::kFlags)] = {s.sphere_gravity ? 1 : 0, s.contact ? 1 : 0, 0};
   m.floats[at(key::kDt)] = {s.dt};
   m.ints[at(key::kSteps)] = {steps};

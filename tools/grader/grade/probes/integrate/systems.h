@@ -20,15 +20,16 @@ namespace clothref::grader::integrators {
 Method integratorMethod(int index);
 
 // Random small perturbations of a 4 x 4 cloth at rest and two spheres, sphere 0 pressing on a
-// free cloth particle (contact on); dt = 0.01 s.
-System randomSystem(std::uint64_t seed);
+// free cloth particle (contact on); dt = 0.01 s; the course's gravity, drag, sphere density and
+// contact constants of `edition` (the same in both).
+System randomSystem(std::uint64_t seed, int edition = 2022);
 // The same on the course's own cloth and spheres (25 x 25, the edition's scene), no contact;
 // `corners_free`: its fixed corners unpinned (a free particle's mass, as the 2024 program's keys
 // 1-4 leave an unpinned corner), so that a step holding them still shows.
 System courseSystem(std::uint64_t seed, int edition, bool corners_free = false);
 // clothref's `spring` scene: a unit mass on a spring to an anchor (k = 100 N/m, c = 2 N s/m, rest
 // 1 m, released at 1.2 m); `particles` the cloth's size (the others fixed and parked far away).
-System springSystem(float dt, int particles = 2);
+System springSystem(float dt, int particles = 2, int edition = 2022);
 // The largest stable dt of `method` on springSystem (analysis::theoryLimit on its one mode).
 double stabilityLimit(Method method);
 // The stage record's system (stages.h): the random state with another seed and no contact, at the
