@@ -37,6 +37,8 @@ SourceHints sourceHints(const std::string& source) {
       has(R"(std::vector\s*<\s*Particles\s*\*\s*>\s*\w+\s*(=\s*particles|\(\s*particles\s*\)|\{\s*particles\s*\}))") ||
       has(R"(Eigen::Ref\s*<)") ||
       has(R"(auto\s*&?\s*\w+\s*=\s*\w+\s*(->|\.)\s*(position|velocity)\s*\(\s*\)\s*;)");
+  hints.value_backup = has(R"(std::vector\s*<\s*(Particles|Eigen::Matrix4Xf)\s*>)") ||
+                       has(R"((Particles|Eigen::Matrix4Xf)\s+\w+\s*(=|\(|\{|;))");
   hints.integer_half = has(R"((^|[^.\w])1\s*/\s*2(?![.\w]))");
   hints.integer_sixth = has(R"((^|[^.\w])1\s*/\s*6(?![.\w]))");
   return hints;

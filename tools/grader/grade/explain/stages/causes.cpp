@@ -263,8 +263,11 @@ StageExplanation explainStages(const StageFit& fit, int method, const SourceHint
       addCause(e, cause::kMidpointFullStep, true, "the prediction takes the full step x0 + h·v0");
   }
   if (result_on_previous)
-    addCause(e, cause::kBackupAlias, true,
-             "the result is built on the state of the last evaluation instead of the backup");
+    addCause(e,
+             (method == 1 || method == 2) && copiesButNoView(hints)
+                 ? cause::kCorrectorFromPrediction
+                 : cause::kBackupAlias,
+             true, "the result is built on the state of the last evaluation instead of the backup");
   if (stage_on_previous)
     addCause(
         e, method == 3 && !result_on_previous ? cause::kRk4StageNotFromBackup : cause::kBackupAlias,

@@ -142,6 +142,12 @@ std::vector<std::string> diagnoseOneStep(const ProbeContext& context, const Inte
   // Nothing added by the final update is integer division only when the source divides 1 by 6.
   const std::string source = stubSource(context, run.stub);
   const SourceHints hints = sourceHints(source);
+  // A backup's numbers from a stub whose backup is a real copy: the corrector steps from the
+  // prediction (the source tells the two apart; the numbers cannot).
+  const auto alias = std::find(ids.begin(), ids.end(), cause::kBackupAlias);
+  if (alias != ids.end() && (method == Method::Implicit || method == Method::Midpoint) &&
+      copiesButNoView(hints))
+    *alias = cause::kCorrectorFromPrediction;
   if (std::find(ids.begin(), ids.end(), cause::kIntegerDivisionRk4) != ids.end() &&
       !source.empty() && !hints.integer_sixth) {
     drop(cause::kIntegerDivisionRk4);

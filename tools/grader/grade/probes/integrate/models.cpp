@@ -178,6 +178,11 @@ std::vector<IntegratorModel> modelsOf(const std::string& id, const Rubric& rubri
     }
   } else if (id == cause::kBackupAlias && method != Method::Explicit) {
     variant(Variant::Alias, the + " with a backup that follows the live state");
+  } else if (id == cause::kCorrectorFromPrediction &&
+             (method == Method::Implicit || method == Method::Midpoint)) {
+    // The same step as a backup that follows the live state: the corrector adds onto the
+    // prediction. Which one the student wrote is the source's to say (backupCause).
+    variant(Variant::Alias, the + " whose corrector steps from the predicted state");
   } else if (id == cause::kNoReevaluation && method != Method::Explicit) {
     variant(Variant::NoReevaluation, "explicit Euler (what simulateOneStep() computes unused)");
     // The same step taken from the live state after the stub's own simulateOneStep() (no
