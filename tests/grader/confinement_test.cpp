@@ -37,18 +37,28 @@ const char* kSpy = R"spy(
       std::fprintf(stderr, "SPY-%s %s\n", what, where.c_str());
       std::abort();
     };
+    // read(2), not std::ifstream: libstdc++'s filebuf throws when a read fails (a process that
+    // ends between open and read: ESRCH), and the spy then aborted for nothing it reached.
+    const auto slurp = [](const std::string &path) {
+      std::string text;
+      const int fd = open(path.c_str(), O_RDONLY);
+      if (fd < 0) return text;
+      char buffer[4096];
+      for (ssize_t n; (n = read(fd, buffer, sizeof buffer)) > 0;)
+        text.append(buffer, static_cast<std::size_t>(n));
+      close(fd);
+      return text;
+    };
     const std::string other_mark = std::string("SPY-OF-") + "@OTHER_NAME@";
     for (int round = 0; round < 40; ++round) {
       DIR *proc = opendir("/proc");
       for (dirent *entry; proc && (entry = readdir(proc));) {
         const std::string pid = entry->d_name;
         if (pid.find_first_not_of("0123456789") != std::string::npos) continue;
-        std::ifstream status("/proc/" + pid + "/status");
-        int uid = -1;
-        for (std::string line; std::getline(status, line);)
-          if (line.rfind("Uid:", 0) == 0) uid = std::atoi(line.c_str() + 4);
-        std::ifstream cmdline_file("/proc/" + pid + "/cmdline");
-        const std::string cmdline((std::istreambuf_iterator<char>(cmdline_file)), {});
+        const std::string status = slurp("/proc/" + pid + "/status");
+        const std::size_t uid_at = status.find("\nUid:");
+        const int uid = uid_at == std::string::npos ? -1 : std::atoi(status.c_str() + uid_at + 5);
+        const std::string cmdline = slurp("/proc/" + pid + "/cmdline");
         if (cmdline.find("@OTHER@") != std::string::npos) got("SAW-OTHER-PATH", pid);
         if (uid < 0 || uid == static_cast<int>(getuid()) || uid == 0) continue;
         if (cmdline.find("probe") == std::string::npos) continue;
@@ -66,9 +76,9 @@ const char* kSpy = R"spy(
       for (dirent *entry; tmp && (entry = readdir(tmp));) {
         const std::string name = entry->d_name;
         if (name.rfind("clothref-grade-", 0) != 0) continue;
-        std::ifstream source("/tmp/" + name + "/build/src-integrator/integrator.cpp");
-        for (std::string line; std::getline(source, line);)
-          if (line.find(other_mark) != std::string::npos) got("READ-SOURCE", name);
+        if (slurp("/tmp/" + name + "/build/src-integrator/integrator.cpp").find(other_mark) !=
+            std::string::npos)
+          got("READ-SOURCE", name);
       }
       if (tmp) closedir(tmp);
       usleep(50000);
