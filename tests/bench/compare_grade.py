@@ -4,8 +4,10 @@
 of busy CPU (the grader and every process it started: tests/bench/busy_cpu.py), which the
 machine's load disturbs less than a figure of another day.
 
-Each grade starts from an empty object cache (what a distinct submission of a batch costs); the
-order within a pair alternates (old, new; new, old; ...) so a change of load hits both alike.
+Each grade starts from an empty object cache (what a distinct submission of a batch costs), on a
+copy of the submission with a comment added to each file (our reference's files would otherwise
+match the objects clothref prebuilt, and no compile would be measured); the order within a pair
+alternates (old, new; new, old; ...) so a change of load hits both alike.
 
 Usage: tests/bench/compare_grade.py OLD_BUILD NEW_BUILD SUBMISSION... [--pairs N]
 Prints each run, then per submission the medians, the ratio new / old and the load around it.
@@ -43,7 +45,14 @@ def main():
     work = tempfile.mkdtemp(prefix="clothref-compare-")
     try:
         print(f"busy CPU by {cpu.how}; {load()}; yardstick {yardstick(cpu):.2f} s", flush=True)
-        for submission in args.submissions:
+        for number, original in enumerate(args.submissions):
+            submission = os.path.join(work, f"submission-{number}")
+            shutil.copytree(original, submission)
+            for dirpath, _, files in os.walk(submission):
+                for name in files:
+                    if name.endswith(".cpp"):
+                        with open(os.path.join(dirpath, name), "a") as handle:
+                            handle.write("\n// compare_grade: a distinct copy\n")
             busy = {"old": [], "new": []}
             for pair in range(args.pairs):
                 order = ("old", "new") if pair % 2 == 0 else ("new", "old")
@@ -55,12 +64,12 @@ def main():
                         [builds[label], "grade", submission, "--cache-dir", cache, "--results",
                          results], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
                     if code != 0:
-                        sys.exit(f"compare_grade: {label} exited {code} on {submission}")
+                        sys.exit(f"compare_grade: {label} exited {code} on {original}")
                     busy[label].append(seconds)
                     print(f"  pair {pair + 1} {label}: busy CPU {seconds:6.2f} s, wall {wall:6.2f} s",
                           flush=True)
             old, new = statistics.median(busy["old"]), statistics.median(busy["new"])
-            print(f"{submission}: busy CPU median old {old:.2f} s, new {new:.2f} s, new / old "
+            print(f"{original}: busy CPU median old {old:.2f} s, new {new:.2f} s, new / old "
                   f"{new / old:.2f} ({args.pairs} pairs); {load()}; yardstick "
                   f"{yardstick(cpu):.2f} s", flush=True)
     finally:
