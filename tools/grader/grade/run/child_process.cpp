@@ -265,7 +265,8 @@ ChildRun runChildOnce(const std::vector<std::string>& command,
   // The wall limit counts the run's own time: what its processes waited for a CPU is added to it
   // (read from /proc only once the limit is reached, and again when the added time has passed),
   // up to kLoadAllowance times the limit; stopped there short of its own limit, it was held back.
-  // A tree that keeps more than a CPU busy (a fork bomb, threads) waits for itself: no time added.
+  // A tree that keeps more than one process runnable (a fork bomb, threads: its CPU time and
+  // waits sum to more than its wall) waits for itself: no time added.
   const double cap = kLoadAllowance * limits.wall_seconds;
   double limit = limits.wall_seconds, waited = -1;
   bool held_back = false;
@@ -273,7 +274,7 @@ ChildRun runChildOnce(const std::vector<std::string>& command,
     const double now = secondsSince(start);
     if (now < limit) return false;
     const TreeTimes times = treeTimes(pid);
-    if (times.cpu >= now)
+    if (times.cpu + times.waited_total > 1.5 * now)
       waited = -1;
     else
       waited = std::max(waited, times.waited);

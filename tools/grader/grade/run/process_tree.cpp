@@ -78,7 +78,9 @@ TreeTimes treeTimes(pid_t root) {
     // schedstat: time on a CPU (ns), time runnable waiting for one (ns), timeslices run.
     std::ifstream in("/proc/" + std::to_string(pid) + "/schedstat");
     double on_cpu = 0, waiting = 0;
-    if (in >> on_cpu >> waiting) times.waited = std::max(times.waited, waiting / 1e9);
+    if (!(in >> on_cpu >> waiting)) continue;
+    times.waited = std::max(times.waited, waiting / 1e9);
+    times.waited_total = std::max(times.waited_total, 0.0) + waiting / 1e9;
   }
   const long per_second = sysconf(_SC_CLK_TCK);
   times.cpu = ticks / double(per_second > 0 ? per_second : 100);

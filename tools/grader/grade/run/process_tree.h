@@ -17,6 +17,7 @@ double treeCpuSeconds(pid_t root);
 struct TreeTimes {
   double cpu = -1;
   double waited = -1;
+  double waited_total = -1;  // summed over the tree's processes
 };
 TreeTimes treeTimes(pid_t root);
 
