@@ -37,22 +37,34 @@ const char* kSpy = R"spy(
       std::fprintf(stderr, "SPY-%s %s\n", what, where.c_str());
       std::abort();
     };
+    // read(2), not std::ifstream: libstdc++'s filebuf throws when a read fails (a process that
+    // ends between open and read: ESRCH), and the spy then aborted for nothing it reached.
+    const auto slurp = [](const std::string &path) {
+      std::string text;
+      const int fd = open(path.c_str(), O_RDONLY);
+      if (fd < 0) return text;
+      char buffer[4096];
+      for (ssize_t n; (n = read(fd, buffer, sizeof buffer)) > 0;)
+        text.append(buffer, static_cast<std::size_t>(n));
+      close(fd);
+      return text;
+    };
     const std::string other_mark = std::string("SPY-OF-") + "@OTHER_NAME@";
     for (int round = 0; round < 40; ++round) {
       DIR *proc = opendir("/proc");
       for (dirent *entry; proc && (entry = readdir(proc));) {
         const std::string pid = entry->d_name;
         if (pid.find_first_not_of("0123456789") != std::string::npos) continue;
-        std::ifstream status("/proc/" + pid + "/status");
-        int uid = -1;
-        for (std::string line; std::getline(status, line);)
-          if (line.rfind("Uid:", 0) == 0) uid = std::atoi(line.c_str() + 4);
-        std::ifstream cmdline_file("/proc/" + pid + "/cmdline");
-        const std::string cmdline((std::istreambuf_iterator<char>(cmdline_file)), {});
+        const std::string status = slurp("/proc/" + pid + "/status");
+        const std::size_t uid_at = status.find("\nUid:");
+        const int uid = uid_at == std::string::npos ? -1 : std::atoi(status.c_str() + uid_at + 5);
+        const std::string cmdline = slurp("/proc/" + pid + "/cmdline");
         if (cmdline.find("@OTHER@") != std::string::npos) got("SAW-OTHER-PATH", pid);
         if (uid < 0 || uid == static_cast<int>(getuid()) || uid == 0) continue;
         if (cmdline.find("probe") == std::string::npos) continue;
-        std::fprintf(stderr, "SPY-FOUND %d\n", uid);
+        static bool said = false;  // once: the report keeps only a run's first lines of stderr
+        if (!said) std::fprintf(stderr, "SPY-FOUND %d\n", uid);
+        said = true;
         if (open(("/proc/" + pid + "/mem").c_str(), O_RDWR) >= 0) got("GOT-MEM", pid);
         if (open(("/proc/" + pid + "/cwd/spy-was-here").c_str(), O_WRONLY | O_CREAT, 0644) >= 0)
           got("WROTE", pid);
@@ -64,9 +76,9 @@ const char* kSpy = R"spy(
       for (dirent *entry; tmp && (entry = readdir(tmp));) {
         const std::string name = entry->d_name;
         if (name.rfind("clothref-grade-", 0) != 0) continue;
-        std::ifstream source("/tmp/" + name + "/build/src-integrator/integrator.cpp");
-        for (std::string line; std::getline(source, line);)
-          if (line.find(other_mark) != std::string::npos) got("READ-SOURCE", name);
+        if (slurp("/tmp/" + name + "/build/src-integrator/integrator.cpp").find(other_mark) !=
+            std::string::npos)
+          got("READ-SOURCE", name);
       }
       if (tmp) closedir(tmp);
       usleep(50000);
@@ -118,6 +130,7 @@ struct SpyReport {
   std::set<int> uids;            // the uids the spy ran as (one per probe process)
   std::vector<std::string> got;  // what it got: every line but SPY-UID and SPY-FOUND
   bool found_other = false;
+  std::string stderr_text;  // every run's stderr, under its folder's name (printed on a failure)
 };
 
 SpyReport spyReport(const fs::path& keep) {
@@ -128,8 +141,11 @@ SpyReport spyReport(const fs::path& keep) {
   std::error_code error;
   for (const auto& entry : fs::directory_iterator(keep / "probes", error))
     if (entry.path().filename().string().rfind("integrate-0", 0) == 0 &&
-        fs::exists(entry.path() / "child.stderr"))
-      text += readText(entry.path() / "child.stderr");
+        fs::exists(entry.path() / "child.stderr")) {
+      const std::string run = readText(entry.path() / "child.stderr");
+      text += run;
+      report.stderr_text += entry.path().filename().string() + ":\n" + run;
+    }
   std::istringstream in(text);
   for (std::string line; std::getline(in, line);) {
     if (line.rfind("SPY-UID ", 0) == 0)
@@ -140,6 +156,18 @@ SpyReport spyReport(const fs::path& keep) {
       report.got.push_back(line);
   }
   return report;
+}
+
+// On a failure, why: each test of a results.json that did not pass, its name and output (a spy
+// that got something aborts, and the output then quotes its stderr's first lines).
+std::string failedTests(const fs::path& results) {
+  const nlohmann::json json = nlohmann::json::parse(readText(results), nullptr, false);
+  std::string failed;
+  if (json.is_object() && json.contains("tests") && json["tests"].is_array())
+    for (const auto& t : json["tests"])
+      if (t.value("status", "") != "passed")
+        failed += t.value("name", "?") + ": " + t.value("output", "").substr(0, 2000) + "\n";
+  return failed;
 }
 
 // Runs clothref without a shell (a shell's command line would name the submissions).
@@ -179,18 +207,16 @@ TEST(Confinement, TwoGradersSideBySideInTheFallbackRunAsDistinctUidsAndReachNoth
   second.join();
   ASSERT_EQ(a_run.exit_code, 0) << a_run.output;
   ASSERT_EQ(b_run.exit_code, 0) << b_run.output;
-  for (const fs::path& results : {a_results, b_results}) {
-    const nlohmann::json json = nlohmann::json::parse(readText(results));
-    // On a failure, why: each failed test's name and the start of its output.
-    std::string failed;
-    if (json.contains("tests") && json["tests"].is_array())
-      for (const auto& t : json["tests"])
-        if (t.value("status", "") != "passed")
-          failed += t.value("name", "?") + ": " + t.value("output", "").substr(0, 400) + "\n";
-    EXPECT_DOUBLE_EQ(json["score"].get<double>(), 80.0) << results << "\n" << failed;
-  }
   const SpyReport alice = spyReport(temp.path() / "alice-keep");
   const SpyReport bobby = spyReport(temp.path() / "bobby-keep");
+  // On a failure, why: the failed tests and every run of each spy, with its whole stderr.
+  for (const auto& [results, spy] : {std::pair{a_results, &alice}, std::pair{b_results, &bobby}}) {
+    const nlohmann::json json = nlohmann::json::parse(readText(results));
+    EXPECT_DOUBLE_EQ(json["score"].get<double>(), 80.0)
+        << results << "\n"
+        << failedTests(results) << "the spy's runs:\n"
+        << spy->stderr_text;
+  }
   ASSERT_EQ(alice.uids.size(), 1u);
   ASSERT_EQ(bobby.uids.size(), 1u);
   EXPECT_NE(*alice.uids.begin(), *bobby.uids.begin());
@@ -235,15 +261,11 @@ TEST(Confinement, TwoSubmissionsOfABatchReachNothingOfEachOther) {
   const std::string problem = readText(out / kAlice / "row.json");
   if (problem.find("allows no private mount namespace") != std::string::npos)
     GTEST_SKIP() << "no private mount namespace here: the batch refuses readable folders";
-  // On a failure, why: each report's lines on how its probes ended (a spy that got something
-  // aborts, and its two runs then differ).
+  // On a failure, why: each failed test's output, which quotes how its probe's runs ended and the
+  // first lines of the spy's stderr (what it got, or why else it aborted).
   const auto why = [&](const std::string& name) {
-    std::string lines;
-    std::istringstream report(readText(out / name / "report.md"));
-    for (std::string line; std::getline(report, line);)
-      if (line.find("run") != std::string::npos && line.find("first") != std::string::npos)
-        lines += line + "\n";
-    return std::string(name) + ": " + (lines.empty() ? "(no run lines)\n" : lines);
+    const std::string failed = failedTests(out / name / "results.json");
+    return name + ":\n" + (failed.empty() ? "(no failed test)\n" : failed);
   };
   EXPECT_NE(csv.find(kAlice + ",2022,15,20,10,10,5,2.5,2.5,15,80,80,graded"), std::string::npos)
       << csv << why(kAlice);

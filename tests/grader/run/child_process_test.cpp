@@ -4,9 +4,13 @@
 #include "grader/grade/run/tools.h"
 
 #include <gtest/gtest.h>
+#include <sched.h>
 
+#include <atomic>
 #include <fstream>
+#include <iostream>
 #include <nlohmann/json.hpp>
+#include <thread>
 #include <utility>
 
 #include "test_util.h"
@@ -106,38 +110,61 @@ std::pair<ChildRun, std::size_t> runMarked(const test::TempDir& temp, const std:
   return {run, runs};
 }
 
-// A scored probe runs twice; a second run stopped at the wall-clock limit after a first that
-// finished is tried once more and the retry stands (a loaded machine can hold a run back for its
-// whole wall time). The program here exits 3, then sleeps past the limit, then exits 3 again:
-// without the retry the pair read as "results vary" (undefined behaviour, the student's).
-TEST(RunProbeTwice, ASecondRunHeldBackToTheWallLimitIsTriedOnceMore) {
+// A run stopped at the wall-clock limit spent its own time there (waiting for a CPU does not
+// count), so a second run cannot change the verdict: an endless loop, a sleep, and a second run
+// that runs away after a first that finished each cost one limit, and the pair's verdict stands.
+TEST(RunProbeTwice, ARunStoppedAtTheWallLimitIsNotRepeated) {
   test::TempDir temp;
-  const auto [run, runs] = runMarked(temp, "[ \"$n\" = 1 ] && exec sleep 30\nexit 3\n");
-  EXPECT_EQ(run.status, ChildStatus::ExitedNonZero) << run.describe() << "\n" << run.stderr_head;
-  EXPECT_EQ(run.exit_code, 3);
-  EXPECT_EQ(runs, 3u);  // first, second (held back), the second's retry
-  // An endless first run (it computes) is not repeated: one wall limit, not two or three. (On a
-  // machine so loaded that the loop got under half a CPU, it is held back too: one retry.)
   const auto [busy, busy_runs] = runMarked(temp, "while :; do :; done\n");
-  EXPECT_EQ(busy.status, ChildStatus::TimedOut);
+  EXPECT_EQ(busy.status, ChildStatus::TimedOut) << busy.describe();
   EXPECT_GT(busy.cpu_seconds, 0.3) << "the loop's CPU time was not read";
-  EXPECT_EQ(busy_runs, busy.cpu_seconds >= 1.5 ? 1u : 2u);
+  EXPECT_GE(busy.waited_seconds, 0) << "the loop's wait for a CPU was not read";
+  EXPECT_EQ(busy_runs, 1u);  // one limit, however loaded the machine (was 2 under load)
+  EXPECT_EQ(busy.describe(), "timed out after 3 s");  // its own time, not the wall's
+  const auto [sleeps, sleeps_runs] = runMarked(temp, "exec sleep 30\n");
+  EXPECT_EQ(sleeps.status, ChildStatus::TimedOut);
+  EXPECT_LT(sleeps.cpu_seconds, 1);
+  EXPECT_EQ(sleeps_runs, 1u);  // a sleep is the program's: not retried (was 2)
+  const auto [second, second_runs] = runMarked(temp, "[ \"$n\" = 1 ] && exec sleep 30\nexit 3\n");
+  EXPECT_EQ(second.status, ChildStatus::Varies) << second.describe();
+  EXPECT_EQ(second_runs, 2u);  // the first, the second (was 3: the second's retry)
 }
 
-// A first run stopped at the wall-clock limit that used little CPU time waited (a loaded
-// machine holds a run back; here it sleeps): it is tried once more and the retry stands, so a
-// program held back once is graded on its retry, and one that always waits still times out,
-// after two limits.
-TEST(RunProbeTwice, AFirstRunThatWaitedToTheWallLimitIsTriedOnceMore) {
+// Load never costs a student points: time a run waits for a CPU is not counted against its wall
+// limit. Here the program needs about 0.25 s of CPU, its limit is 0.5 s, and it runs pinned to
+// CPU 0 beside a busy thread pinned there too (it gets at most half of the CPU: at least 0.5 s
+// of wall). Before, it was stopped at 0.5 s, `timed-out`, the student's. On a machine so loaded
+// that it gets under a sixth of a CPU it is held back to 3 x the limit: then it is ours
+// (`grader-error`), never the student's.
+TEST(RunChild, TimeWaitingForACpuDoesNotCountAgainstTheLimit) {
   test::TempDir temp;
-  const auto [run, runs] = runMarked(temp, "[ \"$n\" = 0 ] && exec sleep 30\nexit 3\n");
-  EXPECT_EQ(run.status, ChildStatus::ExitedNonZero) << run.describe() << "\n" << run.stderr_head;
-  EXPECT_EQ(runs, 3u);  // the held-back first, its retry, the second
-  const auto [waits, waits_runs] = runMarked(temp, "exec sleep 30\n");
-  EXPECT_EQ(waits.status, ChildStatus::TimedOut);
-  EXPECT_GE(waits.cpu_seconds, 0);
-  EXPECT_LT(waits.cpu_seconds, 1);
-  EXPECT_EQ(waits_runs, 2u);  // the first and its retry; a run that timed out is not repeated
+  std::atomic<bool> stop{false};
+  std::thread rival([&] {
+    cpu_set_t one;
+    CPU_ZERO(&one);
+    CPU_SET(0, &one);
+    sched_setaffinity(0, sizeof one, &one);  // this thread only
+    while (!stop) {
+    }
+  });
+  const ChildRun run =
+      runShell(temp,
+               "exec taskset -c 0 python3 -c 'import time\nwhile time.process_time() < 0.25: "
+               "pass\nraise SystemExit(3)'",
+               0.5);
+  stop = true;
+  rival.join();
+  EXPECT_NE(run.status, ChildStatus::TimedOut) << run.describe();
+  if (run.status == ChildStatus::NotStarted) {
+    EXPECT_NE(run.grader_problem.find("load held the run back"), std::string::npos)
+        << run.grader_problem;
+    EXPECT_EQ(run.verdict(), Verdict::GraderError);
+    std::cout << "[ info     ] held back to 3 x the limit: " << run.grader_problem << "\n";
+  } else {
+    EXPECT_EQ(run.status, ChildStatus::ExitedNonZero) << run.describe() << run.stderr_head;
+    EXPECT_EQ(run.exit_code, 3);
+    std::cout << "[ info     ] finished after " << run.seconds << " s of wall (limit 0.5 s)\n";
+  }
 }
 
 // Faults of ours, injected (CLOTHREF_GRADER_FAULT, read by the grader process only): each is

@@ -10,6 +10,8 @@
 // HTML report's pictures.
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <mutex>
 #include <sstream>
 
 #include "clothref/diff/diff.h"
@@ -18,6 +20,7 @@
 #include "clothref/trace/body_view.h"
 #include "clothref/trace/format.h"
 #include "clothref/trace/step_line.h"
+#include "grader/grade/probes/probes.h"
 #include "grader/grade/probes/util.h"
 
 namespace clothref::grader {
@@ -90,6 +93,25 @@ std::string describe(const DiffReport& report, double dt) {
   return out;
 }
 
+// A stub the whole run calls (at its start or every step) that ran into its time limit in its
+// own scored probe, or "": the whole run would only spend a limit of its own too.
+std::string stubThatTimedOut(const ProbeContext& context) {
+  if (!context.limits.log) return "";
+  std::map<std::string, std::string> stub_of;
+  for (const auto& [folder, stub] : probeFolders()) stub_of[folder] = stub;
+  const RunLog& log = *context.limits.log;
+  std::lock_guard<std::mutex> lock(context.limits.log->mutex);
+  for (std::size_t k = 0; k < log.verdicts.size() && k < log.folders.size(); ++k) {
+    const auto found = stub_of.find(log.folders[k]);
+    if (log.verdicts[k] != Verdict::TimedOut || found == stub_of.end() || found->second.empty())
+      continue;
+    const bool other_integrator = found->first.rfind(group::kIntegrate, 0) == 0 &&
+                                  found->second != stubName(Stub::ExplicitEuler);
+    if (!other_integrator) return found->second;
+  }
+  return "";
+}
+
 }  // namespace
 
 std::vector<TestResult> probeWholeRun(const ProbeContext& context) {
@@ -119,6 +141,12 @@ std::vector<TestResult> probeWholeRun(const ProbeContext& context) {
       std::to_string(kStride) +
       "th state is compared. This never changes your score: an "
       "accepted variant (e.g. symplectic explicit Euler) also differs here.\n\n";
+  if (const std::string stopped = stubThatTimedOut(context); !stopped.empty()) {
+    t.output = what + "Not run: your " + stopped +
+               " did not finish within the time limit in its own probe (above), and the whole run "
+               "calls it.";
+    return {t};
+  }
   probe::ProbeMessage request;
   request.texts[key::kGroup] = group::kWholeRun;
   request.ints[key::kMethod] = {util::methodRow(settings.method)};

@@ -45,8 +45,9 @@ std::string ChildRun::describe() const {
       else
         out << "crashed (" << signalName(signal) << ")";
       break;
-    case ChildStatus::TimedOut:
-      out << "timed out after " << static_cast<int>(seconds + 0.5) << " s";
+    case ChildStatus::TimedOut:  // the limit its own time reached, whatever load added to it
+      out << "timed out after "
+          << static_cast<int>((limit_seconds > 0 ? limit_seconds : seconds) + 0.5) << " s";
       break;
     case ChildStatus::DiskLimit:
       out << "was stopped for holding more than " << (disk_limit_bytes >> 20)
@@ -103,6 +104,10 @@ Verdict ChildRun::verdict() const {
 }
 
 namespace {
+
+// How close to its limit a run's own time must be to be stopped (else the limit is moved on by
+// what it waited for a CPU, and read again then).
+constexpr double kLimitRecheckSeconds = 0.05;
 
 // A run the grader could not start: its own words, never the student's stderr.
 ChildRun notStarted(const std::string& why, bool waiting_for_slot = false) {
@@ -257,6 +262,28 @@ ChildRun runChildOnce(const std::vector<std::string>& command,
   std::string answer, info;
   SandboxInit sandbox;
   bool timed_out = false, disk_full = false;
+  // The wall limit counts the run's own time: what its processes waited for a CPU is added to it
+  // (read from /proc only once the limit is reached, and again when the added time has passed),
+  // up to kLoadAllowance times the limit; stopped there short of its own limit, it was held back.
+  // A tree that keeps more than one process runnable (a fork bomb, threads: its CPU time and
+  // waits sum to more than its wall) waits for itself: no time added.
+  const double cap = kLoadAllowance * limits.wall_seconds;
+  double limit = limits.wall_seconds, waited = -1;
+  bool held_back = false;
+  const auto reachedLimit = [&] {
+    const double now = secondsSince(start);
+    if (now < limit) return false;
+    const TreeTimes times = treeTimes(pid);
+    if (times.cpu + times.waited_total > 1.5 * now)
+      waited = -1;
+    else
+      waited = std::max(waited, times.waited);
+    const double own = now - std::max(waited, 0.0);
+    if (own >= limits.wall_seconds - kLimitRecheckSeconds) return true;
+    if (now >= cap) return held_back = true;
+    limit = std::min(cap, now + (limits.wall_seconds - own));
+    return false;
+  };
   auto next_disk_check = Clock::now();
   const auto checkDisk = [&] {
     if (Clock::now() < next_disk_check) return false;
@@ -281,11 +308,11 @@ ChildRun runChildOnce(const std::vector<std::string>& command,
       sandbox.pin(info);
     }
     readReport();
-    const double left = limits.wall_seconds - secondsSince(start);
-    if (left <= 0) {
+    if (reachedLimit()) {
       timed_out = true;
       break;
     }
+    const double left = std::max(0.0, limit - secondsSince(start));
     if (checkDisk()) break;
     pollfd polled[2] = {{pipe_fds[0], POLLIN, 0}, {report_fds[0], POLLIN, 0}};
     const int ready = poll(polled, report_fds[0] >= 0 ? 2 : 1,
@@ -309,7 +336,7 @@ ChildRun runChildOnce(const std::vector<std::string>& command,
       reaped = true;
       break;
     }
-    if (secondsSince(start) >= limits.wall_seconds) {
+    if (reachedLimit()) {
       timed_out = true;
       break;
     }
@@ -317,8 +344,10 @@ ChildRun runChildOnce(const std::vector<std::string>& command,
     readReport();
     usleep(2000);
   }
-  // Read before the kill: whether a run stopped at the limit computed or waited.
-  const double cpu_at_limit = reaped ? -1 : treeCpuSeconds(pid);
+  // Read before the kill: whether a run stopped at the limit computed, slept or was held back.
+  const TreeTimes at_limit = reaped ? TreeTimes{} : treeTimes(pid);
+  const double cpu_at_limit = at_limit.cpu;
+  if (!reaped) waited = std::max(waited, at_limit.waited);
   if (boxed) {
     readAvailable(info_fds[0], info);
     close(info_fds[0]);
@@ -327,6 +356,7 @@ ChildRun runChildOnce(const std::vector<std::string>& command,
   ChildRun run;
   run.disk_limit_bytes = limits.disk_bytes;
   run.cpu_seconds = cpu_at_limit;
+  run.waited_seconds = waited;
   if (expect_answer) {
     const std::optional<probe::ProbeMessage> frame = probe::decodeMessage(answer);
     run.answered = frame && frame->nonce == request_nonce;
@@ -338,6 +368,7 @@ ChildRun runChildOnce(const std::vector<std::string>& command,
       waitpid(pid, &status, 0);
     }
     run.status = disk_full ? ChildStatus::DiskLimit : ChildStatus::TimedOut;
+    if (!disk_full) run.limit_seconds = limits.wall_seconds;
   } else {
     sandbox.killAndWait();             // normally gone already: bubblewrap exits after its sandbox
     if (pid > 1) kill(-pid, SIGKILL);  // any grandchildren left in the group (pid is reaped)
@@ -381,6 +412,18 @@ ChildRun runChildOnce(const std::vector<std::string>& command,
   if (run.status == ChildStatus::Crashed && run.signal == SIGKILL && cgroup.oomKilled())
     run.memory_limit = true;
   run.seconds = secondsSince(start);
+  if (run.status == ChildStatus::TimedOut && held_back) {
+    // Held back by load to kLoadAllowance times the limit: ours, whatever the program is.
+    std::ostringstream why;
+    why << "the machine's load held the run back: stopped after " << static_cast<int>(run.seconds)
+        << " s, of which it waited " << static_cast<int>(waited) << " s for a CPU, short of its "
+        << limits.wall_seconds << " s limit";
+    ChildRun ours = notStarted(why.str());
+    ours.seconds = run.seconds;
+    ours.cpu_seconds = run.cpu_seconds;
+    ours.waited_seconds = run.waited_seconds;
+    run = ours;
+  }
   if (run.status != ChildStatus::NotStarted) run.stderr_head = readHead(err_path, 2000, 12);
   // What the run wrote does not outlive it: its folder's files (unless kept for --keep-work) and
   // all but the start of its output files.
@@ -433,7 +476,7 @@ ChildLimits limitsForTimeout(double seconds) {
 double slotWait(const ChildLimits& limits) {
   return limits.slot_wait_seconds > 0
              ? limits.slot_wait_seconds
-             : kSanitizerSlowdown * limits.wall_seconds + kSlotWaitMarginSeconds;
+             : kSanitizerSlowdown * kLoadAllowance * limits.wall_seconds + kSlotWaitMarginSeconds;
 }
 
 std::vector<std::vector<std::string>> probeVariants() {
@@ -470,24 +513,15 @@ ChildRun runProbeTwice(const std::filesystem::path& executable, const probe::Pro
   variant.log = nullptr;  // one verdict for the pair, below
   const std::vector<std::vector<std::string>> variants = probeVariants();
   variant.environment = variants[0];
+  // A run stopped at the wall-clock limit spent its own time there (runChild does not count
+  // load's wait, and a run held back by load is ours): an endless loop costs one limit.
   ChildRun first = runProbe(executable, request, work_dir, variant);
-  // A first run stopped at the wall-clock limit having used less than half of it in CPU time
-  // waited (for a CPU on a loaded machine, or in a sleep) rather than computed: it is tried once
-  // more and the retry stands. An endless loop computes: it is stopped once, one limit.
-  if (first.status == ChildStatus::TimedOut && first.cpu_seconds >= 0 &&
-      first.cpu_seconds < 0.5 * limits.wall_seconds)
-    first = runProbe(executable, request, work_dir, variant);
   const bool repeat = first.status == ChildStatus::Ok || first.status == ChildStatus::Crashed ||
                       first.status == ChildStatus::ExitedNonZero ||
                       first.status == ChildStatus::NoAnswer;
   if (repeat) {
     variant.environment = variants[1];
-    ChildRun second = runProbe(executable, request, work_dir, variant);
-    // The first run finished; a second one stopped at the wall-clock limit may have waited for a
-    // CPU on a loaded machine rather than run: it is tried once more, and the retry
-    // stands. An endless loop is stopped in the first run and still costs one limit.
-    if (first.status != ChildStatus::TimedOut && second.status == ChildStatus::TimedOut)
-      second = runProbe(executable, request, work_dir, variant);
+    const ChildRun second = runProbe(executable, request, work_dir, variant);
     const bool alike =
         second.status == first.status &&
         (first.status == ChildStatus::Ok

@@ -40,9 +40,13 @@ inline constexpr std::uint64_t kKeptOutputBytes = 64ull << 10;
 // this times the probe's, and a run waiting for the uid's process slots waits out the longest.
 inline constexpr double kSanitizerSlowdown = 3;
 inline constexpr double kSlotWaitMarginSeconds = 5;  // a stopped run's cleanup (2 s + 2 s)
+// The wall-clock limit counts a run's own time: what it spent waiting for a CPU (runnable while
+// the machine's other work held the CPUs) is added to it, up to this times the limit. A run
+// stopped there before its own time reached the limit was held back by load: a failure of ours.
+inline constexpr double kLoadAllowance = 3;
 
 struct ChildLimits {
-  double wall_seconds = 20;                        // killed (whole process group) after this
+  double wall_seconds = 20;  // killed (whole process group) after this, load's wait not counted
   std::uint64_t cpu_seconds = 20;                  // RLIMIT_CPU
   std::uint64_t address_space_bytes = 4ull << 30;  // RLIMIT_AS (RLIM_INFINITY: none)
   // The run's memory cgroup (memory.max, or cgroup v1's memory.limit_in_bytes) where the host
@@ -58,8 +62,8 @@ struct ChildLimits {
   // once: twice this per submission.
   std::uint64_t disk_bytes = kRunDiskBytes;
   // How long a run waits for the uid's process slots (another run's fork bomb holds them until
-  // it is stopped); 0: kSanitizerSlowdown x wall_seconds + kSlotWaitMarginSeconds, the longest
-  // any run of the grade's uid can last.
+  // it is stopped); 0: kSanitizerSlowdown x kLoadAllowance x wall_seconds +
+  // kSlotWaitMarginSeconds, the longest any run of the grade's uid can last.
   double slot_wait_seconds = 0;
   // The sanitizers' own channel (the sanitizer run): a pipe, fd kSanitizerReportFd in the child,
   // which the sanitizers reach through `.sanitizer-report.<pid>` in the run's folder (a link to
@@ -86,7 +90,7 @@ struct ChildLimits {
 enum class ChildStatus {
   Ok,             // exited 0 and answered with a well-formed frame carrying our nonce
   Crashed,        // killed by a signal (segfault, abort, CPU limit, ...)
-  TimedOut,       // wall-clock limit reached
+  TimedOut,       // wall-clock limit reached (its own time: waiting for a CPU not counted)
   DiskLimit,      // stopped for holding more than ChildLimits::disk_bytes of files
   Varies,         // its two runs (probeVariants()) did not end alike: undefined behaviour
   ExitedNonZero,  // exited with a non-zero code
@@ -100,8 +104,11 @@ struct ChildRun {
   int signal = 0;      // for Crashed
   int exit_code = 0;   // for ExitedNonZero
   double seconds = 0;  // wall time
-  // Stopped at the wall-clock limit: the CPU time (s) its processes had used (-1: unknown).
+  // Stopped at the wall-clock limit: the CPU time (s) its processes had used (-1: unknown), the
+  // limit (s) it reached (its own time), and how long it had waited for a CPU (-1: unknown).
   double cpu_seconds = -1;
+  double limit_seconds = 0;
+  double waited_seconds = -1;
   std::string stderr_head;  // first lines of the child's stderr (for the report)
   std::optional<probe::ProbeMessage> answer;
   // NotStarted: what failed on our side (for the staff), and whether it was the uid's process
@@ -130,7 +137,8 @@ ChildLimits limitsForTimeout(double seconds);
 
 // Runs `command` (argv; argv[0] a path) in `work_dir` with `stdin_file` as stdin, a clean
 // environment and the limits; reads its fd-3 answer when `expect_answer`. `request_nonce` is the
-// nonce the answer must carry.
+// nonce the answer must carry. A run held back by load (kLoadAllowance) is ours: tried once more,
+// then NotStarted with the wait in grader_problem.
 ChildRun runChild(const std::vector<std::string>& command, const std::filesystem::path& work_dir,
                   const std::filesystem::path& stdin_file, const ChildLimits& limits,
                   bool expect_answer, std::uint64_t request_nonce);
@@ -156,9 +164,9 @@ ChildRun runProbe(const std::filesystem::path& executable, probe::ProbeMessage r
 // answer is a function of the files alone. The rule (docs/grading-reference.md, "One submission,
 // one score"): both ended alike (the same answer to the bit, or the same failure) -> the first run;
 // otherwise the run is Varies, whatever either answered, and its checks fail. A first run stopped
-// at a limit (time, output, disk) or not started is not repeated; a second run stopped at the
-// wall-clock limit is tried once more (load, not the code, may have held it back) and the retry
-// stands. One verdict goes to the log.
+// at a limit (time, output, disk) or not started is not repeated: its own time reached the limit
+// (runChild does not count load's wait), so a second run cannot change the verdict. One verdict
+// goes to the log.
 ChildRun runProbeTwice(const std::filesystem::path& executable, const probe::ProbeMessage& request,
                        const std::filesystem::path& work_dir, const ChildLimits& limits);
 

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -39,10 +40,9 @@ bool readStat(const std::filesystem::path& file, Stat& stat) {
   return true;
 }
 
-}  // namespace
-
-double treeCpuSeconds(pid_t root) {
-  std::map<pid_t, Stat> all;
+// Every process of /proc with its parent and ticks, and the pids of `root`'s tree (empty when
+// `root` is not there).
+std::vector<pid_t> treeOf(pid_t root, std::map<pid_t, Stat>& all) {
   std::error_code error;
   for (const auto& entry : std::filesystem::directory_iterator("/proc", error)) {
     const std::string name = entry.path().filename().string();
@@ -50,19 +50,41 @@ double treeCpuSeconds(pid_t root) {
     Stat stat;
     if (readStat(entry.path() / "stat", stat)) all[static_cast<pid_t>(std::stol(name))] = stat;
   }
-  if (!all.count(root)) return -1;
+  if (!all.count(root)) return {};
   std::map<pid_t, std::vector<pid_t>> children;
   for (const auto& [pid, stat] : all) children[stat.parent].push_back(pid);
-  double ticks = 0;
-  std::vector<pid_t> todo = {root};
+  std::vector<pid_t> tree, todo = {root};
   while (!todo.empty()) {
     const pid_t pid = todo.back();
     todo.pop_back();
-    ticks += all[pid].ticks;
+    tree.push_back(pid);
     for (pid_t child : children[pid]) todo.push_back(child);
   }
+  return tree;
+}
+
+}  // namespace
+
+double treeCpuSeconds(pid_t root) { return treeTimes(root).cpu; }
+
+TreeTimes treeTimes(pid_t root) {
+  std::map<pid_t, Stat> all;
+  const std::vector<pid_t> tree = treeOf(root, all);
+  TreeTimes times;
+  if (tree.empty()) return times;
+  double ticks = 0;
+  for (const pid_t pid : tree) {
+    ticks += all[pid].ticks;
+    // schedstat: time on a CPU (ns), time runnable waiting for one (ns), timeslices run.
+    std::ifstream in("/proc/" + std::to_string(pid) + "/schedstat");
+    double on_cpu = 0, waiting = 0;
+    if (!(in >> on_cpu >> waiting)) continue;
+    times.waited = std::max(times.waited, waiting / 1e9);
+    times.waited_total = std::max(times.waited_total, 0.0) + waiting / 1e9;
+  }
   const long per_second = sysconf(_SC_CLK_TCK);
-  return ticks / double(per_second > 0 ? per_second : 100);
+  times.cpu = ticks / double(per_second > 0 ? per_second : 100);
+  return times;
 }
 
 }  // namespace clothref::grader

@@ -302,6 +302,7 @@ std::vector<TestResult> probeIntegrator(const ProbeContext& context, int index) 
   } else if (!ok && context.limits.log) {
     std::lock_guard<std::mutex> lock(context.limits.log->mutex);
     context.limits.log->verdicts.push_back(child.verdict());
+    context.limits.log->folders.push_back(integratorFolder(index, false));  // as runChild logs
   }
   std::vector<TestResult> tests;
   if (!ok) {
