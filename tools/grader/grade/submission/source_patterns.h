@@ -17,10 +17,12 @@ std::vector<SourceQuote> autoExpressionLines(const std::string& file, const std:
 
 // What the stub's source says, for refining measured findings only.
 struct SourceHints {
-  bool alias_backup = false;  // `auto b = particles;`, a Particles* vector or Eigen::Ref copy
-  bool value_backup = false;  // a real copy: std::vector<Particles>, a Particles or Matrix4Xf value
-  bool integer_half = false;  // `1 / 2` with integer literals
+  bool alias_backup = false;   // `auto b = particles;`, a Particles* vector or Eigen::Ref copy
+  bool integer_half = false;   // `1 / 2` with integer literals
   bool integer_sixth = false;  // `1 / 6`
+  // a real copy: std::vector<Particles>, a Particles or Matrix4Xf value (last: tests build hints
+  // by position)
+  bool value_backup = false;
 };
 // A corrector that steps from the prediction gives the numbers of a backup that follows the live
 // state; a stub whose backup is a real copy and no view wrote the first.
