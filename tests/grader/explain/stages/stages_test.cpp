@@ -154,9 +154,9 @@ auto ex(st::Ex kind) {
   };
 }
 
-SourceHints alias() { return {true, false, false}; }
-SourceHints half() { return {false, true, false}; }
-SourceHints sixth() { return {false, false, true}; }
+SourceHints alias() { return {.alias_backup = true}; }
+SourceHints half() { return {.integer_half = true}; }
+SourceHints sixth() { return {.integer_sixth = true}; }
 
 const std::vector<Case>& cases() {
   using P = st::Pc;

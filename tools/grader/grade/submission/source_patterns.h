@@ -20,9 +20,7 @@ struct SourceHints {
   bool alias_backup = false;   // `auto b = particles;`, a Particles* vector or Eigen::Ref copy
   bool integer_half = false;   // `1 / 2` with integer literals
   bool integer_sixth = false;  // `1 / 6`
-  // a real copy: std::vector<Particles>, a Particles or Matrix4Xf value (last: tests build hints
-  // by position)
-  bool value_backup = false;
+  bool value_backup = false;   // a real copy: std::vector<Particles>, a Particles or Matrix4Xf
 };
 // A corrector that steps from the prediction gives the numbers of a backup that follows the live
 // state; a stub whose backup is a real copy and no view wrote the first.
