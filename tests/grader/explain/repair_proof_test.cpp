@@ -242,6 +242,9 @@ TEST(RepairProof, AMendingRepairProvesItsCause) {
     ASSERT_TRUE(tests[k].names(cause::kDanglingAutoExpression));
     EXPECT_EQ(tests[k].causes.front().id, cause::kNoPositionCorrection);
     EXPECT_FALSE(tests[k].causes.front().likely);
+    EXPECT_EQ(tests[k].causes.front().proof,
+              "Not the mistake: with line 129 repaired (its `auto` expression stored as a vector "
+              "with `.eval()`), this check passes.");
     for (const Cause& c : tests[k].causes)
       if (c.id == cause::kDanglingAutoExpression) {
         EXPECT_TRUE(c.proven());

@@ -370,7 +370,7 @@ bool applyRepair(const Repair& repair, bool built, const std::string& problem,
       for (Cause& other : t.causes)
         if (other.id != repair.cause && other.likely) {
           other.likely = false;
-          other.proof = "Not the mistake: " + with.substr(5) + " this check passes.";
+          other.proof = "Not the mistake: with " + with.substr(5) + ", this check passes.";
         }
       Cause& cause = t.addCause(repair.cause, true);
       cause.likely = true;
