@@ -177,6 +177,13 @@ void proveIntegratorCauses(const ProbeContext& context, const IntegratorRun& run
   for (std::size_t i = 0; i < models.size() && winner.empty(); ++i)
     for (std::size_t j = i + 1; j < models.size() && winner.empty(); ++j) {
       if (models[i].ids == models[j].ids) continue;
+      // RK4 weights fitted on the student's own evaluations absorb any change of the stages:
+      // they pair only with a reading of a cause the probes named, not with every row.
+      const auto fishing = [&](const IntegratorModel& weights, const IntegratorModel& other) {
+        return !weights.model.overlay.weights_x.empty() && !other.model.rows.empty() &&
+               std::find(named.begin(), named.end(), other.ids.front()) == named.end();
+      };
+      if (fishing(models[i], models[j]) || fishing(models[j], models[i])) continue;
       const std::optional<IntegratorModel> both = combine(models[i], models[j]);
       if (!both) continue;
       const Replay pair = replayIntegrator(*both, context, run, tests);
