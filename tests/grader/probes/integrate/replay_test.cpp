@@ -91,6 +91,47 @@ TEST(IntegratorReplay, OverwrittenIncrementsAreTheirModel) {
     EXPECT_GT(distance(stepped(run.random, m.step), run.actual), kRel) << m.text;
 }
 
+// RK4 as a student writes it whose fourth stage, like the two before it, starts from a half step
+// (blind 2024/peng's stages: `old + kx3 * 0.5f`, the velocity too), with the course's weights.
+void halfStepFourthStageRk4(System& s) {
+  simulate(s);
+  const float dt = s.dt;
+  std::vector<Particles<float>*> bodies{&s.cloth.particles, &s.spheres.particles};
+  std::vector<Particles<float>> old;
+  for (auto* p : bodies) old.push_back(*p);
+  std::vector<Mat4X<float>> kx[4], kv[4];
+  for (int st = 0; st < 4; ++st) {
+    if (st > 0) simulate(s);
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      kx[st].push_back(bodies[i]->velocity * dt);
+      kv[st].push_back(bodies[i]->acceleration * dt);
+      if (st == 3) continue;
+      bodies[i]->position = old[i].position + kx[st][i] * 0.5f;
+      bodies[i]->velocity = old[i].velocity + kv[st][i] * 0.5f;
+    }
+  }
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    bodies[i]->position =
+        old[i].position + (kx[0][i] + 2.0f * kx[1][i] + 2.0f * kx[2][i] + kx[3][i]) / 6.0f;
+    bodies[i]->velocity =
+        old[i].velocity + (kv[0][i] + 2.0f * kv[1][i] + 2.0f * kv[2][i] + kv[3][i]) / 6.0f;
+  }
+}
+
+TEST(IntegratorReplay, AFourthStageFromAHalfStepIsItsModel) {
+  const IntegratorRun run = runOf(3, halfStepFourthStageRk4);
+  ASSERT_GT(distance(run.actual, run.expected), kRel);  // a mistake the check sees
+  const std::vector<IntegratorModel> models =
+      modelsOf(cause::kRk4FourthStageHalfStep, kRubric, run, RunStages{});
+  ASSERT_EQ(models.size(), 1u);
+  EXPECT_LE(distance(stepped(run.random, models[0].step), run.actual), kRel);
+  // no other RK4 stage mistake is that code
+  for (const auto& id : {cause::kRk4StageNotFromBackup, cause::kRk4StageFromWrongIncrement,
+                         cause::kRk4MixedIncrements})
+    for (const IntegratorModel& m : modelsOf(id, kRubric, run, RunStages{}))
+      EXPECT_GT(distance(stepped(run.random, m.step), run.actual), kRel) << m.text;
+}
+
 // A helper that stops hard-coded cloth particles after the step: read from the numbers, replayed.
 TEST(IntegratorReplay, PinnedParticlesAreReadAndReplayed) {
   const Step pinning = [](System& s) {
