@@ -4,7 +4,6 @@
 #include "grader/grade/mistakes/integrate_mistakes.h"
 
 #include "grader/grade/cause_ids.h"
-#include "grader/grade/mistakes/integrate_step.h"
 
 namespace clothref::grader::integrators {
 namespace {

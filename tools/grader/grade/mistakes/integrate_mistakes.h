@@ -15,41 +15,11 @@
 #include <utility>
 #include <vector>
 
+#include "grader/grade/mistakes/integrate_step.h"
 #include "grader/grade/mistakes/system.h"
 #include "grader/grade/rubric.h"
 
 namespace clothref::grader::integrators {
-
-// Cloth particles a step holds still, on cloths of one size (code that pins hard-coded indices
-// only on the course's 25 x 25 cloth leaves the small probe cloth alone).
-struct Pins {
-  int cloth_size = 0;  // particles of the cloths they apply to
-  std::vector<int> particles;
-  bool positions = false;  // put back where they were, not only stopped
-};
-
-// `pinned` (those of s's cloth size) and `spheres` held still in `s` after a step that began at
-// cloth positions `cloth_x0` (after the first simulateOneStep()).
-void holdStill(const std::vector<Pins>& pinned, const std::vector<int>& spheres, System& s,
-               const Mat4X<float>& cloth_x0);
-
-// What a model fits from the student's numbers, laid over the step's lines; the defaults change
-// nothing.
-struct Overlay {
-  double step = 1;         // every h of the call is step x deltaTime (deltaTime scaled before it)
-  double result_step = 1;  // the result's (corrector's) terms at result_step x h
-  // The result's terms at this deltaTime, whatever the call's (a constant the stub restored
-  // deltaTime to before its corrector, e.g. `deltaTime = 0.0001f;`).
-  std::optional<float> result_dt{};
-  // RK4's result weights on k1..k4 of x (positions) and of v (velocities), replacing
-  // 1/6, 1/3, 1/3, 1/6; empty: the course's.
-  std::vector<double> weights_x{}, weights_v{};
-  std::array<double, 2> velocity_factor{1, 1};  // each body's velocity times this after the step
-  std::vector<Pins> pinned{};                   // cloth particles held still after the step
-  std::vector<int> pinned_spheres{};            // spheres whose velocity is zeroed after the step
-  std::optional<double> dt_after_factor{};      // deltaTime x this after the call
-  std::optional<float> dt_after{};              // or this constant
-};
 
 // A model of the step: the stub's method, rows of the table (their lines; none: the course's),
 // an overlay.
