@@ -168,7 +168,8 @@ std::string joined(const std::set<std::string>& ids) {
 // The models the grader replays (explain/replay.h), read from their code, and the catalogue's
 // entries naming them are the same ids: a model without an entry, or an entry naming a model
 // that does not answer to it, fails. A model's code is the table it is:
-//   "integrator step"  probes/integrate/models.cpp, modelsOf: one branch per id;
+//   "integrator step"  the rows {cause::kY, methods, ...} of mistakes/integrate_mistakes.cpp
+//                      and probes/integrate/models.cpp's fitted models (one branch per id);
 //   "force variant"    the rows {ForceMistake::X, cause::kY} of mistakes/formula_variants.cpp
 //                      (forceRows(), the probe's) and the candidates of probes/forces.cpp;
 //   "contact variant"  the rows {ContactMistake::X, cause::kY} of mistakes/formula_variants.cpp
@@ -181,7 +182,14 @@ TEST(CatalogueModels, EveryModelHasAnEntryAndEveryEntryItsModel) {
   const std::string grade = "tools/grader/grade/";
   std::map<std::string, std::set<std::string>> models = {
       {"integrator step",
-       namedBy(grade + "probes/integrate/models.cpp", R"(\bid == cause::(k\w+))")},
+       [&] {
+         std::set<std::string> ids =
+             namedBy(grade + "mistakes/integrate_mistakes.cpp", R"(\{cause::(k\w+), k[EIMRA])");
+         for (const std::string& id :
+              namedBy(grade + "probes/integrate/models.cpp", R"(\bid == cause::(k\w+))"))
+           ids.insert(id);
+         return ids;
+       }()},
       {"force variant",
        [&] {
          std::set<std::string> ids = namedBy(grade + "mistakes/formula_variants.cpp",

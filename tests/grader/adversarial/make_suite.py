@@ -288,6 +288,18 @@ CASES = {
         edits=[("    float length = direction.norm();\n",
                 "    float zero = 0.0f;\n    float length = direction.norm() + zero / zero;\n")],
         expected={"verdict": "non-finite", "loses": ["Cloth::computeSpringForce"]}),
+    # Undefined behaviour that neither crashes nor varies by itself (issue 38): both runs of a
+    # probe read the same stack, unless the driver fills it differently before each run.
+    "uninitialised-sum": dict(
+        file="cloth.cpp",
+        description="the spring force summed into an uninitialised Eigen::Vector4f (Hooke, then "
+                    "the damper): it starts from whatever the stack held",
+        edits=[("    Eigen::Vector4f force =\n        direction * (damperCoef * relativeVelocity.dot("
+                "direction) + springCoef * (length - spring.length()));\n",
+                "    Eigen::Vector4f force;  // spring + damper\n"
+                "    force += direction * (springCoef * (length - spring.length()));\n"
+                "    force += direction * (damperCoef * relativeVelocity.dot(direction));\n")],
+        expected={"verdict": "results-vary", "loses": ["Cloth::computeSpringForce"]}),
 }
 
 

@@ -132,6 +132,77 @@ TEST(RepairProof, AReferenceToATemporaryBecomesACopy) {
   EXPECT_EQ(lineOf(r->patched, 3), "  const float& k = springCoef;");
 }
 
+// A helper the stub calls that returns a reference to its own local (issue 38, blind2's mao): the
+// reference is dropped from its declaration and definition, and the stub's own lines stay. A
+// helper that returns a static local, a parameter or a member by reference, or one the stub does
+// not call, is left alone.
+TEST(RepairProof, AHelperReturningItsLocalByReferenceReturnsByValue) {
+  const std::string sphere =
+      "const Eigen::Vector4f& normal(const Eigen::Vector4f& a, const Eigen::Vector4f& b);\n"   // 1
+      "// returns the unit vector from b to a\n"                                               // 2
+      "const Eigen::Vector4f& normal(const Eigen::Vector4f& a, const Eigen::Vector4f& b) {\n"  // 3
+      "  Eigen::Vector4f n = (a - b).normalized();\n"                                          // 4
+      "  return n;\n"                                                                          // 5
+      "}\n"                                                                                    // 6
+      "const Eigen::Vector4f& kept(const Eigen::Vector4f& a) { static Eigen::Vector4f s; s = a; "
+      "return s; }\n"                                                          // 7
+      "const Eigen::Vector4f& same(const Eigen::Vector4f& a) { return a; }\n"  // 8
+      "void Spheres::collide(Cloth* cloth) {\n"                                // 9
+      "  const Eigen::Vector4f& n = normal(_particles.position(0), "
+      "cloth->particles().position(0));\n"
+      "  Eigen::Vector4f k = kept(n) + same(n);\n"  // 11
+      "}\n";                                        // 12
+  const std::vector<Repair> repairs = repairsOf("sphere.cpp", sphere, "Spheres::collide(Cloth*)");
+  ASSERT_EQ(repairs.size(), 1u);
+  const Repair& r = repairs[0];
+  EXPECT_EQ(r.cause, cause::kUndefinedBehaviour);
+  ASSERT_EQ(r.lines.size(), 2u);
+  EXPECT_EQ(r.lines[0].line, 1);
+  EXPECT_EQ(r.lines[1].line, 3);
+  EXPECT_EQ(lineOf(r.patched, 1),
+            "const Eigen::Vector4f normal(const Eigen::Vector4f& a, const Eigen::Vector4f& b);");
+  EXPECT_EQ(lineOf(r.patched, 3),
+            "const Eigen::Vector4f normal(const Eigen::Vector4f& a, const Eigen::Vector4f& b) {");
+  for (int n : {2, 4, 5, 6, 7, 8, 9, 10, 11, 12})
+    EXPECT_EQ(lineOf(r.patched, n), lineOf(sphere, n));
+  EXPECT_EQ(r.what,
+            "lines 1 and 3 repaired (`normal` returns its local `n` by value, not a reference to "
+            "it, which is gone when it returns)");
+  // another stub, which does not call it: nothing
+  EXPECT_TRUE(repairsOf("sphere.cpp", sphere + "void Spheres::collide() {}\n", "Spheres::collide()")
+                  .empty());
+}
+
+// A local declared without a value and first used in a compound assignment starts at zero
+// (issue 38, blind2's kuan); one first assigned, or first read as a whole, is left alone.
+TEST(RepairProof, AnUninitialisedSumStartsAtZero) {
+  const std::string cloth =
+      "void Cloth::computeSpringForce() {\n"              // 1
+      "  for (const auto& spring : _springs) {\n"         // 2
+      "    Eigen::Vector4f force;  // spring + damper\n"  // 3
+      "    float total;\n"                                // 4
+      "    Eigen::Vector4f set;\n"                        // 5
+      "    int i;\n"                                      // 6
+      "    set = _particles.position(0);\n"               // 7
+      "    for (i = 0; i < 2; ++i) total += 1;\n"         // 8
+      "    force += springCoef * set;\n"                  // 9
+      "  }\n"                                             // 10
+      "}\n";                                              // 11
+  const std::vector<Repair> repairs = repairsOf("cloth.cpp", cloth, "Cloth::computeSpringForce");
+  const Repair* r = find(repairs, cause::kUndefinedBehaviour);
+  ASSERT_NE(r, nullptr);
+  ASSERT_EQ(r->lines.size(), 2u);
+  EXPECT_EQ(r->lines[0].line, 3);
+  EXPECT_EQ(r->lines[1].line, 4);
+  EXPECT_EQ(lineOf(r->patched, 3),
+            "    Eigen::Vector4f force = Eigen::Vector4f::Zero();  // spring + damper");
+  EXPECT_EQ(lineOf(r->patched, 4), "    float total = 0;");
+  for (int n : {1, 2, 5, 6, 7, 8, 9, 10, 11}) EXPECT_EQ(lineOf(r->patched, n), lineOf(cloth, n));
+  EXPECT_EQ(r->what,
+            "lines 3 and 4 repaired (`force` and `total` starting at zero, not at whatever the "
+            "stack held)");
+}
+
 // The stub's tests before and after a repair: 4 checks, the first three failed before.
 std::vector<TestResult> stubTests(const std::vector<bool>& passed,
                                   const std::vector<std::string>& causes) {
@@ -171,6 +242,9 @@ TEST(RepairProof, AMendingRepairProvesItsCause) {
     ASSERT_TRUE(tests[k].names(cause::kDanglingAutoExpression));
     EXPECT_EQ(tests[k].causes.front().id, cause::kNoPositionCorrection);
     EXPECT_FALSE(tests[k].causes.front().likely);
+    EXPECT_EQ(tests[k].causes.front().proof,
+              "Not the mistake: with line 129 repaired (its `auto` expression stored as a vector "
+              "with `.eval()`), this check passes.");
     for (const Cause& c : tests[k].causes)
       if (c.id == cause::kDanglingAutoExpression) {
         EXPECT_TRUE(c.proven());

@@ -17,6 +17,9 @@
 namespace probe {
 
 inline constexpr int kResultFd = 3;  // the child writes its answer here
+// The variable that sets the byte the driver fills the stack with before each call of a student's
+// stub (two hex digits; unset: 00): the second run of a scored probe sets it (probeVariants()).
+inline constexpr const char* kStackFillVariable = "CLOTHREF_PROBE_STACK_FILL";
 
 struct ProbeMessage {
   std::uint64_t nonce = 0;

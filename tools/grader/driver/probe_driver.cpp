@@ -12,6 +12,8 @@
 #include <array>
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <iostream>
 #include <iterator>
 #include <memory>
@@ -46,6 +48,31 @@ struct BadRequest {
   std::string why;
 };
 
+// ---- The stack a student's stub starts on (issue 38: undefined behaviour that neither crashes
+// nor varies). A local the stub reads before it writes it (`Eigen::Vector4f force; force += ...`)
+// holds what the stack held there, the same bytes in both runs of a probe. So before each call of
+// a stub the driver fills the stack below its own frame, where the stub's frame will be, with one
+// byte: 0x00, or the byte of probe::kStackFillVariable (0xff in the second run: NaN in every
+// float, -1 in every int). A stub that reads such a local answers differently in the two runs
+// (undefined-behaviour); one that does not reads none of these bytes and answers the same.
+constexpr std::size_t kStackFillBytes = 32 << 10;  // more than a stub's frame of fixed-size Eigen
+
+unsigned char stackFillByte() {
+  static const unsigned char byte = [] {
+    const char* fill = std::getenv(probe::kStackFillVariable);
+    return fill ? static_cast<unsigned char>(std::strtoul(fill, nullptr, 16)) : 0;
+  }();
+  return byte;
+}
+
+// Not inlined, so that its frame lies where the next call's will; the empty asm that reads the
+// array keeps the stores (the array is dead after them).
+[[gnu::noinline]] void fillStack() {
+  unsigned char below[kStackFillBytes];
+  std::memset(below, stackFillByte(), sizeof below);
+  asm volatile("" : : "r"(below) : "memory");
+}
+
 // Copies a 4 x n column-major float array in or out of a Particles matrix.
 void load(Eigen::Ref<Eigen::Matrix4Xf> target, const std::vector<float>& values) {
   const long n = std::min<long>(target.cols(), static_cast<long>(values.size() / 4));
@@ -78,6 +105,7 @@ std::vector<Spring> springsFrom(const ProbeMessage& in, int k) {
 }
 
 void probeSprings(const ProbeMessage&, ProbeMessage& out) {
+  fillStack();  // Cloth() calls initializeSpring
   Cloth cloth;
   std::vector<std::int64_t> start, end, type;
   std::vector<float> rest;
@@ -108,6 +136,7 @@ void probeForces(const ProbeMessage& in, ProbeMessage& out) {
     load(p.velocity(), in.f(perCase(key::kClothVel, k)));
     load(p.acceleration(), in.f(perCase(key::kClothAcc, k)));
     loadMass(p, in.f(perCase(key::kClothMass, k)));
+    fillStack();
     cloth.computeSpringForce();
     out.floats[perCase(key::kClothAcc, k)] = save(p.acceleration());
   }
@@ -144,6 +173,7 @@ void collide(const ProbeMessage& in, ProbeMessage& out, bool sphereSphere) {
     s.acceleration().setZero();
     load(s.acceleration(), in.f(perCase(key::kSphereAcc, k)));
     loadMass(s, in.f(perCase(key::kSphereMass, k)));
+    fillStack();
 #ifdef CLOTHREF_GRADER_EDITION_2024
     (void)sphereSphere;
     spheres.collide(&cloth);
@@ -330,6 +360,9 @@ void probeIntegrate(const ProbeMessage& in, ProbeMessage& out) {
         out.floats[perCase(key::kStartSphereVel, k)] = save(w.spheres.velocity());
         out.floats[perCase(key::kStartSphereAcc, k)] = save(w.spheres.acceleration());
       }
+      // the first step only: a stub that reads an uninitialised local does so there, and its
+      // answers then differ (a fill per step cost a third more of the probe's CPU)
+      if (step == 0) fillStack();
       integrator.integrate(bodies, simulateOneStep);
       if (step == 0) dtAfter = deltaTime;
       if (stride > 0 && (step + 1) % stride == 0) {

@@ -1,7 +1,7 @@
-// The integrators' replays (grader/grade/probes/integrate/replay.h): a course method table run as
-// the course's code runs it is the library's method to the probe's tolerance, on the random state
-// with its contact too; a mistake's table is the code it stands for; the fitted changes (pinned
-// particles, a velocity factor) are read from the run.
+// The integrators' replays (grader/grade/probes/integrate/replay.h): a model with nothing fitted
+// is the library's method, on the random state with its contact too; a mistake's model is the
+// code it stands for; the fitted changes (pinned particles, a velocity factor) are read from the
+// run.
 #include "grader/grade/probes/integrate/replay.h"
 
 #include <gtest/gtest.h>
@@ -15,18 +15,16 @@ namespace {
 constexpr double kRel = 2e-5;  // the rubric's integrate_rel
 const Rubric kRubric = defaultRubric(2022);
 
-TEST(IntegratorReplay, CourseTablesAreTheLibrarysMethods) {
+TEST(IntegratorReplay, AnEmptyOverlayIsTheLibrarysMethod) {
   for (int index = 0; index < 4; ++index) {
-    TableModel model;
-    model.table = &stages::courseTable(index);
     const Method method = integratorMethod(index);
     for (const System& start :
          {randomSystem(20221), randomSystem(7), stageSystem(20221, false, 2022)}) {
-      const System table = stepped(start, tableStep(model));
+      const System model = stepped(start, integratorModel({}, "", StepModel{method}).step);
       const System library = stepped(start, clothrefStep(method));
-      EXPECT_LE(distance(table, library), kRel) << index;
-      // a mistake is far beyond it: the table is no looser than the check
-      EXPECT_GT(distance(stepped(start, variantStep(method, Variant::NoReevaluation)), library),
+      EXPECT_EQ(distance(model, library), 0) << index;
+      // a mistake is far beyond the check's tolerance
+      EXPECT_GT(distance(stepped(start, readingStep(cause::kNoReevaluation, method)), library),
                 index == 0 ? -1.0 : kRel)
           << index;
     }
@@ -93,6 +91,47 @@ TEST(IntegratorReplay, OverwrittenIncrementsAreTheirModel) {
     EXPECT_GT(distance(stepped(run.random, m.step), run.actual), kRel) << m.text;
 }
 
+// RK4 as a student writes it whose fourth stage, like the two before it, starts from a half step
+// (blind 2024/peng's stages: `old + kx3 * 0.5f`, the velocity too), with the course's weights.
+void halfStepFourthStageRk4(System& s) {
+  simulate(s);
+  const float dt = s.dt;
+  std::vector<Particles<float>*> bodies{&s.cloth.particles, &s.spheres.particles};
+  std::vector<Particles<float>> old;
+  for (auto* p : bodies) old.push_back(*p);
+  std::vector<Mat4X<float>> kx[4], kv[4];
+  for (int st = 0; st < 4; ++st) {
+    if (st > 0) simulate(s);
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      kx[st].push_back(bodies[i]->velocity * dt);
+      kv[st].push_back(bodies[i]->acceleration * dt);
+      if (st == 3) continue;
+      bodies[i]->position = old[i].position + kx[st][i] * 0.5f;
+      bodies[i]->velocity = old[i].velocity + kv[st][i] * 0.5f;
+    }
+  }
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    bodies[i]->position =
+        old[i].position + (kx[0][i] + 2.0f * kx[1][i] + 2.0f * kx[2][i] + kx[3][i]) / 6.0f;
+    bodies[i]->velocity =
+        old[i].velocity + (kv[0][i] + 2.0f * kv[1][i] + 2.0f * kv[2][i] + kv[3][i]) / 6.0f;
+  }
+}
+
+TEST(IntegratorReplay, AFourthStageFromAHalfStepIsItsModel) {
+  const IntegratorRun run = runOf(3, halfStepFourthStageRk4);
+  ASSERT_GT(distance(run.actual, run.expected), kRel);  // a mistake the check sees
+  const std::vector<IntegratorModel> models =
+      modelsOf(cause::kRk4FourthStageHalfStep, kRubric, run, RunStages{});
+  ASSERT_EQ(models.size(), 1u);
+  EXPECT_LE(distance(stepped(run.random, models[0].step), run.actual), kRel);
+  // no other RK4 stage mistake is that code
+  for (const auto& id : {cause::kRk4StageNotFromBackup, cause::kRk4StageFromWrongIncrement,
+                         cause::kRk4MixedIncrements})
+    for (const IntegratorModel& m : modelsOf(id, kRubric, run, RunStages{}))
+      EXPECT_GT(distance(stepped(run.random, m.step), run.actual), kRel) << m.text;
+}
+
 // A helper that stops hard-coded cloth particles after the step: read from the numbers, replayed.
 TEST(IntegratorReplay, PinnedParticlesAreReadAndReplayed) {
   const Step pinning = [](System& s) {
@@ -105,11 +144,11 @@ TEST(IntegratorReplay, PinnedParticlesAreReadAndReplayed) {
   // after the course's midpoint, and after its accepted variant (a symplectic predictor)
   ASSERT_EQ(models.size(), 2u);
   EXPECT_GT(distance(stepped(run.random, models[1].step), run.actual), kRel);
-  ASSERT_TRUE(models[0].table.has_value());
-  ASSERT_EQ(models[0].table->pinned.size(), 1u);
-  EXPECT_EQ(models[0].table->pinned[0].cloth_size, run.random.cloth.particles.size());
-  EXPECT_EQ(models[0].table->pinned[0].particles, (std::vector<int>{1, 2, 6}));
-  EXPECT_FALSE(models[0].table->pinned[0].positions);
+  ASSERT_TRUE(models[0].model.rows.empty());
+  ASSERT_EQ(models[0].model.overlay.pinned.size(), 1u);
+  EXPECT_EQ(models[0].model.overlay.pinned[0].cloth_size, run.random.cloth.particles.size());
+  EXPECT_EQ(models[0].model.overlay.pinned[0].particles, (std::vector<int>{1, 2, 6}));
+  EXPECT_FALSE(models[0].model.overlay.pinned[0].positions);
   EXPECT_LE(distance(stepped(run.random, models[0].step), run.actual), kRel);
   EXPECT_NE(models[0].text.find("particles 1-2, 6 stopped"), std::string::npos) << models[0].text;
 }
@@ -136,12 +175,12 @@ TEST(IntegratorReplay, PinsOnTheCoursesClothOnlyAreReadThereAfterAnAcceptedVaria
   const std::vector<IntegratorModel> models =
       modelsOf(cause::kIntegratorPinsParticles, kRubric, run, {});
   ASSERT_EQ(models.size(), 2u);  // after the course's explicit Euler, after symplectic Euler
-  ASSERT_TRUE(models[1].table.has_value());
-  ASSERT_EQ(models[1].table->pinned.size(), 1u);
-  EXPECT_EQ(models[1].table->pinned[0].cloth_size, 625);
+  ASSERT_TRUE(!models[1].model.rows.empty());
+  ASSERT_EQ(models[1].model.overlay.pinned.size(), 1u);
+  EXPECT_EQ(models[1].model.overlay.pinned[0].cloth_size, 625);
   std::vector<int> top_row(25);
   for (int j = 0; j < 25; ++j) top_row[std::size_t(j)] = j;
-  EXPECT_EQ(models[1].table->pinned[0].particles, top_row);
+  EXPECT_EQ(models[1].model.overlay.pinned[0].particles, top_row);
   EXPECT_NE(models[1].text.find("particles 0-24 stopped (of a 625-particle cloth)"),
             std::string::npos)
       << models[1].text;
@@ -162,8 +201,8 @@ TEST(IntegratorReplay, AVelocityFactorIsReadPerBody) {
   const IntegratorRun run = runOf(0, damped);
   const std::vector<IntegratorModel> models = modelsOf(cause::kVelocityDamped, kRubric, run, {});
   ASSERT_EQ(models.size(), 1u);
-  EXPECT_EQ(models[0].table->velocity_factor[0], 1);
-  EXPECT_NEAR(models[0].table->velocity_factor[1], 0.999, 1e-6);
+  EXPECT_EQ(models[0].model.overlay.velocity_factor[0], 1);
+  EXPECT_NEAR(models[0].model.overlay.velocity_factor[1], 0.999, 1e-6);
   EXPECT_LE(distance(stepped(run.random, models[0].step), run.actual), kRel);
 }
 

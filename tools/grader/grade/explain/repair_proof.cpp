@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <functional>
+#include <optional>
 #include <regex>
+#include <utility>
 
 #include "grader/grade/cause_ids.h"
 #include "grader/grade/submission/source_text.h"
@@ -132,6 +134,117 @@ std::string lineList(const std::vector<SourceQuote>& lines) {
   return out;
 }
 
+// The line of the brace that closes the block opened at the first '{' of line `from` or after
+// (0-based lines of blanked code), and that opening line; {-1, -1} when there is none.
+std::pair<int, int> blockOf(const std::vector<std::string>& blanked, int from) {
+  int depth = 0, open = -1;
+  for (int k = from; k < int(blanked.size()); ++k)
+    for (const char c : blanked[std::size_t(k)]) {
+      if (c == ';' && open < 0) return {-1, -1};  // a declaration, not a definition
+      if (c == '{' && depth++ == 0 && open < 0) open = k;
+      if (c == '}' && open >= 0 && --depth == 0) return {open, k};
+    }
+  return {-1, -1};
+}
+
+// A helper the stub calls that returns a reference to one of its own locals (`const
+// Eigen::Vector4f& normal(...) { Eigen::Vector4f n = ...; return n; }`): the local is gone when
+// the caller reads it (g++ even returns a null reference). Repaired: it returns by value (the
+// reference dropped from its definition's and declarations' return type).
+std::optional<Repair> localReferenceRepair(const std::string& file, const std::string& stub,
+                                           const std::vector<std::string>& lines,
+                                           const std::vector<std::string>& blanked,
+                                           const StubLines& body) {
+  std::string called;  // the stub's code, blanked
+  for (int n = body.first; n <= body.last && n <= int(blanked.size()); ++n)
+    called += blanked[std::size_t(n - 1)];
+  static const std::regex head(R"(^\s*(static\s+|inline\s+)*[\w:<>, ]*[\w>]\s*&\s*(\w+)\s*\()");
+  static const std::regex returned(R"(\breturn\s+(\w+)\s*;)");
+  for (int k = 0; k < int(blanked.size()); ++k) {
+    std::smatch m;
+    if (body.contains(k + 1) || !std::regex_search(blanked[std::size_t(k)], m, head)) continue;
+    const std::string name = m[2].str();
+    if (!std::regex_search(called, std::regex("\\b" + name + R"(\s*\()"))) continue;
+    const auto [open, close] = blockOf(blanked, k);
+    if (open < 0) continue;
+    std::string code;
+    for (int j = open; j <= close; ++j) code += blanked[std::size_t(j)];
+    // its own local (no static, reference or pointer), returned by name
+    std::smatch r;
+    if (!std::regex_search(code, r, returned)) continue;
+    const std::string local = r[1].str();
+    const std::regex declared(R"((^|[;{}(\s])([\w:]+(<[^;&*()]*>)?)\s+)" + local +
+                              R"(\s*(=|;|\(|\{))");
+    bool own = false;
+    for (auto d = std::sregex_iterator(code.begin(), code.end(), declared);
+         d != std::sregex_iterator() && !own; ++d) {
+      const std::string before = code.substr(0, std::size_t(d->position(0)));
+      const std::string statement = before.substr(before.find_last_of(";{}") + 1);
+      own = (*d)[2].str() != "return" && !std::regex_search(statement, std::regex(R"(\bstatic\b)"));
+    }
+    if (!own) continue;
+    Repair repair{file, stub, cause::kUndefinedBehaviour, {}, {}, {}};
+    // the definition and any declaration of the helper: the reference dropped
+    const std::regex reference(R"(\s*&\s*()" + name + R"(\s*\())");
+    std::vector<std::string> patched = lines;
+    for (int j = 0; j < int(lines.size()); ++j) {
+      const std::size_t at = std::size_t(j);
+      if (body.contains(j + 1) || at >= blanked.size() || !std::regex_search(blanked[at], head) ||
+          !std::regex_search(blanked[at], std::regex(R"(&\s*)" + name + R"(\s*\()")))
+        continue;
+      patched[at] =
+          std::regex_replace(lines[at], reference, " $1", std::regex_constants::format_first_only);
+      repair.lines.push_back({file, j + 1, trimmed(lines[at])});
+    }
+    if (repair.lines.empty()) continue;
+    for (const std::string& line : patched) repair.patched += line;
+    repair.what = lineList(repair.lines) + " repaired (`" + name + "` returns its local `" + local +
+                  "` by value, not a reference to it, which is gone when it returns)";
+    return repair;
+  }
+  return std::nullopt;
+}
+
+// A local of the stub declared without a value and first used in a compound assignment
+// (`Eigen::Vector4f force; force += ...`): it starts from whatever the stack held. Repaired: it
+// starts at zero (`Type::Zero()` for an Eigen type, 0 for a number).
+std::optional<Repair> uninitialisedSumRepair(const std::string& file, const std::string& stub,
+                                             const std::vector<std::string>& lines,
+                                             const std::vector<std::string>& blanked,
+                                             const StubLines& body) {
+  static const std::regex declaration(
+      R"(^(\s*)((const\s+)?(Eigen::\w+|float|double|int|long|unsigned|std::size_t|size_t))\s+(\w+)\s*;)");
+  Repair repair{file, stub, cause::kUndefinedBehaviour, {}, {}, {}};
+  std::vector<std::string> patched = lines;
+  std::vector<std::string> names;
+  for (int n = body.first; n <= body.last && n <= int(blanked.size()); ++n) {
+    const std::size_t k = std::size_t(n - 1);
+    std::smatch m;
+    if (k >= lines.size() || !std::regex_search(blanked[k], m, declaration)) continue;
+    const std::string type = m[4].str(), name = m[5].str();
+    std::string after = blanked[k].substr(std::size_t(m.position(0) + m.length(0)));
+    for (int j = n + 1; j <= body.last && j <= int(blanked.size()); ++j)
+      after += blanked[std::size_t(j - 1)];
+    std::smatch use;
+    if (!std::regex_search(after, use, std::regex("\\b" + name + "\\b(\\s*[-+*/]=)?")) ||
+        !use[1].matched)
+      continue;
+    const std::string start = type.rfind("Eigen::", 0) == 0 ? type + "::Zero()" : "0";
+    const std::size_t at = std::size_t(m.position(5) + m.length(5));
+    patched[k] = lines[k].substr(0, at) + " = " + start + lines[k].substr(at);
+    repair.lines.push_back({file, n, trimmed(lines[k])});
+    names.push_back(name);
+  }
+  if (repair.lines.empty()) return std::nullopt;
+  for (const std::string& line : patched) repair.patched += line;
+  std::string which;
+  for (std::size_t k = 0; k < names.size(); ++k)
+    which += (k == 0 ? "" : k + 1 == names.size() ? " and " : ", ") + codeSpan(names[k]);
+  repair.what = lineList(repair.lines) + " repaired (" + which + " starting at zero, not at " +
+                "whatever the stack held)";
+  return repair;
+}
+
 }  // namespace
 
 std::vector<Repair> repairsOf(const std::string& file, const std::string& source,
@@ -178,6 +291,10 @@ std::vector<Repair> repairsOf(const std::string& file, const std::string& source
         pattern.fix ? lineList(repair.lines) + " repaired (" + pattern.what + ")" : pattern.what;
     repairs.push_back(repair);
   }
+  if (auto repair = localReferenceRepair(file, stub, lines, blanked, body))
+    repairs.push_back(*repair);
+  if (auto repair = uninitialisedSumRepair(file, stub, lines, blanked, body))
+    repairs.push_back(*repair);
   return repairs;
 }
 
@@ -253,7 +370,7 @@ bool applyRepair(const Repair& repair, bool built, const std::string& problem,
       for (Cause& other : t.causes)
         if (other.id != repair.cause && other.likely) {
           other.likely = false;
-          other.proof = "Not the mistake: " + with.substr(5) + " this check passes.";
+          other.proof = "Not the mistake: with " + with.substr(5) + ", this check passes.";
         }
       Cause& cause = t.addCause(repair.cause, true);
       cause.likely = true;

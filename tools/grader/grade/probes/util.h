@@ -70,7 +70,8 @@ inline void explainFailure(const ProbeContext& context, const probe::ProbeMessag
   failure.text += report.empty()
                       ? "\n\nThe grader rebuilt your files with AddressSanitizer and "
                         "UndefinedBehaviorSanitizer and ran this probe again: they reported "
-                        "nothing (the fault may depend on the optimisation level)."
+                        "nothing (they do not see a read of an uninitialised variable, and the "
+                        "fault may depend on the optimisation level)."
                       : "\n\nThe grader rebuilt your files with AddressSanitizer and "
                         "UndefinedBehaviorSanitizer (`-g -O1`) and ran this probe again; "
                         "their report:\n\n" +

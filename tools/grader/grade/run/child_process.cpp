@@ -480,7 +480,9 @@ double slotWait(const ChildLimits& limits) {
 }
 
 std::vector<std::vector<std::string>> probeVariants() {
-  return {{}, {"MALLOC_PERTURB_=165", "CLOTHREF_PROBE_VARIANT=" + std::string(1021, 'b')}};
+  return {{},
+          {"MALLOC_PERTURB_=165", std::string(probe::kStackFillVariable) + "=ff",
+           "CLOTHREF_PROBE_VARIANT=" + std::string(1021, 'b')}};
 }
 
 bool sameAnswer(const probe::ProbeMessage& a, const probe::ProbeMessage& b) {

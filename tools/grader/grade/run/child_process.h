@@ -147,9 +147,11 @@ ChildRun runChild(const std::vector<std::string>& command, const std::filesystem
 double slotWait(const ChildLimits& limits);
 
 // The two variants a scored probe runs in, both with a fixed address layout: the first as the
-// student would run it, the second with freed memory filled (MALLOC_PERTURB_) and the stack moved
-// (a longer environment). A stub that reads memory it does not own (a dangling `auto` Eigen
-// expression, a freed buffer) answers differently in the two; a correct one cannot.
+// student would run it, the second with freed memory filled (MALLOC_PERTURB_), the stack below
+// each stub's call filled with 0xff instead of 0x00 (probe::kStackFillVariable, read by the
+// driver) and the stack moved (a longer environment). A stub that reads memory it does not own
+// (a dangling `auto` Eigen expression, a freed buffer, an uninitialised local) answers
+// differently in the two; a correct one cannot.
 std::vector<std::vector<std::string>> probeVariants();
 
 // Whether two answers are the same to the bit (NaN payloads included).

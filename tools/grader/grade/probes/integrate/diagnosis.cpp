@@ -57,44 +57,9 @@ bool near(const Eigen::Vector4d& w, const Eigen::Vector4d& target) {
 // The known mistakes of `method` that change the first step, as (cause id, its step): the
 // student's numbers equal to one of these name that cause.
 std::vector<std::pair<std::string, Step>> oneStepSignatures(Method method) {
-  std::vector<std::pair<std::string, Step>> signatures = {
-      {cause::kOnlyFirstBody, clothrefStep(method, 1)}};
-  if (method == Method::Explicit) {
-    signatures.push_back({cause::kOnlyFirstBody, clothrefStep(Method::Symplectic, 1)});
-    signatures.push_back(
-        {cause::kPositionUsesAcceleration, variantStep(method, Variant::PositionUsesAcceleration)});
-    signatures.push_back(
-        {cause::kVelocityNotIntegrated, variantStep(method, Variant::PositionOnly)});
-    signatures.push_back(
-        {cause::kPositionNotIntegrated, variantStep(method, Variant::VelocityOnly)});
-  } else {
-    signatures.push_back({cause::kBackupAlias, variantStep(method, Variant::Alias)});
-    signatures.push_back({cause::kNoReevaluation, variantStep(method, Variant::NoReevaluation)});
-    signatures.push_back({cause::kPerBodyLoop, variantStep(method, Variant::PerBody)});
-  }
-  if (method == Method::Midpoint) {
-    signatures.push_back({cause::kMidpointFullStep, clothrefStep(Method::Implicit)});
-    signatures.push_back(
-        {cause::kNoReevaluation, variantStep(method, Variant::NoReevaluationHalfVelocity)});
-    // simulateOneStep() at the unchanged start state; a contact in it is applied a second time,
-    // so this is not explicit Euler's result.
-    signatures.push_back({cause::kNoReevaluation, variantStep(method, Variant::ZeroHalfStep)});
-  }
-  if (method == Method::Rk4) {
-    signatures.push_back({cause::kIntegerDivisionRk4, variantStep(method, Variant::RkIntDivision)});
-    signatures.push_back({cause::kRk4MixedIncrements, variantStep(method, Variant::RkMixedFinal)});
-    signatures.push_back(
-        {cause::kRk4MixedIncrements, variantStep(method, Variant::RkK4xInVelocity)});
-    for (int k = 0; k < 3; ++k)
-      signatures.push_back(
-          {cause::kRk4MixedIncrements, variantStep(method, Variant::RkMixedStage, k)});
-    signatures.push_back(
-        {cause::kRk4StageNotFromBackup, variantStep(method, Variant::RkStageFromCurrent)});
-    signatures.push_back(
-        {cause::kRk4StageFromWrongIncrement, variantStep(method, Variant::RkStageFromNewVelocity)});
-    signatures.push_back(
-        {cause::kRk4StagesDiscarded, variantStep(method, Variant::RkStagesDiscarded)});
-  }
+  std::vector<std::pair<std::string, Step>> signatures;
+  for (const Reading& r : readingsOf(method))
+    if (r.first_pass) signatures.push_back({r.id, courseStep(StepModel{method, {r.row}, {}})});
   return signatures;
 }
 
@@ -173,9 +138,8 @@ std::vector<std::string> diagnoseOneStep(const ProbeContext& context, const Inte
     drop(cause::kNoReevaluation);
     add(cause::kNoReevaluation);
   } else if (method == Method::Midpoint && calls == expected_calls &&
-             distance(run.actual,
-                      stepped(run.random, variantStep(method, Variant::ZeroHalfStep))) <=
-                 10 * run.rel) {
+             distance(run.actual, stepped(run.random, readingStep(cause::kIntegerDivisionHalf,
+                                                                  method))) <= 10 * run.rel) {
     // simulateOneStep() ran at the start state: the half step added nothing, or was never written
     // back. Integer division only when the source divides 1 by 2.
     if (hints.integer_half) {

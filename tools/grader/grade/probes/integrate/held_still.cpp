@@ -48,20 +48,6 @@ std::vector<int> stoppedSpheres(const IntegratorRun& run) {
   return stopped;
 }
 
-void holdStill(const std::vector<Pins>& pinned, const std::vector<int>& spheres, System& s,
-               const Mat4X<float>& cloth_x0) {
-  for (const Pins& pins : pinned)
-    if (pins.cloth_size == s.cloth.particles.size())
-      for (int j : pins.particles)
-        if (j >= 0 && j < s.cloth.particles.size()) {
-          s.cloth.particles.velocity.col(j).setZero();
-          if (pins.positions && j < cloth_x0.cols())
-            s.cloth.particles.position.col(j) = cloth_x0.col(j);
-        }
-  for (int j : spheres)
-    if (j >= 0 && j < s.spheres.particles.size()) s.spheres.particles.velocity.col(j).setZero();
-}
-
 // Sorted indices as runs: "0-24", and a column of a grid as "24 to 624 in steps of 25".
 std::string indexRanges(const std::vector<int>& indices) {
   std::string out;

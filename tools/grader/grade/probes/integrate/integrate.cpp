@@ -158,7 +158,7 @@ TestResult checkBackups(const IntegratorRun& run, const SourceHints& hints) {
   // The same numbers from a real copy that is not read back are the corrector's mistake, not
   // the backup's (corrector-from-prediction, on the one-step check).
   const bool alias =
-      distance(run.actual, stepped(run.random, variantStep(run.method, Variant::Alias))) <=
+      distance(run.actual, stepped(run.random, readingStep(cause::kBackupAlias, run.method))) <=
           10 * run.rel &&
       run.distance > run.rel && !copiesButNoView(hints);
   t.fraction = alias ? 0 : 1;

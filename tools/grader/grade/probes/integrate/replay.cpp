@@ -107,14 +107,6 @@ Replay replayIntegrator(const IntegratorModel& model, const ProbeContext& contex
 
 namespace {
 
-// The course's own method of a stub or a variant the rubric accepts: a model on it changes
-// only what a mistake adds (weights, factors, pins, deltaTime), which applies to another table.
-bool courseLike(const stages::MethodTable* table) {
-  return table && (table->course || !table->accepted.empty());
-}
-
-// Two table models' changes together (the same table, or one on the course's method and its
-// changes laid over the other's table): a mistake of each at once.
 // What a model's text says it changes, without the method it changes ("the course's midpoint
 // whose corrector takes h/2" -> "whose corrector takes h/2"): the second of two models joined.
 std::string changeOf(const std::string& text) {
@@ -125,58 +117,26 @@ std::string changeOf(const std::string& text) {
   return at == std::string::npos ? text : text.substr(at + 1);
 }
 
-// A table model whose only change is particles held still after the course's own method.
-bool onlyHoldsStill(const std::optional<TableModel>& t) {
-  return t && t->table && t->table->course && t->step == 1 && t->result_step == 1 &&
-         t->weights_x.empty() && t->weights_v.empty() && t->velocity_factor[0] == 1 &&
-         t->velocity_factor[1] == 1 && !t->dt_after_factor && !t->dt_after && !t->result_dt &&
-         (!t->pinned.empty() || !t->pinned_spheres.empty());
+// A model whose only change is particles held still after the course's own lines.
+bool onlyHoldsStill(const IntegratorModel& m) {
+  const Overlay& o = m.model.overlay;
+  return m.model.rows.empty() && o.step == 1 && o.result_step == 1 && !o.result_dt &&
+         o.weights_x.empty() && o.weights_v.empty() && o.velocity_factor[0] == 1 &&
+         o.velocity_factor[1] == 1 && !o.dt_after_factor && !o.dt_after &&
+         (!o.pinned.empty() || !o.pinned_spheres.empty());
 }
 
+// Two models' switches together (mistakes/integrate_mistakes.h, combined): a mistake of each at
+// once, the one that changes the course's lines first.
 std::optional<IntegratorModel> combine(const IntegratorModel& a, const IntegratorModel& b) {
-  if (!a.table || !b.table) {
-    // A mistake's variant of the course's code, then a helper that holds particles still.
-    const IntegratorModel& variant = a.table ? b : a;
-    const IntegratorModel& held = a.table ? a : b;
-    if (variant.table || !onlyHoldsStill(held.table)) return std::nullopt;
-    IntegratorModel both;
-    both.ids = variant.ids;
-    both.ids.insert(both.ids.end(), held.ids.begin(), held.ids.end());
-    both.text = variant.text + ", then " + changeOf(held.text);
-    both.step = [step = variant.step, pins = *held.table](System& s) {
-      System start = s;
-      simulate(start);  // the positions the step begins from, as tableStep's x0
-      step(s);
-      holdStill(pins.pinned, pins.pinned_spheres, s, start.cloth.particles.position);
-    };
-    return both;
-  }
-  if (a.table->table != b.table->table) {
-    // The table kept: the one that is not the course's own method.
-    if (!courseLike(b.table->table))
-      return courseLike(a.table->table) ? combine(b, a) : std::nullopt;
-    if (a.table->table->course && !b.table->table->course) return combine(b, a);
-  }
-  TableModel t = *a.table;
-  const TableModel& o = *b.table;
-  if (o.step != 1) t.step = o.step;
-  if (o.result_step != 1) t.result_step = o.result_step;
-  if (!o.weights_x.empty()) t.weights_x = o.weights_x;
-  if (!o.weights_v.empty()) t.weights_v = o.weights_v;
-  for (std::size_t b2 = 0; b2 < 2; ++b2)
-    if (o.velocity_factor[b2] != 1) t.velocity_factor[b2] = o.velocity_factor[b2];
-  if (!o.pinned.empty()) t.pinned = o.pinned;
-  if (!o.pinned_spheres.empty()) t.pinned_spheres = o.pinned_spheres;
-  if (o.dt_after_factor) t.dt_after_factor = o.dt_after_factor;
-  if (o.dt_after) t.dt_after = o.dt_after;
-  if (o.result_dt) t.result_dt = o.result_dt;
-  IntegratorModel both;
-  both.ids = a.ids;
-  both.ids.insert(both.ids.end(), b.ids.begin(), b.ids.end());
-  both.text = a.text + "; and " + changeOf(b.text);
-  both.step = tableStep(t);
-  both.table = t;
-  return both;
+  if (a.model.rows.empty() && !b.model.rows.empty()) return combine(b, a);
+  const std::optional<StepModel> both = combined(a.model, b.model);
+  if (!both) return std::nullopt;
+  std::vector<std::string> ids = a.ids;
+  ids.insert(ids.end(), b.ids.begin(), b.ids.end());
+  return integratorModel(std::move(ids),
+                         a.text + (onlyHoldsStill(b) ? ", then " : "; and ") + changeOf(b.text),
+                         *both);
 }
 
 }  // namespace
@@ -217,6 +177,13 @@ void proveIntegratorCauses(const ProbeContext& context, const IntegratorRun& run
   for (std::size_t i = 0; i < models.size() && winner.empty(); ++i)
     for (std::size_t j = i + 1; j < models.size() && winner.empty(); ++j) {
       if (models[i].ids == models[j].ids) continue;
+      // RK4 weights fitted on the student's own evaluations absorb any change of the stages:
+      // they pair only with a reading of a cause the probes named, not with every row.
+      const auto fishing = [&](const IntegratorModel& weights, const IntegratorModel& other) {
+        return !weights.model.overlay.weights_x.empty() && !other.model.rows.empty() &&
+               std::find(named.begin(), named.end(), other.ids.front()) == named.end();
+      };
+      if (fishing(models[i], models[j]) || fishing(models[j], models[i])) continue;
       const std::optional<IntegratorModel> both = combine(models[i], models[j]);
       if (!both) continue;
       const Replay pair = replayIntegrator(*both, context, run, tests);

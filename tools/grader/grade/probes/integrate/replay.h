@@ -1,8 +1,8 @@
 // The integrators' causes proven by replay (docs/grading-reference.md, "Likely means proven"):
 // each cause named on a stub's checks has one or more models (the course's step with that
-// mistake's switch, mistakes/integrate_mistakes.h; or a course method table, explain/stages/
-// methods.h, with the mistake's change: another step, result weights, a velocity factor, pinned
-// particles), and a model proves its cause only when, run on every probe state of the stub (the
+// mistake's rows, mistakes/integrate_mistakes.h, or with what is fitted from the run laid over it:
+// another step, result weights, a velocity factor, pinned particles), and a model proves its
+// cause only when, run on every probe state of the stub (the
 // random state, the convergence ladder, the stability run), it gives the student's numbers on
 // every check. A cause no model proves is a guess whose line says where its best model parts.
 #pragma once
@@ -27,7 +27,7 @@ Replay replayIntegrator(const IntegratorModel& model, const ProbeContext& contex
 // then possible), of the stage fit's, then of every other cause with a model for the method;
 // the first model that gives the student's numbers everywhere names its causes likely on every
 // failed check (another that does too is an alternative reading, named as a guess that says so);
-// with none, two table models' changes together. A cause named but not proven becomes a guess
+// with none, two models' switches together. A cause named but not proven becomes a guess
 // with its best model's line. deltaTime read after the call and the symptoms (unstable,
 // wrong-order) stay as read.
 void proveIntegratorCauses(const ProbeContext& context, const IntegratorRun& run,
