@@ -138,15 +138,6 @@ bool oscillatorRunIsStable(const Scene& scene, Method method, double dt,
   return !(last > first * (1 + criterion.growth));
 }
 
-bool isSpringScene(const Scene& scene) {
-  try {
-    springProblem(scene);
-    return true;
-  } catch (const InputError&) {
-    return false;
-  }
-}
-
 }  // namespace
 
 double stepSpectralRadius(Method method, const Mode& mode, double h) {

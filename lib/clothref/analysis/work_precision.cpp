@@ -20,15 +20,6 @@ namespace clothref {
 
 namespace {
 
-bool isSpringScene(const Scene& scene) {
-  try {
-    springProblem(scene);
-    return true;
-  } catch (const InputError&) {
-    return false;
-  }
-}
-
 // Positions of every particle, cloth then spheres, as one vector of 3N doubles.
 template <typename T>
 Eigen::VectorXd positions(const World<T>& world) {

@@ -120,6 +120,15 @@ SpringProblem springProblem(const Scene& scene) {
   return problem;
 }
 
+bool isSpringScene(const Scene& scene) {
+  try {
+    springProblem(scene);
+    return true;
+  } catch (const InputError&) {
+    return false;
+  }
+}
+
 PointState springState(const SpringProblem& problem, double t) {
   const Displacement u = oscillatorState(problem.oscillator, t);
   return {problem.anchor + (problem.rest_length + u.position) * problem.axis,

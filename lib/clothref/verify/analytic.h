@@ -73,6 +73,9 @@ struct SpringProblem {
 // scene and what does not fit otherwise.
 SpringProblem springProblem(const Scene& scene);
 
+// Whether springProblem accepts the scene (the analyses take another path for any other scene).
+bool isSpringScene(const Scene& scene);
+
 // The free particle's exact state at time t.
 PointState springState(const SpringProblem& problem, double t);
 

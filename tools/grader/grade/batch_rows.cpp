@@ -16,8 +16,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string number(double value) { return points(value); }
-
 std::string csvField(const std::string& given) {
   const std::string text = safeName(given);  // valid UTF-8, one line, no terminal escapes
   if (text.find_first_of(",\"") == std::string::npos) return text;
@@ -167,7 +165,7 @@ std::string batchCsv(const std::vector<BatchRow>& rows, bool header) {
     out += csvField(row.name) + "," + (row.edition ? std::to_string(row.edition) : "");
     for (const std::string& stub : stubNames()) {
       auto it = row.stub_score.find(stub);
-      out += "," + (it == row.stub_score.end() ? std::string() : number(it->second));
+      out += "," + (it == row.stub_score.end() ? std::string() : points(it->second));
     }
     // the cause ids, likely ones and guesses apart, each list one field ("a b": no id has a space)
     std::string causes, guesses;
@@ -179,7 +177,7 @@ std::string batchCsv(const std::vector<BatchRow>& rows, bool header) {
     seconds.setf(std::ios::fixed);
     seconds.precision(1);
     seconds << row.seconds;
-    out += "," + number(row.score) + "," + number(row.max_score) + "," +
+    out += "," + points(row.score) + "," + points(row.max_score) + "," +
            csvField(verdictId(row.verdict)) + "," + csvField(causes) + "," + csvField(guesses) +
            "," + seconds.str() + "\n";
   }

@@ -27,7 +27,7 @@ bool same(double a, double b) {
 
 // A value read back, to the agreement it was read with: -2e-9 is 0 (a restitution of 0 read
 // through float roundings), not a number a student should chase.
-std::string number(double value) {
+std::string readBack(double value) {
   std::ostringstream out;
   out.precision(4);
   out << (std::abs(value) <= kAgree ? 0.0 : value);
@@ -122,7 +122,7 @@ std::vector<ContactFinding> explainContacts(const std::vector<ContactReading>& r
   if (tangential > kAgree)
     findings.push_back({"normal velocity", cause::kRestitutionFullVelocity, tangential, 0,
                         "the impulse changes the velocity across the contact normal too (by " +
-                            number(100 * tangential) +
+                            readBack(100 * tangential) +
                             " % of the relative speed); the course changes only its normal part"});
   if (!impulses_match) {
     const std::optional<double> ratio = common(touching, [](const ContactReading& r) {
@@ -133,11 +133,11 @@ std::vector<ContactFinding> explainContacts(const std::vector<ContactReading>& r
     findings.push_back(
         {"impulse split", cause::kWrongMassSplit, ratio.value_or(0), 1,
          "the two bodies do not receive equal and opposite impulses" +
-             (ratio ? " (the sphere's is " + number(*ratio) + " x the other's)" : std::string())});
+             (ratio ? " (the sphere's is " + readBack(*ratio) + " x the other's)" : std::string())});
   } else if (!impulse_when_separating && e && !same(*e, restitution)) {
     findings.push_back({"restitution", cause::kRestitutionIgnored, *e, restitution,
-                        "your bounce behaves as a coefficient of restitution of " + number(*e) +
-                            "; the course's is " + number(restitution)});
+                        "your bounce behaves as a coefficient of restitution of " + readBack(*e) +
+                            "; the course's is " + readBack(restitution)});
   } else if (!impulse_when_separating && !e) {
     // No one restitution fits every pair: the impulse's denominator is not the course's
     // 1/m_a + 1/m_b. Which one does fit: none (J = -(1 + e) approach), or m_a + m_b.
@@ -190,16 +190,16 @@ std::vector<ContactFinding> explainContacts(const std::vector<ContactReading>& r
     findings.push_back(
         {"position correction", cause::kCorrectionOneBody, same(*ca, 0) ? *cb : *ca, correction,
          only_positions + "only " + std::string(same(*ca, 0) ? "the other body" : "the sphere") +
-             " is pushed out (" + number(correction) + " x overlap); the course moves both"});
+             " is pushed out (" + readBack(correction) + " x overlap); the course moves both"});
   } else if (same(*ca, *cb)) {
     findings.push_back({"position correction", cause::kCorrectionFactor, *ca, correction,
-                        only_positions + "your position correction behaves as " + number(*ca) +
-                            " x overlap; the course uses " + number(correction)});
+                        only_positions + "your position correction behaves as " + readBack(*ca) +
+                            " x overlap; the course uses " + readBack(correction)});
   } else {
     findings.push_back({"position correction", cause::kCorrectionFactor, *ca, correction,
-                        only_positions + "your position correction behaves as " + number(*ca) +
-                            " x overlap for the sphere and " + number(*cb) +
-                            " x for the other body; the course uses " + number(correction) +
+                        only_positions + "your position correction behaves as " + readBack(*ca) +
+                            " x overlap for the sphere and " + readBack(*cb) +
+                            " x for the other body; the course uses " + readBack(correction) +
                             " for both"});
   }
   return findings;

@@ -58,7 +58,7 @@ Columns columns(const SpringCase& c, SpringForm form) {
   return out;
 }
 
-std::string number(double value) {
+std::string fiveDigits(double value) {
   std::ostringstream out;
   out.precision(5);
   out << value;
@@ -160,7 +160,7 @@ std::vector<SpringFinding> explainSprings(const std::vector<SpringReading>& read
   if (ks && kd && same(*ks, -spring_coef) && same(*kd, -damper_coef)) {
     add(cause::kSpringForceSign,
         "the whole force has the wrong sign, the Hooke and the damper terms both (k_s fits as " +
-            number(*ks) + " N/m, k_d as " + number(*kd) +
+            fiveDigits(*ks) + " N/m, k_d as " + fiveDigits(*kd) +
             " N s/m): a stretched spring pushes its ends apart");
     return findings;
   }
@@ -169,8 +169,8 @@ std::vector<SpringFinding> explainSprings(const std::vector<SpringReading>& read
       add(cause::kSpringForceSign,
           "a stretched spring pushes its ends apart: the Hooke term's sign is flipped");
     else
-      add(cause::kSpringCoefficient, "your spring force behaves as k_s = " + number(*ks) +
-                                         " N/m; the course's springCoef is " + number(spring_coef));
+      add(cause::kSpringCoefficient, "your spring force behaves as k_s = " + fiveDigits(*ks) +
+                                         " N/m; the course's springCoef is " + fiveDigits(spring_coef));
   }
   if (kd && !same(*kd, damper_coef)) {
     if (std::abs(*kd) <= 1e-3 * damper_coef)
@@ -178,9 +178,9 @@ std::vector<SpringFinding> explainSprings(const std::vector<SpringReading>& read
     else if (same(*kd, -damper_coef))
       add(cause::kDamperSign, "the damper adds energy: its sign is flipped");
     else
-      add(cause::kDamperCoefficient, "your damper behaves as k_d = " + number(*kd) +
+      add(cause::kDamperCoefficient, "your damper behaves as k_d = " + fiveDigits(*kd) +
                                          " N s/m; the course's damperCoef is " +
-                                         number(damper_coef));
+                                         fiveDigits(damper_coef));
   }
   return findings;
 }

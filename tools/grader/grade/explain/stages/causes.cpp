@@ -13,12 +13,6 @@
 namespace clothref::grader::stages {
 namespace {
 
-std::string number(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.6g", value);
-  return buffer;
-}
-
 void addCause(StageExplanation& e, const std::string& id, bool likely, const std::string& why) {
   for (StageCause& c : e.causes)
     if (c.id == id) {
@@ -113,7 +107,6 @@ double velocityFactor(const StageFit& fit, const MethodState& course_result) {
   }
   if (!(norm > 0)) return 0;
   const double c = along / norm;
-  constexpr double kUnit = 1.0 / 16777216.0;  // 2^-24: the multiplication by c is one rounding more
   for (std::size_t i = 0; i < recorded.size(); ++i)
     if (!(std::abs(recorded[i] - c * value[i]) <=
           kUlps * kUnit * (std::abs(recorded[i]) + std::abs(c) * magnitude[i])))
@@ -156,8 +149,8 @@ StageExplanation explainStages(const StageFit& fit, int method, const SourceHint
   const bool dt_changed = fit.record.h_after != h;
   if (dt_changed)
     addCause(e, cause::kDeltatimeMutated, true,
-             "deltaTime is " + number(fit.record.h_after) +
-                 " s after integrate(), not h = " + number(h) + " s");
+             "deltaTime is " + sixDigits(fit.record.h_after) +
+                 " s after integrate(), not h = " + sixDigits(h) + " s");
   if (e.course || !e.accepted.empty()) return e;
 
   // A step other than h: the first departing state equals the course's with h·s.
@@ -183,7 +176,7 @@ StageExplanation explainStages(const StageFit& fit, int method, const SourceHint
       const bool throughout = e.departure.state == 1 && later.state == 0;
       if (!dt_changed && throughout)
         addCause(e, cause::kDeltatimeMutated, false,
-                 "every stage uses a step of " + number(s) + "·h");
+                 "every stage uses a step of " + sixDigits(s) + "·h");
     }
   }
 
@@ -347,7 +340,7 @@ StageExplanation explainStages(const StageFit& fit, int method, const SourceHint
     if (c > 0.5 && c < 1 && !sameStep(c, 1)) {
       e.damping = c;
       addCause(e, cause::kVelocityDamped, true,
-               "the result's velocity is " + number(c) + " times the course's");
+               "the result's velocity is " + sixDigits(c) + " times the course's");
     }
   }
   // The bodies: all at one stage, and all integrated.

@@ -23,7 +23,6 @@
 namespace clothref::grader::stages {
 namespace {
 
-constexpr double kUnit = 1.0 / 16777216.0;  // 2^-24, float's unit roundoff
 // A coefficient this close to a small rational is taken as that rational (a quarter of the
 // smallest gap between two of them, 1/132); the residual test decides in the end.
 constexpr double kSnap = 2e-3;

@@ -110,14 +110,14 @@ bool introduces(const Form& v, int& gen, Rational& d) {
 
 namespace {
 
-struct Carrier {
+struct KnownVelocity {
   int index;
   Form form;
 };
 
 // `rest` written as course terms, peeling accelerations from the highest: a position's h²·a_k
 // (and a velocity's h²·a_k mix-up) through the first carrier velocity that introduces a_k.
-std::vector<CourseTerm> peel(Form rest, bool position, const std::vector<Carrier>& carriers,
+std::vector<CourseTerm> peel(Form rest, bool position, const std::vector<KnownVelocity>& carriers,
                              const std::vector<int>& state_of_gen) {
   std::vector<CourseTerm> terms;
   const int via_power = 2;  // h·v_c = h·v0 + h²·(... a)
@@ -127,7 +127,7 @@ std::vector<CourseTerm> peel(Form rest, bool position, const std::vector<Carrier
     });
     if (top.gen >= genA(0) && top.power == via_power) {
       bool done = false;
-      for (const Carrier& c : carriers) {
+      for (const KnownVelocity& c : carriers) {
         int gen = 0;
         Rational d;
         if (introduces(c.form, gen, d) && gen == top.gen) {
@@ -192,7 +192,7 @@ CourseForm toCourseOf(const StageFit& fit, const Form& form, char base, int base
   std::iota(state_of_gen.begin(), state_of_gen.end(), 0);
   const bool position = base == 'x';
   // Carriers: the velocities known at this state (a position may use its own, v_new).
-  std::vector<Carrier> known, with_own;
+  std::vector<KnownVelocity> known, with_own;
   const int last = std::min<int>(state_index, int(fit.states.size()));
   for (int k = 0; k <= last; ++k) {
     Form v;
@@ -201,7 +201,7 @@ CourseForm toCourseOf(const StageFit& fit, const Form& form, char base, int base
     with_own.push_back({k, v});
   }
   bool have = false;
-  const auto consider = [&](int index, const std::vector<Carrier>& carriers) {
+  const auto consider = [&](int index, const std::vector<KnownVelocity>& carriers) {
     Form base_form;
     if (!(position ? positionForm(fit, body, index, base_form)
                    : velocityForm(fit, body, index, base_form)))

@@ -143,9 +143,13 @@ struct StageFit {
 // kUlps * 2^-24 * (|value| + sum of |each term|) (float arithmetic of a few operations per
 // component, in any order; docs/grading-reference.md).
 inline constexpr double kUlps = 32;
+inline constexpr double kUnit = 1.0 / 16777216.0;  // 2^-24, float's unit roundoff
 inline constexpr int kMaxDenominator = 12;  // rationals of the course's terms: 1/2, 1/6, ...
 
 StageFit fitStages(const StageRecord& record);
+
+// A number in a stage text: six significant digits (%.6g).
+std::string sixDigits(double value);
 
 // The recorded state `index` of `body` (0 = start, k = evaluation k, recorded + 1 = result).
 const BodyState& recordedState(const StageRecord& record, int index, int body);

@@ -42,12 +42,6 @@ std::string joined(const std::vector<std::pair<Rational, std::string>>& parts, b
   return out;
 }
 
-std::string number(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.6g", value);
-  return buffer;
-}
-
 }  // namespace
 
 std::string text(const CourseForm& form, int recorded) {
@@ -106,7 +100,7 @@ std::string stageText(const StageFit& fit, const StageExplanation& e) {
     const StageState& s = fit.states[std::size_t(q - 1)];
     const auto cell = [&](const Fitted& f) {
       return f.fits ? text(f.course, m)
-                    : "no combination (off by " + number(f.residual * kUlps) + " float roundings)";
+                    : "no combination (off by " + sixDigits(f.residual * kUlps) + " float roundings)";
     };
     std::string row = "| " + stateName(q, m) + " | " + cell(s.x) + " | " + cell(s.v) + " |\n";
     if (s.spheres == SpheresAre::AtStart)
@@ -151,13 +145,13 @@ std::string stageText(const StageFit& fit, const StageExplanation& e) {
     const std::string subject = e.departure.what == "spheres" ? "There the spheres are"
                                 : e.departure.state == 1      ? "From there on your stages are"
                                                               : "That state is";
-    out += subject + " the course's with a step of " + number(e.scale) + "·h (" +
-           number(e.scale * fit.record.h) + " s) instead of h = " + number(fit.record.h) + " s.\n";
+    out += subject + " the course's with a step of " + sixDigits(e.scale) + "·h (" +
+           sixDigits(e.scale * fit.record.h) + " s) instead of h = " + sixDigits(fit.record.h) + " s.\n";
   }
   if (e.damping != 1) {
     std::vector<int> map;
     for (int k = 0; k <= m + 1; ++k) map.push_back(k);
-    out += "The result velocity is " + number(e.damping) + "·(" +
+    out += "The result velocity is " + sixDigits(e.damping) + "·(" +
            text(methodForm(course.result, false, map, m + 1), m) +
            "): the course's velocity scaled down, damping the course does not have.\n";
   }
@@ -181,6 +175,12 @@ std::string stageText(const StageFit& fit, const StageExplanation& e) {
     out += "This is " + e.equals_name + (how.empty() ? "" : ": " + how) + ".\n";
   }
   return out;
+}
+
+std::string sixDigits(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.6g", value);
+  return buffer;
 }
 
 }  // namespace clothref::grader::stages
