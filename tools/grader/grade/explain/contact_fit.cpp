@@ -130,10 +130,10 @@ std::vector<ContactFinding> explainContacts(const std::vector<ContactReading>& r
                  ? std::optional<double>(*r.impulse_a / *r.impulse_b)
                  : std::nullopt;
     });
-    findings.push_back(
-        {"impulse split", cause::kWrongMassSplit, ratio.value_or(0), 1,
-         "the two bodies do not receive equal and opposite impulses" +
-             (ratio ? " (the sphere's is " + readBack(*ratio) + " x the other's)" : std::string())});
+    findings.push_back({"impulse split", cause::kWrongMassSplit, ratio.value_or(0), 1,
+                        "the two bodies do not receive equal and opposite impulses" +
+                            (ratio ? " (the sphere's is " + readBack(*ratio) + " x the other's)"
+                                   : std::string())});
   } else if (!impulse_when_separating && e && !same(*e, restitution)) {
     findings.push_back({"restitution", cause::kRestitutionIgnored, *e, restitution,
                         "your bounce behaves as a coefficient of restitution of " + readBack(*e) +

@@ -170,7 +170,8 @@ std::vector<SpringFinding> explainSprings(const std::vector<SpringReading>& read
           "a stretched spring pushes its ends apart: the Hooke term's sign is flipped");
     else
       add(cause::kSpringCoefficient, "your spring force behaves as k_s = " + fiveDigits(*ks) +
-                                         " N/m; the course's springCoef is " + fiveDigits(spring_coef));
+                                         " N/m; the course's springCoef is " +
+                                         fiveDigits(spring_coef));
   }
   if (kd && !same(*kd, damper_coef)) {
     if (std::abs(*kd) <= 1e-3 * damper_coef)

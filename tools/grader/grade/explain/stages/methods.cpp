@@ -11,7 +11,6 @@ MethodState state(std::vector<MethodTerm> x, std::vector<MethodTerm> v) { return
 MethodTerm hv(int num, int den, int k) { return {num, den, 'v', k}; }
 MethodTerm ha(int num, int den, int k) { return {num, den, 'a', k}; }
 
-
 }  // namespace
 
 const std::vector<MethodTable>& methodTables() {

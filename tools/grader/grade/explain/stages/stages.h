@@ -144,7 +144,7 @@ struct StageFit {
 // component, in any order; docs/grading-reference.md).
 inline constexpr double kUlps = 32;
 inline constexpr double kUnit = 1.0 / 16777216.0;  // 2^-24, float's unit roundoff
-inline constexpr int kMaxDenominator = 12;  // rationals of the course's terms: 1/2, 1/6, ...
+inline constexpr int kMaxDenominator = 12;         // rationals of the course's terms: 1/2, 1/6, ...
 
 StageFit fitStages(const StageRecord& record);
 

@@ -99,8 +99,9 @@ std::string stageText(const StageFit& fit, const StageExplanation& e) {
   for (int q = 1; q <= int(fit.states.size()); ++q) {
     const StageState& s = fit.states[std::size_t(q - 1)];
     const auto cell = [&](const Fitted& f) {
-      return f.fits ? text(f.course, m)
-                    : "no combination (off by " + sixDigits(f.residual * kUlps) + " float roundings)";
+      return f.fits
+                 ? text(f.course, m)
+                 : "no combination (off by " + sixDigits(f.residual * kUlps) + " float roundings)";
     };
     std::string row = "| " + stateName(q, m) + " | " + cell(s.x) + " | " + cell(s.v) + " |\n";
     if (s.spheres == SpheresAre::AtStart)
@@ -146,7 +147,8 @@ std::string stageText(const StageFit& fit, const StageExplanation& e) {
                                 : e.departure.state == 1      ? "From there on your stages are"
                                                               : "That state is";
     out += subject + " the course's with a step of " + sixDigits(e.scale) + "·h (" +
-           sixDigits(e.scale * fit.record.h) + " s) instead of h = " + sixDigits(fit.record.h) + " s.\n";
+           sixDigits(e.scale * fit.record.h) + " s) instead of h = " + sixDigits(fit.record.h) +
+           " s.\n";
   }
   if (e.damping != 1) {
     std::vector<int> map;
