@@ -64,6 +64,7 @@ const std::string kIntegrator =
     "  auto v = particles[0]->velocity();\n"             // 10
     "  x = x0 + (1/6) * (k1 + k4);\n"                    // 11
     "  y = 1 / 6.0f;\n"                                  // 12
+    "  z = (k2 + k3) * (1 / 3) + k1 * (1 / 2);\n"        // 13
     "}\n";
 
 TEST(RepairProof, IntegerDivisionBackupsAndDeltaTime) {
@@ -93,8 +94,14 @@ TEST(RepairProof, IntegerDivisionBackupsAndDeltaTime) {
       repairsOf("integrator.cpp", kIntegrator, "RungeKuttaFourth::integrate");
   const Repair* sixth = find(rk4, cause::kIntegerDivisionRk4);
   ASSERT_NE(sixth, nullptr);
-  ASSERT_EQ(sixth->lines.size(), 1u);  // 1 / 6.0f is float division
+  ASSERT_EQ(sixth->lines.size(), 2u);  // 1 / 6.0f is float division
   EXPECT_EQ(lineOf(sixth->patched, 11), "  x = x0 + (1.0f / 6) * (k1 + k4);");
+  // 1 / 3 is RK4's weight too; a stage's 1 / 2 is the half step's own mistake
+  EXPECT_EQ(lineOf(sixth->patched, 13), "  z = (k2 + k3) * (1.0f / 3) + k1 * (1 / 2);");
+  const Repair* stage_half = find(rk4, cause::kIntegerDivisionHalf);
+  ASSERT_NE(stage_half, nullptr);
+  ASSERT_EQ(stage_half->lines.size(), 1u);
+  EXPECT_EQ(lineOf(stage_half->patched, 13), "  z = (k2 + k3) * (1 / 3) + k1 * (1.0f / 2);");
   const Repair* views = find(rk4, cause::kBackupAlias);
   ASSERT_NE(views, nullptr);
   EXPECT_EQ(lineOf(views->patched, 9), "  std::vector<Eigen::Matrix4Xf> x0;");
@@ -257,6 +264,45 @@ TEST(RepairProof, AMendingRepairProvesItsCause) {
   EXPECT_FALSE(tests[2].names(cause::kNoPositionCorrection));
   EXPECT_TRUE(tests[2].causes.front().proven());
   EXPECT_EQ(tests[2].causes.front().id, cause::kWrongMassSplit);
+}
+
+// Two mistakes in one stub (the first blind set's peng: `1 / 3` and a fourth stage from a half
+// step): the repair mends no check alone, but every check the repaired build fails is explained
+// by a proven cause that did not explain the stub as handed in, so the repair changed the numbers
+// into those of the other mistake alone, and both are proven. When that cause explained the stub
+// as handed in already, the repair shows nothing.
+TEST(RepairProof, ARepairProvesItsCauseWithTheRepairedBuildsProvenMistakes) {
+  std::vector<TestResult> tests =
+      stubTests({false, false, true, true}, {cause::kNoPositionCorrection});
+  std::vector<TestResult> repaired = stubTests({false, false, true, true}, {});
+  for (int k : {0, 1})
+    repaired[k].addCause(cause::kWrongMassSplit).proof = "Proven: a split gives your numbers.";
+  ASSERT_TRUE(applyRepair(autoRepair(), true, "", repaired, tests));
+  for (int k : {0, 1}) {
+    bool repair_proven = false, other_proven = false;
+    for (const Cause& c : tests[k].causes) {
+      if (c.id == cause::kDanglingAutoExpression) {
+        repair_proven = c.proven();
+        EXPECT_EQ(c.proof,
+                  "With line 129 repaired (its `auto` expression stored as a vector with "
+                  "`.eval()`): the 2 failed checks are then explained by `wrong-mass-split` "
+                  "(proven), which does not explain your numbers as handed in: this mistake and "
+                  "that one together give them.");
+      }
+      other_proven = other_proven || (c.id == cause::kWrongMassSplit && c.proven());
+      EXPECT_FALSE(c.id == cause::kNoPositionCorrection && c.likely);
+    }
+    EXPECT_TRUE(repair_proven) << k;
+    EXPECT_TRUE(other_proven) << k;
+  }
+
+  tests = stubTests({false, false, true, true}, {});
+  for (int k : {0, 1})
+    tests[k].addCause(cause::kWrongMassSplit).proof = "Proven: a split gives your numbers.";
+  EXPECT_FALSE(applyRepair(autoRepair(), true, "", repaired, tests));
+  for (int k : {0, 1})
+    EXPECT_FALSE(tests[k].names(cause::kDanglingAutoExpression) &&
+                 tests[k].causes.front().id == cause::kDanglingAutoExpression);
 }
 
 // A repair that does not build, or changes nothing, disproves the cause.

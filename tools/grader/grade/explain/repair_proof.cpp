@@ -72,16 +72,21 @@ std::vector<Pattern> patternsOf(const std::string& stub) {
        [](const std::string& line) { return std::regex_replace(line, reference, "$1$2"); },
        "its reference to the temporary std::max / std::min returns made a copy"});
   if (stub == "RungeKuttaFourth::integrate" || stub == "MidpointEuler::integrate") {
+    // RK4's weights 1/6 and 1/3 (integer-division-rk4) and the halves of RK4's stages and the
+    // midpoint's step (integer-division-half) are each 0 in int arithmetic.
     const bool rk4 = stub == "RungeKuttaFourth::integrate";
-    const std::string d = rk4 ? "6" : "2";
-    patterns.push_back({rk4 ? cause::kIntegerDivisionRk4 : cause::kIntegerDivisionHalf,
-                        std::regex(R"((^|[^.\w])1\s*/\s*)" + d + R"((?![.\w]))"),
-                        [d](const std::string& line) {
-                          return std::regex_replace(
-                              line, std::regex(R"((^|[^.\w])1\s*/\s*)" + d + R"((?![.\w]))"),
-                              "$011.0f / " + d);
-                        },
-                        "`1 / " + d + "` written `1.0f / " + d + "`"});
+    const auto division = [&patterns](const std::string& cause, const std::string& denominators,
+                                      const std::string& what) {
+      const std::regex found(R"((^|[^.\w])1\s*/\s*)" + denominators + R"((?![.\w]))");
+      patterns.push_back({cause, found,
+                          [found](const std::string& line) {
+                            return std::regex_replace(line, found, "$011.0f / $2");
+                          },
+                          what});
+    };
+    if (rk4)
+      division(cause::kIntegerDivisionRk4, "([36])", "each `1 / 6` or `1 / 3` written `1.0f / n`");
+    division(cause::kIntegerDivisionHalf, "(2)", "`1 / 2` written `1.0f / 2`");
   }
   if (isIntegrator(stub) && stub != "ExplicitEuler::integrate") {
     // A backup that is no copy: a vector of the Particles pointers, an Eigen::Ref view, or an
@@ -324,8 +329,23 @@ bool applyRepair(const Repair& repair, bool built, const std::string& problem,
         }
       others_explained = others_explained && explained;
     }
+  // Two mistakes in one stub, where the repaired one does not mend a check alone: the repair
+  // proves its cause when the repaired build's failed checks are all explained by proven causes
+  // that did not explain the stub as handed in (so the repair changed the numbers, into those of
+  // the course with the other mistakes).
+  bool before_explained = true;
+  for (std::size_t k = 0; same_shape && k < tests.size(); ++k) {
+    if (tests[k].passed()) continue;
+    bool explained = false;
+    for (const Cause& c : tests[k].causes)
+      explained = explained || (c.proven() && c.id != repair.cause &&
+                                std::find(others.begin(), others.end(), c.id) != others.end());
+    before_explained = before_explained && explained;
+  }
+  const bool jointly = same_shape && mended == 0 && still > 0 && others_explained &&
+                       !before_explained && !others.empty();
   std::string line;
-  const bool proven = same_shape && mended > 0 && broken == 0;
+  const bool proven = same_shape && (mended > 0 || jointly) && broken == 0;
   if (!built) {
     line = "Not proven: with " + repair.what + ", " + repair.file + " does not build" +
            (problem.empty() ? "" : " (" + problem.substr(0, problem.find('\n')) + ")") +
@@ -339,12 +359,18 @@ bool applyRepair(const Repair& repair, bool built, const std::string& problem,
   } else {
     line = with + ": " + std::to_string(passing) + " of " + std::to_string(total) +
            (total == 1 ? " check passes" : " checks pass");
-    if (still == 0) {
+    std::string ids;
+    for (std::size_t k = 0; k < others.size(); ++k)
+      ids += (k == 0 ? "" : k + 1 == others.size() ? " and " : ", ") + codeSpan(others[k]);
+    if (jointly) {
+      line = with + ": the " + std::to_string(still) + " failed " +
+             (still == 1 ? "check is" : "checks are") + " then explained by " + ids +
+             " (proven), which " + (others.size() == 1 ? "does" : "do") +
+             " not explain your numbers as handed in: this mistake and " +
+             (others.size() == 1 ? "that one" : "those") + " together give them.";
+    } else if (still == 0) {
       line += ".";
     } else if (others_explained) {
-      std::string ids;
-      for (std::size_t k = 0; k < others.size(); ++k)
-        ids += (k == 0 ? "" : k + 1 == others.size() ? " and " : ", ") + codeSpan(others[k]);
       line += "; the other " + std::to_string(still) + " " + (still == 1 ? "is" : "are") +
               " explained by " + ids + " (proven).";
     } else {
@@ -377,9 +403,10 @@ bool applyRepair(const Repair& repair, bool built, const std::string& problem,
       cause.proof = line;
       cause.quotes = repair.lines;
     } else {
-      // Still failing: the repaired build's causes, with the repair named first.
+      // Still failing: the repaired build's causes, with the repair named first (likely when it
+      // and the repaired build's proven causes explain this check together).
       std::vector<Cause> causes;
-      Cause mine{repair.cause, false, {}, {}, {}, {}, {}, line};
+      Cause mine{repair.cause, jointly, {}, {}, {}, {}, {}, line};
       mine.quotes = repair.lines;
       causes.push_back(mine);
       for (Cause c : repaired[k].causes) {
