@@ -8,6 +8,7 @@
 // cause.
 //
 // Pure text and data: the probes room builds and probes (probes/repair.cpp).
+// The repairs are made in repair_proof.cpp and judged in repair_judgement.cpp.
 #pragma once
 #include <string>
 #include <vector>
