@@ -61,26 +61,22 @@ bool applyRepair(const Repair& repair, bool built, const std::string& problem,
            (broken ? std::to_string(broken) + " checks that passed fail" : "the same checks fail") +
            ": the repair does not mend your numbers.";
   } else {
-    line = with + ": " + std::to_string(passing) + " of " + std::to_string(total) +
-           (total == 1 ? " check passes" : " checks pass");
     std::string ids;
     for (std::size_t k = 0; k < others.size(); ++k)
       ids += (k == 0 ? "" : k + 1 == others.size() ? " and " : ", ") + codeSpan(others[k]);
-    if (jointly) {
+    const std::string other = "the other " + std::to_string(still) + (still == 1 ? " is" : " are");
+    if (jointly)
       line = with + ": the " + std::to_string(still) + " failed " +
              (still == 1 ? "check is" : "checks are") + " then explained by " + ids +
              " (proven), which " + (others.size() == 1 ? "does" : "do") +
              " not explain your numbers as handed in: this mistake and " +
              (others.size() == 1 ? "that one" : "those") + " together give them.";
-    } else if (still == 0) {
-      line += ".";
-    } else if (others_explained) {
-      line += "; the other " + std::to_string(still) + " " + (still == 1 ? "is" : "are") +
-              " explained by " + ids + " (proven).";
-    } else {
-      line += "; the other " + std::to_string(still) + " " + (still == 1 ? "is" : "are") +
-              " not explained by a proven mistake.";
-    }
+    else
+      line = with + ": " + std::to_string(passing) + " of " + std::to_string(total) +
+             (total == 1 ? " check passes" : " checks pass") +
+             (still == 0         ? "."
+              : others_explained ? "; " + other + " explained by " + ids + " (proven)."
+                                 : "; " + other + " not explained by a proven mistake.");
   }
   for (std::size_t k = 0; k < tests.size(); ++k) {
     TestResult& t = tests[k];
