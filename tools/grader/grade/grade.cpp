@@ -202,8 +202,19 @@ std::set<std::string> nonFiniteStubs(RunLog& log) {
   std::set<std::string> stubs;
   std::lock_guard<std::mutex> lock(log.mutex);
   for (const std::string& folder : log.non_finite)
-    if (stub_of.count(folder) && !stub_of[folder].empty()) stubs.insert(stub_of[folder]);
+    if (stub_of.count(folder) && !stub_of[folder].empty() && !log.diverged.count(folder))
+      stubs.insert(stub_of[folder]);
   return stubs;
+}
+
+// Every run's verdict, a diverged run's (RunLog::diverged) as graded: its checks judge it.
+std::vector<Verdict> runVerdicts(RunLog& log) {
+  std::lock_guard<std::mutex> lock(log.mutex);
+  std::vector<Verdict> verdicts = log.verdicts;
+  for (std::size_t k = 0; k < verdicts.size() && k < log.folders.size(); ++k)
+    if (verdicts[k] == Verdict::NonFinite && log.diverged.count(log.folders[k]))
+      verdicts[k] = Verdict::Graded;
+  return verdicts;
 }
 
 // The causes whose model can make non-finite numbers (the catalogue's "non_finite").
@@ -351,7 +362,7 @@ GradeReport gradeSubmission(const fs::path& dir, const GradeOptions& options) {
   sortInCourseOrder(report.tests);
   applyRubric(rubric, report);
   for (TestResult& t : report.tests) t.visibility = rubric.visibilityOf(t.name(), t.stub);
-  report.verdict = submissionVerdict(report, context.limits.log->verdicts);
+  report.verdict = submissionVerdict(report, runVerdicts(*context.limits.log));
   if (!options.keep_work.empty()) keepWork(scratch.root(), options.keep_work);
   report.seconds["total"] = since(start);
   return report;

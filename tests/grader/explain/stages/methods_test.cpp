@@ -90,5 +90,25 @@ TEST(StageMethods, EachAcceptedTableIsItsReading) {
   EXPECT_GT(accepted, 0);
 }
 
+// RK4 weights fitted on a student's k that are the course's on k of other stages read as such:
+// k1 read after stage 4 (blind3 ko-big5) is k4 where k1 belongs; other weights are not.
+TEST(StageMethods, CourseWeightsOnOtherStagesAreNamedByTheStageTheyCameFrom) {
+  const double sixth = 1.0 / 6, third = 1.0 / 3;
+  const auto k4ForK1 = stages::courseWeightsOnOtherStages({0, third, third, third});
+  ASSERT_TRUE(k4ForK1.has_value());
+  EXPECT_EQ(*k4ForK1, (std::array<int, 4>{3, 1, 2, 3}));
+  EXPECT_EQ(stages::otherStagesText(*k4ForK1), "k4 where k1 belongs");
+  const auto k3ForK4 = stages::courseWeightsOnOtherStages({sixth, third, 0.5, 0});
+  ASSERT_TRUE(k3ForK4.has_value());
+  EXPECT_EQ(stages::otherStagesText(*k3ForK4), "k3 where k4 belongs");
+  // the course's own weights, other weights, and nothing added are no such reading
+  EXPECT_FALSE(stages::courseWeightsOnOtherStages({sixth, third, third, sixth}));
+  EXPECT_FALSE(stages::courseWeightsOnOtherStages({0.25, 0.25, 0.25, 0.25}));
+  EXPECT_FALSE(stages::courseWeightsOnOtherStages({0, 0, 0, 0}));
+  // a least-squares fit is read within its tolerance only
+  EXPECT_TRUE(stages::courseWeightsOnOtherStages({1e-4, third, third, third + 1e-4}, 1e-3));
+  EXPECT_FALSE(stages::courseWeightsOnOtherStages({1e-4, third, third, third + 1e-4}));
+}
+
 }  // namespace
 }  // namespace clothref::grader::integrators

@@ -132,7 +132,8 @@ enum class Rk {
   ThreeEighths,     // the 3/8-rule Runge-Kutta method
   KaoStyle,         // stages from the previous stage, weights 1/8 3/8 3/8 1/8
   HalfStep,         // deltaTime /= 2 at the start, never restored
-  HalfStepQuarter   // deltaTime /= 2 and weights 1/4
+  HalfStepQuarter,  // deltaTime /= 2 and weights 1/4
+  K1ReadLast        // k1 read at the end from the live state: after stage 4, so it is k4
 };
 
 template <typename T>
@@ -192,6 +193,11 @@ void rungeKutta(const Bodies<T>& ps, const std::function<void()>& sim, T& dt, Rk
     } else if (kind == Rk::ThreeEighths || kind == Rk::KaoStyle) {
       p.position = bx + (kxs[0][i] + T(3) * kxs[1][i] + T(3) * kxs[2][i] + kxs[3][i]) / T(8);
       p.velocity = bv + (kv[0][i] + T(3) * kv[1][i] + T(3) * kv[2][i] + kv[3][i]) / T(8);
+    } else if (kind == Rk::K1ReadLast) {
+      // `(particles[i]->velocity() * deltaTime + 2 * k2x[i] + ...) / 6`, the velocity likewise
+      // (updated after the position, from the acceleration the state still holds)
+      p.position = bx + (p.velocity * dt + T(2) * kx[1][i] + T(2) * kx[2][i] + kx[3][i]) / T(6);
+      p.velocity = bv + (p.acceleration * dt + T(2) * kv[1][i] + T(2) * kv[2][i] + kv[3][i]) / T(6);
     } else {
       const T sixth = kind == Rk::IntegerSixth ? T(1 / 6) : T(1) / T(6);
       p.position = bx + (kxs[0][i] + T(2) * kxs[1][i] + T(2) * kxs[2][i] + kxs[3][i]) * sixth;

@@ -274,6 +274,18 @@ const std::vector<Case>& cases() {
             {},
             "x0 + h/4·(v0 + v1 + v2 + v3)",
             "x0 + h/6·(v0 + 2·v1 + 2·v2 + v3)"}),
+      // the course's weights written out, k1 read after stage 4 overwrote the state (blind3
+      // ko-big5): the weights fit 0, 1/3, 1/3, 1/3, which is k4 where k1 belongs, not wrong weights
+      make("rk4 k1 read after stage 4", 3, rk(R::K1ReadLast),
+           {false,
+            "",
+            "",
+            4,
+            "position",
+            {cause::kRk4MixedIncrements},
+            {},
+            "x0 + h/3·(v1 + v2 + v3)",
+            "x0 + h/6·(v0 + 2·v1 + 2·v2 + v3)"}),
       make("rk4 1 / 6", 3, rk(R::IntegerSixth),
            {false,
             "",

@@ -31,6 +31,9 @@ struct RunLog {
   std::vector<std::string> folders;  // the work_dir's name of each, in the same order
   // The folders of the runs that answered with NaN or infinity (ChildLimits::answers).
   std::set<std::string> non_finite;
+  // Of those, the runs whose only non-finite numbers ended a long run that first grew past any
+  // cloth's size (an unstable method overflowing): the stub's instability, not its NaN.
+  std::set<std::string> diverged;
 };
 
 inline constexpr std::uint64_t kRunDiskBytes = 128ull << 20;

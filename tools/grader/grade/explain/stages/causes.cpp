@@ -289,7 +289,8 @@ StageExplanation explainStages(const StageFit& fit, int method, const SourceHint
   if (method == 3 && m >= 3 && !mixed && !result_on_previous && r.x.fits && r.v.fits &&
       !is_explicit && step_known && stages_explained) {
     // Weights of the result on the student's stages: x0 + sum w_k h v_k, v0 + sum u_k h a_k.
-    bool wrong = false, zero_ends = !moved_x || !moved_v;
+    bool wrong = false, zero_ends = !moved_x || !moved_v, restaged = true;
+    std::string restaged_text;
     for (bool position : {true, false}) {
       Form want, scaled_want, have;
       const Form base{Term{position ? kGenX0 : kGenV0, 0, Rational(1)}};
@@ -310,8 +311,22 @@ StageExplanation explainStages(const StageFit& fit, int method, const SourceHint
           last = last || t.index == 3;
         }
       zero_ends = zero_ends || (c.base_index == 0 && !first && !last);
+      // The course's weights on k of other stages (a k read after a later stage overwrote it)?
+      std::array<double, 4> w{};
+      bool sum_of_k = c.base_index == 0 && step == Rational(1);
+      for (const CourseTerm& t : c.terms)
+        if (t.power == 1 && t.block == (position ? 'v' : 'a') && t.index >= 0 && t.index <= 3)
+          w[std::size_t(t.index)] += t.coef.value();
+        else
+          sum_of_k = false;
+      const auto from = sum_of_k ? courseWeightsOnOtherStages(w) : std::nullopt;
+      restaged = restaged && from;
+      if (from) restaged_text = otherStagesText(*from);
     }
-    if (wrong) {
+    if (wrong && restaged) {
+      addCause(e, cause::kRk4MixedIncrements, true,
+               "the result has the course's weights on the wrong k: " + restaged_text);
+    } else if (wrong) {
       const bool integer = zero_ends && hints.integer_sixth;
       if (integer)
         addCause(e, cause::kIntegerDivisionRk4, true,

@@ -240,4 +240,39 @@ bool equalsMethod(const StageFit& fit, const MethodTable& table) {
   return sameState(fit, fit.recorded + 1, table.result, map);
 }
 
+std::optional<std::array<int, 4>> courseWeightsOnOtherStages(const std::array<double, 4>& w,
+                                                             double tolerance) {
+  const std::array<double, 4> course = {1.0 / 6, 1.0 / 3, 1.0 / 3, 1.0 / 6};
+  bool own = true;  // the course's weights themselves (k1 and k4 swapped give them too)
+  for (std::size_t j = 0; j < 4; ++j) own = own && std::abs(course[j] - w[j]) <= tolerance;
+  if (own) return std::nullopt;
+  std::optional<std::array<int, 4>> best;
+  int best_in_place = -1;
+  for (int code = 0; code < 256; ++code) {  // every map of the 4 k onto 4 stages
+    std::array<int, 4> from{};
+    std::array<double, 4> sum{};
+    int in_place = 0;
+    for (int i = 0; i < 4; ++i) {
+      from[std::size_t(i)] = (code >> (2 * i)) & 3;
+      sum[std::size_t(from[std::size_t(i)])] += course[std::size_t(i)];
+      in_place += from[std::size_t(i)] == i;
+    }
+    bool same = in_place < 4;
+    for (int j = 0; j < 4 && same; ++j)
+      same = std::abs(sum[std::size_t(j)] - w[std::size_t(j)]) <= tolerance;
+    if (same && in_place > best_in_place) best = from, best_in_place = in_place;
+  }
+  return best;
+}
+
+std::string otherStagesText(const std::array<int, 4>& from) {
+  std::string out;
+  for (int i = 0; i < 4; ++i)
+    if (from[std::size_t(i)] != i)
+      out += (out.empty() ? "" : ", ") + std::string("k") +
+             std::to_string(from[std::size_t(i)] + 1) + " where k" + std::to_string(i + 1) +
+             " belongs";
+  return out;
+}
+
 }  // namespace clothref::grader::stages

@@ -2,7 +2,9 @@
 // integrators" and "Accepted variants"), and the comparisons: stage by stage, and whole stub (known
 // method).
 #pragma once
+#include <array>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -62,5 +64,15 @@ Departure departure(const StageFit& fit, const MethodTable& table, double factor
 // Whether the whole stub equals `table`: its evaluations are met, in order, among the student's
 // (others unused), and the result equals the method's result.
 bool equalsMethod(const StageFit& fit, const MethodTable& table);
+
+// RK4 result weights w on k1..k4 (units of h) that are the course's (1/6, 1/3, 1/3, 1/6) with
+// some k read from another stage: from[i] is the stage whose k stands where k(i+1) belongs, e.g.
+// (0, 1/3, 1/3, 1/3) is k1 read after stage 4 overwrote the state (from = 3, 1, 2, 3). The map
+// with the most k in place; none when w is the course's itself or no map gives it (each weight
+// within `tolerance`: exact for the stage fit's rationals, 1e-3 for a least-squares fit).
+std::optional<std::array<int, 4>> courseWeightsOnOtherStages(const std::array<double, 4>& w,
+                                                             double tolerance = 1e-9);
+// "k4 where k1 belongs" for such a map.
+std::string otherStagesText(const std::array<int, 4>& from);
 
 }  // namespace clothref::grader::stages

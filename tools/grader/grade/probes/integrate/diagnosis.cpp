@@ -7,6 +7,7 @@
 
 #include "clothref/core/integrator.h"
 #include "grader/grade/cause_ids.h"
+#include "grader/grade/explain/stages/methods.h"
 #include "grader/grade/explain/stages/stages.h"
 #include "grader/grade/mistakes/integrate_mistakes.h"
 #include "grader/grade/submission/source_text.h"
@@ -79,6 +80,15 @@ std::string rk4WeightCause(const IntegratorRun& run, const std::string& source,
                 util::num(fit.w[3]) + " k4 (the course: 1/6, 1/3, 1/3, 1/6).\n";
   // A weight of zero where the course has 1/6 is integer division only when the source has it.
   if (missing_term && sourceHints(source).integer_sixth) return cause::kIntegerDivisionRk4;
+  // The course's weights on k read from other stages (k1 read after stage 4 overwrote the
+  // state): the literal weights are right, a k is not.
+  const auto restaged = [&](const WeightFit& f) {
+    return !f.fits || near(f.w, course) ||
+           stages::courseWeightsOnOtherStages({f.w[0], f.w[1], f.w[2], f.w[3]}, 1e-3);
+  };
+  if (((x.fits && !near(x.w, course)) || (v.fits && !near(v.w, course))) && restaged(x) &&
+      restaged(v))
+    return cause::kRk4MixedIncrements;
   if ((x.fits && !near(x.w, course)) || (v.fits && !near(v.w, course)))
     return cause::kRk4WrongWeights;
   return "";

@@ -304,6 +304,10 @@ std::vector<TestResult> probeIntegrator(const ProbeContext& context, int index) 
     context.limits.log->verdicts.push_back(child.verdict());
     context.limits.log->folders.push_back(integratorFolder(index, false));  // as runChild logs
   }
+  if (ok && context.limits.answers && onlyDivergedRuns(run.answer)) {
+    std::lock_guard<std::mutex> lock(context.limits.answers->mutex);
+    context.limits.answers->diverged.insert(integratorFolder(index, !note.empty()));
+  }
   std::vector<TestResult> tests;
   if (!ok) {
     for (const PlannedTest& check : integratorChecks(index))

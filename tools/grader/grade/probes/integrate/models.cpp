@@ -2,7 +2,9 @@
 #include "grader/grade/probes/integrate/models.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <optional>
 
 #include "grader/grade/cause_ids.h"
 #include "grader/grade/explain/stages/methods.h"
@@ -54,6 +56,19 @@ void fittedWeights(const RunStages& stages, std::vector<double>& wx, std::vector
   weights(r.v, 'a', wv);
 }
 
+// For result weights `w` that are the course's on k of other stages, or the course's weights while
+// `other` is not: what stands where ("k4 where k1 belongs", "every k in place").
+std::optional<std::string> restaged(const std::vector<double>& w,
+                                    const std::vector<double>& other) {
+  const std::array<double, 4> weights = {w[0], w[1], w[2], w[3]};
+  if (const auto from = stages::courseWeightsOnOtherStages(weights))
+    return stages::otherStagesText(*from);
+  const std::array<double, 4> course = {1.0 / 6, 1.0 / 3, 1.0 / 3, 1.0 / 6};
+  for (std::size_t i = 0; i < 4; ++i)
+    if (std::abs(weights[i] - course[i]) > 1e-9) return std::nullopt;
+  return w == other ? std::nullopt : std::optional<std::string>("every k in place");
+}
+
 std::string weightText(const std::vector<double>& w) {
   std::string out;
   for (double x : w) out += (out.empty() ? "" : ", ") + number(x);
@@ -88,40 +103,59 @@ std::vector<IntegratorModel> modelsOf(const std::string& id, const Rubric& rubri
       fitted(t, the + " with the velocities then multiplied by " + number(t.velocity_factor[0]) +
                     " (the cloth) and " + number(t.velocity_factor[1]) + " (the spheres)");
   } else if (id == cause::kDeltatimeMutated) {
-    Overlay t;
+    // The course's step at h first, then at the stage fit's scale: a midpoint whose halved
+    // deltaTime also shortens its corrector is the course's prediction with a half-step corrector
+    // (half-step-corrector, with its own row) before it is implicit Euler at h/2. The two give
+    // the same numbers; the first is what the student wrote (the prediction is x0 + h/2 v0).
     const double scale = stages.recorded ? stages.explanation.scale : 1;
-    t.step = scale;
     const auto& after = run.answer.f(key::perCase(key::kDtAfter, 0));
-    std::string text = the + (scale != 1 ? " at a step of " + number(scale) + "·h" : "");
-    if (!after.empty() && after[0] != run.random.dt) {
-      const double ratio = double(after[0]) / double(run.random.dt);
-      const bool constant = stages.recorded && stages.fit.record.h_after != stages.fit.record.h &&
-                            float(stages.fit.record.h_after) == after[0];
-      if (constant) {
-        t.dt_after = after[0];
-        fitted(t, text + ", leaving deltaTime at " + number(after[0]) + " s after the call");
-        // ... restored to that constant before the corrector, which then steps it; the stages
-        // before it keep the call's h (the fit's scale is the corrector's).
-        Overlay restored;
-        restored.dt_after = after[0];
-        restored.result_dt = after[0];
-        fitted(restored, the + " whose corrector steps deltaTime = " + number(after[0]) +
-                             " s (restored to a constant), left so after the call");
-        t.result_dt = after[0];
-        text += " whose corrector steps deltaTime = " + number(after[0]) +
-                " s (restored to a constant), left so after the call";
-      } else {
-        t.dt_after_factor = ratio;
-        text += ", leaving deltaTime at " + number(ratio) + " x its value after the call";
+    for (const double step : scale != 1 ? std::vector<double>{1, scale} : std::vector<double>{1}) {
+      Overlay t;
+      t.step = step;
+      std::string text = the + (step != 1 ? " at a step of " + number(step) + "·h" : "");
+      if (!after.empty() && after[0] != run.random.dt) {
+        const double ratio = double(after[0]) / double(run.random.dt);
+        const bool constant = stages.recorded && stages.fit.record.h_after != stages.fit.record.h &&
+                              float(stages.fit.record.h_after) == after[0];
+        if (constant) {
+          t.dt_after = after[0];
+          fitted(t, text + ", leaving deltaTime at " + number(after[0]) + " s after the call");
+          // ... restored to that constant before the corrector, which then steps it; the stages
+          // before it keep the call's h (the fit's scale is the corrector's).
+          if (step == scale) {
+            Overlay restored;
+            restored.dt_after = after[0];
+            restored.result_dt = after[0];
+            fitted(restored, the + " whose corrector steps deltaTime = " + number(after[0]) +
+                                 " s (restored to a constant), left so after the call");
+          }
+          t.result_dt = after[0];
+          text += " whose corrector steps deltaTime = " + number(after[0]) +
+                  " s (restored to a constant), left so after the call";
+        } else {
+          t.dt_after_factor = ratio;
+          text += ", leaving deltaTime at " + number(ratio) + " x its value after the call";
+        }
       }
+      if (step != 1 || t.dt_after || t.dt_after_factor) fitted(t, text);
     }
-    fitted(t, text);
-  } else if (id == cause::kRk4WrongWeights && method == Method::Rk4) {
+  } else if ((id == cause::kRk4WrongWeights || id == cause::kRk4MixedIncrements) &&
+             method == Method::Rk4) {
+    // Fitted weights that are the course's on k of other stages are a k read from the wrong
+    // stage (rk4-mixed-increments), other weights are wrong weights: one reading each.
     Overlay t;
     fittedWeights(stages, t.weights_x, t.weights_v);
-    if (!t.weights_x.empty() && !t.weights_v.empty())
-      fitted(t, "the course's RK4 stages with the weights " + weightText(t.weights_x) +
-                    " (positions) and " + weightText(t.weights_v) + " (velocities)");
+    if (!t.weights_x.empty() && !t.weights_v.empty()) {
+      const auto x = restaged(t.weights_x, t.weights_v), v = restaged(t.weights_v, t.weights_x);
+      const bool course_weights_on_other_k = x && v;
+      if (id == cause::kRk4WrongWeights && !course_weights_on_other_k)
+        fitted(t, "the course's RK4 stages with the weights " + weightText(t.weights_x) +
+                      " (positions) and " + weightText(t.weights_v) + " (velocities)");
+      if (id == cause::kRk4MixedIncrements && course_weights_on_other_k)
+        fitted(t, "the course's RK4 whose result reads " +
+                      (*x == *v ? *x + " (positions and velocities)"
+                                : *x + " (positions) and " + *v + " (velocities)"));
+    }
   } else if (id == cause::kIntegratorPinsParticles) {
     Overlay t;
     t.pinned = pinnedParticles(run);

@@ -112,7 +112,7 @@ namespace {
 std::string changeOf(const std::string& text) {
   std::size_t at = std::string::npos;
   for (const char* word :
-       {" with ", " whose ", " without ", " at a step", " on particles", " run on "})
+       {" with ", " whose ", " without ", " at a step", " on particles", " run on ", " leaving "})
     at = std::min(at, text.find(word));
   return at == std::string::npos ? text : text.substr(at + 1);
 }

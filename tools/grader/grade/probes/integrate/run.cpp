@@ -1,7 +1,10 @@
 // One run of the integrator probe (run.h).
 #include "grader/grade/probes/integrate/run.h"
 
+#include <algorithm>
 #include <cmath>
+#include <set>
+#include <string>
 
 #include "grader/grade/explain/stages/stages.h"
 
@@ -84,6 +87,31 @@ bool runIntegrator(const ProbeContext& context, int index, bool course_size, Int
   completeOneStep(course_cloth, run.method);
   run.course_cloth = std::move(course_cloth);
   return true;
+}
+
+bool onlyDivergedRuns(const probe::ProbeMessage& answer) {
+  const std::string trajectory = std::string(key::kTrajectory) + ".";
+  const auto caseOf = [](const std::string& name) {
+    const std::size_t dot = name.rfind('.');
+    return dot == std::string::npos ? std::string() : name.substr(dot + 1);
+  };
+  std::set<std::string> diverged;  // the cases, as perCase's suffix
+  for (const auto& [name, values] : answer.floats) {
+    if (name.rfind(trajectory, 0) != 0) continue;
+    float largest = 0;
+    for (float v : values) {
+      if (!std::isfinite(v)) break;
+      largest = std::max(largest, std::abs(v));
+    }
+    if (largest > 1e6f) diverged.insert(caseOf(name));
+  }
+  bool any = false;
+  for (const auto& [name, values] : answer.floats)
+    if (std::any_of(values.begin(), values.end(), [](float v) { return !std::isfinite(v); })) {
+      if (!diverged.count(caseOf(name))) return false;
+      any = true;
+    }
+  return any;
 }
 
 }  // namespace clothref::grader::integrators

@@ -53,4 +53,9 @@ void completeOneStep(OneStep& step, Method method);
 bool runIntegrator(const ProbeContext& context, int index, bool course_size, IntegratorRun& run,
                    util::ProbeFailure& failure, ChildRun& child, bool log);
 
+// Whether every non-finite number of `answer` belongs to a case whose trajectory first grew past
+// 1e6 m (the probe's systems are about 1 m): an unstable method overflows so, where a NaN of the
+// stub's (0 / 0) comes without growing first. An answer with none: false.
+bool onlyDivergedRuns(const probe::ProbeMessage& answer);
+
 }  // namespace clothref::grader::integrators
