@@ -132,6 +132,42 @@ TEST(IntegratorReplay, AFourthStageFromAHalfStepIsItsModel) {
       EXPECT_GT(distance(stepped(run.random, m.step), run.actual), kRel) << m.text;
 }
 
+// RK4 as a student writes it whose update sets the velocity first and then reads the position's k4
+// from the live velocity, the new one (blind3 2024/hsia-big5): `x0 + (k1x + 2 * k2x + 2 * k3x +
+// p->velocity() * deltaTime) / 6` after `v = v0 + (... + p->acceleration() * deltaTime) / 6`.
+void k4AfterVelocityRk4(System& s) {
+  simulate(s);
+  const float dt = s.dt;
+  std::vector<Particles<float>*> bodies{&s.cloth.particles, &s.spheres.particles};
+  std::vector<Mat4X<float>> x0, v0, kx[3], kv[3];
+  for (auto* p : bodies) x0.push_back(p->position), v0.push_back(p->velocity);
+  const float c[3] = {0.5f, 0.5f, 1.0f};
+  for (int st = 0; st < 3; ++st) {
+    if (st > 0) simulate(s);
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      kx[st].push_back(bodies[i]->velocity * dt);
+      kv[st].push_back(bodies[i]->acceleration * dt);
+      bodies[i]->position = x0[i] + kx[st][i] * c[st];
+      bodies[i]->velocity = v0[i] + kv[st][i] * c[st];
+    }
+  }
+  simulate(s);
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    Particles<float>& p = *bodies[i];
+    p.velocity = v0[i] + (kv[0][i] + 2 * kv[1][i] + 2 * kv[2][i] + p.acceleration * dt) / 6;
+    p.position = x0[i] + (kx[0][i] + 2 * kx[1][i] + 2 * kx[2][i] + p.velocity * dt) / 6;
+  }
+}
+
+TEST(IntegratorReplay, AK4ReadAfterTheVelocityUpdateIsItsModel) {
+  const IntegratorRun run = runOf(3, k4AfterVelocityRk4);
+  ASSERT_GT(distance(run.actual, run.expected), kRel);  // a mistake the check sees
+  int reproduce = 0;
+  for (const IntegratorModel& m : modelsOf(cause::kRk4MixedIncrements, kRubric, run, RunStages{}))
+    reproduce += distance(stepped(run.random, m.step), run.actual) <= kRel;
+  EXPECT_EQ(reproduce, 1);  // that reading, and no other of the cause
+}
+
 // A helper that stops hard-coded cloth particles after the step: read from the numbers, replayed.
 TEST(IntegratorReplay, PinnedParticlesAreReadAndReplayed) {
   const Step pinning = [](System& s) {
@@ -141,9 +177,12 @@ TEST(IntegratorReplay, PinnedParticlesAreReadAndReplayed) {
   const IntegratorRun run = runOf(2, pinning);
   const std::vector<IntegratorModel> models =
       modelsOf(cause::kIntegratorPinsParticles, kRubric, run, {});
-  // after the course's midpoint, and after its accepted variant (a symplectic predictor)
-  ASSERT_EQ(models.size(), 2u);
+  // after the course's midpoint, also after its prediction, and after its accepted variant (a
+  // symplectic predictor): only the first is this code
+  ASSERT_EQ(models.size(), 3u);
+  EXPECT_TRUE(models[1].model.overlay.pins_at_stages);
   EXPECT_GT(distance(stepped(run.random, models[1].step), run.actual), kRel);
+  EXPECT_GT(distance(stepped(run.random, models[2].step), run.actual), kRel);
   ASSERT_TRUE(models[0].model.rows.empty());
   ASSERT_EQ(models[0].model.overlay.pinned.size(), 1u);
   EXPECT_EQ(models[0].model.overlay.pinned[0].cloth_size, run.random.cloth.particles.size());
@@ -151,6 +190,51 @@ TEST(IntegratorReplay, PinnedParticlesAreReadAndReplayed) {
   EXPECT_FALSE(models[0].model.overlay.pinned[0].positions);
   EXPECT_LE(distance(stepped(run.random, models[0].step), run.actual), kRel);
   EXPECT_NE(models[0].text.find("particles 1-2, 6 stopped"), std::string::npos) << models[0].text;
+}
+
+// The same helper called in RK4's stage loop too (blind3 2024/liang's pinCorners): each stage state
+// has those particles stopped before its simulateOneStep(), so the model that stops them after
+// the step only is not this code, and the one that stops them at every stage is.
+TEST(IntegratorReplay, ParticlesPinnedAtEveryStageAreReplayedSo) {
+  const Step pinning = [](System& s) {
+    simulate(s);
+    const float dt = s.dt;
+    std::vector<Particles<float>*> bodies{&s.cloth.particles, &s.spheres.particles};
+    std::vector<Particles<float>> start;
+    for (auto* p : bodies) start.push_back(*p);
+    const auto pin = [&] {
+      for (int j : {1, 6}) s.cloth.particles.velocity.col(j).setZero();
+    };
+    std::vector<Mat4X<float>> kx[4], kv[4];
+    const float c[3] = {0.5f, 0.5f, 1.0f};
+    for (int st = 0; st < 4; ++st) {
+      if (st > 0) simulate(s);
+      for (auto* p : bodies)
+        kx[st].push_back(p->velocity * dt), kv[st].push_back(p->acceleration * dt);
+      if (st == 3) break;
+      for (std::size_t i = 0; i < bodies.size(); ++i) {
+        bodies[i]->position = start[i].position + kx[st][i] * c[st];
+        bodies[i]->velocity = start[i].velocity + kv[st][i] * c[st];
+      }
+      pin();
+    }
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      bodies[i]->position =
+          start[i].position + (kx[0][i] + 2 * kx[1][i] + 2 * kx[2][i] + kx[3][i]) / 6;
+      bodies[i]->velocity =
+          start[i].velocity + (kv[0][i] + 2 * kv[1][i] + 2 * kv[2][i] + kv[3][i]) / 6;
+    }
+    pin();
+  };
+  const IntegratorRun run = runOf(3, pinning);
+  const std::vector<IntegratorModel> models =
+      modelsOf(cause::kIntegratorPinsParticles, kRubric, run, {});
+  ASSERT_GE(models.size(), 2u);
+  EXPECT_GT(distance(stepped(run.random, models[0].step), run.actual), kRel) << models[0].text;
+  EXPECT_TRUE(models[1].model.overlay.pins_at_stages);
+  EXPECT_LE(distance(stepped(run.random, models[1].step), run.actual), kRel) << models[1].text;
+  EXPECT_NE(models[1].text.find("after each stage state and after the step"), std::string::npos)
+      << models[1].text;
 }
 
 // A helper that stops the top row only on the course's 25 x 25 cloth, after explicit Euler written

@@ -78,6 +78,9 @@ const std::vector<Row>& rows() {
      "the course's RK4 whose stage 3 position adds a velocity k", {.stage_position_from_kv = 1}},
     {cause::kRk4MixedIncrements, kR, true,
      "the course's RK4 whose stage 4 position adds a velocity k", {.stage_position_from_kv = 2}},
+    {cause::kRk4MixedIncrements, kR, true,
+     "the course's RK4 whose position update reads k4 after the velocity update (v_new·h)",
+     {.result_k4x_after_velocity = true}},
     {cause::kRk4StageNotFromBackup, kR, true,
      "the course's RK4 with each stage built on the previous stage instead of the backup",
      {.stage_from_current = true}},
@@ -229,6 +232,7 @@ std::optional<StepModel> combined(const StepModel& a, const StepModel& b) {
     if (o.velocity_factor[k] != 1) t.velocity_factor[k] = o.velocity_factor[k];
   if (!o.pinned.empty()) t.pinned = o.pinned;
   if (!o.pinned_spheres.empty()) t.pinned_spheres = o.pinned_spheres;
+  t.pins_at_stages = t.pins_at_stages || o.pins_at_stages;
   if (o.dt_after_factor) t.dt_after_factor = o.dt_after_factor;
   if (o.dt_after) t.dt_after = o.dt_after;
   return both;

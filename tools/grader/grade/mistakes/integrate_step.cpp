@@ -2,6 +2,7 @@
 #include "grader/grade/mistakes/integrate_step.h"
 
 #include <cmath>
+#include <functional>
 
 namespace clothref::grader::integrators {
 namespace {
@@ -50,7 +51,9 @@ bool merge(Lines& into, const Lines& from) {
          take(into.result_velocity_k4_from_kx, from.result_velocity_k4_from_kx,
               c.result_velocity_k4_from_kx) &&
          take(into.result_first_stage_only, from.result_first_stage_only,
-              c.result_first_stage_only);
+              c.result_first_stage_only) &&
+         take(into.result_k4x_after_velocity, from.result_k4x_after_velocity,
+              c.result_k4x_after_velocity);
 }
 
 namespace {
@@ -99,7 +102,7 @@ void explicitEuler(const std::vector<Particles<float>*>& bodies, const Lines& w,
 // The course's predictor-corrector (implicit h = 1, midpoint h = 1/2: core/integrator.cpp's
 // predictEvaluateCorrect, operation for operation) for `bodies` only; the others keep their state.
 void predictCorrect(System& s, const std::vector<Particles<float>*>& bodies, float h,
-                    const Lines& w, const Sizes& z) {
+                    const Lines& w, const Sizes& z, const std::function<void()>& at_stage) {
   const float dt = z.dt, rdt = z.result_dt, scale = z.result_scale;
   const Backup backup(bodies, w.backup_follows_live);
   std::vector<Mat4X<float>> a0;
@@ -116,6 +119,7 @@ void predictCorrect(System& s, const std::vector<Particles<float>*>& bodies, flo
       p->velocity += (p->acceleration * dt) * h;
     }
   }
+  at_stage();
   if (!w.evaluates_before_predictor) simulate(s);
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     auto* p = bodies[b];
@@ -149,7 +153,7 @@ float weight(double w, float scale) {
 // The course's RK4 (core/integrator.cpp's integrateRk4, operation for operation) for `bodies`
 // only.
 void rungeKutta(System& s, const std::vector<Particles<float>*>& bodies, const Lines& w,
-                const Sizes& z, const Overlay& o) {
+                const Sizes& z, const Overlay& o, const std::function<void()>& at_stage) {
   const float dt = z.dt;
   const Backup backup(bodies, w.backup_follows_live);
   // vk, ak: the velocity and acceleration each kx, kv was read from
@@ -176,6 +180,7 @@ void rungeKutta(System& s, const std::vector<Particles<float>*>& bodies, const L
         bodies[b]->position =
             x + (w.stage_position_from_kv == k ? kv[k][b] : kx[k][b]) * w.stage[std::size_t(k)];
     }
+    at_stage();
   }
   // The result's increments at the result's h.
   if (z.result_dt != dt)
@@ -195,9 +200,11 @@ void rungeKutta(System& s, const std::vector<Particles<float>*>& bodies, const L
     const float factor = (w.result_adds_nothing ? 0.0f : 1.0f) * z.result_scale;
     const auto& kxs = w.result_position_from_kv ? kv : kx;
     const Mat4X<float>& kv4 = w.result_velocity_k4_from_kx ? kx[3][b] : kv[3][b];
-    Mat4X<float> nx =
-        x + (kxs[0][b] + 2.0f * kxs[1][b] + 2.0f * kxs[2][b] + kxs[3][b]) / 6.0f * factor;
     Mat4X<float> nv = v + (kv[0][b] + 2.0f * kv[1][b] + 2.0f * kv[2][b] + kv4) / 6.0f * factor;
+    // x's k4 read from the live velocity after v was updated: v_new dt
+    const Mat4X<float> kx4 =
+        w.result_k4x_after_velocity ? Mat4X<float>(nv * z.result_dt) : Mat4X<float>(kxs[3][b]);
+    Mat4X<float> nx = x + (kxs[0][b] + 2.0f * kxs[1][b] + 2.0f * kxs[2][b] + kx4) / 6.0f * factor;
     // Fitted weights, term by term (x0 + w1 k1 + ...; a zero weight adds nothing).
     if (!o.weights_x.empty()) {
       nx = x;
@@ -237,6 +244,9 @@ Step linesStep(Method method, const Lines& lines, const Overlay& o) {
     const float dt = o.step == 1 ? s.dt : float(double(s.dt) * o.step);
     const Sizes z{dt, o.result_dt ? float(double(*o.result_dt) * o.step) : dt,
                   float(o.result_step)};
+    const std::function<void()> at_stage = [&] {
+      if (o.pins_at_stages) holdStill(o.pinned, o.pinned_spheres, s, cloth_x0);
+    };
     std::vector<Particles<float>*> bodies{&s.cloth.particles};
     if (!lines.first_body_only) bodies.push_back(&s.spheres.particles);
     if (method == Method::Explicit || !lines.reevaluates) {
@@ -253,9 +263,9 @@ Step linesStep(Method method, const Lines& lines, const Overlay& o) {
         groups.push_back(bodies);
       for (const auto& group : groups) {
         if (method == Method::Implicit || method == Method::Midpoint)
-          predictCorrect(s, group, method == Method::Midpoint ? 0.5f : 1.0f, lines, z);
+          predictCorrect(s, group, method == Method::Midpoint ? 0.5f : 1.0f, lines, z, at_stage);
         else
-          rungeKutta(s, group, lines, z, o);
+          rungeKutta(s, group, lines, z, o, at_stage);
       }
     }
     // What the fitted overlay lays over the step.

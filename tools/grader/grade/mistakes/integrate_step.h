@@ -40,8 +40,11 @@ struct Overlay {
   std::array<double, 2> velocity_factor{1, 1};  // each body's velocity times this after the step
   std::vector<Pins> pinned{};                   // cloth particles held still after the step
   std::vector<int> pinned_spheres{};            // spheres whose velocity is zeroed after the step
-  std::optional<double> dt_after_factor{};      // deltaTime x this after the call
-  std::optional<float> dt_after{};              // or this constant
+  // ... and after each stage state is written, before its simulateOneStep() (a helper called in
+  // the stage loop too)
+  bool pins_at_stages = false;
+  std::optional<double> dt_after_factor{};  // deltaTime x this after the call
+  std::optional<float> dt_after{};          // or this constant
 };
 
 // The lines of the course's step a mistake changes; the defaults are the course's.
@@ -74,6 +77,7 @@ struct Lines {
   bool result_on_last_stage = false;        // x += ... onto the state the last stage left, not x0
   bool result_position_from_kv = false;     // x0 + (kv1 + 2 kv2 + 2 kv3 + kv4) / 6
   bool result_velocity_k4_from_kx = false;  // v0 + (... + kx4) / 6
+  bool result_k4x_after_velocity = false;   // v first, then x's k4 read as v_new dt
   bool result_first_stage_only = false;     // x0 + k1, v0 + k1v
   bool operator==(const Lines&) const = default;
 };

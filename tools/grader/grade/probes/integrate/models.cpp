@@ -173,6 +173,10 @@ std::vector<IntegratorModel> modelsOf(const std::string& id, const Rubric& rubri
               indexRanges(t.pinned_spheres) + " stopped";
     if (!held.empty()) {
       fitted(t, the + " with " + held + " after the step");
+      Overlay staged = t;  // a helper called in the stage loop too
+      staged.pins_at_stages = method != Method::Explicit;
+      if (staged.pins_at_stages)
+        fitted(staged, the + " with " + held + " after each stage state and after the step");
       // The same after a variant the rubric accepts (explicit written as symplectic Euler, ...).
       for (const stages::MethodTable& accepted : stages::methodTables())
         if (accepted.stub == run.index && !accepted.accepted.empty() &&
