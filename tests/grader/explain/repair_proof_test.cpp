@@ -210,6 +210,61 @@ TEST(RepairProof, AnUninitialisedSumStartsAtZero) {
             "stack held)");
 }
 
+// A passing stub with a sum it never starts (blind3 2024/kung: `float magnitude;` then
+// `magnitude += ...`): the probe starts it at 1 instead; the checks that then fail fail, with
+// undefined-behaviour proven on the line, and the others keep their pass. A start that changes
+// nothing, or a build that fails, says nothing.
+TEST(RepairProof, APassingSumThatRestsOnAnUnsetStartFails) {
+  const std::string cloth =
+      "void Cloth::computeSpringForce() {\n"       // 1
+      "  for (const auto& spring : _springs) {\n"  // 2
+      "    float magnitude;\n"                     // 3
+      "    Eigen::Vector4f dir;\n"                 // 4
+      "    magnitude += springCoef * 2;\n"         // 5
+      "    dir += _particles.position(0);\n"       // 6
+      "  }\n"                                      // 7
+      "}\n";                                       // 8
+  const std::optional<Repair> start =
+      unsetStartProbe("cloth.cpp", cloth, "Cloth::computeSpringForce");
+  ASSERT_TRUE(start.has_value());
+  EXPECT_EQ(start->cause, cause::kUndefinedBehaviour);
+  EXPECT_EQ(lineOf(start->patched, 3), "    float magnitude = 1;");
+  EXPECT_EQ(lineOf(start->patched, 4), "    Eigen::Vector4f dir = Eigen::Vector4f::Ones();");
+  EXPECT_EQ(start->what,
+            "lines 3 and 4 starting `magnitude` and `dir` at 1 instead of whatever the stack held");
+  EXPECT_FALSE(unsetStartProbe("cloth.cpp",
+                               "void Cloth::computeSpringForce() {\n  float m = 0;\n  m += 1;\n}\n",
+                               "Cloth::computeSpringForce"));
+
+  std::vector<TestResult> tests;
+  for (int k = 0; k < 4; ++k) {
+    tests.push_back(makeTest("Cloth::computeSpringForce", "check " + std::to_string(k + 1), 1));
+    tests.back().fraction = 1;
+  }
+  std::vector<TestResult> started = tests;
+  started[0].fraction = started[2].fraction = 0;
+  started[0].output = "expected 1, yours 2";
+  std::vector<TestResult> same = tests;
+  EXPECT_FALSE(applyUnsetStart(*start, true, tests, same));  // nothing changed: nothing said
+  EXPECT_TRUE(same[0].passed() && same[0].causes.empty());
+  EXPECT_FALSE(applyUnsetStart(*start, false, started, same));  // no build: nothing said
+  ASSERT_TRUE(applyUnsetStart(*start, true, started, tests));
+  for (int k : {1, 3}) EXPECT_TRUE(tests[std::size_t(k)].passed()) << k;
+  for (int k : {0, 2}) {
+    const TestResult& t = tests[std::size_t(k)];
+    EXPECT_FALSE(t.passed()) << k;
+    ASSERT_EQ(t.causes.size(), 1u);
+    EXPECT_TRUE(t.causes[0].proven());
+    EXPECT_EQ(t.causes[0].id, cause::kUndefinedBehaviour);
+    EXPECT_EQ(t.causes[0].proof,
+              "Proven: with lines 3 and 4 starting `magnitude` and `dir` at 1 instead of whatever "
+              "the stack held, 2 of 4 checks fail: your numbers rest on a value your code never "
+              "sets, and your build gave the course's by chance.");
+    EXPECT_EQ(t.causes[0].quotes.size(), 2u);
+  }
+  EXPECT_NE(tests[0].output.find("expected 1, yours 2"), std::string::npos);
+}
+
 // The stub's tests before and after a repair: 4 checks, the first three failed before.
 std::vector<TestResult> stubTests(const std::vector<bool>& passed,
                                   const std::vector<std::string>& causes) {

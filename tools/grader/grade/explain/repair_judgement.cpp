@@ -123,4 +123,32 @@ bool applyRepair(const Repair& repair, bool built, const std::string& problem,
   return proven;
 }
 
+bool applyUnsetStart(const Repair& probe, bool built, const std::vector<TestResult>& started,
+                     std::vector<TestResult>& tests) {
+  if (!built || started.size() != tests.size()) return false;
+  std::size_t changed = 0;
+  for (std::size_t k = 0; k < tests.size(); ++k) {
+    if (started[k].check != tests[k].check) return false;
+    changed += tests[k].passed() && !started[k].passed();
+  }
+  if (changed == 0) return false;
+  const std::string line = "Proven: with " + probe.what + ", " + std::to_string(changed) + " of " +
+                           std::to_string(tests.size()) +
+                           (changed == 1 ? " check fails" : " checks fail") +
+                           ": your numbers rest on a value your code never sets, and your build "
+                           "gave the course's by chance.";
+  for (std::size_t k = 0; k < tests.size(); ++k) {
+    TestResult& t = tests[k];
+    if (!t.passed() || started[k].passed()) continue;
+    t.fraction = 0;
+    t.output = "Your build passes this check, but with " + probe.what + " it does not:\n\n" +
+               started[k].output;
+    Cause& cause = t.addCause(probe.cause, true);
+    cause.likely = true;
+    cause.proof = line;
+    cause.quotes = probe.lines;
+  }
+  return true;
+}
+
 }  // namespace clothref::grader

@@ -213,10 +213,11 @@ std::optional<Repair> localReferenceRepair(const std::string& file, const std::s
 // A local of the stub declared without a value and first used in a compound assignment
 // (`Eigen::Vector4f force; force += ...`): it starts from whatever the stack held. Repaired: it
 // starts at zero (`Type::Zero()` for an Eigen type, 0 for a number).
+// `one`: it starts at 1 instead (unsetStartProbe: whether the stub's numbers rest on that start).
 std::optional<Repair> uninitialisedSumRepair(const std::string& file, const std::string& stub,
                                              const std::vector<std::string>& lines,
                                              const std::vector<std::string>& blanked,
-                                             const StubLines& body) {
+                                             const StubLines& body, bool one = false) {
   static const std::regex declaration(
       R"(^(\s*)((const\s+)?(Eigen::\w+|float|double|int|long|unsigned|std::size_t|size_t))\s+(\w+)\s*;)");
   Repair repair{file, stub, cause::kUndefinedBehaviour, {}, {}, {}};
@@ -234,7 +235,9 @@ std::optional<Repair> uninitialisedSumRepair(const std::string& file, const std:
     if (!std::regex_search(after, use, std::regex("\\b" + name + "\\b(\\s*[-+*/]=)?")) ||
         !use[1].matched)
       continue;
-    const std::string start = type.rfind("Eigen::", 0) == 0 ? type + "::Zero()" : "0";
+    const bool eigen = type.rfind("Eigen::", 0) == 0;
+    const std::string start =
+        one ? (eigen ? type + "::Ones()" : "1") : (eigen ? type + "::Zero()" : "0");
     const std::size_t at = std::size_t(m.position(5) + m.length(5));
     patched[k] = lines[k].substr(0, at) + " = " + start + lines[k].substr(at);
     repair.lines.push_back({file, n, trimmed(lines[k])});
@@ -245,8 +248,10 @@ std::optional<Repair> uninitialisedSumRepair(const std::string& file, const std:
   std::string which;
   for (std::size_t k = 0; k < names.size(); ++k)
     which += (k == 0 ? "" : k + 1 == names.size() ? " and " : ", ") + codeSpan(names[k]);
-  repair.what = lineList(repair.lines) + " repaired (" + which + " starting at zero, not at " +
-                "whatever the stack held)";
+  repair.what = one ? lineList(repair.lines) + " starting " + which + " at 1 instead of " +
+                          "whatever the stack held"
+                    : lineList(repair.lines) + " repaired (" + which + " starting at zero, not " +
+                          "at whatever the stack held)";
   return repair;
 }
 
@@ -301,6 +306,14 @@ std::vector<Repair> repairsOf(const std::string& file, const std::string& source
   if (auto repair = uninitialisedSumRepair(file, stub, lines, blanked, body))
     repairs.push_back(*repair);
   return repairs;
+}
+
+std::optional<Repair> unsetStartProbe(const std::string& file, const std::string& source,
+                                      const std::string& stub) {
+  const StubLines body = stubLines(source, stub);
+  if (body.first == 0) return std::nullopt;
+  return uninitialisedSumRepair(file, stub, linesOf(source), linesOf(blankedCode(source)), body,
+                                true);
 }
 
 }  // namespace clothref::grader

@@ -10,6 +10,7 @@
 // Pure text and data: the probes room builds and probes (probes/repair.cpp).
 // The repairs are made in repair_proof.cpp and judged in repair_judgement.cpp.
 #pragma once
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -41,5 +42,18 @@ std::vector<Repair> repairsOf(const std::string& file, const std::string& source
 // named, is a guess whose line says what the repair did. Returns whether it was proven.
 bool applyRepair(const Repair& repair, bool built, const std::string& problem,
                  const std::vector<TestResult>& repaired, std::vector<TestResult>& tests);
+
+// A stub that passes every check but holds a local declared without a value and first used in a
+// compound assignment (`float sum; sum += ...`): the same file with those locals starting at 1,
+// which a stub whose numbers do not rest on them passes alike. None: no such local.
+std::optional<Repair> unsetStartProbe(const std::string& file, const std::string& source,
+                                      const std::string& stub);
+
+// Judges that probe on the passing stub's `tests` (in place) from the started build's checks
+// (`started`, the same checks in the same order). When checks fail there, the stub's numbers rest
+// on a value the code never sets (its build happened to give the course's): those checks fail
+// with `undefined-behaviour` proven by that line, and the others keep their pass. Returns whether.
+bool applyUnsetStart(const Repair& probe, bool built, const std::vector<TestResult>& started,
+                     std::vector<TestResult>& tests);
 
 }  // namespace clothref::grader
