@@ -3,7 +3,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
+#include <string>
 
+#include "grader/grade/cause_ids.h"
 #include "grader/grade/explain/replay.h"
 #include "grader/grade/probes/util.h"
 
@@ -91,14 +94,40 @@ void proveContacts(std::vector<Candidate> candidates, const std::vector<Case>& c
       applyReplay(pair, ids, tests);
       winner = ids.front();
     }
-  // A model that gives every position and velocity but not the accelerations the call changed (a
-  // second mistake no model has, e.g. friction on the accelerations): named as a guess whose
-  // line says so.
+  // A model that gives every position and velocity but not the accelerations: no contact model
+  // changes an acceleration, so there the student's call did (collide-changes-acceleration, read
+  // directly: e.g. friction added to them). With that read the model accounts for every number
+  // of the stub, and its causes and the read one (on the checks whose accelerations changed) are
+  // proven. The course's collide is tried first: when it is that model, the read is all.
+  const auto withTheRead = [&](const Replay& replay, const std::vector<std::string>& ids) {
+    Replay joint = replay;
+    joint.model +=
+        " (and the accelerations as your call changed them, which the course's "
+        "collide leaves alone)";
+    std::set<std::string> changed;
+    for (ReplayCheck& check : joint.checks)
+      for (auto& [quantity, same] : check.quantities)
+        if (quantity == "accelerations" && !same) same = true, changed.insert(check.check);
+    applyReplay(joint, ids, tests);
+    for (TestResult& t : tests)
+      if (!t.passed() && changed.count(t.check)) {
+        Cause& read = t.addCause(cause::kCollideChangesAcceleration, true);
+        read.likely = true;
+        read.proof = joint.line();
+      }
+  };
+  if (winner.empty()) {
+    const Replay plain = replayContacts(course, cases, actuals, checks, sphere_sphere, rel);
+    if (allButAccelerations(plain)) {
+      withTheRead(plain, {});
+      winner = cause::kCollideChangesAcceleration;
+    }
+  }
   for (std::size_t m = 0; m < candidates.size() && winner.empty(); ++m)
-    if (allButAccelerations(replays[m]))
-      for (TestResult& t : tests)
-        if (!t.passed() && !t.names(candidates[m].ids.front()))
-          t.addCause(candidates[m].ids.front(), false).proof = replays[m].line();
+    if (allButAccelerations(replays[m])) {
+      withTheRead(replays[m], candidates[m].ids);
+      winner = candidates[m].ids.front();
+    }
   // The causes named that no model proved: their best model's line.
   for (std::size_t m = 0; m < candidates.size(); ++m) {
     const std::string& id = candidates[m].ids.front();
