@@ -1,7 +1,7 @@
 // The driver's shared part (driver/probe_driver.cpp, the child's main): reading and writing a
 // message's body states, the stack fill before a student's stub, the spring set of a request and
 // the course's integrator of a method row. Each group's course side is a header of groups/
-// (one per probe); this header and those are included into the one
+// (one per probe, found by the build); this header and those are included into the one
 // translation unit of probe_driver.cpp, so their functions keep internal linkage there, as when
 // they were one file: the compiler inlines them as before, and a crash report counts the same
 // driver frames outside the student's files.

@@ -3,8 +3,8 @@
 // stdin, calls the student's stubs of that group, and writes one ProbeMessage with the outputs to
 // fd 3. It never computes a score or a reference result: those live in the grader process.
 //
-// The groups it serves are the rows of kGroups below, one per name of bridge/probe_keys.h (the
-// build fails on a name without a row), each group's course side a header of groups/; a request
+// The groups it serves are the rows of kGroups below, one per name of bridge/probe_keys.h, each
+// group's course side a header of groups/ that the build finds (groups.inc, generated); a request
 // for another group, or for a method that is not one of the course's integrators, is refused:
 // nothing on fd 3, the reason on stderr, exit 70.
 #include <unistd.h>
@@ -14,49 +14,24 @@
 #include <iostream>
 #include <iterator>
 #include <string>
-#include <string_view>
 #include <utility>
 
 #include "grader/driver/driver_support.h"
-#include "grader/driver/groups/collide.h"
-#include "grader/driver/groups/forces.h"
-#include "grader/driver/groups/integrate.h"
-#include "grader/driver/groups/springs.h"
-#include "grader/driver/groups/whole_run.h"
+// every header of driver/groups/, listed by the build (tools/grader/CMakeLists.txt)
+#include "grader/driver/groups.inc"
 
 namespace {
 
-// The groups served, by the protocol's group name: the one dispatch of the driver.
+// The groups served, by the protocol's group name: the one dispatch of the driver, a row per name
+// of the protocol's list (bridge/probe_keys.h), each calling probe<Name> of its header in groups/
+// (a name whose function no header defines does not build).
 struct Group {
   const char* name;
   void (*run)(const ProbeMessage& in, ProbeMessage& out);
 };
-constexpr Group kGroups[] = {
-    // Cloth() and its springs (N = particlesPerEdge of this build)
-    {group::kSprings, probeSprings},
-    // Cloth::computeSpringForce on given states and OUR spring set
-    {group::kForces, probeForces},
-    // Spheres::collide(Cloth*) on crafted states
-    {group::kCollideCloth, probeCollideCloth},
-    // Spheres::collide() on crafted states (2022 only)
-    {group::kCollideSpheres, probeCollideSpheres},
-    // one integrator on small systems whose derivatives come from the course-form force code
-    // above (never the student's forces)
-    {group::kIntegrate, probeIntegrate},
-    // the student's full simulation of the course scene (information only)
-    {group::kWholeRun, probeWholeRun},
-};
-
-// Every group of the protocol's list has exactly one row.
-constexpr bool servesEveryGroupOnce() {
-  for (const probe::Name& name : group::kAll) {
-    int rows = 0;
-    for (const Group& row : kGroups) rows += std::string_view(row.name) == name.text ? 1 : 0;
-    if (rows != 1) return false;
-  }
-  return std::size(kGroups) == std::size(group::kAll);
-}
-static_assert(servesEveryGroupOnce(), "kGroups must have one row per name of probe::group");
+#define CLOTHREF_PROBE_SERVED(identifier, text, name) {group::identifier, probe##name},
+constexpr Group kGroups[] = {CLOTHREF_PROBE_GROUPS(CLOTHREF_PROBE_SERVED)};
+#undef CLOTHREF_PROBE_SERVED
 
 // Runs the row named `name`; false when no row is. Unrolled over the rows, so that each call is
 // a direct call the compiler may inline, as a hand-written chain's would be (a crash report

@@ -361,4 +361,20 @@ std::vector<TestResult> probeCollideSpheres(const ProbeContext& context) {
   return probeContacts(context, true);
 }
 
+// The probes' rows of the probe table (probes.h), one per stub.
+std::vector<ProbeGroup> probeRowsCollideCloth() {
+  return {{probe::group::kCollideCloth,
+           stubName(Stub::CollideCloth),
+           collideChecks(false),
+           probeCollideCloth,
+           {probe::group::kCollideCloth}}};
+}
+std::vector<ProbeGroup> probeRowsCollideSpheres() {
+  return {{probe::group::kCollideSpheres,
+           stubName(Stub::CollideSpheres),
+           collideChecks(true),
+           probeCollideSpheres,
+           {probe::group::kCollideSpheres}}};
+}
+
 }  // namespace clothref::grader

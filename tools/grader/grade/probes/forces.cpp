@@ -378,4 +378,9 @@ std::vector<TestResult> probeForces(const ProbeContext& context) {
   return tests;
 }
 
+// The probe's row of the probe table (probes.h): one child on the course's cloth.
+std::vector<ProbeGroup> probeRowsForces() {
+  return {{probe::group::kForces, kStub, forcesChecks(), probeForces, {probe::group::kForces}}};
+}
+
 }  // namespace clothref::grader
