@@ -54,10 +54,11 @@ set(GRADER_course_FILES "^course/")
 set(GRADER_course_MAY "\"[^/]+$" "<Eigen/" "<glad/" "<stdint\\.h>")
 set(GRADER_reference_FILES "^reference/")
 set(GRADER_reference_MAY "\"[^/]+$" "<Eigen/")
-# the child's main: the course's headers, the bridge, and clothref's std-only formulas and method
-# table (never another clothref header: the course's names and clothref's never meet)
+# the child's main and its groups: the course's headers, the bridge, the driver's own, and
+# clothref's std-only formulas and method table (never another clothref header: the course's names
+# and clothref's never meet)
 set(GRADER_driver_FILES "^driver/")
-set(GRADER_driver_MAY "\"[^/]+$" "\"grader/bridge/" "\"clothref/formula/"
+set(GRADER_driver_MAY "\"[^/]+$" "\"grader/bridge/" "\"grader/driver/" "\"clothref/formula/"
     "\"clothref/core/method\\.h\"" "<Eigen/" "<unistd\\.h>")
 # reading a submission (its files, their source text and patterns, the edition they were written
 # for and that edition's course values): of the top level only the plain-data results and text

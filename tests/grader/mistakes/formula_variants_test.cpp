@@ -8,11 +8,14 @@
 #include <cmath>
 #include <cstring>
 #include <random>
+#include <string>
+
+#include "grader/grade/cause_ids.h"
 
 namespace clothref::grader {
 namespace {
 
-const Vec4<float> kGravity(0, -9.8f, 0, 0);  // m/s^2, what AssignTotalGravity adds back
+const Vec4<float> kGravity(0, -9.8f, 0, 0);  // m/s^2, what an assigned sum adds back
 
 bool sameBits(const Mat4X<float>& a, const Mat4X<float>& b) {
   return a.cols() == b.cols() && std::memcmp(a.data(), b.data(), sizeof(float) * a.size()) == 0;
@@ -43,7 +46,7 @@ TEST(FormulaVariants, NoMistakeSpringForceIsTheLibrarysStub) {
   for (int trial = 0; trial < 50; ++trial) {
     Cloth<float> cloth = randomCloth(rng);
     const Mat4X<float> acc0 = cloth.particles.acceleration;
-    const Mat4X<float> variant = springAccelerations(cloth, acc0, ForceMistake::None, kGravity);
+    const Mat4X<float> variant = springAccelerations(cloth, acc0, ForceRow{}, kGravity);
     computeSpringForce(cloth);
     ASSERT_TRUE(sameBits(variant, cloth.particles.acceleration)) << "trial " << trial;
   }
@@ -53,12 +56,12 @@ TEST(FormulaVariants, EverySpringMistakeChangesARandomState) {
   std::mt19937 rng(8);
   const Cloth<float> cloth = randomCloth(rng);
   const Mat4X<float>& acc0 = cloth.particles.acceleration;
-  const Mat4X<float> course = springAccelerations(cloth, acc0, ForceMistake::None, kGravity);
-  // every row the probe simulates, and the probe's candidate that is no row
-  std::vector<ForceMistake> mistakes = {ForceMistake::DirectionUnnormalised};
-  for (const ForceRow& row : forceRows()) mistakes.push_back(row.mistake);
-  for (const ForceMistake m : mistakes)
-    EXPECT_FALSE(sameBits(springAccelerations(cloth, acc0, m, kGravity), course)) << int(m);
+  const Mat4X<float> course = springAccelerations(cloth, acc0, ForceRow{}, kGravity);
+  // every row, those the probe simulates and those it only replays
+  for (const ForceRow& row : forceRows())
+    EXPECT_FALSE(sameBits(springAccelerations(cloth, acc0, row, kGravity), course))
+        << row.cause << " (row " << row.row << ")";
+  EXPECT_GT(forceRows().size(), 10u);
 }
 
 // Three spheres and a 5 x 5 cloth close together: many contacts, approaching and separating,
@@ -89,7 +92,7 @@ TEST(FormulaVariants, NoMistakeContactIsTheLibrarysStub) {
         randomScene(rng, spheres, cloth);
         course_spheres = spheres;
         course_cloth = cloth;
-        collideWithMistake(spheres, cloth, sphere_sphere, e, 0.15f, ContactMistake::None);
+        collideWithMistake(spheres, cloth, sphere_sphere, e, 0.15f, ContactRow{});
         if (sphere_sphere)
           collide(course_spheres, e, 0.15f);
         else
@@ -113,7 +116,7 @@ TEST(FormulaVariants, EveryContactMistakeChangesSomething) {
   for (const bool sphere_sphere : {false, true})
     for (const ContactRow& row : contactRows(sphere_sphere)) {
       ++rows;
-      const ContactMistake mistake = row.mistake;
+      const bool touching = row.cause == std::string(cause::kTouchingSkipped);
       bool changed = false;
       for (int trial = 0; trial < 200 && !changed; ++trial) {
         Spheres<float> spheres, course_spheres;
@@ -124,14 +127,13 @@ TEST(FormulaVariants, EveryContactMistakeChangesSomething) {
           spheres.particles.position(1, 0) += 0.2f;
           spheres.particles.velocity.col(0) = Vec4<float>(0, -1, 0, 0);
         }
-        if (mistake == ContactMistake::TouchingSkipped &&
-            sphere_sphere) {  // |x_0 - x_1| = r_0 + r_1
+        if (touching && sphere_sphere) {  // |x_0 - x_1| = r_0 + r_1
           spheres.particles.position.col(0) = Vec4<float>(0, 0, 0, 1);
           spheres.particles.position.col(1) =
               Vec4<float>(0, spheres.radius[0] + spheres.radius[1], 0, 1);
           spheres.particles.position.col(2) = Vec4<float>(10, 10, 10, 1);
           spheres.particles.velocity.col(1) = Vec4<float>(0, -1, 0, 0);
-        } else if (mistake == ContactMistake::TouchingSkipped) {  // |x_a - x_b| = r
+        } else if (touching) {  // |x_a - x_b| = r
           spheres.particles.position.col(0) = cloth.particles.position.col(12);
           spheres.particles.position(1, 0) += 0.25f;
           spheres.radius[0] = 0.25f;
@@ -139,16 +141,16 @@ TEST(FormulaVariants, EveryContactMistakeChangesSomething) {
         }
         course_spheres = spheres;
         course_cloth = cloth;
-        const float e = mistake == ContactMistake::RestitutionZero ? 0.8f : 0.0f;
-        collideWithMistake(spheres, cloth, sphere_sphere, e, 0.15f, mistake);
-        collideWithMistake(course_spheres, course_cloth, sphere_sphere, e, 0.15f,
-                           ContactMistake::None);
+        // a restitution overwritten (with 0 or 1) against the course's 0.8
+        const float e = row.cause == std::string(cause::kRestitutionIgnored) ? 0.8f : 0.0f;
+        collideWithMistake(spheres, cloth, sphere_sphere, e, 0.15f, row);
+        collideWithMistake(course_spheres, course_cloth, sphere_sphere, e, 0.15f, ContactRow{});
         changed = !sameBits(spheres.particles.velocity, course_spheres.particles.velocity) ||
                   !sameBits(spheres.particles.position, course_spheres.particles.position) ||
                   !sameBits(cloth.particles.velocity, course_cloth.particles.velocity) ||
                   !sameBits(cloth.particles.position, course_cloth.particles.position);
       }
-      EXPECT_TRUE(changed) << row.cause << " (mistake " << int(mistake) << ")";
+      EXPECT_TRUE(changed) << row.cause << " (row " << row.row << ": " << row.text << ")";
     }
   EXPECT_GT(rows, 20);
 }
@@ -175,8 +177,9 @@ TEST(FormulaVariants, TheMasslessExchangeKeepsTheCoursesGeometry) {
         course_spheres = spheres;
         course_cloth = cloth;
         const Vec4<float> fixed_before = cloth.particles.velocity.col(0);
-        collideWithMistake(spheres, cloth, false, e, 0.15f, ContactMistake::FixedMassless);
-        collideWithMistake(course_spheres, course_cloth, false, e, 0.15f, ContactMistake::None);
+        collideWithMistake(spheres, cloth, false, e, 0.15f,
+                           contactRow(cause::kFixedParticleMassless));
+        collideWithMistake(course_spheres, course_cloth, false, e, 0.15f, ContactRow{});
         ASSERT_TRUE(sameBits(spheres.particles.position, course_spheres.particles.position));
         ASSERT_TRUE(sameBits(cloth.particles.position, course_cloth.particles.position));
         if (below != 0) {  // free bodies only: the course's impulse, rearranged
@@ -208,7 +211,7 @@ TEST(FormulaVariants, DirectionUnnormalisedIsTheForceAlongD) {
   const Cloth<float> cloth = randomCloth(rng);
   const Mat4X<float>& acc0 = cloth.particles.acceleration;
   const Mat4X<float> model =
-      springAccelerations(cloth, acc0, ForceMistake::DirectionUnnormalised, kGravity);
+      springAccelerations(cloth, acc0, forceRow(cause::kDirectionNotNormalised), kGravity);
   Mat4X<float> by_hand = acc0;
   const auto& p = cloth.particles;
   for (const auto& s : cloth.springs) {
@@ -233,8 +236,9 @@ TEST(FormulaVariants, ContactModelsCombineSwitchesAndConstants) {
     Cloth<float> cloth;
     randomScene(rng, spheres, cloth);
     // two mistakes at once: for sphere 0 only, with restitution 1
-    const ContactModel both = combined(withMistake(course, ContactMistake::FirstSphereOnly),
-                                       withMistake(course, ContactMistake::RestitutionOne), course);
+    const ContactModel both =
+        combined(withMistake(course, contactRow(cause::kFirstSphereOnly)),
+                 withMistake(course, contactRow(cause::kRestitutionIgnored, 1)), course);
     EXPECT_EQ(contactModelText(both),
               "the course's collide for sphere 0 only and with restitution 1");
     Spheres<float> a = spheres;

@@ -1,11 +1,15 @@
 // The probe protocol's names, the one list of them: the group names and the ProbeMessage keys
-// (probe_protocol.h) that the grader (grade/probes/) and the driver (driver/probe_driver.cpp)
-// exchange. Both sides are built together, so the names are internal; a key written anywhere
-// else is a bug. Std only: the course side includes it too.
+// (probe_protocol.h) that the grader (grade/probes/) and the driver (driver/) exchange. Both
+// sides are built together, so the names are internal; a key written anywhere else is a bug. Std
+// only: the course side includes it too.
 //
 // Each list is an X-macro, X(identifier, text): it declares probe::group::<identifier> and
 // probe::key::<identifier>, and kAll, every {identifier, text} in list order, which the tests
-// loop over. A new name is one line here.
+// loop over. A new name is one line here. A group's line also names its functions, one on each
+// side, X(identifier, text, Name): the driver's probe<Name>(in, out), in a header of
+// driver/groups/, and the grader's probeRows<Name>(), its rows of the probe table
+// (grade/probes/probes.h) in the probe's own file; both sides' dispatch is this list, so a probe
+// is its file, its course side and its line here (a group without either function does not build).
 //
 // Arrays of a body's particles are 4 x n column-major (x, y, z, w per particle), as the course's
 // Particles matrices. A key marked "per case" is sent once per case k as "<key>.<k>"
@@ -16,12 +20,12 @@
 // clang-format off
 // The request's "group" text: which stubs the child runs.
 #define CLOTHREF_PROBE_GROUPS(X)                                                                   \
-  X(kSprings, "springs")                /* Cloth() and its springs */                              \
-  X(kForces, "forces")                  /* Cloth::computeSpringForce */                            \
-  X(kCollideCloth, "collide-cloth")     /* Spheres::collide(Cloth*) */                             \
-  X(kCollideSpheres, "collide-spheres") /* Spheres::collide() (2022) */                            \
-  X(kIntegrate, "integrate")            /* one Integrator::integrate */                            \
-  X(kWholeRun, "whole-run")             /* the course scene, all stubs */
+  X(kSprings, "springs", Springs)                      /* Cloth() and its springs */               \
+  X(kForces, "forces", Forces)                         /* Cloth::computeSpringForce */             \
+  X(kCollideCloth, "collide-cloth", CollideCloth)      /* Spheres::collide(Cloth*) */              \
+  X(kCollideSpheres, "collide-spheres", CollideSpheres) /* Spheres::collide() (2022) */            \
+  X(kIntegrate, "integrate", Integrate)                /* one Integrator::integrate */             \
+  X(kWholeRun, "whole-run", WholeRun)                  /* the course scene, all stubs */
 
 // The ProbeMessage keys.
 #define CLOTHREF_PROBE_KEYS(X)                                                                     \
@@ -107,11 +111,14 @@ struct Name {
 
 #define CLOTHREF_PROBE_DECLARE(identifier, text) inline constexpr const char* identifier = text;
 #define CLOTHREF_PROBE_ENTRY(identifier, text) Name{#identifier, text},
+#define CLOTHREF_PROBE_DECLARE_GROUP(identifier, text, name) \
+  CLOTHREF_PROBE_DECLARE(identifier, text)
+#define CLOTHREF_PROBE_GROUP_ENTRY(identifier, text, name) CLOTHREF_PROBE_ENTRY(identifier, text)
 
 namespace group {
-CLOTHREF_PROBE_GROUPS(CLOTHREF_PROBE_DECLARE)
+CLOTHREF_PROBE_GROUPS(CLOTHREF_PROBE_DECLARE_GROUP)
 // Every group, in the list's order.
-inline constexpr Name kAll[] = {CLOTHREF_PROBE_GROUPS(CLOTHREF_PROBE_ENTRY)};
+inline constexpr Name kAll[] = {CLOTHREF_PROBE_GROUPS(CLOTHREF_PROBE_GROUP_ENTRY)};
 }  // namespace group
 
 namespace key {
@@ -130,5 +137,7 @@ inline std::string perCase(const char* key, int k) {
 
 #undef CLOTHREF_PROBE_DECLARE
 #undef CLOTHREF_PROBE_ENTRY
+#undef CLOTHREF_PROBE_DECLARE_GROUP
+#undef CLOTHREF_PROBE_GROUP_ENTRY
 
 }  // namespace probe

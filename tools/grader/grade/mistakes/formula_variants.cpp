@@ -1,146 +1,257 @@
 #include "grader/grade/mistakes/formula_variants.h"
 
 #include <cmath>
+#include <optional>
 
 #include "clothref/formula/course_formulas.h"
 #include "grader/grade/cause_ids.h"
 
 namespace clothref::grader {
+namespace {
+
+// ---- The spring force's table
+
+// The run-time switches of formula::springForce, with the names of formula::CourseSpring's.
+struct SpringVariant {
+  bool spring_negated = false, damper_negated = false, no_damper = false,
+       damper_unnormalised = false;
+};
+
+// A row's switches: the formula's and those of stub 2's loop around it; the defaults are the
+// course's (core/cloth.cpp, computeSpringForce).
+struct ForceSwitches {
+  SpringVariant formula = {};
+  bool along_unnormalised = false;  // the whole force times |d| (`d.normalized();` discarded)
+  bool assigns = false;             // a = -F / m instead of a -= F / m
+  bool assigns_total = false;       // the springs' sum assigned: what was there is lost
+  bool adds_gravity_back = false;   // ... and gravity added back by hand to every free particle
+  bool times_mass = false;          // F * m instead of F / m
+  bool divides_by_mass = false;     // F / m: a fixed particle (m = 0) gets infinity
+  bool start_only = false;          // only the start particle gets its force
+  bool end_only = false;            // only the end particle gets its force
+};
+
+constexpr bool kProbed = true, kReplayed = false;
+
+struct ForceTableRow {
+  const char* cause;
+  bool probed;  // simulated on every case of the probe (kReplayed: a replay's model only)
+  const char* text;
+  ForceSwitches switches;
+};
+
+// Every reading of a spring-force mistake, in the order the probe simulates and replays them.
+// clang-format off
+const std::vector<ForceTableRow>& forceTable() {
+  static const std::vector<ForceTableRow> table = {
+    {cause::kAssignNotAccumulate, kProbed,
+     "the course's spring force assigned to the accelerations (=) instead of added",
+     {.assigns = true}},
+    {cause::kSpringForceSign, kProbed,
+     "the course's spring force with the Hooke term's sign flipped",
+     {.formula = {.spring_negated = true}}},
+    {cause::kDamperSign, kProbed, "the course's spring force with the damper's sign flipped",
+     {.formula = {.damper_negated = true}}},
+    {cause::kMissingDamper, kProbed, "the course's spring force without the damper",
+     {.formula = {.no_damper = true}}},
+    {cause::kDamperNotNormalised, kProbed,
+     "the course's spring force with the damper along the unnormalised x_s - x_e",
+     {.formula = {.damper_unnormalised = true}}},
+    {cause::kForceOneEndOnly, kProbed, "the course's spring force on the start particle only",
+     {.start_only = true}},
+    {cause::kMassNotInverse, kProbed,
+     "the course's spring force times the mass instead of the inverse mass", {.times_mass = true}},
+    {cause::kFixedParticleMoves, kProbed,
+     "the course's spring force divided by the mass (infinite for a fixed particle)",
+     {.divides_by_mass = true}},
+    {cause::kForceOneEndOnly, kProbed, "the course's spring force on the end particle only",
+     {.end_only = true}},
+    {cause::kAssignNotAccumulate, kProbed,
+     "the course's spring forces summed and assigned (what was there lost)",
+     {.assigns_total = true}},
+    {cause::kAssignNotAccumulate, kProbed,
+     "the course's spring forces summed and assigned, gravity added back",
+     {.assigns_total = true, .adds_gravity_back = true}},
+    // The direction left unnormalised is the damper along d with the whole force times |d|.
+    {cause::kDirectionNotNormalised, kReplayed,
+     "the course's spring force along the unnormalised x_s - x_e (the result of normalized() "
+     "discarded)",
+     {.formula = {.damper_unnormalised = true}, .along_unnormalised = true}},
+  };
+  return table;
+}
+// clang-format on
+
+}  // namespace
+
+const std::vector<ForceRow>& forceRows() {
+  static const std::vector<ForceRow> rows = [] {
+    std::vector<ForceRow> out;
+    for (const ForceTableRow& row : forceTable())
+      out.push_back({int(out.size()), row.cause, row.probed});
+    return out;
+  }();
+  return rows;
+}
+
+ForceRow forceRow(std::string_view cause, int reading) {
+  for (const ForceRow& row : forceRows())
+    if (row.cause == cause && reading-- == 0) return row;
+  return {};
+}
 
 Mat4X<float> springAccelerations(const Cloth<float>& cloth, const Mat4X<float>& acc0,
-                                 ForceMistake mistake, const Vec4<float>& gravity) {
-  SpringVariant variant;
-  variant.spring_negated = mistake == ForceMistake::SpringSign;
-  variant.damper_negated = mistake == ForceMistake::DamperSign;
-  variant.no_damper = mistake == ForceMistake::NoDamper;
-  variant.damper_unnormalised = mistake == ForceMistake::DamperUnnormalised;
+                                 const ForceRow& mistake, const Vec4<float>& gravity) {
+  const ForceSwitches on = mistake.row < 0 ? ForceSwitches{} : forceTable()[mistake.row].switches;
   const auto& p = cloth.particles;
   Mat4X<float> a = acc0;
-  if (mistake == ForceMistake::AssignTotal || mistake == ForceMistake::AssignTotalGravity) {
-    const Vec4<float> added =
-        mistake == ForceMistake::AssignTotalGravity ? gravity : Vec4<float>::Zero();
+  if (on.assigns_total) {
+    const Vec4<float> added = on.adds_gravity_back ? gravity : Vec4<float>::Zero();
     for (int i = 0; i < p.size(); ++i) a.col(i) = p.mass[i] != 0 ? added : Vec4<float>::Zero();
   }
-  // The direction left unnormalised is the damper along d with the whole force times |d|.
-  variant.damper_unnormalised =
-      variant.damper_unnormalised || mistake == ForceMistake::DirectionUnnormalised;
   // The loop of the library's computeSpringForce (core/cloth.cpp), its accumulation switchable.
   for (const auto& s : cloth.springs) {
     const int i = int(s.start), j = int(s.end);
     Vec4<float> f;
     formula::springForce(p.position.col(i).data(), p.position.col(j).data(),
                          p.velocity.col(i).data(), p.velocity.col(j).data(), s.rest_length,
-                         cloth.spring_coef, cloth.damper_coef, f.data(), variant);
-    if (mistake == ForceMistake::DirectionUnnormalised)
-      f *= (p.position.col(i) - p.position.col(j)).norm();
+                         cloth.spring_coef, cloth.damper_coef, f.data(), on.formula);
+    if (on.along_unnormalised) f *= (p.position.col(i) - p.position.col(j)).norm();
     float wi = p.inverse_mass[i], wj = p.inverse_mass[j];
-    if (mistake == ForceMistake::MassNotInverse) wi = p.mass[i], wj = p.mass[j];
-    if (mistake == ForceMistake::DivideByMass) wi = 1.0f / p.mass[i], wj = 1.0f / p.mass[j];
-    if (mistake == ForceMistake::Assign) {
+    if (on.times_mass) wi = p.mass[i], wj = p.mass[j];
+    if (on.divides_by_mass) wi = 1.0f / p.mass[i], wj = 1.0f / p.mass[j];
+    if (on.assigns) {
       a.col(i) = -f * wi;
       a.col(j) = f * wj;
     } else {
-      if (mistake != ForceMistake::OtherEndOnly) a.col(i) -= f * wi;
-      if (mistake != ForceMistake::OneEnd) a.col(j) += f * wj;
+      if (!on.end_only) a.col(i) -= f * wi;
+      if (!on.start_only) a.col(j) += f * wj;
     }
   }
   return a;
 }
 
-const std::vector<ForceRow>& forceRows() {
-  static const std::vector<ForceRow> rows = {
-      {ForceMistake::Assign, cause::kAssignNotAccumulate},
-      {ForceMistake::SpringSign, cause::kSpringForceSign},
-      {ForceMistake::DamperSign, cause::kDamperSign},
-      {ForceMistake::NoDamper, cause::kMissingDamper},
-      {ForceMistake::DamperUnnormalised, cause::kDamperNotNormalised},
-      {ForceMistake::OneEnd, cause::kForceOneEndOnly},
-      {ForceMistake::MassNotInverse, cause::kMassNotInverse},
-      {ForceMistake::DivideByMass, cause::kFixedParticleMoves},
-      {ForceMistake::OtherEndOnly, cause::kForceOneEndOnly},
-      {ForceMistake::AssignTotal, cause::kAssignNotAccumulate},
-      {ForceMistake::AssignTotalGravity, cause::kAssignNotAccumulate}};
-  return rows;
-}
-
-std::string forceModelText(ForceMistake mistake) {
-  switch (mistake) {
-    case ForceMistake::None:
-      return "the course's spring force";
-    case ForceMistake::DirectionUnnormalised:
-      return "the course's spring force along the unnormalised x_s - x_e (the result of "
-             "normalized() discarded)";
-    case ForceMistake::Assign:
-      return "the course's spring force assigned to the accelerations (=) instead of added";
-    case ForceMistake::SpringSign:
-      return "the course's spring force with the Hooke term's sign flipped";
-    case ForceMistake::DamperSign:
-      return "the course's spring force with the damper's sign flipped";
-    case ForceMistake::NoDamper:
-      return "the course's spring force without the damper";
-    case ForceMistake::DamperUnnormalised:
-      return "the course's spring force with the damper along the unnormalised x_s - x_e";
-    case ForceMistake::OneEnd:
-      return "the course's spring force on the start particle only";
-    case ForceMistake::MassNotInverse:
-      return "the course's spring force times the mass instead of the inverse mass";
-    case ForceMistake::DivideByMass:
-      return "the course's spring force divided by the mass (infinite for a fixed particle)";
-    case ForceMistake::OtherEndOnly:
-      return "the course's spring force on the end particle only";
-    case ForceMistake::AssignTotal:
-      return "the course's spring forces summed and assigned (what was there lost)";
-    case ForceMistake::AssignTotalGravity:
-      return "the course's spring forces summed and assigned, gravity added back";
-  }
-  return "";
+std::string forceModelText(const ForceRow& mistake) {
+  return mistake.row < 0 ? "the course's spring force" : forceTable()[mistake.row].text;
 }
 
 namespace {
 
-ContactVariant contactVariant(ContactMistake m) {
-  ContactVariant v;
-  v.normal_flipped = m == ContactMistake::NormalSign;
-  v.touching_skipped = m == ContactMistake::TouchingSkipped;
-  v.separating_pushed = m == ContactMistake::NoApproachCheck;
-  v.full_velocity = m == ContactMistake::RestitutionFull;
-  v.undivided = m == ContactMistake::ImpulseNotDivided;
-  v.massless_fixed = m == ContactMistake::FixedMassless;
-  v.moves_a = m != ContactMistake::CorrectionOtherOnly && m != ContactMistake::NoCorrection;
-  v.moves_b = m != ContactMistake::CorrectionSphereOnly && m != ContactMistake::NoCorrection;
-  return v;
+// ---- The contact's table
+
+// The run-time switches of formula::resolveContact, with the names of formula::CourseContact's,
+// and one of the grader's own: massless_fixed, the textbook exchange in place of the course's
+// impulse (masslessFixedContact below).
+struct ContactVariant {
+  bool normal_flipped = false, touching_skipped = false, separating_pushed = false,
+       full_velocity = false, undivided = false, massless_fixed = false, moves_a = true,
+       moves_b = true;
+};
+
+// A row's switches: the formula's, a restitution written over the course's, and those of the
+// loops of stubs 3 and 4 (core/spheres.cpp, collide); the defaults are the course's.
+struct ContactSwitches {
+  ContactVariant formula = {};
+  std::optional<float> restitution = {};  // coefRestitution overwritten
+  bool first_sphere_only = false;         // only sphere 0 is tested
+  bool sphere_zero_for_all = false;  // the loop over i uses position(0), radius(0): sphere 0 each
+  bool pair_twice = false;           // stub 4's pairs (i, j) and (j, i)
+  bool fixed_skipped = false;        // a cloth particle of mass 0 skipped: no contact with it
+};
+
+// Which stubs a row applies to: both, stub 3 (a cloth: its fixed particles, sphere 0's position
+// for every sphere) or stub 4 (pairs of spheres).
+enum Stubs { kBoth, kCloth, kSpheres };
+
+struct ContactTableRow {
+  const char* cause;
+  Stubs stubs;
+  const char* text;  // how it changes the course's collide
+  ContactSwitches switches;
+};
+
+// Every reading of a contact mistake, in the order the probes simulate and replay them.
+// clang-format off
+const std::vector<ContactTableRow>& contactTable() {
+  static const std::vector<ContactTableRow> table = {
+    {cause::kNoApproachCheck, kBoth, "with an impulse for separating bodies too",
+     {.formula = {.separating_pushed = true}}},
+    {cause::kRestitutionFullVelocity, kBoth, "with the impulse from the whole relative velocity",
+     {.formula = {.full_velocity = true}}},
+    {cause::kCorrectionOneBody, kBoth, "with the position correction on the sphere only",
+     {.formula = {.moves_b = false}}},
+    {cause::kCorrectionOneBody, kBoth, "with the position correction on the other body only",
+     {.formula = {.moves_a = false}}},
+    {cause::kNoPositionCorrection, kBoth, "without the position correction",
+     {.formula = {.moves_a = false, .moves_b = false}}},
+    {cause::kFirstSphereOnly, kBoth, "for sphere 0 only", {.first_sphere_only = true}},
+    {cause::kCollisionNormalSign, kBoth, "with the normal reversed",
+     {.formula = {.normal_flipped = true}}},
+    {cause::kTouchingSkipped, kBoth, "skipping bodies that exactly touch",
+     {.formula = {.touching_skipped = true}}},
+    {cause::kWrongMassSplit, kBoth, "with the impulse not divided by 1/m_a + 1/m_b",
+     {.formula = {.undivided = true}}},
+    // coefRestitution overwritten (e = 0 or 1); a case where it cannot matter is skipped
+    {cause::kRestitutionIgnored, kBoth, "with restitution 0", {.restitution = 0.0f}},
+    {cause::kRestitutionIgnored, kBoth, "with restitution 1", {.restitution = 1.0f}},
+    // a pair twice only where there are pairs of spheres; a fixed particle and sphere 0's
+    // position only where there is a cloth
+    {cause::kPairProcessedTwice, kSpheres, "with every pair processed twice",
+     {.pair_twice = true}},
+    {cause::kFixedParticleMassless, kCloth, "with a fixed particle as massless",
+     {.formula = {.massless_fixed = true}}},
+    {cause::kFixedParticleSkipped, kCloth, "skipping the fixed particles",
+     {.fixed_skipped = true}},
+    {cause::kFirstSphereOnly, kCloth, "with sphere 0's position and radius for every sphere",
+     {.sphere_zero_for_all = true}},
+  };
+  return table;
+}
+// clang-format on
+
+// The switches of every row of `model` at once.
+ContactSwitches switchesOf(const ContactModel& model) {
+  ContactSwitches on;
+  for (const int row : model.rows) {
+    const ContactSwitches& r = contactTable()[row].switches;
+    ContactVariant& m = on.formula;
+    const ContactVariant& v = r.formula;
+    m.normal_flipped = m.normal_flipped || v.normal_flipped;
+    m.touching_skipped = m.touching_skipped || v.touching_skipped;
+    m.separating_pushed = m.separating_pushed || v.separating_pushed;
+    m.full_velocity = m.full_velocity || v.full_velocity;
+    m.undivided = m.undivided || v.undivided;
+    m.massless_fixed = m.massless_fixed || v.massless_fixed;
+    m.moves_a = m.moves_a && v.moves_a;
+    m.moves_b = m.moves_b && v.moves_b;
+    on.first_sphere_only = on.first_sphere_only || r.first_sphere_only;
+    on.sphere_zero_for_all = on.sphere_zero_for_all || r.sphere_zero_for_all;
+    on.pair_twice = on.pair_twice || r.pair_twice;
+    on.fixed_skipped = on.fixed_skipped || r.fixed_skipped;
+  }
+  return on;
 }
 
 }  // namespace
 
 std::vector<ContactRow> contactRows(bool sphere_sphere) {
-  std::vector<ContactRow> rows = {
-      {ContactMistake::NoApproachCheck, cause::kNoApproachCheck},
-      {ContactMistake::RestitutionFull, cause::kRestitutionFullVelocity},
-      {ContactMistake::CorrectionSphereOnly, cause::kCorrectionOneBody},
-      {ContactMistake::CorrectionOtherOnly, cause::kCorrectionOneBody},
-      {ContactMistake::NoCorrection, cause::kNoPositionCorrection},
-      {ContactMistake::FirstSphereOnly, cause::kFirstSphereOnly},
-      {ContactMistake::NormalSign, cause::kCollisionNormalSign},
-      {ContactMistake::TouchingSkipped, cause::kTouchingSkipped},
-      {ContactMistake::ImpulseNotDivided, cause::kWrongMassSplit},
-      // coefRestitution overwritten (e = 0 or 1); a case where it cannot matter is skipped
-      {ContactMistake::RestitutionZero, cause::kRestitutionIgnored},
-      {ContactMistake::RestitutionOne, cause::kRestitutionIgnored}};
-  // a pair twice only where there are pairs of spheres; a fixed particle and sphere 0's
-  // position only where there is a cloth
-  const std::vector<ContactRow> sphere_rows = {
-      {ContactMistake::PairTwice, cause::kPairProcessedTwice}};
-  const std::vector<ContactRow> cloth_rows = {
-      {ContactMistake::FixedMassless, cause::kFixedParticleMassless},
-      {ContactMistake::FixedSkipped, cause::kFixedParticleSkipped},
-      {ContactMistake::SphereZeroForAll, cause::kFirstSphereOnly}};
-  for (const ContactRow& row : sphere_sphere ? sphere_rows : cloth_rows) rows.push_back(row);
+  std::vector<ContactRow> rows;
+  const std::vector<ContactTableRow>& table = contactTable();
+  for (std::size_t k = 0; k < table.size(); ++k)
+    if (table[k].stubs == kBoth || table[k].stubs == (sphere_sphere ? kSpheres : kCloth))
+      rows.push_back({int(k), table[k].cause, table[k].text});
   return rows;
 }
 
+ContactRow contactRow(std::string_view cause, int reading) {
+  const std::vector<ContactTableRow>& table = contactTable();
+  for (std::size_t k = 0; k < table.size(); ++k)
+    if (table[k].cause == cause && reading-- == 0) return {int(k), table[k].cause, table[k].text};
+  return {};
+}
+
 void collideWithMistake(Spheres<float>& spheres, Cloth<float>& cloth, bool sphere_sphere,
-                        float restitution, float correction, ContactMistake mistake) {
+                        float restitution, float correction, const ContactRow& mistake) {
   collideModel(spheres, cloth, sphere_sphere,
                withMistake(courseContact(restitution, correction), mistake));
 }
@@ -152,63 +263,20 @@ ContactModel courseContact(float restitution, float correction) {
   return model;
 }
 
-ContactModel withMistake(ContactModel model, ContactMistake mistake) {
-  const ContactVariant v = contactVariant(mistake);
-  ContactVariant& m = model.variant;
-  m.normal_flipped = m.normal_flipped || v.normal_flipped;
-  m.touching_skipped = m.touching_skipped || v.touching_skipped;
-  m.separating_pushed = m.separating_pushed || v.separating_pushed;
-  m.full_velocity = m.full_velocity || v.full_velocity;
-  m.undivided = m.undivided || v.undivided;
-  m.massless_fixed = m.massless_fixed || v.massless_fixed;
-  m.moves_a = m.moves_a && v.moves_a;
-  m.moves_b = m.moves_b && v.moves_b;
-  if (mistake == ContactMistake::RestitutionZero) model.restitution = 0;
-  if (mistake == ContactMistake::RestitutionOne) model.restitution = 1;
-  model.first_sphere_only = model.first_sphere_only || mistake == ContactMistake::FirstSphereOnly;
-  model.sphere_zero_for_all =
-      model.sphere_zero_for_all || mistake == ContactMistake::SphereZeroForAll;
-  model.pair_twice = model.pair_twice || mistake == ContactMistake::PairTwice;
-  model.fixed_skipped = model.fixed_skipped || mistake == ContactMistake::FixedSkipped;
-  static const std::pair<ContactMistake, const char*> texts[] = {
-      {ContactMistake::NoApproachCheck, "with an impulse for separating bodies too"},
-      {ContactMistake::RestitutionFull, "with the impulse from the whole relative velocity"},
-      {ContactMistake::CorrectionSphereOnly, "with the position correction on the sphere only"},
-      {ContactMistake::CorrectionOtherOnly, "with the position correction on the other body only"},
-      {ContactMistake::NoCorrection, "without the position correction"},
-      {ContactMistake::FixedMassless, "with a fixed particle as massless"},
-      {ContactMistake::FirstSphereOnly, "for sphere 0 only"},
-      {ContactMistake::SphereZeroForAll, "with sphere 0's position and radius for every sphere"},
-      {ContactMistake::NormalSign, "with the normal reversed"},
-      {ContactMistake::TouchingSkipped, "skipping bodies that exactly touch"},
-      {ContactMistake::RestitutionZero, "with restitution 0"},
-      {ContactMistake::RestitutionOne, "with restitution 1"},
-      {ContactMistake::PairTwice, "with every pair processed twice"},
-      {ContactMistake::ImpulseNotDivided, "with the impulse not divided by 1/m_a + 1/m_b"},
-      {ContactMistake::FixedSkipped, "skipping the fixed particles"}};
-  for (const auto& [which, text] : texts)
-    if (which == mistake) model.changes.push_back(text);
+ContactModel withMistake(ContactModel model, const ContactRow& mistake) {
+  if (mistake.row < 0) return model;
+  const ContactTableRow& row = contactTable()[mistake.row];
+  model.rows.push_back(mistake.row);
+  if (row.switches.restitution) model.restitution = *row.switches.restitution;
+  model.changes.push_back(row.text);
   return model;
 }
 
 ContactModel combined(ContactModel model, const ContactModel& other, const ContactModel& course) {
-  ContactVariant& m = model.variant;
-  const ContactVariant& o = other.variant;
-  m.normal_flipped = m.normal_flipped || o.normal_flipped;
-  m.touching_skipped = m.touching_skipped || o.touching_skipped;
-  m.separating_pushed = m.separating_pushed || o.separating_pushed;
-  m.full_velocity = m.full_velocity || o.full_velocity;
-  m.undivided = m.undivided || o.undivided;
-  m.massless_fixed = m.massless_fixed || o.massless_fixed;
-  m.moves_a = m.moves_a && o.moves_a;
-  m.moves_b = m.moves_b && o.moves_b;
+  model.rows.insert(model.rows.end(), other.rows.begin(), other.rows.end());
   if (other.restitution != course.restitution) model.restitution = other.restitution;
   if (other.correction != course.correction) model.correction = other.correction;
   if (other.reach_offset != course.reach_offset) model.reach_offset = other.reach_offset;
-  model.first_sphere_only = model.first_sphere_only || other.first_sphere_only;
-  model.sphere_zero_for_all = model.sphere_zero_for_all || other.sphere_zero_for_all;
-  model.pair_twice = model.pair_twice || other.pair_twice;
-  model.fixed_skipped = model.fixed_skipped || other.fixed_skipped;
   model.divides_by_speed = model.divides_by_speed || other.divides_by_speed;
   model.changes.insert(model.changes.end(), other.changes.begin(), other.changes.end());
   return model;
@@ -257,16 +325,15 @@ bool masslessFixedContact(float* x_a, float* v_a, float inverse_mass_a, float* x
 // that approaches with a body at rest gets NaN velocities (that body's normal speed is 0 / 0, and
 // the impulse J made from it reaches both bodies).
 void modelContact(Particles<float>& a, int i, Particles<float>& b, int j, float reach,
-                  const ContactModel& model) {
+                  const ContactModel& model, const ContactVariant& variant) {
   const Vec4<float> va = a.velocity.col(i), vb = b.velocity.col(j);
   const bool approaching = (va - vb).dot(a.position.col(i) - b.position.col(j)) < 0;
-  const auto contact = model.variant.massless_fixed
-                           ? masslessFixedContact
-                           : formula::resolveContact<float, ContactVariant>;
+  const auto contact = variant.massless_fixed ? masslessFixedContact
+                                              : formula::resolveContact<float, ContactVariant>;
   const bool touched =
       contact(a.position.col(i).data(), a.velocity.col(i).data(), a.inverse_mass[i],
               b.position.col(j).data(), b.velocity.col(j).data(), b.inverse_mass[j],
-              reach + model.reach_offset, model.restitution, model.correction, model.variant);
+              reach + model.reach_offset, model.restitution, model.correction, variant);
   if (touched && model.divides_by_speed && approaching && (va.isZero(0) || vb.isZero(0))) {
     a.velocity.col(i).setConstant(std::nanf(""));
     b.velocity.col(j).setConstant(std::nanf(""));
@@ -278,20 +345,22 @@ void modelContact(Particles<float>& a, int i, Particles<float>& b, int j, float 
 void collideModel(Spheres<float>& spheres, Cloth<float>& cloth, bool sphere_sphere,
                   const ContactModel& model) {
   auto& sp = spheres.particles;
-  const int count = model.first_sphere_only ? 1 : spheres.size();
+  const ContactSwitches on = switchesOf(model);
+  const int count = on.first_sphere_only ? 1 : spheres.size();
   // The loops of the library's two collide stubs (core/spheres.cpp), their ranges switchable.
   if (!sphere_sphere) {
     for (int i = 0; i < count; ++i) {
-      const int a = model.sphere_zero_for_all ? 0 : i;
+      const int a = on.sphere_zero_for_all ? 0 : i;
       for (int j = 0; j < cloth.particles.size(); ++j)
-        if (!model.fixed_skipped || cloth.particles.mass[j] != 0)
-          modelContact(sp, a, cloth.particles, j, spheres.radius[a], model);
+        if (!on.fixed_skipped || cloth.particles.mass[j] != 0)
+          modelContact(sp, a, cloth.particles, j, spheres.radius[a], model, on.formula);
     }
     return;
   }
   for (int i = 0; i < count; ++i)
-    for (int j = model.pair_twice ? 0 : i + 1; j < spheres.size(); ++j)
-      if (j != i) modelContact(sp, i, sp, j, spheres.radius[i] + spheres.radius[j], model);
+    for (int j = on.pair_twice ? 0 : i + 1; j < spheres.size(); ++j)
+      if (j != i)
+        modelContact(sp, i, sp, j, spheres.radius[i] + spheres.radius[j], model, on.formula);
 }
 
 std::string contactModelText(const ContactModel& model) {

@@ -158,7 +158,7 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
     for (std::size_t m = 0; m < signatures.size(); ++m) {
       State variant = c.state;
       collideWithMistake(variant.spheres, variant.cloth, sphere_sphere, e, correction,
-                         signatures[m].mistake);
+                         signatures[m]);
       const Outcome v = outcomeOf(variant);
       evidence.differs[k][m] = distance(v, expected) > rel;
       evidence.matches[k][m] = distance(actual, v) <= 10 * rel;
@@ -261,7 +261,7 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
     for (const Case& c : cases) {
       State variant = c.state;
       collideWithMistake(variant.spheres, variant.cloth, sphere_sphere, e, correction,
-                         signatures[m].mistake);
+                         signatures[m]);
       if (c.free_bodies && !conserves(c, outcomeOf(variant))) {
         breaks_momentum.push_back(id);
         break;
@@ -303,8 +303,8 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
   // Likely means proven: every model of a cause replayed on every case (explain/replay.h).
   const ContactModel course = courseContact(e, correction);
   std::vector<Candidate> candidates;
-  for (const auto& [mistake, id] : signatures)
-    candidates.push_back({{id}, withMistake(course, mistake)});
+  for (const ContactRow& row : signatures)
+    candidates.push_back({{row.cause}, withMistake(course, row)});
   for (const ContactFinding& f : findings) {
     ContactModel fitted = course;
     if (f.cause == cause::kRestitutionIgnored) {
@@ -359,6 +359,22 @@ std::vector<TestResult> probeCollideCloth(const ProbeContext& context) {
 
 std::vector<TestResult> probeCollideSpheres(const ProbeContext& context) {
   return probeContacts(context, true);
+}
+
+// The probes' rows of the probe table (probes.h), one per stub.
+std::vector<ProbeGroup> probeRowsCollideCloth() {
+  return {{probe::group::kCollideCloth,
+           stubName(Stub::CollideCloth),
+           collideChecks(false),
+           probeCollideCloth,
+           {probe::group::kCollideCloth}}};
+}
+std::vector<ProbeGroup> probeRowsCollideSpheres() {
+  return {{probe::group::kCollideSpheres,
+           stubName(Stub::CollideSpheres),
+           collideChecks(true),
+           probeCollideSpheres,
+           {probe::group::kCollideSpheres}}};
 }
 
 }  // namespace clothref::grader

@@ -99,31 +99,31 @@ SpringCase springCase(const Case& c, const Mat4X<float>& actual) {
   return out;
 }
 
-// A model of the student's computeSpringForce: one mistake's switch, the constants on `cloth`.
+// A model of the student's computeSpringForce: one row's switches, the constants on `cloth`.
 struct ForceCandidate {
   std::vector<std::string> ids;
-  ForceMistake mistake;
+  ForceRow mistake;
   float spring_coef, damper_coef;
   std::string text;
 };
 
-// The form a spring reading fitted, as the mistake whose model computes it.
-ForceMistake mistakeOfForm(SpringForm form) {
+// The form a spring reading fitted, as the row whose model computes it (none: the course's).
+ForceRow mistakeOfForm(SpringForm form) {
   switch (form) {
     case SpringForm::Course:
-      return ForceMistake::None;
+      return {};
     case SpringForm::DamperUnnormalised:
-      return ForceMistake::DamperUnnormalised;
+      return forceRow(cause::kDamperNotNormalised);
     case SpringForm::DamperUnnormalisedTwice:  // no model of its own: the candidate is skipped
-      return ForceMistake::None;
+      return {};
     case SpringForm::OneEndOnly:
-      return ForceMistake::OneEnd;
+      return forceRow(cause::kForceOneEndOnly, 0);  // the start particle only
     case SpringForm::EndOnly:
-      return ForceMistake::OtherEndOnly;
+      return forceRow(cause::kForceOneEndOnly, 1);  // the end particle only
     case SpringForm::MassNotInverse:
-      return ForceMistake::MassNotInverse;
+      return forceRow(cause::kMassNotInverse);
   }
-  return ForceMistake::None;
+  return {};
 }
 
 }  // namespace
@@ -224,7 +224,9 @@ std::vector<TestResult> probeForces(const ProbeContext& context) {
           util::failedTest(checks[c.check], failure.text, {util::likely(failure.causeId())}));
     return tests;
   }
-  const std::vector<ForceRow>& signatures = forceRows();
+  std::vector<ForceRow> signatures;  // the rows simulated on every case
+  for (const ForceRow& row : forceRows())
+    if (row.probed) signatures.push_back(row);
   std::vector<std::string> ids;
   for (const ForceRow& signature : signatures) ids.push_back(signature.cause);
   CauseEvidence evidence = makeEvidence(cases.size(), ids);
@@ -243,8 +245,7 @@ std::vector<TestResult> probeForces(const ProbeContext& context) {
     const auto scale = scales(c.cloth, c.acc0);
     readings.push_back(readSprings(springCase(c, actual), rel));
     for (std::size_t m = 0; m < ids.size(); ++m) {
-      const Mat4X<float> variant =
-          springAccelerations(c.cloth, c.acc0, signatures[m].mistake, gravity);
+      const Mat4X<float> variant = springAccelerations(c.cloth, c.acc0, signatures[m], gravity);
       evidence.differs[k][m] = !sameAnswer(variant, expected, scale, rel);
       evidence.matches[k][m] = sameAnswer(variant, actual, scale, 10 * rel);
     }
@@ -291,16 +292,11 @@ std::vector<TestResult> probeForces(const ProbeContext& context) {
   for (const SpringFinding& f : findings) evidence.findings.push_back({f.cause, f.text});
   nameCauses(evidence, likelyCauses(evidence), std::vector<bool>(cases.size(), true), tests);
 
-  // Likely means proven: each cause's model replayed on every case (explain/replay.h).
+  // Likely means proven: each row's model replayed on every case (explain/replay.h).
   std::vector<ForceCandidate> candidates;
-  for (const auto& [mistake, id] : signatures)
+  for (const ForceRow& row : forceRows())
     candidates.push_back(
-        {{id}, mistake, base.spring_coef, base.damper_coef, forceModelText(mistake)});
-  candidates.push_back({{cause::kDirectionNotNormalised},
-                        ForceMistake::DirectionUnnormalised,
-                        base.spring_coef,
-                        base.damper_coef,
-                        forceModelText(ForceMistake::DirectionUnnormalised)});
+        {{row.cause}, row, base.spring_coef, base.damper_coef, forceModelText(row)});
   // The constants and the form the readings agree on, as one model of every finding.
   const auto common = [&](auto get) -> std::optional<double> {
     std::optional<double> value;
@@ -380,6 +376,11 @@ std::vector<TestResult> probeForces(const ProbeContext& context) {
         !t.names(cause::kUnknown))
       t.causes.insert(t.causes.begin(), util::guess(cause::kUnknown));
   return tests;
+}
+
+// The probe's row of the probe table (probes.h): one child on the course's cloth.
+std::vector<ProbeGroup> probeRowsForces() {
+  return {{probe::group::kForces, kStub, forcesChecks(), probeForces, {probe::group::kForces}}};
 }
 
 }  // namespace clothref::grader

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "grader/bridge/probe_keys.h"
 #include "grader/grade/catalogue.h"
 #include "grader/grade/results.h"
 #include "grader/grade/rubric.h"
@@ -60,8 +61,9 @@ struct PlannedTest {
 std::vector<PlannedTest> plannedTests(int edition);
 
 // The one table of probes: one row per probe group, each group one child process (or two, for a
-// retry or a second size) run as one job. Adding a probe: docs/grading-reference.md, "Adding a
-// probe".
+// retry or a second size) run as one job. The rows are the protocol's group list's
+// (bridge/probe_keys.h), in its order, each group's made by its probe's own file
+// (probeRows<Name>() below). Adding a probe: docs/grading-reference.md, "Adding a probe".
 struct ProbeGroup {
   std::string group;                // the protocol's group name (probe::group, bridge/probe_keys.h)
   std::string stub;                 // the course stub it grades; "" = information only
@@ -73,6 +75,12 @@ struct ProbeGroup {
 };
 // Every row, whatever the edition, in run order.
 std::vector<ProbeGroup> probeTable();
+
+// Each group's rows, defined in its probe's file (probes/<name>.cpp): probeRowsForces() for
+// X(kForces, "forces", Forces), and so on for every line of the protocol's group list.
+#define CLOTHREF_PROBE_ROWS(identifier, text, name) std::vector<ProbeGroup> probeRows##name();
+CLOTHREF_PROBE_GROUPS(CLOTHREF_PROBE_ROWS)
+#undef CLOTHREF_PROBE_ROWS
 // The rows an edition runs, in order: those whose stub the edition grades (points in
 // stubTable()), and the information-only ones when `information` (the whole run).
 std::vector<ProbeGroup> probeGroups(int edition, bool information);

@@ -378,4 +378,13 @@ std::vector<TestResult> probeSprings(const ProbeContext& context) {
   return tests;
 }
 
+// The probe's row of the probe table (probes.h): the course's N and a second size.
+std::vector<ProbeGroup> probeRowsSprings() {
+  return {{probe::group::kSprings,
+           stubName(Stub::InitializeSpring),
+           springsChecks(),
+           probeSprings,
+           {probe::group::kSprings, kSpringsSmallFolder}}};
+}
+
 }  // namespace clothref::grader
