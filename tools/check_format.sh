@@ -7,7 +7,7 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 mapfile -t files < <(git ls-files '*.cpp' '*.h' |
   grep -v -e '^tools/grader/course/' -e '^tools/grader/reference/' -e '^tests/grader/submissions/' \
     -e '^tests/grader/adversarial/' -e '^tests/grader/corpus/' -e '^tests/grader/handwritten/' \
-    -e '^tests/grader/blind/' -e '^tests/grader/blind2/' -e '^tests/grader/blind3/')
+    -e '^tests/grader/blind/' -e '^tests/grader/blind2/' -e '^tests/grader/blind3/' -e '^tests/grader/blind4/')
 if [ "${1:-}" = "--fix" ]; then
   clang-format -i "${files[@]}"
 else
