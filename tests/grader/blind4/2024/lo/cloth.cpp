@@ -1,0 +1,219 @@
+#include "cloth.h"
+
+#include <Eigen/Geometry>
+
+#include "configs.h"
+#include "sphere.h"
+#include <iostream>
+
+Cloth::Cloth() : Shape(particlesPerEdge * particlesPerEdge, particleMass) {
+  initializeVertex();
+  initializeSpring();
+}
+
+void Cloth::draw(DrawType type) const {
+  vao.bind();
+  positionBuffer.load(0, 4 * particlesPerEdge * particlesPerEdge * sizeof(GLfloat), _particles.getPositionData());
+  const ElementArrayBuffer* indexBuffer = nullptr;
+  GLenum primitive = GL_LINES;
+  switch (type) {
+    case DrawType::PARTICLE:
+      glDrawArrays(GL_POINTS, 0, particlesPerEdge * particlesPerEdge);
+      [[fallthrough]];
+    case DrawType::FULL:
+      indexBuffer = &ebo;
+      primitive = GL_TRIANGLES;
+      break;
+    case DrawType::STRUCTURAL: indexBuffer = &structuralSpring; break;
+    case DrawType::SHEAR: indexBuffer = &shearSpring; break;
+    case DrawType::BEND: indexBuffer = &bendSpring; break;
+  }
+  if (type != DrawType::PARTICLE) {
+    indexBuffer->bind();
+    glDrawElements(primitive, static_cast<GLsizei>(indexBuffer->size() / sizeof(GLuint)), GL_UNSIGNED_INT, nullptr);
+  }
+  glBindVertexArray(0);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
+}
+
+void Cloth::initializeVertex() {
+  int current = 0;
+  float wStep = 2.0f * clothWidth / (particlesPerEdge - 1);
+  float hStep = 2.0f * clothHeight / (particlesPerEdge - 1);
+  for (int i = 0; i < particlesPerEdge; ++i) {
+    for (int j = 0; j < particlesPerEdge; ++j) {
+      _particles.position(current++) = Eigen::Vector4f(-clothWidth + j * wStep, 1, -clothHeight + i * hStep, 1);
+    }
+  }
+  std::vector<GLfloat> texCoords;
+  texCoords.reserve(particlesPerEdge * particlesPerEdge * 2);
+  for (int i = 0; i < particlesPerEdge; ++i) {
+    for (int j = 0; j < particlesPerEdge; ++j) {
+      texCoords.emplace_back(static_cast<float>(i) / (particlesPerEdge - 1));
+      texCoords.emplace_back(static_cast<float>(j) / (particlesPerEdge - 1));
+    }
+  }
+  // Four corners are fixed.
+  _particles.mass(0) = 0.0f;
+  _particles.mass(particlesPerEdge - 1) = 0.0f;
+  _particles.mass(particlesPerEdge * (particlesPerEdge - 1)) = 0.0f;
+  _particles.mass(particlesPerEdge * particlesPerEdge - 1) = 0.0f;
+
+  std::vector<GLuint> indices;
+  indices.reserve((particlesPerEdge - 1) * (particlesPerEdge - 1) * 6);
+  for (int i = 0; i < particlesPerEdge - 1; ++i) {
+    for (int j = 0; j < particlesPerEdge - 1; ++j) {
+      int topLeft = i * particlesPerEdge + j;
+      indices.emplace_back(topLeft);
+      indices.emplace_back(topLeft + particlesPerEdge);
+      indices.emplace_back(topLeft + 1);
+      indices.emplace_back(topLeft + 1);
+      indices.emplace_back(topLeft + particlesPerEdge);
+      indices.emplace_back(topLeft + particlesPerEdge + 1);
+    }
+  }
+  int vboSize = particlesPerEdge * particlesPerEdge * sizeof(GLfloat);
+  positionBuffer.allocate_load(vboSize * 4, _particles.getPositionData());
+  normalBuffer.allocate(particlesPerEdge * particlesPerEdge * sizeof(float) * 4);
+  textureBuffer.allocate_load(vboSize * 2, texCoords.data());
+  ebo.allocate_load(indices.size() * sizeof(GLuint), indices.data());
+
+  vao.bind();
+  positionBuffer.bind();
+  vao.enable(0);
+  vao.setAttributePointer(0, 4, 4, 0);
+  normalBuffer.bind();
+  vao.enable(1);
+  vao.setAttributePointer(1, 4, 4, 0);
+  textureBuffer.bind();
+  vao.enable(2);
+  vao.setAttributePointer(2, 2, 2, 0);
+  glBindVertexArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
+}
+
+void Cloth::initializeSpring() {
+  // TODO: Connect particles with springs.
+  //   1. Compute the rest length of each type of spring.
+  //   2. Iterate over the particles and push Spring objects into `_springs`.
+  // Note:
+  //   1. The particles are stored row major:
+  //       0   1   2   3 ...  24
+  //      25  26  27  28 ...  49
+  //      50  51  52  53 ...  74
+  //     ...
+  //     600 601 602 603 ... 624
+  //   2. Each particle only connects to its own right / down neighbours, so no spring is added twice.
+  // Example: the horizontal structural springs.
+  float structrualLength = (_particles.position(0) - _particles.position(1)).norm();
+  for (int i = 0; i < particlesPerEdge; ++i) {
+    for (int j = 0; j < particlesPerEdge - 1; ++j) {
+      int index = i * particlesPerEdge + j;
+      _springs.emplace_back(index, index + 1, structrualLength, Spring::Type::STRUCTURAL);
+    }
+  }
+  const int N = particlesPerEdge;
+  Eigen::Vector4f diagonal = _particles.position(N + 1) - _particles.position(0);
+  const float shearLength = diagonal.norm();
+  const float bendLength = (_particles.position(2) - _particles.position(0)).norm();
+  auto add = [this](int from, int to, float rest, Spring::Type type)
+  {
+    _springs.emplace_back(from, to, rest, type);
+  };
+  for (int row = 0; row + 1 < N; ++row)
+  {
+    for (int col = 0; col < N; ++col)
+    {
+      const int here = row * N + col;
+      add(here, here + N, structrualLength, Spring::Type::STRUCTURAL);
+      if (col + 1 < N) add(here, here + N + 1, shearLength, Spring::Type::SHEAR);
+      if (col >= 1) add(here, here + N - 1, shearLength, Spring::Type::SHEAR);
+    }
+  }
+  for (int row = 0; row < N; ++row)
+  {
+    for (int col = 0; col < N; ++col)
+    {
+      const int here = row * N + col;
+      if (col + 2 < N) add(here, here + 2, bendLength, Spring::Type::BEND);
+      if (row + 2 < N) add(here, here + 2 * N, bendLength, Spring::Type::BEND);
+    }
+  }
+
+  // DO NOT MODIFY BELOW THIS LINE
+  std::vector<GLuint> structrualIndices, shearIndices, bendIndices;
+  for (const auto& spring : _springs) {
+    switch (spring.type()) {
+      case Spring::Type::STRUCTURAL:
+        structrualIndices.emplace_back(spring.startParticleIndex());
+        structrualIndices.emplace_back(spring.endParticleIndex());
+        break;
+      case Spring::Type::SHEAR:
+        shearIndices.emplace_back(spring.startParticleIndex());
+        shearIndices.emplace_back(spring.endParticleIndex());
+        break;
+      case Spring::Type::BEND:
+        bendIndices.emplace_back(spring.startParticleIndex());
+        bendIndices.emplace_back(spring.endParticleIndex());
+        break;
+    }
+  }
+  structuralSpring.allocate_load(structrualIndices.size() * sizeof(GLuint), structrualIndices.data());
+  shearSpring.allocate_load(shearIndices.size() * sizeof(GLuint), shearIndices.data());
+  bendSpring.allocate_load(bendIndices.size() * sizeof(GLuint), bendIndices.data());
+}
+
+void Cloth::computeSpringForce() {
+  // TODO: Compute the spring force and the damper force of every spring.
+  //   1. Read the start / end particle index of the spring.
+  //   2. Use the positions for the spring force and the velocities for the damper force.
+  //   3. Modify the particles' acceleration: a = F / m.
+  // Note:
+  //   1. Use `_particles.inverseMass(i)` to deal with m = 0 (fixed particles).
+  //   2. Useful functions: norm(), normalize() (in place) vs normalized() (returns a copy), dot().
+  //   3. springCoef and damperCoef are in configs.h.
+  for (const Spring& spring : _springs)
+  {
+    const unsigned int s = spring.startParticleIndex();
+    const unsigned int e = spring.endParticleIndex();
+    Eigen::Vector4f axis = _particles.position(s) - _particles.position(e);
+    const float stretch = axis.norm() - spring.length();
+    axis.normalize();
+    const float closing = (_particles.velocity(s) - _particles.velocity(e)).dot(axis);
+    const Eigen::Vector4f force = axis * (damperCoef * closing + springCoef * stretch);
+    _particles.acceleration(s) -= force * _particles.inverseMass(s);
+    _particles.acceleration(e) += force * _particles.inverseMass(e);
+  }
+}
+
+void Cloth::collide(Shape* shape) { shape->collide(this); }
+void Cloth::collide(Spheres* sphere) { sphere->collide(this); }
+
+void Cloth::computeNormal() {
+  // Per-vertex normals for shading: the sum of the normals of the triangles around a vertex.
+  static Eigen::Matrix<float, 4, particlesPerEdge * particlesPerEdge> normals;
+  normals.setZero();
+  for (int i = 0; i < particlesPerEdge - 1; ++i) {
+    for (int j = 0; j < particlesPerEdge - 1; ++j) {
+      int topLeft = i * particlesPerEdge + j;
+      int topRight = topLeft + 1;
+      int bottomLeft = topLeft + particlesPerEdge;
+      int bottomRight = bottomLeft + 1;
+      Eigen::Vector4f down = _particles.position(bottomLeft) - _particles.position(topLeft);
+      Eigen::Vector4f right = _particles.position(topRight) - _particles.position(topLeft);
+      Eigen::Vector4f normal = down.cross3(right);
+      normals.col(topLeft) += normal;
+      normals.col(topRight) += normal;
+      normals.col(bottomLeft) += normal;
+      Eigen::Vector4f up = _particles.position(topRight) - _particles.position(bottomRight);
+      Eigen::Vector4f left = _particles.position(bottomLeft) - _particles.position(bottomRight);
+      normal = up.cross3(left);
+      normals.col(topRight) += normal;
+      normals.col(bottomLeft) += normal;
+      normals.col(bottomRight) += normal;
+    }
+  }
+  normals.colwise().normalize();
+  normalBuffer.load(0, particlesPerEdge * particlesPerEdge * sizeof(float) * 4, normals.data());
+}
