@@ -612,5 +612,27 @@ TEST_F(ThirdBlind, AtLeastAsGoodAsMeasured) {
                 {kThirdBlindVerdictsRight, kThirdBlindCausesProven, kThirdBlindCausesWrong});
 }
 
+// The fourth blind set (tests/grader/blind4): 16 hand-ins written on 30 November 2026 by a helper
+// that had not read the grader, with mistakes over every stub and every kind of docs/course.md §7
+// (44 in 40 of 120 stubs, 5 without a catalogue entry), reported apart. As first graded, at
+// 3c3dc6a, before any change made with it in view: 119 / 120 verdicts (huang's bend rest length
+// `2 * structrualLength`, 4 ulp from the course's, is within the rest-length tolerance), of 44
+// labelled causes 23 proven, 6 read directly, 6 guesses, 9 not named, 1 likely outside its label
+// (chen's force: a helper returning a reference to its local in one branch of `?:`, which g++ -O2
+// folds to the other branch, the unnormalised vector: `direction-not-normalised` was proven by
+// replay, the undefined behaviour was not repaired). With that return's branches repaired too:
+// 24 proven, 8 not named, none outside. The floors are those.
+constexpr int kFourthBlindVerdictsRight = 119;
+constexpr int kFourthBlindCausesProven = 24;
+constexpr int kFourthBlindCausesWrong = 0;
+
+constexpr char kBlind4[] = "tests/grader/blind4";
+using FourthBlind = GradedSet<kBlind4, kNoRelabels>;
+
+TEST_F(FourthBlind, AtLeastAsGoodAsMeasured) {
+  expectAtLeast("fourth blind", kBlind4, *figures_, 16,
+                {kFourthBlindVerdictsRight, kFourthBlindCausesProven, kFourthBlindCausesWrong});
+}
+
 }  // namespace
 }  // namespace clothref::test

@@ -180,6 +180,32 @@ TEST(RepairProof, AHelperReturningItsLocalByReferenceReturnsByValue) {
                   .empty());
 }
 
+// The local returned in one branch of a conditional (blind4's chen: `return len > 0.0f ? u : v;`,
+// which g++ -O2 turns into `return v;`, so the numbers are those of an unnormalised direction):
+// the branch that is its own local is found, the parameter in the other is not.
+TEST(RepairProof, ALocalReturnedInOneBranchOfAConditionalIsFound) {
+  const std::string cloth =
+      "const Eigen::Vector4f& unitOf(const Eigen::Vector4f& v, float len) {\n"  // 1
+      "  Eigen::Vector4f u = v / len;\n"                                        // 2
+      "  return len > 0.0f ? u : v;\n"                                          // 3
+      "}\n"                                                                     // 4
+      "const Eigen::Vector4f& either(const Eigen::Vector4f& v, const Eigen::Vector4f& w) {\n"
+      "  return v.x() > 0 ? v : w;\n"  // 6
+      "}\n"                            // 7
+      "void Cloth::computeSpringForce() {\n"
+      "  const Eigen::Vector4f& dir = unitOf(_particles.position(0), 1.0f);\n"
+      "  const Eigen::Vector4f& other = either(dir, dir);\n"
+      "}\n";
+  const std::vector<Repair> repairs = repairsOf("cloth.cpp", cloth, "Cloth::computeSpringForce");
+  ASSERT_EQ(repairs.size(), 1u);
+  EXPECT_EQ(lineOf(repairs[0].patched, 1),
+            "const Eigen::Vector4f unitOf(const Eigen::Vector4f& v, float len) {");
+  EXPECT_EQ(lineOf(repairs[0].patched, 5), lineOf(cloth, 5));
+  EXPECT_EQ(repairs[0].what,
+            "line 1 repaired (`unitOf` returns its local `u` by value, not a reference to it, "
+            "which is gone when it returns)");
+}
+
 // A local declared without a value and first used in a compound assignment starts at zero
 // (issue 38, blind2's kuan); one first assigned, or first read as a whole, is left alone.
 TEST(RepairProof, AnUninitialisedSumStartsAtZero) {

@@ -164,7 +164,10 @@ std::optional<Repair> localReferenceRepair(const std::string& file, const std::s
   for (int n = body.first; n <= body.last && n <= int(blanked.size()); ++n)
     called += blanked[std::size_t(n - 1)];
   static const std::regex head(R"(^\s*(static\s+|inline\s+)*[\w:<>, ]*[\w>]\s*&\s*(\w+)\s*\()");
-  static const std::regex returned(R"(\breturn\s+(\w+)\s*;)");
+  // `return n;`, or either branch of `return c ? n : v;`
+  static const std::regex returned(R"(\breturn\s+([^;]*);)");
+  static const std::regex alone(R"(^\s*(\w+)\s*$)");
+  static const std::regex branches(R"(\?\s*(\w+)\s*:\s*(\w+)\s*$)");
   for (int k = 0; k < int(blanked.size()); ++k) {
     std::smatch m;
     if (body.contains(k + 1) || !std::regex_search(blanked[std::size_t(k)], m, head)) continue;
@@ -175,19 +178,31 @@ std::optional<Repair> localReferenceRepair(const std::string& file, const std::s
     std::string code;
     for (int j = open; j <= close; ++j) code += blanked[std::size_t(j)];
     // its own local (no static, reference or pointer), returned by name
-    std::smatch r;
-    if (!std::regex_search(code, r, returned)) continue;
-    const std::string local = r[1].str();
-    const std::regex declared(R"((^|[;{}(\s])([\w:]+(<[^;&*()]*>)?)\s+)" + local +
-                              R"(\s*(=|;|\(|\{))");
-    bool own = false;
-    for (auto d = std::sregex_iterator(code.begin(), code.end(), declared);
-         d != std::sregex_iterator() && !own; ++d) {
-      const std::string before = code.substr(0, std::size_t(d->position(0)));
-      const std::string statement = before.substr(before.find_last_of(";{}") + 1);
-      own = (*d)[2].str() != "return" && !std::regex_search(statement, std::regex(R"(\bstatic\b)"));
+    std::vector<std::string> names;
+    for (auto r = std::sregex_iterator(code.begin(), code.end(), returned);
+         r != std::sregex_iterator(); ++r) {
+      const std::string value = (*r)[1].str();
+      std::smatch m2;
+      if (std::regex_search(value, m2, alone))
+        names.push_back(m2[1].str());
+      else if (std::regex_search(value, m2, branches))
+        names.insert(names.end(), {m2[1].str(), m2[2].str()});
     }
-    if (!own) continue;
+    const auto ownLocal = [&](const std::string& local) {
+      const std::regex declared(R"((^|[;{}(\s])([\w:]+(<[^;&*()]*>)?)\s+)" + local +
+                                R"(\s*(=|;|\(|\{))");
+      for (auto d = std::sregex_iterator(code.begin(), code.end(), declared);
+           d != std::sregex_iterator(); ++d) {
+        const std::string before = code.substr(0, std::size_t(d->position(0)));
+        const std::string statement = before.substr(before.find_last_of(";{}") + 1);
+        if ((*d)[2].str() != "return" && !std::regex_search(statement, std::regex(R"(\bstatic\b)")))
+          return true;
+      }
+      return false;
+    };
+    const auto found = std::find_if(names.begin(), names.end(), ownLocal);
+    if (found == names.end()) continue;
+    const std::string local = *found;
     Repair repair{file, stub, cause::kUndefinedBehaviour, {}, {}, {}};
     // the definition and any declaration of the helper: the reference dropped
     const std::regex reference(R"(\s*&\s*()" + name + R"(\s*\())");
