@@ -146,10 +146,28 @@ TEST(ContactFit, OneBodyNoCorrectionAndTheNormalsSign) {
   EXPECT_EQ(reversed[0].cause, cause::kCollisionNormalSign);
 }
 
+// One body pushed out by another factor and the other not at all (blind4's yang: 0.1, the cloth
+// only): two findings, each with the moved body's factor, so their models are replayed together.
+TEST(ContactFit, OneBodyByAnotherFactorIsTwoFindings) {
+  const auto findings = explainContacts(readAll([](Pair& p) {
+                                          const auto xa = p.xa;
+                                          course(0, 0.1f)(p);
+                                          p.xa = xa;  // the sphere is not pushed out
+                                        }),
+                                        0, 0.15);
+  ASSERT_EQ(findings.size(), 2u);
+  EXPECT_EQ(findings[0].cause, cause::kCorrectionOneBody);
+  EXPECT_EQ(findings[1].cause, cause::kCorrectionFactor);
+  EXPECT_NEAR(findings[1].value, 0.1, 1e-4);
+  EXPECT_NE(findings[1].text.find("0.1 x overlap for the other body and 0 for the sphere"),
+            std::string::npos)
+      << findings[1].text;
+}
+
 // A student's contact with one impulse mistake (the course's form otherwise).
 enum class Mistake { FullVelocity, NoApproachCheck, NotDivided, DividedByMasses };
 
-Contact student(Mistake mistake) {
+Contact student(Mistake mistake, float e = 0) {
   return [=](Pair& p) {
     float n[4], relative[4];
     for (int k = 0; k < 4; ++k) n[k] = p.xa[k] - p.xb[k];
@@ -167,7 +185,7 @@ Contact student(Mistake mistake) {
     if (approach < 0 || mistake == Mistake::NoApproachCheck)
       for (int k = 0; k < 4; ++k) {
         const float u = mistake == Mistake::FullVelocity ? relative[k] : n[k] * approach;
-        const float impulse = -u / denominator;  // e = 0
+        const float impulse = -(1 + e) * u / denominator;
         p.va[k] += impulse * p.inverse_mass_a;
         p.vb[k] -= impulse * p.inverse_mass_b;
       }
@@ -195,6 +213,16 @@ TEST(ContactFit, ImpulseMistakesAreNamedNotTakenForConstants) {
               std::string::npos)
         << findings[0].text;
   }
+}
+
+// No approach test beside a restitution of 0.5 (blind4's wu-big5): both found, the restitution
+// read on the pairs as on approaching ones, so the two models are replayed together.
+TEST(ContactFit, NoApproachTestBesideAnotherRestitutionIsTwoFindings) {
+  const auto findings = explainContacts(readAll(student(Mistake::NoApproachCheck, 0.5f)), 0, 0.15);
+  ASSERT_EQ(findings.size(), 2u);
+  EXPECT_EQ(findings[0].cause, cause::kNoApproachCheck);
+  EXPECT_EQ(findings[1].cause, cause::kRestitutionIgnored);
+  EXPECT_NEAR(findings[1].value, 0.5, 1e-3);
 }
 
 // A contact distance of r + 0.1 (the course's reach and penetration 0.1 larger): read back from

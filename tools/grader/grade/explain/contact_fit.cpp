@@ -134,7 +134,8 @@ std::vector<ContactFinding> explainContacts(const std::vector<ContactReading>& r
                         "the two bodies do not receive equal and opposite impulses" +
                             (ratio ? " (the sphere's is " + readBack(*ratio) + " x the other's)"
                                    : std::string())});
-  } else if (!impulse_when_separating && e && !same(*e, restitution)) {
+  } else if (e && !same(*e, restitution)) {
+    // (beside an impulse on separating pairs too: two mistakes, each its own finding)
     findings.push_back({"restitution", cause::kRestitutionIgnored, *e, restitution,
                         "your bounce behaves as a coefficient of restitution of " + readBack(*e) +
                             "; the course's is " + readBack(restitution)});
@@ -191,6 +192,18 @@ std::vector<ContactFinding> explainContacts(const std::vector<ContactReading>& r
         {"position correction", cause::kCorrectionOneBody, same(*ca, 0) ? *cb : *ca, correction,
          only_positions + "only " + std::string(same(*ca, 0) ? "the other body" : "the sphere") +
              " is pushed out (" + readBack(correction) + " x overlap); the course moves both"});
+  } else if (same(*ca, 0) != same(*cb, 0)) {
+    // One body pushed out by another factor, the other not at all: two mistakes, each its own
+    // finding (the factor is the moved body's, so a model of both can be replayed).
+    const double moved = same(*ca, 0) ? *cb : *ca;
+    const std::string who = same(*ca, 0) ? "the other body" : "the sphere";
+    findings.push_back({"position correction", cause::kCorrectionOneBody, moved, correction,
+                        only_positions + "only " + who + " is pushed out; the course moves both"});
+    findings.push_back({"position correction", cause::kCorrectionFactor, moved, correction,
+                        only_positions + "your position correction behaves as " + readBack(moved) +
+                            " x overlap for " + who + " and 0 for " +
+                            (same(*ca, 0) ? "the sphere" : "the other body") +
+                            "; the course uses " + readBack(correction) + " for both"});
   } else if (same(*ca, *cb)) {
     findings.push_back({"position correction", cause::kCorrectionFactor, *ca, correction,
                         only_positions + "your position correction behaves as " + readBack(*ca) +
