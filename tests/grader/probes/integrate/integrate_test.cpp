@@ -20,11 +20,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string readText(const fs::path& path) {
-  std::ifstream in(path);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
 // The 2022 reference with the body of `stub` ("ImplicitEuler::integrate") replaced by `body`.
 fs::path withBody(const TempDir& temp, const std::string& stub, const std::string& body) {
   const fs::path dir = temp.path() / "submission";

@@ -240,12 +240,17 @@ bool equalsMethod(const StageFit& fit, const MethodTable& table) {
   return sameState(fit, fit.recorded + 1, table.result, map);
 }
 
+bool areRk4Weights(const std::array<double, 4>& w, double tolerance) {
+  for (std::size_t j = 0; j < 4; ++j)
+    if (!(std::abs(kRk4Weights[j] - w[j]) <= tolerance)) return false;
+  return true;
+}
+
 std::optional<std::array<int, 4>> courseWeightsOnOtherStages(const std::array<double, 4>& w,
                                                              double tolerance) {
-  const std::array<double, 4> course = {1.0 / 6, 1.0 / 3, 1.0 / 3, 1.0 / 6};
-  bool own = true;  // the course's weights themselves (k1 and k4 swapped give them too)
-  for (std::size_t j = 0; j < 4; ++j) own = own && std::abs(course[j] - w[j]) <= tolerance;
-  if (own) return std::nullopt;
+  // the course's weights themselves are no such reading (k1 and k4 swapped give them too)
+  if (areRk4Weights(w, tolerance)) return std::nullopt;
+  const std::array<double, 4>& course = kRk4Weights;
   std::optional<std::array<int, 4>> best;
   int best_in_place = -1;
   for (int code = 0; code < 256; ++code) {  // every map of the 4 k onto 4 stages

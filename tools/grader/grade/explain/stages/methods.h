@@ -65,6 +65,11 @@ Departure departure(const StageFit& fit, const MethodTable& table, double factor
 // (others unused), and the result equals the method's result.
 bool equalsMethod(const StageFit& fit, const MethodTable& table);
 
+// The course's RK4 result weights on k1..k4 (units of h), and whether `w` is they, each within
+// `tolerance`.
+inline constexpr std::array<double, 4> kRk4Weights = {1.0 / 6, 1.0 / 3, 1.0 / 3, 1.0 / 6};
+bool areRk4Weights(const std::array<double, 4>& w, double tolerance = 1e-9);
+
 // RK4 result weights w on k1..k4 (units of h) that are the course's (1/6, 1/3, 1/3, 1/6) with
 // some k read from another stage: from[i] is the stage whose k stands where k(i+1) belongs, e.g.
 // (0, 1/3, 1/3, 1/3) is k1 read after stage 4 overwrote the state (from = 3, 1, 2, 3). The map

@@ -69,7 +69,7 @@ std::vector<std::pair<std::string, Step>> oneStepSignatures(Method method) {
 std::string rk4WeightCause(const IntegratorRun& run, const std::string& source,
                            std::string& output) {
   const auto [x, v] = fitRk4Weights(run.random, run.actual);
-  const Eigen::Vector4d course(1.0 / 6, 1.0 / 3, 1.0 / 3, 1.0 / 6);
+  const Eigen::Vector4d course = Eigen::Map<const Eigen::Vector4d>(stages::kRk4Weights.data());
   const Eigen::Vector4d zero = Eigen::Vector4d::Zero();
   const bool missing_term = (x.fits && near(x.w, zero)) || (v.fits && near(v.w, zero)) ||
                             (x.fits && x.w[0] == 0 && near(x.w, {0, 1.0 / 3, 1.0 / 3, 0}));

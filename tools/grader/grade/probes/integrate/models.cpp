@@ -63,10 +63,8 @@ std::optional<std::string> restaged(const std::vector<double>& w,
   const std::array<double, 4> weights = {w[0], w[1], w[2], w[3]};
   if (const auto from = stages::courseWeightsOnOtherStages(weights))
     return stages::otherStagesText(*from);
-  const std::array<double, 4> course = {1.0 / 6, 1.0 / 3, 1.0 / 3, 1.0 / 6};
-  for (std::size_t i = 0; i < 4; ++i)
-    if (std::abs(weights[i] - course[i]) > 1e-9) return std::nullopt;
-  return w == other ? std::nullopt : std::optional<std::string>("every k in place");
+  if (!stages::areRk4Weights(weights) || w == other) return std::nullopt;
+  return "every k in place";
 }
 
 std::string weightText(const std::vector<double>& w) {
@@ -120,15 +118,8 @@ std::vector<IntegratorModel> modelsOf(const std::string& id, const Rubric& rubri
         if (constant) {
           t.dt_after = after[0];
           fitted(t, text + ", leaving deltaTime at " + number(after[0]) + " s after the call");
-          // ... restored to that constant before the corrector, which then steps it; the stages
-          // before it keep the call's h (the fit's scale is the corrector's).
-          if (step == scale) {
-            Overlay restored;
-            restored.dt_after = after[0];
-            restored.result_dt = after[0];
-            fitted(restored, the + " whose corrector steps deltaTime = " + number(after[0]) +
-                                 " s (restored to a constant), left so after the call");
-          }
+          // ... restored to that constant before the corrector, which then steps it (at step 1:
+          // the stages before it keep the call's h).
           t.result_dt = after[0];
           text += " whose corrector steps deltaTime = " + number(after[0]) +
                   " s (restored to a constant), left so after the call";
