@@ -152,7 +152,7 @@ Command addGradeCommand(CLI::App& root) {
   app->add_flag(
       "--sanitize", options->sanitize,
       "accepted for old scripts; nothing to ask for: a probe that crashes or whose two runs differ "
-      "is rebuilt with ASan/UBSan (-g -O1) by itself and its first report quoted");
+      "is rebuilt with ASan/UBSan (-g -Og) by itself and its first report quoted");
   app->add_flag("--one-submission", options->one_submission,
                 "grade a DIR that holds several whole submissions as one (without it, such a "
                 "folder is refused, naming them)");

@@ -73,7 +73,7 @@ inline void explainFailure(const ProbeContext& context, const probe::ProbeMessag
                         "nothing (they do not see a read of an uninitialised variable, and the "
                         "fault may depend on the optimisation level)."
                       : "\n\nThe grader rebuilt your files with AddressSanitizer and "
-                        "UndefinedBehaviorSanitizer (`-g -O1`) and ran this probe again; "
+                        "UndefinedBehaviorSanitizer (`-g -Og`) and ran this probe again; "
                         "their report:\n\n" +
                             codeBlock(report);
 }

@@ -41,7 +41,7 @@ struct CourseToolchain {
   // Where compiles of student code find the course (course_dir and driver_lib_dir point into it
   // then) and the precompiled headers: the kit's copies, never our folders. Null: ours directly.
   const CourseKit* kit = nullptr;
-  // Diagnostic build (--sanitize): -fsanitize=address,undefined -g -O1 -fno-omit-frame-pointer
+  // Diagnostic build (--sanitize): -fsanitize=address,undefined -g -Og -fno-omit-frame-pointer
   // instead of `optimisation`, linked by g++ with the same -fsanitize (which brings the runtimes;
   // the driver library itself is built without sanitizers).
   bool sanitize = false;

@@ -29,11 +29,13 @@ namespace fs = std::filesystem;
 std::vector<std::string> baseFlags(const CourseToolchain& t) {
   // Without variable tracking (locations of local variables for a debugger; the sanitizers'
   // reports name functions, files and lines only): with UBSan's checks it was more than half of an
-  // instrumented compile (issue 39: 17 of 22 s of CPU for cloth.cpp, 7 s without it).
+  // instrumented compile (issue 39: 17 of 22 s of CPU for cloth.cpp, 7 s without it). -Og, not
+  // -O1: -O1's inlining of Eigen's instrumented calls was most of what was left (integrator.cpp
+  // 5.0 s of CPU at -O1, 2.1 s at -Og, every check kept; the reports name the same lines).
   if (t.sanitize)
     return {t.compiler,
             "-std=c++20",
-            "-O1",
+            "-Og",
             "-g",
             "-fno-var-tracking-assignments",
             "-fno-var-tracking",

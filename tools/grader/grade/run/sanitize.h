@@ -1,6 +1,6 @@
 // The sanitizer run the grader starts by itself when a probe of a student's code crashed or
 // answered differently in its two runs (docs/grading-reference.md, "One submission, one score"):
-// the files that probe runs are built once more with -fsanitize=address,undefined -g -O1, that
+// the files that probe runs are built once more with -fsanitize=address,undefined -g -Og, that
 // probe's request runs again on the instrumented code, and the first AddressSanitizer or
 // UndefinedBehaviorSanitizer report names the line. Only then: a submission that neither crashes
 // nor varies never pays for the second build. The scores are those of the normal build; the
