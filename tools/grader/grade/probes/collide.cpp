@@ -20,6 +20,9 @@
 #include "grader/grade/probes/util.h"
 
 namespace clothref::grader {
+// A namespace of this file's own for the using-directive: a unity build shares one unnamed
+// namespace among its files, where `contacts` would meet the other probes' names.
+namespace collide_probe {
 namespace {
 
 using namespace contacts;
@@ -350,15 +353,18 @@ std::vector<TestResult> probeContacts(const ProbeContext& context, bool sphere_s
 }
 
 }  // namespace
+}  // namespace collide_probe
 
-std::vector<PlannedTest> collideChecks(bool sphere_sphere) { return checkTable(sphere_sphere); }
+std::vector<PlannedTest> collideChecks(bool sphere_sphere) {
+  return contacts::checkTable(sphere_sphere);
+}
 
 std::vector<TestResult> probeCollideCloth(const ProbeContext& context) {
-  return probeContacts(context, false);
+  return collide_probe::probeContacts(context, false);
 }
 
 std::vector<TestResult> probeCollideSpheres(const ProbeContext& context) {
-  return probeContacts(context, true);
+  return collide_probe::probeContacts(context, true);
 }
 
 // The probes' rows of the probe table (probes.h), one per stub.

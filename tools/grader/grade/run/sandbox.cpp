@@ -27,6 +27,7 @@
 #include "clothref/io/error.h"
 #include "clothref/io/files.h"
 #include "grader/grade/run/child_process.h"
+#include "grader/grade/submission/neighbours.h"
 
 namespace clothref::grader {
 namespace fs = std::filesystem;
@@ -39,11 +40,6 @@ std::string findOnPath(const std::string& name) {
     if (access(candidate.c_str(), X_OK) == 0) return candidate.string();
   }
   return {};
-}
-
-bool isUnder(const fs::path& path, const fs::path& root) {
-  const auto p = path.lexically_normal().string(), r = root.lexically_normal().string();
-  return p == r || (p.size() > r.size() && p.compare(0, r.size(), r) == 0 && p[r.size()] == '/');
 }
 
 // The host trees every sandbox sees (read-only): the system's programs and libraries. Merged-/usr
