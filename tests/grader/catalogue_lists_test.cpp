@@ -151,6 +151,20 @@ std::set<std::string> namedBy(const std::string& file, const std::string& patter
   return found;
 }
 
+// The files of mistakes/ that hold a table of the integrator step's rows (integrate_step.h: the
+// lines every method shares and one file per method family), found as the build finds sources.
+std::vector<std::string> integratorTables() {
+  std::vector<std::string> files;
+  for (const auto& entry : fs::directory_iterator(kRoot / "tools/grader/grade/mistakes")) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("integrate_", 0) == 0 && entry.path().extension() == ".cpp" &&
+        test::readText(entry.path()).find("std::vector<Row<") != std::string::npos)
+      files.push_back("tools/grader/grade/mistakes/" + name);
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
 // The catalogue's ids whose model is `model`.
 std::set<std::string> entriesOf(const std::string& model) {
   std::set<std::string> ids;
@@ -168,8 +182,9 @@ std::string joined(const std::set<std::string>& ids) {
 // The models the grader replays (explain/replay.h), read from their code, and the catalogue's
 // entries naming them are the same ids: a model without an entry, or an entry naming a model
 // that does not answer to it, fails. A model's code is the table it is:
-//   "integrator step"  the rows {cause::kY, methods, ...} of mistakes/integrate_mistakes.cpp
-//                      and probes/integrate/models.cpp's fitted models (one branch per id);
+//   "integrator step"  the rows {cause::kY, methods, ...} of the step's tables (mistakes/
+//                      integrate_step.cpp and the family files beside it: integrate_euler.cpp,
+//                      ...) and probes/integrate/models.cpp's fitted models (one branch per id);
 //   "force variant"    the rows {cause::kY, kProbed|kReplayed, ...} of the spring force's table
 //                      in mistakes/formula_variants.cpp (forceRows(), the probe's);
 //   "contact variant"  the rows {cause::kY, kBoth|kCloth|kSpheres, ...} of the contact's table
@@ -183,8 +198,10 @@ TEST(CatalogueModels, EveryModelHasAnEntryAndEveryEntryItsModel) {
   std::map<std::string, std::set<std::string>> models = {
       {"integrator step",
        [&] {
-         std::set<std::string> ids =
-             namedBy(grade + "mistakes/integrate_mistakes.cpp", R"(\{cause::(k\w+), k[EIMRA])");
+         std::set<std::string> ids;
+         for (const std::string& file : integratorTables())
+           for (const std::string& id : namedBy(file, R"(\{cause::(k\w+), k[EIMRA])"))
+             ids.insert(id);
          for (const std::string& id :
               namedBy(grade + "probes/integrate/models.cpp", R"(\bid == cause::(k\w+))"))
            ids.insert(id);
@@ -233,6 +250,27 @@ TEST(CatalogueModels, EveryModelHasAnEntryAndEveryEntryItsModel) {
     }
 }
 
+// The switches of struct `name` in `source` (`name = false`, `true`, `{}` or a number, comments
+// left out), each expected to be set by a row somewhere in `source` (`.name = `); returns how
+// many there are.
+int expectEachSetByARow(const std::string& source, const std::string& name) {
+  const std::size_t open = source.find("\nstruct " + name + " {");
+  EXPECT_NE(open, std::string::npos) << "struct " << name;
+  if (open == std::string::npos) return 0;
+  const std::string body = std::regex_replace(source.substr(open, source.find("\n};", open) - open),
+                                              std::regex("//[^\n]*"), "");
+  int switches = 0;
+  const std::regex field(R"(\b(\w+) = (false|true|\{\}|-?\d+))");
+  for (auto it = std::sregex_iterator(body.begin(), body.end(), field);
+       it != std::sregex_iterator(); ++it) {
+    const std::string value = (*it)[1];
+    ++switches;
+    EXPECT_NE(source.find("." + value + " = "), std::string::npos)
+        << name << "::" << value << " is set by no row";
+  }
+  return switches;
+}
+
 // Every switch of the force and contact models (the structs of switches in
 // mistakes/formula_variants.cpp: the formulas' and their loops') is set by a row of its table
 // (`.name = `), so no switch is code that no mistake reaches.
@@ -242,19 +280,26 @@ TEST(CatalogueModels, EverySwitchOfAFormulaVariantIsSetByARow) {
   for (const std::string name :
        {"SpringVariant", "ForceSwitches", "ContactVariant", "ContactSwitches"}) {
     SCOPED_TRACE(name);
-    const std::size_t open = source.find("struct " + name + " {");
-    ASSERT_NE(open, std::string::npos);
-    const std::string body = source.substr(open, source.find("\n};", open) - open);
-    int switches = 0;
-    const std::regex field(R"(\b(\w+) = (false|true|\{\}))");
-    for (auto it = std::sregex_iterator(body.begin(), body.end(), field);
-         it != std::sregex_iterator(); ++it) {
-      const std::string value = (*it)[1];
-      ++switches;
-      EXPECT_NE(source.find("." + value + " = "), std::string::npos)
-          << name << "::" << value << " is set by no row";
-    }
-    EXPECT_GT(switches, 3);
+    EXPECT_GT(expectEachSetByARow(source, name), 3);
+  }
+}
+
+// Every switch of the integrator step (EveryMethod in mistakes/integrate_step.h, each family's
+// struct of switches in its file) is set by a row of one of the step's tables (`.name = `), so
+// no switch is code that no mistake reaches.
+TEST(CatalogueModels, EverySwitchOfTheIntegratorStepIsSetByARow) {
+  std::string source = test::readText(kRoot / "tools/grader/grade/mistakes/integrate_step.h");
+  for (const std::string& file : integratorTables()) source += test::readText(kRoot / file);
+  std::set<std::string> structs;
+  const std::regex declared(R"(\nstruct (\w*(Switches|EveryMethod)) \{)");
+  for (auto it = std::sregex_iterator(source.begin(), source.end(), declared);
+       it != std::sregex_iterator(); ++it)
+    structs.insert((*it)[1]);
+  // every method's lines, explicit Euler, the predictor-corrector, RK4
+  EXPECT_GE(structs.size(), 4u);
+  for (const std::string& name : structs) {
+    SCOPED_TRACE(name);
+    EXPECT_GT(expectEachSetByARow(source, name), 0);
   }
 }
 

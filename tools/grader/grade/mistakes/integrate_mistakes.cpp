@@ -1,135 +1,29 @@
-// The integrator mistakes as rows of one table on the course's step (integrate_mistakes.h). A
-// new mistake on lines the step already switches is its row in rows() and its catalogue entry;
-// the prover tries every row of the stub's method.
+// The integrator mistakes as rows on the course's step (integrate_mistakes.h): the rows of the
+// families (integrate_step.h) numbered in their order, a model's rows run on the step, and two
+// models combined. A new mistake is its catalogue entry and its row in its family's file.
 #include "grader/grade/mistakes/integrate_mistakes.h"
-
-#include "grader/grade/cause_ids.h"
 
 namespace clothref::grader::integrators {
 namespace {
 
-// The methods a row applies to (bits of integratorIndex: explicit 1, implicit 2, midpoint 4,
-// RK4 8).
-constexpr unsigned kE = 1, kI = 2, kM = 4, kR = 8, kAll = 15;
-
-// A reading of a mistake: the catalogue's id, the stubs it applies to, its words ("{method}":
-// the course's method of the stub), the lines it changes, the method it runs (Heun: a corrector
-// on implicit Euler's prediction, whatever the stub) and a constant it sets.
-struct Row {
-  const char* id;
-  unsigned methods;
-  bool first_pass;  // tried on the first step before any fit
-  const char* text;
-  Lines lines;
-  std::optional<Method> runs{};
-  Overlay overlay{};
+// A row of the families' tables: its family and its number there.
+struct Place {
+  FamilyId family;
+  int row;
 };
 
-// Every reading: those of one id in the order the prover tries them, the first-pass ones in the
-// order the one-step check tries them. "{method}" is the stub's course method.
-// clang-format off
-const std::vector<Row>& rows() {
-  static const std::vector<Row> table = {
-    {cause::kOnlyFirstBody, kAll, true, "{method} on particles[0] (the cloth) only",
-     {.first_body_only = true}},
-    {cause::kOnlyFirstBody, kE, true, "symplectic Euler on particles[0] (the cloth) only",
-     {.first_body_only = true, .velocity_first = true}},
-    {cause::kPositionUsesAcceleration, kE, true, "explicit Euler with x += v dt + a dt²/2",
-     {.position_half_acceleration = true}},
-    {cause::kVelocityNotIntegrated, kE, true, "explicit Euler without the velocity update",
-     {.updates_velocity = false}},
-    {cause::kPositionNotIntegrated, kE, true, "explicit Euler without the position update",
-     {.updates_position = false}},
-    {cause::kBackupAlias, kI | kM | kR, true, "{method} with a backup that follows the live state",
-     {.backup_follows_live = true}},
-    {cause::kNoReevaluation, kI | kM | kR, true,
-     "explicit Euler (what simulateOneStep() computes unused)", {.reevaluates = false}},
-    // From the live state after the stub's own simulateOneStep() (no backups, or "backups" that
-    // follow the live state): a contact is resolved a second time.
-    {cause::kNoReevaluation, kI | kM | kR, false,
-     "explicit Euler from the state your own simulateOneStep() leaves (the step starts after "
-     "that call, not from backups taken before it)",
-     {.reevaluates = false, .evaluates_again = true}},
-    {cause::kPerBodyLoop, kI | kM | kR, true,
-     "{method} run on each body in turn, each with its own simulateOneStep() calls",
-     {.per_body = true}},
-    {cause::kMidpointFullStep, kM, true, "the course's implicit Euler (a full-step prediction)",
-     {.predictor_full_step = true}},
-    {cause::kNoReevaluation, kM, true,
-     "the course's midpoint with simulateOneStep() before the half step",
-     {.evaluates_before_predictor = true}},
-    // simulateOneStep() at the unchanged start state; a contact in it is applied a second time,
-    // so this is not explicit Euler's result.
-    {cause::kNoReevaluation, kM, true, "the course's midpoint whose half step adds nothing",
-     {.predictor_adds_nothing = true}},
-    {cause::kIntegerDivisionRk4, kR, true, "the course's RK4 with 1 / 6 = 0 in the update",
-     {.result_adds_nothing = true}},
-    {cause::kIntegerDivisionRk4, kR, false,
-     "the course's RK4 with 1 / 6 = 0 in an update added (+=) to the state the last stage left",
-     {.result_adds_nothing = true, .result_on_last_stage = true}},
-    {cause::kRk4MixedIncrements, kR, true,
-     "the course's RK4 whose position update adds the velocity k's",
-     {.result_position_from_kv = true}},
-    {cause::kRk4MixedIncrements, kR, true, "the course's RK4 whose velocity update takes k4 of x",
-     {.result_velocity_k4_from_kx = true}},
-    {cause::kRk4MixedIncrements, kR, true,
-     "the course's RK4 whose stage 2 position adds a velocity k", {.stage_position_from_kv = 0}},
-    {cause::kRk4MixedIncrements, kR, true,
-     "the course's RK4 whose stage 3 position adds a velocity k", {.stage_position_from_kv = 1}},
-    {cause::kRk4MixedIncrements, kR, true,
-     "the course's RK4 whose stage 4 position adds a velocity k", {.stage_position_from_kv = 2}},
-    {cause::kRk4MixedIncrements, kR, true,
-     "the course's RK4 whose position update reads k4 after the velocity update (v_new·h)",
-     {.result_k4x_after_velocity = true}},
-    {cause::kRk4StageNotFromBackup, kR, true,
-     "the course's RK4 with each stage built on the previous stage instead of the backup",
-     {.stage_from_current = true}},
-    {cause::kRk4StageFromWrongIncrement, kR, true,
-     "the course's RK4 with each stage position from that stage's new velocity",
-     {.stage_position_from_new_velocity = true}},
-    // Each increment read after the velocity was overwritten with v0 + c·h·a_k of its own stage:
-    // the stage positions x0 + c·h·(v0 + c'·h·a_k), the update's k's (v0 + c'·h·a_k)·h.
-    {cause::kRk4StageFromWrongIncrement, kR, false,
-     "the course's RK4 with each position increment read after the stage's velocity was "
-     "overwritten with v0 + c·h·a of that stage",
-     {.stage_increment_after_overwrite = true}},
-    {cause::kRk4StagesDiscarded, kR, true, "the course's RK4 whose update uses k1 only",
-     {.result_first_stage_only = true}},
-    {cause::kRk4FourthStageHalfStep, kR, true,
-     "the course's RK4 whose fourth stage is taken from a half step (x0 + k3/2, v0 + k3v/2)",
-     {.stage = {0.5f, 0.5f, 0.5f}}},
-    {cause::kVelocityNotIntegrated, kI | kM | kR, false, "{method} without the velocity update",
-     {.updates_velocity = false}},
-    {cause::kPositionNotIntegrated, kI | kM | kR, false, "{method} without the position update",
-     {.updates_position = false}},
-    // The same step as a backup that follows the live state: the corrector adds onto the
-    // prediction. Which one the student wrote is the source's to say (backupCause).
-    {cause::kCorrectorFromPrediction, kI | kM, false,
-     "{method} whose corrector steps from the predicted state", {.backup_follows_live = true}},
-    {cause::kIntegerDivisionHalf, kM, false,
-     "the course's midpoint with 1 / 2 = 0 (the half step adds nothing)",
-     {.predictor_adds_nothing = true}},
-    {cause::kHeunMethod, kAll, false, "Heun's method (the trapezoidal corrector)",
-     {.corrector_trapezoidal = true}, Method::Implicit},
-    {cause::kHalfStepCorrector, kI | kM | kR, false, "{method} whose corrector takes h/2", {},
-     std::nullopt, Overlay{.result_step = 0.5}},
-    {cause::kCorrectorStartVelocity, kI | kM, false,
-     "{method} whose corrector moves the positions with the start velocity v0",
-     {.corrector_start_velocity = true}},
-    // Variants the rubric may accept (stages::methodTables' `accepted`), which a fitted overlay
-    // (particles held still) may follow.
-    {"explicit-as-symplectic", kE, false, "symplectic Euler (v first, then x with the new v)",
-     {.velocity_first = true}},
-    {"implicit-corrector-v-new", kI, false, "implicit Euler whose corrector uses the new v",
-     {.corrector_new_velocity = true}},
-    {"symplectic-predictor", kI, false,
-     "implicit Euler with a symplectic predictor (v first, then x)", {.predictor_symplectic = true}},
-    {"symplectic-predictor", kM, false, "midpoint with a symplectic predictor (v first, then x)",
-     {.predictor_symplectic = true}},
-  };
-  return table;
+// The place of row `r` (the rows of every family in order); none when there is no such row.
+std::optional<Place> placeOf(int r) {
+  if (r < 0) return std::nullopt;
+  for (int f = 0; f < kFamilies; ++f) {
+    const int size = int(family(FamilyId(f)).rows.size());
+    if (r < size) return Place{FamilyId(f), r};
+    r -= size;
+  }
+  return std::nullopt;
 }
-// clang-format on
+
+const Family::Head& headOf(const Place& at) { return family(at.family).rows[std::size_t(at.row)]; }
 
 unsigned methodBit(Method method) {
   switch (method) {
@@ -146,7 +40,7 @@ unsigned methodBit(Method method) {
   }
 }
 
-std::string wordsOf(const Row& row, Method method) {
+std::string wordsOf(const Family::Head& row, Method method) {
   std::string text = row.text;
   const std::string name = method == Method::Explicit   ? "explicit Euler"
                            : method == Method::Implicit ? "implicit Euler"
@@ -157,46 +51,56 @@ std::string wordsOf(const Row& row, Method method) {
   return text;
 }
 
+// Every row in order, with `visit(global row number, its head)`.
+template <typename Visit>
+void eachRow(Visit visit) {
+  int r = 0;
+  for (int f = 0; f < kFamilies; ++f)
+    for (const Family::Head& head : family(FamilyId(f)).rows) visit(r++, head);
+}
+
 }  // namespace
 
 Step courseStep(const StepModel& model) {
-  Lines lines;
+  EveryMethod every;
+  FamilyRows rows;
   Method method = model.method;
   Overlay o = model.overlay;
   for (int r : model.rows) {
-    if (r < 0 || std::size_t(r) >= rows().size()) continue;
-    const Row& row = rows()[std::size_t(r)];
-    merge(lines, row.lines);
+    const std::optional<Place> at = placeOf(r);
+    if (!at) continue;
+    const Family::Head& row = headOf(*at);
+    switches::merge(every, row.every);
+    rows[at->family].push_back(at->row);
     if (row.runs) method = *row.runs;
-    if (row.overlay.result_step != 1) o.result_step = row.overlay.result_step;
+    if (row.result_step != 1) o.result_step = row.result_step;
   }
-  return linesStep(method, lines, o);
+  return linesStep(method, every, rows, o);
 }
 
 std::vector<Reading> readingsOf(std::string_view id, Method method) {
   std::vector<Reading> out;
-  for (std::size_t r = 0; r < rows().size(); ++r) {
-    const Row& row = rows()[r];
+  eachRow([&](int r, const Family::Head& row) {
     if (row.id == id && (row.methods & methodBit(method)))
-      out.push_back({row.id, wordsOf(row, method), int(r), row.first_pass});
-  }
+      out.push_back({row.id, wordsOf(row, method), r, row.first_pass});
+  });
   return out;
 }
 
 std::vector<Reading> readingsOf(Method method) {
   std::vector<Reading> out;
-  for (std::size_t r = 0; r < rows().size(); ++r) {
-    const Row& row = rows()[r];
+  eachRow([&](int r, const Family::Head& row) {
     if (row.methods & methodBit(method))
-      out.push_back({row.id, wordsOf(row, method), int(r), row.first_pass});
-  }
+      out.push_back({row.id, wordsOf(row, method), r, row.first_pass});
+  });
   return out;
 }
 
 std::vector<std::string> readingIds() {
   std::vector<std::string> ids;
-  for (const Row& row : rows())
+  eachRow([&](int, const Family::Head& row) {
     if (ids.empty() || ids.back() != row.id) ids.push_back(row.id);
+  });
   return ids;
 }
 
@@ -210,17 +114,22 @@ Step readingStep(std::string_view id, Method method) {
 std::optional<StepModel> combined(const StepModel& a, const StepModel& b) {
   if (a.method != b.method) return std::nullopt;
   StepModel both = a;
-  Lines lines;
+  EveryMethod every;
+  FamilyRows rows;
   std::optional<Method> runs;
   for (const StepModel* m : {&a, &b})
     for (int r : m->rows) {
-      if (r < 0 || std::size_t(r) >= rows().size()) return std::nullopt;
-      const Row& row = rows()[std::size_t(r)];
-      if (!merge(lines, row.lines)) return std::nullopt;
+      const std::optional<Place> at = placeOf(r);
+      if (!at) return std::nullopt;
+      const Family::Head& row = headOf(*at);
+      if (!switches::merge(every, row.every)) return std::nullopt;
+      rows[at->family].push_back(at->row);
       if (row.runs && runs && *row.runs != *runs) return std::nullopt;
       if (row.runs) runs = row.runs;
       if (m == &b) both.rows.push_back(r);
     }
+  for (int f = 0; f < kFamilies; ++f)
+    if (!family(FamilyId(f)).merges(rows[std::size_t(f)])) return std::nullopt;
   const Overlay& o = b.overlay;
   Overlay& t = both.overlay;
   if (o.step != 1) t.step = o.step;

@@ -1,12 +1,15 @@
 // The integrator mistakes as switches on one course step: the course's main loop step
-// (simulateOneStep(), then the method's integrate()) written once (integrate_step.h) with a switch
-// per line a student's mistake changes, each switch's default the course's. A mistake's readings
-// are rows of one table (integrate_mistakes.cpp), named by the catalogue's id (cause::k…) and
-// setting the lines they change; what a model fits from the student's numbers (a step size,
-// weights, a velocity factor, particles held still, deltaTime after the call) is an Overlay laid
-// over those lines. With no row and no overlay the step is the library's (core/integrator.cpp),
-// bit for bit (IntegrateMistakes.NoSwitchIsTheLibrarysStep, per method, on both editions'
-// systems). A new mistake on lines the step already switches is its catalogue entry and its row.
+// (simulateOneStep(), then the method's integrate()) written once (integrate_step.h), split by
+// method family, with a switch per line a student's mistake changes, each switch's default the
+// course's. A mistake's readings are rows of its family's table (integrate_euler.cpp,
+// integrate_predictor.cpp, integrate_rk4.cpp, or integrate_step.cpp for the lines every method
+// shares), named by the catalogue's id (cause::k…) and setting the lines they change; what a model
+// fits from the student's numbers (a step size, weights, a velocity factor, particles held still,
+// deltaTime after the call) is an Overlay laid over those lines. With no row and no overlay the
+// step is the library's (core/integrator.cpp), bit for bit (IntegrateMistakes.
+// NoSwitchIsTheLibrarysStep, per method, on both editions' systems). A new mistake is its
+// catalogue entry and its row in one family's file, with a new switch and its use there when it
+// changes a line no switch has.
 #pragma once
 #include <array>
 #include <optional>
@@ -21,8 +24,8 @@
 
 namespace clothref::grader::integrators {
 
-// A model of the step: the stub's method, rows of the table (their lines; none: the course's),
-// an overlay.
+// A model of the step: the stub's method, rows (numbered through the families' tables in order;
+// none: the course's), an overlay.
 struct StepModel {
   Method method = Method::Explicit;  // the stub's (a row may run another method: Heun)
   std::vector<int> rows{};
@@ -33,7 +36,7 @@ struct StepModel {
 Step courseStep(const StepModel& model);
 inline Step courseStep(Method method) { return courseStep(StepModel{method}); }
 
-// A reading of a mistake (or of a variant the rubric accepts): a row of the table.
+// A reading of a mistake (or of a variant the rubric accepts): a row of a family's table.
 struct Reading {
   std::string id;    // the catalogue's cause (cause::k…), or the rubric's accepted variant
   std::string text;  // what the model computes, in a student's words
@@ -41,11 +44,12 @@ struct Reading {
   bool first_pass = false;  // tried on the first step before any fit (oneStepSignatures)
 };
 
-// The readings of `id` on a stub of `method`, in the table's order (none: not a row's id).
+// The readings of `id` on a stub of `method`, in the tables' order (every method's rows, then
+// explicit Euler's, the predictor-corrector's, RK4's; none: not a row's id).
 std::vector<Reading> readingsOf(std::string_view id, Method method);
-// Every reading of a stub of `method`, in the table's order.
+// Every reading of a stub of `method`, in the tables' order.
 std::vector<Reading> readingsOf(Method method);
-// Every id the table names (the catalogue test checks each is an entry or an accepted variant).
+// Every id the tables name (the catalogue test checks each is an entry or an accepted variant).
 std::vector<std::string> readingIds();
 
 // `id`'s first reading on `method` as a step (the course's step when `id` has none there).

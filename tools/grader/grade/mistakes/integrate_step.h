@@ -1,14 +1,22 @@
 // The course's step with its lines switchable (the model of every integrator mistake,
-// integrate_mistakes.h): the course's main loop step written once, with a switch per line a
-// student's mistake changes, each switch's default the course's, and the Overlay a fitted model
-// lays over it. Lines say which lines a reading changes (its row in integrate_mistakes.cpp); a
-// new kind of line is a switch here and its use in integrate_step.cpp, a mistake on existing lines
-// only its row.
+// integrate_mistakes.h), split by method family: the course's main loop step is written once,
+// its driver (simulateOneStep(), which bodies, then the method's integrate(), then the Overlay a
+// fitted model lays over it) with the lines every method shares in integrate_step.cpp, and each
+// method's integrate() in its family's file: integrate_euler.cpp (explicit Euler),
+// integrate_predictor.cpp (the predictor-corrector: implicit Euler and midpoint) and
+// integrate_rk4.cpp. A family file holds its switches (a struct private to it, each default the
+// course's), its part of the step and its rows (the readings of mistakes, keyed by the
+// catalogue's cause::k…); merging two models reads every switch (switches.h), so a new line of a
+// method is its switch, its use and its row in that one file.
 #pragma once
 #include <array>
+#include <cstddef>
+#include <functional>
 #include <optional>
+#include <type_traits>
 #include <vector>
 
+#include "grader/grade/mistakes/switches.h"
 #include "grader/grade/mistakes/system.h"
 
 namespace clothref::grader::integrators {
@@ -47,48 +55,141 @@ struct Overlay {
   std::optional<float> dt_after{};          // or this constant
 };
 
-// The lines of the course's step a mistake changes; the defaults are the course's.
-struct Lines {
-  // every method
-  bool backup_follows_live = false;  // x0, v0 read the live state (a pointer or Eigen::Ref "copy")
+// The lines every method shares (set by rows of any family); the defaults are the course's.
+// The driver reads the first four, each method's integrate() the last three.
+struct EveryMethod {
   bool reevaluates = true;           // integrate()'s own simulateOneStep() calls (off: explicit)
   bool evaluates_again = false;      // one more simulateOneStep() before an explicit step
   bool per_body = false;             // integrate() on one body at a time, each with its calls
   bool first_body_only = false;      // integrate() on particles[0] (the cloth) only
+  bool backup_follows_live = false;  // x0, v0 read the live state (a pointer or Eigen::Ref "copy")
   bool updates_position = true, updates_velocity = true;  // the result's x and v
-  // explicit Euler
-  bool position_half_acceleration = false;  // x += v dt + a dt²/2
-  bool velocity_first = false;              // v first, then x with the new v (symplectic)
-  // the predictor-corrector (implicit h = 1, midpoint h = 1/2)
-  bool predictor_full_step = false;         // midpoint's prediction with h = 1
-  bool predictor_adds_nothing = false;      // h = 0 (1 / 2 == 0, or kept in locals)
-  bool predictor_symplectic = false;        // v first, then x with the new v
-  bool evaluates_before_predictor = false;  // simulateOneStep() before the prediction, not after
-  bool corrector_new_velocity = false;      // x = x0 + v_new dt
-  bool corrector_trapezoidal = false;       // x = x0 + (v0 + v1) dt / 2, v = v0 + (a0 + a1) dt / 2
-  bool corrector_start_velocity = false;    // x = x0 + v0 dt
-  // RK4
-  std::array<float, 3> stage{0.5f, 0.5f, 1.0f};   // stage k + 1's state is x0 + k_k · stage[k]
-  bool stage_increment_after_overwrite = false;   // k_k of x read after v = v0 + kv_k · c_k
-  bool stage_from_current = false;                // stage k > 1 built on the previous stage
-  bool stage_position_from_new_velocity = false;  // stage x = x0 + dt c (v0 + kv c)
-  int stage_position_from_kv = -1;                // that stage's (0..2) x adds kv, not kx
-  bool result_adds_nothing = false;               // 1 / 6 == 0
-  bool result_on_last_stage = false;        // x += ... onto the state the last stage left, not x0
-  bool result_position_from_kv = false;     // x0 + (kv1 + 2 kv2 + 2 kv3 + kv4) / 6
-  bool result_velocity_k4_from_kx = false;  // v0 + (... + kx4) / 6
-  bool result_k4x_after_velocity = false;   // v first, then x's k4 read as v_new dt
-  bool result_first_stage_only = false;     // x0 + k1, v0 + k1v
-  bool operator==(const Lines&) const = default;
 };
 
-// `into` with `from`'s switches that differ from the course's; false when both change one line
-// differently.
-bool merge(Lines& into, const Lines& from);
+// The methods a row applies to (bits of integratorIndex: explicit 1, implicit 2, midpoint 4,
+// RK4 8).
+constexpr unsigned kE = 1, kI = 2, kM = 4, kR = 8, kAll = 15;
 
-// The course's main loop step of `method` with `lines` and `overlay`: simulateOneStep(), then the
-// method's integrate() (explicit Euler, the predictor-corrector or RK4), then what the overlay
-// lays over it. With the defaults it is core/integrator.cpp's step, operation for operation.
-Step linesStep(Method method, const Lines& lines, const Overlay& overlay);
+// A reading of a mistake (or of a variant the rubric accepts), a row of a family's table: the
+// catalogue's id, the stubs it applies to, whether it is tried on the first step before any fit,
+// its words ("{method}": the course's method of the stub), the family's switches it sets, the
+// lines of every method it sets, the method it runs (Heun: a corrector on implicit Euler's
+// prediction, whatever the stub) and a constant it sets (the overlay's result_step).
+template <typename Switches>
+struct Row {
+  const char* id;
+  unsigned methods;
+  bool first_pass;
+  const char* text;
+  Switches lines{};
+  EveryMethod every{};
+  std::optional<Method> runs{};
+  Overlay overlay{};
+};
+
+// The step sizes of one call: h of every term, the result's h and the result's factor.
+struct Sizes {
+  float dt, result_dt, result_scale;
+};
+
+// One integrate() call as the driver hands it to a method's family: the bodies it advances.
+struct Call {
+  System& s;
+  const std::vector<Particles<float>*>& bodies;
+  Method method;  // the method run (midpoint: the prediction at h/2)
+  const EveryMethod& every;
+  Sizes z;
+  const Overlay& o;
+  const std::function<void()>& at_stage;  // after each stage state is written
+};
+
+// A method's integrate() with a model's switches on.
+using Integrate = std::function<void(const Call&)>;
+
+// A family as the driver and the readings see it: its rows without their switches, whether the
+// switches of some of its rows go together, and its integrate() with them on.
+struct Family {
+  struct Head {
+    const char* id;
+    unsigned methods;
+    bool first_pass;
+    const char* text;
+    EveryMethod every;
+    std::optional<Method> runs;
+    double result_step;
+  };
+  std::vector<Head> rows;
+  std::function<bool(const std::vector<int>& rows)> merges;  // false: a switch set two ways
+  std::function<Integrate(const std::vector<int>& rows)> integrate;
+};
+
+// A family from its table and its integrate(): the rows' switches merged (switches::merge) for
+// a model of several rows. The rows of every method set EveryMethod itself (no integrate()).
+template <typename Switches>
+Family familyOf(const std::vector<Row<Switches>>& table,
+                std::type_identity_t<void (*)(const Call&, const Switches&)> integrate) {
+  Family family;
+  for (const Row<Switches>& row : table) {
+    EveryMethod every = row.every;
+    if constexpr (std::is_same_v<Switches, EveryMethod>) every = row.lines;
+    family.rows.push_back(
+        {row.id, row.methods, row.first_pass, row.text, every, row.runs, row.overlay.result_step});
+  }
+  const auto merged = [&table](const std::vector<int>& rows, Switches& on) {
+    bool together = true;
+    for (int r : rows) together = switches::merge(on, table[std::size_t(r)].lines) && together;
+    return together;
+  };
+  family.merges = [merged](const std::vector<int>& rows) {
+    Switches on;
+    return merged(rows, on);
+  };
+  if (integrate)
+    family.integrate = [merged, integrate](const std::vector<int>& rows) -> Integrate {
+      Switches on;
+      merged(rows, on);
+      return [on, integrate](const Call& call) { integrate(call, on); };
+    };
+  return family;
+}
+
+// The families in the order of their rows (the readings' order: readingsOf): every method's
+// lines, explicit Euler, the predictor-corrector, RK4.
+enum FamilyId { kEveryMethod, kExplicitEuler, kPredictorCorrector, kRungeKutta4, kFamilies };
+const Family& family(FamilyId id);
+// Defined in their files.
+const Family& everyMethodFamily();
+const Family& explicitEulerFamily();
+const Family& predictorCorrectorFamily();
+const Family& rungeKutta4Family();
+
+// Each family's rows of a model (the family's own row numbers).
+using FamilyRows = std::array<std::vector<int>, kFamilies>;
+
+// The course's main loop step of `method` with `every`, each family's `rows` and `overlay`:
+// simulateOneStep(), then the method's integrate() (explicit Euler, the predictor-corrector or
+// RK4), then what the overlay lays over it. With no row it is core/integrator.cpp's step,
+// operation for operation.
+Step linesStep(Method method, const EveryMethod& every, const FamilyRows& rows,
+               const Overlay& overlay);
+
+// The start state of `bodies`: a copy, or with `alias` the live state (what a pointer or
+// Eigen::Ref "copy" reads later).
+struct Backup {
+  Backup(const std::vector<Particles<float>*>& of, bool alias_live)
+      : bodies(of), alias(alias_live) {
+    for (auto* p : bodies) x0.push_back(p->position), v0.push_back(p->velocity);
+  }
+  Mat4X<float> x(std::size_t b) const { return alias ? bodies[b]->position : x0[b]; }
+  Mat4X<float> v(std::size_t b) const { return alias ? bodies[b]->velocity : v0[b]; }
+  const std::vector<Particles<float>*>& bodies;
+  bool alias;
+  std::vector<Mat4X<float>> x0, v0;
+};
+
+// `rate` · h · scale, or the course's rate · h when the scale is 1.
+inline Mat4X<float> increment(const Mat4X<float>& rate, float h, float scale) {
+  return scale == 1 ? Mat4X<float>(rate * h) : Mat4X<float>((rate * h) * scale);
+}
 
 }  // namespace clothref::grader::integrators
