@@ -37,7 +37,7 @@ void integrateEuler(const Call& c, const EulerSwitches& w) {
 const std::vector<Row<EulerSwitches>>& eulerRows() {
   static const std::vector<Row<EulerSwitches>> table = {
     {cause::kOnlyFirstBody, kE, true, "symplectic Euler on particles[0] (the cloth) only",
-     {.velocity_first = true}, {.first_body_only = true}},
+     {.velocity_first = true}, {}, std::nullopt, {}, cause::kOnlyFirstBody},
     {cause::kPositionUsesAcceleration, kE, true, "explicit Euler with x += v dt + a dt²/2",
      {.position_half_acceleration = true}},
     {cause::kVelocityNotIntegrated, kE, true, "explicit Euler without the velocity update", {},

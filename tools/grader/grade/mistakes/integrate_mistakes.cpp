@@ -72,6 +72,7 @@ Step courseStep(const StepModel& model) {
     const Family::Head& row = headOf(*at);
     switches::merge(every, row.every);
     rows[at->family].push_back(at->row);
+    if (frameRow(row.frame) >= 0) rows[kEveryMethod].push_back(frameRow(row.frame));
     if (row.runs) method = *row.runs;
     if (row.result_step != 1) o.result_step = row.result_step;
   }
@@ -124,6 +125,7 @@ std::optional<StepModel> combined(const StepModel& a, const StepModel& b) {
       const Family::Head& row = headOf(*at);
       if (!switches::merge(every, row.every)) return std::nullopt;
       rows[at->family].push_back(at->row);
+      if (frameRow(row.frame) >= 0) rows[kEveryMethod].push_back(frameRow(row.frame));
       if (row.runs && runs && *row.runs != *runs) return std::nullopt;
       if (row.runs) runs = row.runs;
       if (m == &b) both.rows.push_back(r);

@@ -1,24 +1,34 @@
-// The course's step with its lines switchable (integrate_step.h): its driver, the lines every
-// method shares and their rows, and the families in order. A new line of the driver (which
-// bodies, which evaluations) is its switch in EveryMethod (integrate_step.h, where every family's
-// rows can set it), its use below and its row here.
+// The course's step with its lines switchable (integrate_step.h): its driver, the driver's lines
+// and their rows, and the families in order. A new line of the driver (which bodies, which
+// evaluations) is its switch in FrameSwitches, its use in linesStep and its row here; a family's
+// row that changes the driver's lines too names this table's row (Row::frame).
 #include "grader/grade/mistakes/integrate_step.h"
+
+#include <cstring>
 
 #include "grader/grade/cause_ids.h"
 
 namespace clothref::grader::integrators {
 namespace {
 
-// Every reading on lines every method shares: those of one id in the order the prover tries
-// them, the first-pass ones in the order the one-step check tries them. "{method}" is the stub's
-// course method.
+// The driver's lines a mistake changes; the defaults are the course's.
+struct FrameSwitches {
+  bool reevaluates = true;       // integrate()'s own simulateOneStep() calls (off: explicit)
+  bool evaluates_again = false;  // one more simulateOneStep() before an explicit step
+  bool per_body = false;         // integrate() on one body at a time, each with its calls
+  bool first_body_only = false;  // integrate() on particles[0] (the cloth) only
+};
+
+// Every reading on the driver's lines or on lines every method reads (EveryMethod): those of one
+// id in the order the prover tries them, the first-pass ones in the order the one-step check tries
+// them. "{method}" is the stub's course method.
 // clang-format off
-const std::vector<Row<EveryMethod>>& everyMethodRows() {
-  static const std::vector<Row<EveryMethod>> table = {
+const std::vector<Row<FrameSwitches>>& frameRows() {
+  static const std::vector<Row<FrameSwitches>> table = {
     {cause::kOnlyFirstBody, kAll, true, "{method} on particles[0] (the cloth) only",
      {.first_body_only = true}},
     {cause::kBackupAlias, kI | kM | kR, true, "{method} with a backup that follows the live state",
-     {.backup_follows_live = true}},
+     {}, {.backup_follows_live = true}},
     {cause::kNoReevaluation, kI | kM | kR, true,
      "explicit Euler (what simulateOneStep() computes unused)", {.reevaluates = false}},
     // From the live state after the stub's own simulateOneStep() (no backups, or "backups" that
@@ -31,13 +41,13 @@ const std::vector<Row<EveryMethod>>& everyMethodRows() {
      "{method} run on each body in turn, each with its own simulateOneStep() calls",
      {.per_body = true}},
     {cause::kVelocityNotIntegrated, kI | kM | kR, false, "{method} without the velocity update",
-     {.updates_velocity = false}},
+     {}, {.updates_velocity = false}},
     {cause::kPositionNotIntegrated, kI | kM | kR, false, "{method} without the position update",
-     {.updates_position = false}},
+     {}, {.updates_position = false}},
     // The same step as a backup that follows the live state: the corrector adds onto the
     // prediction. Which one the student wrote is the source's to say (backupCause).
     {cause::kCorrectorFromPrediction, kI | kM, false,
-     "{method} whose corrector steps from the predicted state", {.backup_follows_live = true}},
+     "{method} whose corrector steps from the predicted state", {}, {.backup_follows_live = true}},
     {cause::kHalfStepCorrector, kI | kM | kR, false, "{method} whose corrector takes h/2", {}, {},
      std::nullopt, Overlay{.result_step = 0.5}},
   };
@@ -48,8 +58,14 @@ const std::vector<Row<EveryMethod>>& everyMethodRows() {
 }  // namespace
 
 const Family& everyMethodFamily() {
-  static const Family rows = familyOf(everyMethodRows(), nullptr);
+  static const Family rows = familyOf(frameRows(), nullptr);
   return rows;
+}
+
+int frameRow(const char* id) {
+  for (std::size_t r = 0; id && r < frameRows().size(); ++r)
+    if (std::strcmp(frameRows()[r].id, id) == 0) return int(r);
+  return -1;
 }
 
 const Family& family(FamilyId id) {
@@ -74,15 +90,19 @@ void holdStill(const std::vector<Pins>& pinned, const std::vector<int>& spheres,
 }
 
 Step linesStep(Method method, const EveryMethod& every, const FamilyRows& rows, const Overlay& o) {
+  FrameSwitches frame;
+  for (int r : rows[kEveryMethod])
+    if (r >= 0 && std::size_t(r) < frameRows().size())
+      switches::merge(frame, frameRows()[std::size_t(r)].lines);
   // The method's integrate() with its family's switches on, set once for every call.
-  const bool explicit_euler = method == Method::Explicit || !every.reevaluates;
+  const bool explicit_euler = method == Method::Explicit || !frame.reevaluates;
   FamilyId id = kRungeKutta4;
   if (explicit_euler)
     id = kExplicitEuler;
   else if (method == Method::Implicit || method == Method::Midpoint)
     id = kPredictorCorrector;
   const Integrate integrate = family(id).integrate(rows[id]);
-  return [method, every, o, explicit_euler, integrate](System& s) {
+  return [method, every, frame, o, explicit_euler, integrate](System& s) {
     simulate(s);
     const Mat4X<float> cloth_x0 = s.cloth.particles.position;
     const float dt = o.step == 1 ? s.dt : float(double(s.dt) * o.step);
@@ -92,16 +112,16 @@ Step linesStep(Method method, const EveryMethod& every, const FamilyRows& rows, 
       if (o.pins_at_stages) holdStill(o.pinned, o.pinned_spheres, s, cloth_x0);
     };
     std::vector<Particles<float>*> bodies{&s.cloth.particles};
-    if (!every.first_body_only) bodies.push_back(&s.spheres.particles);
+    if (!frame.first_body_only) bodies.push_back(&s.spheres.particles);
     if (explicit_euler) {
-      if (every.evaluates_again) simulate(s);
+      if (frame.evaluates_again) simulate(s);
       integrate({s, bodies, method, every, z, o, at_stage});
     } else {
       // A per-body loop: each body alone, later bodies after the earlier ones have moved; the
       // first body uses the derivatives evaluated before integrate(), each later one those of
       // the previous body's last simulateOneStep().
       std::vector<std::vector<Particles<float>*>> groups;
-      if (every.per_body)
+      if (frame.per_body)
         for (auto* p : bodies) groups.push_back({p});
       else
         groups.push_back(bodies);

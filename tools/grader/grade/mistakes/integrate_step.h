@@ -1,13 +1,13 @@
 // The course's step with its lines switchable (the model of every integrator mistake,
 // integrate_mistakes.h), split by method family: the course's main loop step is written once,
 // its driver (simulateOneStep(), which bodies, then the method's integrate(), then the Overlay a
-// fitted model lays over it) with the lines every method shares in integrate_step.cpp, and each
-// method's integrate() in its family's file: integrate_euler.cpp (explicit Euler),
-// integrate_predictor.cpp (the predictor-corrector: implicit Euler and midpoint) and
-// integrate_rk4.cpp. A family file holds its switches (a struct private to it, each default the
+// fitted model lays over it) with its own lines (a struct private to it) and their rows in
+// integrate_step.cpp, and each method's integrate() in its family's file: integrate_euler.cpp
+// (explicit Euler), integrate_predictor.cpp (the predictor-corrector: implicit Euler and midpoint)
+// and integrate_rk4.cpp. A family file holds its switches (a struct private to it, each default the
 // course's), its part of the step and its rows (the readings of mistakes, keyed by the
 // catalogue's cause::k…); merging two models reads every switch (switches.h), so a new line of a
-// method is its switch, its use and its row in that one file.
+// method, or of the driver, is its switch, its use and its row in that one file.
 #pragma once
 #include <array>
 #include <cstddef>
@@ -55,13 +55,9 @@ struct Overlay {
   std::optional<float> dt_after{};          // or this constant
 };
 
-// The lines every method shares (set by rows of any family); the defaults are the course's.
-// The driver reads the first four, each method's integrate() the last three.
+// The lines each method's integrate() reads that any family's rows may set; the defaults are
+// the course's. The driver's own lines (which bodies, which evaluations) are integrate_step.cpp's.
 struct EveryMethod {
-  bool reevaluates = true;           // integrate()'s own simulateOneStep() calls (off: explicit)
-  bool evaluates_again = false;      // one more simulateOneStep() before an explicit step
-  bool per_body = false;             // integrate() on one body at a time, each with its calls
-  bool first_body_only = false;      // integrate() on particles[0] (the cloth) only
   bool backup_follows_live = false;  // x0, v0 read the live state (a pointer or Eigen::Ref "copy")
   bool updates_position = true, updates_velocity = true;  // the result's x and v
 };
@@ -85,6 +81,9 @@ struct Row {
   EveryMethod every{};
   std::optional<Method> runs{};
   Overlay overlay{};
+  // A cause whose first row of the driver's lines (integrate_step.cpp) this reading sets too:
+  // one that changes the frame and a method's lines (symplectic Euler on the cloth only).
+  const char* frame = nullptr;
 };
 
 // The step sizes of one call: h of every term, the result's h and the result's factor.
@@ -117,6 +116,7 @@ struct Family {
     EveryMethod every;
     std::optional<Method> runs;
     double result_step;
+    const char* frame;
   };
   std::vector<Head> rows;
   std::function<bool(const std::vector<int>& rows)> merges;  // false: a switch set two ways
@@ -124,17 +124,14 @@ struct Family {
 };
 
 // A family from its table and its integrate(): the rows' switches merged (switches::merge) for
-// a model of several rows. The rows of every method set EveryMethod itself (no integrate()).
+// a model of several rows. The driver's family has no integrate(): linesStep reads its lines.
 template <typename Switches>
 Family familyOf(const std::vector<Row<Switches>>& table,
                 std::type_identity_t<void (*)(const Call&, const Switches&)> integrate) {
   Family family;
-  for (const Row<Switches>& row : table) {
-    EveryMethod every = row.every;
-    if constexpr (std::is_same_v<Switches, EveryMethod>) every = row.lines;
-    family.rows.push_back(
-        {row.id, row.methods, row.first_pass, row.text, every, row.runs, row.overlay.result_step});
-  }
+  for (const Row<Switches>& row : table)
+    family.rows.push_back({row.id, row.methods, row.first_pass, row.text, row.every, row.runs,
+                           row.overlay.result_step, row.frame});
   const auto merged = [&table](const std::vector<int>& rows, Switches& on) {
     bool together = true;
     for (int r : rows) together = switches::merge(on, table[std::size_t(r)].lines) && together;
@@ -153,8 +150,8 @@ Family familyOf(const std::vector<Row<Switches>>& table,
   return family;
 }
 
-// The families in the order of their rows (the readings' order: readingsOf): every method's
-// lines, explicit Euler, the predictor-corrector, RK4.
+// The families in the order of their rows (the readings' order: readingsOf): the driver's lines
+// (with the rows that set only EveryMethod), explicit Euler, the predictor-corrector, RK4.
 enum FamilyId { kEveryMethod, kExplicitEuler, kPredictorCorrector, kRungeKutta4, kFamilies };
 const Family& family(FamilyId id);
 // Defined in their files.
@@ -162,11 +159,14 @@ const Family& everyMethodFamily();
 const Family& explicitEulerFamily();
 const Family& predictorCorrectorFamily();
 const Family& rungeKutta4Family();
+// The driver family's first row named `id` (a Row's `frame`); -1: none.
+int frameRow(const char* id);
 
 // Each family's rows of a model (the family's own row numbers).
 using FamilyRows = std::array<std::vector<int>, kFamilies>;
 
-// The course's main loop step of `method` with `every`, each family's `rows` and `overlay`:
+// The course's main loop step of `method` with `every`, each family's `rows` (the driver's lines
+// are its family's rows) and `overlay`:
 // simulateOneStep(), then the method's integrate() (explicit Euler, the predictor-corrector or
 // RK4), then what the overlay lays over it. With no row it is core/integrator.cpp's step,
 // operation for operation.
