@@ -59,6 +59,15 @@ void eachRow(Visit visit) {
     for (const Family::Head& head : family(FamilyId(f)).rows) visit(r++, head);
 }
 
+// Row `at`'s lines added to a model's: its family's row, the driver's row it names (Row::frame)
+// and the lines every method reads; false when one of those is set two ways.
+bool addLines(const Place& at, EveryMethod& every, FamilyRows& rows) {
+  const Family::Head& row = headOf(at);
+  rows[at.family].push_back(at.row);
+  if (const int frame = frameRow(row.frame); frame >= 0) rows[kEveryMethod].push_back(frame);
+  return switches::merge(every, row.every);
+}
+
 }  // namespace
 
 Step courseStep(const StepModel& model) {
@@ -69,10 +78,8 @@ Step courseStep(const StepModel& model) {
   for (int r : model.rows) {
     const std::optional<Place> at = placeOf(r);
     if (!at) continue;
+    addLines(*at, every, rows);
     const Family::Head& row = headOf(*at);
-    switches::merge(every, row.every);
-    rows[at->family].push_back(at->row);
-    if (frameRow(row.frame) >= 0) rows[kEveryMethod].push_back(frameRow(row.frame));
     if (row.runs) method = *row.runs;
     if (row.result_step != 1) o.result_step = row.result_step;
   }
@@ -122,10 +129,8 @@ std::optional<StepModel> combined(const StepModel& a, const StepModel& b) {
     for (int r : m->rows) {
       const std::optional<Place> at = placeOf(r);
       if (!at) return std::nullopt;
+      if (!addLines(*at, every, rows)) return std::nullopt;
       const Family::Head& row = headOf(*at);
-      if (!switches::merge(every, row.every)) return std::nullopt;
-      rows[at->family].push_back(at->row);
-      if (frameRow(row.frame) >= 0) rows[kEveryMethod].push_back(frameRow(row.frame));
       if (row.runs && runs && *row.runs != *runs) return std::nullopt;
       if (row.runs) runs = row.runs;
       if (m == &b) both.rows.push_back(r);
